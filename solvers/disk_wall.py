@@ -1,0 +1,196 @@
+"""A spinning uniform disk strikes a rough straight wall (ME 230 review, problem 1).
+
+Model: rigid uniform disk, I_C = ½ m R², in the plane; the wall is fixed. Axes: x along the wall,
+y the wall normal pointing from the disk into the wall, ω counter-clockwise (E_z out of the page).
+The contact point is B = C + R E_y. The impact is instantaneous: gravity and any finite force are
+negligible against the impulse P = P_t E_x + P_n E_y at B. Newton's restitution e acts on the
+normal velocity of B; Coulomb friction μ bounds the tangential impulse, |P_t| ≤ μ |P_n|.
+μ = ∞ (the seed's assumption) means B does not slip at the end of the impact. For a uniform
+disk the tangential and normal directions are uncoupled at B, so with finite μ either the impact
+ends in sticking or B slides in one direction throughout.
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import sympy as sp
+
+from .core import (
+    Answer,
+    Check,
+    Choice,
+    Derivation,
+    Number,
+    Result,
+    Solution,
+    Step,
+    latex_eq,
+    relative_tolerance,
+    validate_params,
+)
+
+PARAMS = (
+    Number("m", 1.0, "mass", "mass", "m", low=0, ui_low=0.1, ui_high=10.0, step=0.1),
+    Number("R", 0.1, "radius", "length", "R", low=0, ui_low=0.01, ui_high=1.0, step=0.01),
+    Number("V", 2.0, "speed before impact", "speed", "V", low=0, ui_low=0.1, ui_high=10.0, step=0.1,
+           help="The disk must be moving toward the wall."),
+    Number("theta", math.radians(30), "angle of approach from the wall normal", "angle", r"\theta",
+           low=0, high=math.pi / 2, low_inclusive=True, ui_low=0, ui_high=89, step=1.0),
+    Number("omega", 5.0, "angular velocity before impact (counter-clockwise +)", "angular_speed",
+           r"\omega", ui_low=-50.0, ui_high=50.0, step=0.5),
+    Number("e", 1.0, "coefficient of restitution", "dimensionless", "e", low=0, high=1,
+           low_inclusive=True, high_inclusive=True, ui_low=0, ui_high=1, step=0.05),
+    Number("mu", math.inf, "wall friction coefficient (inf = no slip)", "dimensionless", r"\mu",
+           low=0, low_inclusive=True, allow_inf=True, ui_low=0, ui_high=2, step=0.05),
+)
+
+ANSWERS = (
+    Answer("v1x", "velocity after, along the wall", r"v_{1x}", "speed"),
+    Answer("v1y", "velocity after, wall normal", r"v_{1y}", "speed"),
+    Answer("omega1", "angular velocity after", r"\omega_1", "angular_speed"),
+    Answer("speed1", "speed after", r"v_1", "speed"),
+    Answer("impulse_t", "tangential impulse on the disk", r"P_t", "impulse"),
+    Answer("impulse_n", "normal impulse on the disk", r"P_n", "impulse"),
+    Answer("energy_loss", "kinetic energy lost", r"\Delta T", "energy"),
+)
+
+ERRATA = (
+    r"The seed writes $v_{1y} = +V\cos\theta$ (\"magnitude conserved\"). After an elastic impact "
+    r"the normal component **reverses**: $v_{1y} = -eV\cos\theta$, pointing away from the wall.",
+)
+
+m, R, V, theta, omega, e, mu = sp.symbols(r"m R V theta omega e mu", positive=True)
+omega = sp.Symbol(r"omega", real=True)
+sigma = sp.Symbol(r"sigma", real=True)  # direction of slip of B before impact, ±1
+v1x, v1y, omega1, P_t, P_n, speed1, T_minus, T_plus, loss = sp.symbols(
+    r"v_{1x} v_{1y} omega_1 P_t P_n v_1 T^- T^+ \Delta{T}", real=True
+)
+SYMBOLS = {"m": m, "R": R, "V": V, "theta": theta, "omega": omega, "e": e, "mu": mu,
+           "slip_direction": sigma}
+DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)} | {
+    "slip_direction": "dimensionless"}
+
+
+def _vec(*components) -> sp.Matrix:
+    return sp.Matrix(components)
+
+
+@functools.cache
+def derivation(regime: str) -> Derivation:
+    """The symbolic derivation for ``regime`` = "stick" or "slip" (done once per process)."""
+    I_C = sp.Rational(1, 2) * m * R**2
+    v_before = _vec(V * sp.sin(theta), V * sp.cos(theta), 0)
+    r_BC = _vec(0, R, 0)
+    v_B_before = v_before + _vec(0, 0, omega).cross(r_BC)
+    v_after = _vec(v1x, v1y, 0)
+    v_B_after = v_after + _vec(0, 0, omega1).cross(r_BC)
+    impulse = _vec(P_t, P_n, 0)
+    angular_impulse = r_BC.cross(impulse)[2]
+
+    linear = [sp.Eq(m * (v_after[i] - v_before[i]), impulse[i]) for i in range(2)]
+    angular = sp.Eq(I_C * (omega1 - omega), angular_impulse)
+    restitution = sp.Eq(v1y, -e * v_before[1])
+    if regime == "stick":
+        tangential = sp.Eq(v_B_after[0], 0)
+    else:
+        tangential = sp.Eq(P_t, -sigma * mu * (1 + e) * m * V * sp.cos(theta))
+    solved = sp.solve([*linear, angular, restitution, tangential], [v1x, v1y, omega1, P_t, P_n],
+                      dict=True)[0]
+    solved = {k: sp.factor_terms(sp.expand(v)) for k, v in solved.items()}
+
+    T = lambda v, w: sp.Rational(1, 2) * m * (v[0] ** 2 + v[1] ** 2) + sp.Rational(1, 2) * I_C * w**2
+    steps = [
+        Step("Velocity of the centre before impact",
+             sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_C^-"), v_before[:2, :], evaluate=False))),
+        Step("Velocity of the contact point B = C + R E_y: v_B = v_C + ω E_z × R E_y",
+             sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_B^-"), v_B_before[:2, :], evaluate=False))),
+        Step("Linear impulse–momentum (the impulse P acts at B)",
+             r" \qquad ".join(sp.latex(eq) for eq in linear)),
+        Step(r"Angular impulse–momentum about C, with I_C = ½ m R² and (R E_y × P)·E_z = −R P_t",
+             sp.latex(angular)),
+        Step("Newton's restitution on the normal velocity (the normal component reverses)",
+             sp.latex(restitution)),
+    ]
+    if regime == "stick":
+        steps.append(Step("No slip at B at the end of the impact: v_B⁺ · E_x = 0",
+                          sp.latex(tangential)))
+    else:
+        steps.append(Step(
+            "B slides throughout: friction is at its limit μ|P_n| and opposes the slip "
+            "(σ = sign of the slip velocity of B before impact)", sp.latex(tangential)))
+    steps.append(Step("Solve the five linear equations",
+                      r" ,\quad ".join(latex_eq(k, solved[k]) for k in (v1x, omega1, P_t, P_n))))
+    if regime == "stick":
+        steps.append(Step("Friction must supply this: no slip is possible only while |P_t| ≤ μ|P_n|",
+                          r"\left|P_t\right| \le \mu \left|P_n\right|"))
+    steps.append(Step("Angular momentum about the contact point B is conserved (the impulse has "
+                      "no moment about B); the seed's route",
+                      latex_eq(I_C * omega + m * R * v_before[0], I_C * omega1 + m * R * v1x)))
+
+    chain = [
+        Result("impulse_n", P_n, solved[P_n], "impulse"),
+        Result("impulse_t", P_t, solved[P_t], "impulse"),
+        Result("v1x", v1x, solved[v1x], "speed"),
+        Result("v1y", v1y, solved[v1y], "speed"),
+        Result("omega1", omega1, solved[omega1], "angular_speed"),
+        Result("speed1", speed1, sp.sqrt(v1x**2 + v1y**2), "speed"),
+        Result("T_before", T_minus, T(v_before, omega), "energy", "Kinetic energy before"),
+        Result("T_after", T_plus, T(_vec(v1x, v1y), omega1), "energy", "Kinetic energy after"),
+        Result("energy_loss", loss, T_minus - T_plus, "energy"),
+    ]
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+
+
+def solve(**params) -> Solution:
+    p = validate_params(PARAMS, params)
+    values = dict(p, slip_direction=0.0)
+    stick = derivation("stick").evaluate(values)
+    slip_before = p["V"] * math.sin(p["theta"]) - p["R"] * p["omega"]
+    sticks = math.isinf(p["mu"]) or abs(stick["impulse_t"]) <= p["mu"] * abs(stick["impulse_n"]) * (
+        1 + 1e-12)
+    regime = "stick" if sticks else "slip"
+    if sticks:
+        result = stick
+    else:
+        values["slip_direction"] = math.copysign(1.0, slip_before)
+        result = derivation("slip").evaluate(values)
+    d = derivation(regime)
+    steps = list(d.steps) + d.numeric_steps(result)
+    answers = {a.name: result[a.name] for a in ANSWERS}
+    return Solution("disk_wall", p, answers, tuple(steps), _checks(p, answers), regime,
+                    _notes(p, answers, regime, slip_before))
+
+
+def _checks(p, a) -> tuple[Check, ...]:
+    m_, R_, I_C = p["m"], p["R"], 0.5 * p["m"] * p["R"] ** 2
+    vx0, vy0 = p["V"] * math.sin(p["theta"]), p["V"] * math.cos(p["theta"])
+    H_B_before = I_C * p["omega"] + m_ * R_ * vx0
+    H_B_after = I_C * a["omega1"] + m_ * R_ * a["v1x"]
+    # Kelvin's theorem: the work of an impulse is P · (v_B⁻ + v_B⁺)/2 at its point of action.
+    vB_before = (vx0 - R_ * p["omega"], vy0)
+    vB_after = (a["v1x"] - R_ * a["omega1"], a["v1y"])
+    work = (a["impulse_t"] * (vB_before[0] + vB_after[0]) + a["impulse_n"] * (vB_before[1] + vB_after[1])) / 2
+    return (
+        Check("angular momentum about B", H_B_before, H_B_after, relative_tolerance(H_B_before, 1e-9),
+              "conserved: the wall's impulse acts at B, so it has no moment about B"),
+        Check("linear momentum along x", m_ * (a["v1x"] - vx0), a["impulse_t"],
+              relative_tolerance(m_ * vx0, 1e-9), "changes by exactly the friction impulse"),
+        Check("energy lost = −work of the impulse (Kelvin)", a["energy_loss"], -work,
+              relative_tolerance(0.5 * m_ * p["V"] ** 2 + 0.5 * I_C * p["omega"] ** 2, 1e-9),
+              "never negative; zero only for e = 1 with no slip work"),
+    )
+
+
+def _notes(p, a, regime, slip_before) -> tuple[str, ...]:
+    if regime == "stick":
+        if math.isinf(p["mu"]):
+            note = "Rough wall (μ = ∞): B stops slipping; the seed's assumption."
+        else:
+            note = (f"Sticks: no slip needs |P_t| = {abs(a['impulse_t']):.4g} N·s, within "
+                    f"μ|P_n| = {p['mu'] * abs(a['impulse_n']):.4g} N·s.")
+    else:
+        note = (f"Slides: no slip would need more friction than μ|P_n| = "
+                f"{p['mu'] * abs(a['impulse_n']):.4g} N·s, so B slides "
+                f"{'forward (+x)' if slip_before > 0 else 'backward (−x)'} through the whole impact.")
+    return (note,)

@@ -1,0 +1,179 @@
+"""A four-wheeled cart accelerated by its driven wheels (O'Reilly 9.3).
+
+Model: rigid cart of mass m translating along E_x (no pitch, all four wheels on the ground), CM at
+height a, axles at x = ±b from the CM (front at +b), wheels at z = ±c. Wheels are massless; each
+driven wheel pushes forward with traction at the friction limit, F_i = μ N_i, and the free wheels
+carry no traction. Wheel numbering follows the seed: 1 (rear, +c), 2 (front, +c), 3 (front, −c),
+4 (rear, −c). Nine unknowns (four normal forces, four lateral forces, ẍ) meet six equations, so,
+as in the seed, the lateral forces are taken as zero and the load as symmetric left to right.
+Rear- and all-wheel drive unload the front axle and lift it once μa ≥ b; the model then no
+longer applies (a wheelie) and ``solve`` refuses.
+"""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import sympy as sp
+
+from .core import (
+    Answer,
+    Check,
+    Choice,
+    Derivation,
+    Number,
+    PhysicalLimitError,
+    Result,
+    Solution,
+    Step,
+    latex_eq,
+    relative_tolerance,
+    validate_params,
+)
+
+PARAMS = (
+    Number("m", 1200.0, "mass", "mass", "m", low=0, ui_low=100.0, ui_high=5000.0, step=50.0),
+    Number("a", 0.5, "height of the CM", "length", "a", low=0, ui_low=0.05, ui_high=3.0, step=0.05),
+    Number("b", 1.3, "half wheelbase", "length", "b", low=0, ui_low=0.1, ui_high=3.0, step=0.05),
+    Number("c", 0.75, "half track", "length", "c", low=0, ui_low=0.1, ui_high=2.0, step=0.05,
+           help="Drops out of the planar answer."),
+    Number("mu", 0.8, "friction coefficient at the driven wheels", "dimensionless", r"\mu", low=0,
+           low_inclusive=True, ui_low=0.0, ui_high=3.0, step=0.05),
+    Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
+    Choice("drive", "front", "driven wheels", ("front", "rear", "all"),
+           ("front-wheel drive (the seed)", "rear-wheel drive", "all-wheel drive")),
+)
+
+ANSWERS = (
+    Answer("accel", "acceleration of the CM", r"\ddot{x}_C", "acceleration"),
+    Answer("N_front", "normal force on one front wheel", r"N_{\mathrm{front}}", "force"),
+    Answer("N_rear", "normal force on one rear wheel", r"N_{\mathrm{rear}}", "force"),
+    Answer("F_drive", "total traction force", r"F_{\mathrm{drive}}", "force"),
+)
+
+ERRATA = (
+    r"In the seed the driven wheels 2 and 3 (at $+b$) are the front, yet the line "
+    r"\"$N_1 = N_4 = N_{front}$, $N_2 = N_3 = N_{rear}$\" swaps the names; its equations (7)–(10) "
+    r"and boxed results are right. Accelerating moves load to the **rear** axle, so driven front "
+    r"wheels are the *unloaded* ones.",
+    r"The seed's moment sum drops the traction's yaw term $c\mu(N_2 - N_3)$; it cancels by the "
+    r"left–right symmetry, so the answers stand.",
+)
+
+m, a, b, c, mu, g = sp.symbols("m a b c mu g", positive=True)
+xdd = sp.Symbol(r"\ddot{x}_C", real=True)
+N = sp.symbols("N_1 N_2 N_3 N_4", real=True)
+Nz = sp.symbols("N_{1z} N_{2z} N_{3z} N_{4z}", real=True)
+N_front, N_rear, F_drive = sp.symbols(r"N_{front} N_{rear} F_{drive}", real=True)
+SYMBOLS = {"m": m, "a": a, "b": b, "c": c, "mu": mu, "g": g}
+DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
+
+#: Wheel contact points relative to the CM: (x, y, z). 1 rear left, 2 front left, 3 front right, 4 rear right.
+WHEELS = ((-b, -a, c), (b, -a, c), (b, -a, -c), (-b, -a, -c))
+DRIVEN = {"front": (1, 2), "rear": (0, 3), "all": (0, 1, 2, 3)}
+
+
+def balance_equations(drive: str) -> list[sp.Eq]:
+    """The six Newton–Euler equations: ΣF = m ẍ E_x and ΣM_C = 0 (the cart does not rotate)."""
+    force_total = sp.zeros(3, 1)
+    moment_total = sp.zeros(3, 1)
+    for i, position in enumerate(WHEELS):
+        traction = mu * N[i] if i in DRIVEN[drive] else 0
+        force = sp.Matrix([traction, N[i], Nz[i]])
+        force_total += force
+        moment_total += sp.Matrix(position).cross(force)
+    force_total += sp.Matrix([0, -m * g, 0])
+    return [sp.Eq(force_total[0], m * xdd), sp.Eq(force_total[1], 0), sp.Eq(force_total[2], 0),
+            *(sp.Eq(sp.expand(moment_total[i]), 0) for i in range(3))]
+
+
+SYMMETRY = {N[0]: N_rear, N[3]: N_rear, N[1]: N_front, N[2]: N_front,
+            Nz[0]: 0, Nz[1]: 0, Nz[2]: 0, Nz[3]: 0}
+
+
+@functools.cache
+def derivation(drive: str) -> Derivation:
+    equations = balance_equations(drive)
+    reduced = [sp.simplify(eq.subs(SYMMETRY)) for eq in equations]
+    independent = [eq for eq in reduced if eq is not sp.true]
+    solved = sp.solve(independent, [xdd, N_front, N_rear], dict=True)[0]
+    solved = {k: sp.factor(v) for k, v in solved.items()}
+    traction = sum((mu * N[i] for i in DRIVEN[drive]), sp.Integer(0)).subs(SYMMETRY)
+
+    names = ("x", "y", "z")
+    steps = [
+        Step("Wheel contact points relative to the CM (1 rear-left, 2 front-left, 3 front-right, "
+             "4 rear-right); driven wheels push with F_i = μ N_i",
+             r",\;".join(rf"\mathbf{{r}}_{i + 1} = {sp.latex(sp.Matrix(w).T)}" for i, w in enumerate(WHEELS))),
+        Step("Balance of linear momentum, ΣF = m ẍ_C E_x (three components)",
+             r"\\ ".join(sp.latex(eq) for eq in equations[:3])),
+        Step("Balance of angular momentum about the CM, ΣM_C = 0 (the cart translates)",
+             r"\\ ".join(rf"{names[i]}:\; " + sp.latex(eq) for i, eq in enumerate(equations[3:]))),
+        Step("Nine unknowns, six equations: take the lateral forces as zero and the loads symmetric "
+             "left to right (the seed's assumption)",
+             r",\;".join([r"N_{iz} = 0", r"N_1 = N_4 = N_{rear}", r"N_2 = N_3 = N_{front}"])),
+        Step("What remains (the others hold identically)",
+             r"\\ ".join(sp.latex(eq) for eq in independent)),
+        Step("Solve", r",\quad ".join(latex_eq(k, solved[k]) for k in (xdd, N_front, N_rear))),
+    ]
+    if drive != "front":
+        steps.append(Step("The front wheels stay down only while N_front > 0",
+                          sp.latex(sp.Gt(solved[N_front], 0)) + r"\iff \mu a < b"))
+    chain = [
+        Result("N_front", N_front, solved[N_front], "force"),
+        Result("N_rear", N_rear, solved[N_rear], "force"),
+        Result("accel", xdd, solved[xdd], "acceleration"),
+        Result("F_drive", F_drive, traction, "force"),
+    ]
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+
+
+class FrontWheelsLiftError(PhysicalLimitError):
+    """Rear or all-wheel drive with μa ≥ b: the front wheels leave the ground (a wheelie)."""
+
+
+def solve(**params) -> Solution:
+    p = validate_params(PARAMS, params)
+    if p["drive"] != "front" and not p["mu"] * p["a"] < p["b"]:
+        mu_lift = p["b"] / p["a"]
+        raise FrontWheelsLiftError(
+            f"With {p['drive']}-wheel drive the front wheels lift off once μa ≥ b, that is for "
+            f"μ ≥ b/a = {mu_lift:.4g}; here μ = {p['mu']:.4g}. The cart would pop a wheelie, which "
+            f"this model (all four wheels on the ground) cannot describe.",
+            mu_lift=mu_lift)
+    d_ = derivation(p["drive"])
+    values = d_.evaluate(p)
+    answers = {a_.name: values[a_.name] for a_ in ANSWERS}
+    steps = list(d_.steps) + d_.numeric_steps(values)
+    notes = ("Acceleration moves load to the rear axle: "
+             f"N_rear − N_front = {answers['N_rear'] - answers['N_front']:.4g} N per wheel.",)
+    return Solution("driven_cart", p, answers, tuple(steps), _checks(p, answers), p["drive"], notes)
+
+
+def _checks(p, ans) -> tuple[Check, ...]:
+    """Second method: the six balance equations as a numeric linear system, with the symmetry
+    assumptions as extra rows, solved by least squares (numpy), independent of sympy's solve."""
+    matrix, rhs = _numeric_system(p["drive"])
+    args = [p[k] for k in SYMBOLS]
+    sol, *_ = np.linalg.lstsq(np.array(matrix(*args), dtype=float),
+                              np.array(rhs(*args), dtype=float).ravel(), rcond=None)
+    weight = p["m"] * p["g"]
+    return (
+        Check("ẍ_C from the linear solve of all six equations", ans["accel"], sol[8],
+              relative_tolerance(p["g"], 1e-9), "ΣF = m ẍ with the traction of the driven wheels"),
+        Check("N_front (wheels 2, 3)", ans["N_front"], sol[1], relative_tolerance(weight, 1e-9),
+              "moments about the CM balance: no pitching"),
+        Check("N_rear (wheels 1, 4)", ans["N_rear"], sol[0], relative_tolerance(weight, 1e-9),
+              "the four normal forces carry the weight"),
+    )
+
+
+@functools.cache
+def _numeric_system(drive: str):
+    """The six equations plus the symmetry rows as A x = rhs in the unknowns N_1..N_4,
+    N_1z..N_4z, ẍ_C; returns (A, rhs) as functions of (m, a, b, c, mu, g)."""
+    eqs = [eq.lhs - eq.rhs for eq in balance_equations(drive)]
+    eqs += [N[0] - N[3], N[1] - N[2], Nz[0] - Nz[1], Nz[1] - Nz[2], Nz[2] - Nz[3], Nz[0]]
+    A, rhs = sp.linear_eq_to_matrix(eqs, [*N, *Nz, xdd])
+    args = list(SYMBOLS.values())
+    return sp.lambdify(args, A, modules="numpy"), sp.lambdify(args, rhs, modules="numpy")

@@ -1,0 +1,181 @@
+"""Euler's disk in steady precession (ME 230 review; Moffatt, Nature 404, 2000).
+
+Model: thin uniform disk (m, r; I about its axis ½ m r², about a diameter ¼ m r²) rolling without
+slip on a fixed horizontal table, tilted at a constant angle θ from the table, its centre of mass
+G at rest (the seed's assumption 4: the contact point's circle has radius r cos θ about the
+vertical through G). Frame {e_x, e_y, e_z = E_z} precesses with the contact point at rate ω_p
+about E_z (angular velocity −ω_p E_z, the seed's sense). The disk's normal is n = sin θ e_y +
+cos θ e_z and the contact point A is at r (cos θ e_y − sin θ e_z) from G. With G at rest the table
+force is the weight alone, N = mg, and friction is zero.
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import sympy as sp
+
+from .core import (
+    Answer,
+    Check,
+    Derivation,
+    Number,
+    Result,
+    Solution,
+    Step,
+    latex_eq,
+    presentable,
+    relative_tolerance,
+    root_with_sign,
+    validate_params,
+)
+
+PARAMS = (
+    Number("m", 0.4, "mass", "mass", "m", low=0, ui_low=0.05, ui_high=5.0, step=0.05),
+    Number("r", 0.0375, "radius", "length", "r", low=0, ui_low=0.005, ui_high=0.5, step=0.0025),
+    Number("theta", math.radians(10), "tilt from the table", "angle", r"\theta", low=0,
+           high=math.pi / 2, ui_low=0.5, ui_high=89.5, step=0.5),
+    Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
+)
+
+ANSWERS = (
+    Answer("omega_p", "precession rate of the contact point", r"\omega_p", "angular_speed"),
+    Answer("omega_s", "spin rate relative to the precessing frame", r"\omega_s", "angular_speed"),
+    Answer("omega_total", "magnitude of the disk's angular velocity", r"|\boldsymbol\omega|",
+           "angular_speed"),
+    Answer("energy", "total energy (zero with the disk flat)", r"E", "energy"),
+    Answer("contact_speed", "speed of the contact point around its circle", r"v_A", "speed"),
+    Answer("period", "time for one precession", r"\tau", "time"),
+)
+
+ERRATA = (
+    r"The seed's equation references (3)–(7) in the last steps mean its equations (13)–(17).",
+    r"As $\theta \to 0$ the contact point whirls faster ($\omega_p \to \infty$) while the disk "
+    r"itself turns slower ($|\boldsymbol\omega| = \omega_p\sin\theta \to 0$) and the energy "
+    r"$\tfrac32 mgr\sin\theta$ runs out: Moffatt's finite-time singularity.",
+)
+
+m, r, theta, g = sp.symbols(r"m r theta g", positive=True)
+w_p, w_s, w_tot, E, v_A, tau = sp.symbols(r"omega_p omega_s |\boldsymbol{\omega}| E v_A tau", real=True)
+psidot, N_ = sp.symbols(r"\dot{\psi} N", real=True)
+SYMBOLS = {"m": m, "r": r, "theta": theta, "g": g}
+DIMENSIONS = {p.name: p.dimension for p in PARAMS}
+
+
+def _vec_latex(v: sp.Matrix) -> str:
+    basis = (r"\mathbf{e}_x", r"\mathbf{e}_y", r"\mathbf{e}_z")
+    comps = [sp.factor(sp.expand_trig(sp.simplify(c))) for c in v]
+    terms = [rf"\left({sp.latex(c)}\right){e}" for c, e in zip(comps, basis) if c != 0]
+    return " + ".join(terms) if terms else "0"
+
+
+@functools.cache
+def derivation() -> Derivation:
+    n = sp.Matrix([0, sp.sin(theta), sp.cos(theta)])
+    r_AG = r * sp.Matrix([0, sp.cos(theta), -sp.sin(theta)])
+    Ez = sp.Matrix([0, 0, 1])
+    precession = -w_p * Ez
+    omega = psidot * n + precession
+
+    rolling = omega.cross(r_AG)  # v_A = v_G + ω × r_A/G with v_G = 0
+    spin = sp.solve(rolling[0], psidot)[0]
+    omega_rolled = sp.simplify(omega.subs(psidot, spin))
+
+    I_axis, I_diam = m * r**2 / 2, m * r**2 / 4
+    H = I_axis * omega.dot(n) * n + I_diam * (omega - omega.dot(n) * n)
+    H_rolled = sp.simplify(H.subs(psidot, spin))
+    dHdt = precession.cross(H_rolled)  # components fixed in the precessing frame
+    torque = r_AG.cross(N_ * Ez)
+    moment_eq = sp.Eq(sp.simplify(torque[0].subs(N_, m * g)), sp.factor(sp.expand_trig(sp.simplify(dHdt[0]))))
+    w_p_solved = root_with_sign(sp.solve(moment_eq, w_p), +1)
+    w_p_shown = presentable(w_p_solved, sp.Pow(4 * g / (r * sp.sin(theta)), sp.S.Half, evaluate=False))
+    magnitude = presentable(sp.sqrt(sp.simplify(omega_rolled.dot(omega_rolled))), w_p * sp.sin(theta))
+    kinetic = sp.simplify(omega_rolled.dot(H_rolled) / 2)
+    energy = m * g * r * sp.sin(theta) + kinetic
+    energy_closed = presentable(energy.subs(w_p, w_p_shown), sp.Rational(3, 2) * m * g * r * sp.sin(theta))
+
+    steps = [
+        Step("Angular velocity: spin ψ̇ about the normal n plus the precession −ω_p E_z",
+             rf"\boldsymbol\omega = \dot\psi\,\mathbf{{n}} - \omega_p \mathbf{{E}}_z = {_vec_latex(omega)}"),
+        Step("Rolling without slip with G at rest: the contact point A has zero velocity",
+             rf"\mathbf{{v}}_A = \boldsymbol\omega \times \mathbf{{r}}_{{A/G}} = {_vec_latex(rolling)} = 0"
+             rf"\;\Rightarrow\; {latex_eq(psidot, spin)} = \omega_s"),
+        Step("So ω points along the diameter through A (the instantaneous axis passes through A and G)",
+             rf"\boldsymbol\omega = {_vec_latex(omega_rolled)},\quad {latex_eq(w_tot, magnitude)}"),
+        Step("Angular momentum about G: ½ m r² along n, ¼ m r² across it",
+             rf"\mathbf{{H}}_G = {_vec_latex(H_rolled)}"),
+        Step("θ, ω_s, ω_p constant: H_G is fixed in the precessing frame, so dH_G/dt = −ω_p E_z × H_G; "
+             "a_G = 0 gives N = mg and no friction",
+             rf"\dot{{\mathbf{{H}}}}_G = {_vec_latex(dHdt)},\quad \mathbf{{M}}_G = \mathbf{{r}}_{{A/G}}\times mg\mathbf{{E}}_z = "
+             + _vec_latex(torque.subs(N_, m * g))),
+        Step("Balance of angular momentum about G, e_x component", sp.latex(moment_eq)
+             + rf"\;\Rightarrow\; {latex_eq(w_p, w_p_shown)}"),
+        Step("Energy: potential m g r sin θ plus kinetic ½ ω·H_G (G at rest)",
+             latex_eq(E, energy) + " = " + sp.latex(energy_closed)),
+    ]
+    chain = [
+        Result("omega_p", w_p, w_p_shown, "angular_speed"),
+        Result("omega_s", w_s, spin.subs(w_p, w_p), "angular_speed"),
+        Result("omega_total", w_tot, magnitude, "angular_speed"),
+        Result("energy", E, energy_closed, "energy"),
+        Result("contact_speed", v_A, w_p * r * sp.cos(theta), "speed"),
+        Result("period", tau, 2 * sp.pi / w_p, "time"),
+    ]
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+
+
+def solve(**params) -> Solution:
+    p = validate_params(PARAMS, params)
+    d_ = derivation()
+    values = d_.evaluate(p)
+    answers = {a.name: values[a.name] for a in ANSWERS}
+    steps = list(d_.steps) + d_.numeric_steps(values)
+    turn = 2 * math.pi * (1 - math.cos(p["theta"]))
+    notes = (f"Per precession the contact point goes once round, but the disk itself turns only "
+             f"2π(1 − cos θ) = {math.degrees(turn):.3g}° relative to the table.",)
+    return Solution("eulers_disk", p, answers, tuple(steps), _checks(p, answers), "steady", notes,
+                    {"turn_per_precession": turn})
+
+
+def body_state(p, answers, phase: float = 0.0):
+    """ω, the normal n and r_A/G in the fixed frame (numpy), for a precession phase φ."""
+    th, wp = p["theta"], answers["omega_p"]
+    c, s = math.cos(phase), math.sin(phase)
+    e_y = np.array([-s, c, 0.0])  # e_x = (c, s, 0): the precessing frame turned by φ
+    e_z = np.array([0.0, 0.0, 1.0])
+    n = math.sin(th) * e_y + math.cos(th) * e_z
+    r_AG = p["r"] * (math.cos(th) * e_y - math.sin(th) * e_z)
+    omega = answers["omega_s"] * n - wp * e_z
+    return omega, n, r_AG
+
+
+def _checks(p, a) -> tuple[Check, ...]:
+    """Second method: numpy vectors in the fixed frame at an arbitrary phase, with the inertia
+    tensor built from the principal moments, and dH/dt by finite rotation of the frame."""
+    omega, n, r_AG = body_state(p, a, phase=0.7)
+    I_axis, I_diam = p["m"] * p["r"] ** 2 / 2, p["m"] * p["r"] ** 2 / 4
+    inertia = I_diam * np.eye(3) + (I_axis - I_diam) * np.outer(n, n)
+    H = inertia @ omega
+    kinetic = 0.5 * omega @ H
+    potential = p["m"] * p["g"] * p["r"] * math.sin(p["theta"])
+    dt = 1e-6 / a["omega_p"]
+    H_later = _H_at(p, a, 0.7 - a["omega_p"] * dt)
+    H_earlier = _H_at(p, a, 0.7 + a["omega_p"] * dt)
+    dHdt = (H_later - H_earlier) / (2 * dt)
+    torque = np.cross(r_AG, np.array([0.0, 0.0, p["m"] * p["g"]]))
+    scale = p["m"] * p["g"] * p["r"]
+    return (
+        Check("contact point at rest: |ω × r_A/G|", 0.0, float(np.linalg.norm(np.cross(omega, r_AG))),
+              relative_tolerance(a["omega_total"] * p["r"], 1e-9), "rolling without slip"),
+        Check("energy: mgr sin θ + ½ ω·Iω", a["energy"], potential + kinetic,
+              relative_tolerance(a["energy"], 1e-9), "the steady state conserves energy"),
+        Check("|M_G − dH_G/dt| (finite difference)", 0.0, float(np.linalg.norm(torque - dHdt)),
+              1e-5 * scale, "balance of angular momentum about G, vector by vector"),
+    )
+
+
+def _H_at(p, a, phase: float) -> np.ndarray:
+    omega, n, _ = body_state(p, a, phase)
+    I_axis, I_diam = p["m"] * p["r"] ** 2 / 2, p["m"] * p["r"] ** 2 / 4
+    return (I_diam * np.eye(3) + (I_axis - I_diam) * np.outer(n, n)) @ omega

@@ -1,0 +1,241 @@
+"""A rod-and-sphere pendulum released from rest strikes the floor and rebounds (Hibbeler 19-56).
+
+Model: rigid slender rod (m_r, L) pinned at a fixed, frictionless pivot O, with a sphere (m_s, r)
+fixed at its end, the sphere's centre a distance L + r from O. θ is the rod's angle from the
+horizontal, positive upward. The floor (a horizontal plane a depth d below O) or the textbook's
+vertical wall is smooth and fixed; the impact is instantaneous and Newton's restitution e acts on
+the normal velocity of the contact point. Since the body turns about O, that velocity is
+proportional to θ̇, so θ̇⁺ = −e θ̇⁻. Between impacts mechanical energy is conserved.
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import sympy as sp
+
+from .core import (
+    Answer,
+    Check,
+    Choice,
+    Derivation,
+    Number,
+    PhysicalLimitError,
+    Result,
+    Solution,
+    Step,
+    latex_eq,
+    presentable,
+    relative_tolerance,
+    root_with_sign,
+    require,
+    validate_params,
+)
+from .swing import integrate_leg
+
+PARAMS = (
+    Number("m_s", 4.536, "sphere mass", "mass", "m_s", low=0, ui_low=0.1, ui_high=20.0, step=0.1),
+    Number("m_r", 1.814, "rod mass", "mass", "m_r", low=0, ui_low=0.1, ui_high=20.0, step=0.1),
+    Number("L", 0.6096, "rod length", "length", "L", low=0, ui_low=0.05, ui_high=2.0, step=0.01),
+    Number("r", 0.09144, "sphere radius", "length", "r", low=0, ui_low=0.01, ui_high=0.5, step=0.01),
+    Number("d", 0.5, "depth of the floor below the pivot", "length", "d", low=0, ui_low=0.01,
+           ui_high=2.5, step=0.01, help="Must satisfy r < d < L + 2r (floor only)."),
+    Number("e", 0.6, "coefficient of restitution", "dimensionless", "e", low=0, high=1,
+           low_inclusive=True, high_inclusive=True, ui_low=0, ui_high=1, step=0.05),
+    Number("theta0", 0.0, "release angle above the horizontal", "angle", r"\theta_0",
+           low=-math.pi / 2, high=math.pi / 2, ui_low=-89, ui_high=89, step=1.0,
+           help="Must be above the impact angle; 90° (upright) is an equilibrium."),
+    Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
+    Choice("sphere", "solid", "the ball's inertia", ("solid", "hollow", "disk"),
+           ("solid sphere, ⅖ m r²", "hollow sphere, ⅔ m r²", "disk, ½ m r² (the seed)")),
+    Choice("surface", "floor", "what the sphere strikes", ("floor", "wall"),
+           ("a floor a depth d below O", "a wall where the rod hangs straight down")),
+)
+
+ANSWERS = (
+    Answer("theta_impact", "angle at impact", r"\theta_I", "angle"),
+    Answer("omega_impact", "angular velocity just before impact", r"\dot\theta_I^-", "angular_speed"),
+    Answer("omega_after", "angular velocity just after impact", r"\dot\theta_I^+", "angular_speed"),
+    Answer("theta_rebound", "highest angle after the bounce", r"\theta_f", "angle"),
+    Answer("I_O", "moment of inertia about the pivot", r"I_O", "inertia"),
+    Answer("energy_loss", "kinetic energy lost in the impact", r"\Delta T", "energy"),
+)
+
+ERRATA = (
+    r"The seed takes the sphere's own inertia as $\tfrac12 m_s r^2$, a **disk's** value; a solid "
+    r"sphere has $\tfrac25 m_s r^2$ (choose *sphere* = disk to reproduce the seed).",
+    r"The seed starts the energy integral at $\theta = 90^\circ$ (an equilibrium), giving "
+    r"$(1-\sin\theta)$; released from $\theta_0$ it is $(\sin\theta_0 - \sin\theta)$.",
+    r"For a floor below the pivot, $\sin\theta_I = (r-d)/(L+r)$ is **negative**; the seed writes "
+    r"$(d-r)/(L+r)$.",
+    r"The seed writes $e = \dot\theta'/\dot\theta$, against its own next line "
+    r"$\dot\theta' = -e\dot\theta$: the rod reverses, so $e = -\dot\theta'/\dot\theta$.",
+    r"Whatever the masses, $\sin\theta_f - \sin\theta_I = e^2(\sin\theta_0 - \sin\theta_I)$.",
+)
+
+SPHERE_INERTIA = {"solid": sp.Rational(2, 5), "hollow": sp.Rational(2, 3), "disk": sp.Rational(1, 2)}
+
+m_s, m_r, L, r, d, e, g = sp.symbols("m_s m_r L r d e g", positive=True)
+theta0, theta, theta_I, theta_f = sp.symbols(r"theta_0 theta theta_I theta_f", real=True)
+thetadot = sp.Symbol(r"\dot{\theta}", real=True)
+w_minus, w_plus = sp.symbols(r"\dot{\theta}_I^- \dot{\theta}_I^+", real=True)
+I_O, Q, loss = sp.symbols(r"I_O Q \Delta{T}", real=True)
+SYMBOLS = {"m_s": m_s, "m_r": m_r, "L": L, "r": r, "d": d, "e": e, "g": g, "theta0": theta0}
+DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
+
+
+@functools.cache
+def derivation(sphere: str, surface: str) -> Derivation:
+    k = SPHERE_INERTIA[sphere]
+    inertia = sp.Rational(1, 3) * m_r * L**2 + k * m_s * r**2 + m_s * (L + r) ** 2
+    weight_moment = (m_r * L / 2 + m_s * (L + r)) * g
+    drop = lambda upper, lower: Q * (sp.sin(upper) - sp.sin(lower))  # noqa: E731  V(upper) − V(lower)
+    energy = sp.Eq(sp.Rational(1, 2) * I_O * thetadot**2, drop(theta0, theta))
+
+    contact = sp.Matrix([(L + r) * sp.cos(theta), (L + r) * sp.sin(theta)])
+    if surface == "floor":
+        contact = contact - sp.Matrix([0, r])
+        touch = sp.Eq(contact[1], -d)
+        impact_angle = sp.asin(sp.solve(touch.subs(sp.sin(theta), sp.Symbol("s")), sp.Symbol("s"))[0])
+        normal = sp.Matrix([0, 1])
+    else:
+        contact = contact - sp.Matrix([r, 0])
+        touch = sp.Eq(theta, -sp.pi / 2)
+        impact_angle = -sp.pi / 2
+        normal = sp.Matrix([1, 0])
+    v_contact = sp.diff(contact, theta) * thetadot
+    v_n = sp.simplify(v_contact.dot(normal))
+
+    roots = sp.solve(energy, thetadot)
+    falling = root_with_sign([w.subs({theta0: sp.pi / 4, theta: 0}) for w in roots], -1)
+    falling = roots[[w.subs({theta0: sp.pi / 4, theta: 0}) for w in roots].index(falling)]
+    falling = presentable(falling, -sp.Pow(2 * drop(theta0, theta) / I_O, sp.S.Half, evaluate=False))
+    s_f = sp.Symbol(r"\sin\theta_f")
+    rebound = sp.Eq(sp.Rational(1, 2) * I_O * w_plus**2, drop(theta_f, theta_I))
+    sin_rebound = sp.solve(rebound.subs(sp.sin(theta_f), s_f), s_f)[0]
+    sin_rebound = sin_rebound.subs(w_plus, -e * w_minus).subs(w_minus, falling.subs(theta, theta_I))
+    sin_rebound = presentable(sin_rebound, sp.sin(theta_I) + e**2 * (sp.sin(theta0) - sp.sin(theta_I)))
+
+    steps = [
+        Step("Moment of inertia about the pivot O (parallel-axis theorem for rod and "
+             f"{'sphere' if sphere != 'disk' else 'ball, with the seed’s disk value'})",
+             latex_eq(I_O, inertia)),
+        Step("Moment of the weights about O per unit cos θ: the potential energy is V = Q sin θ",
+             latex_eq(Q, weight_moment)),
+        Step("Work–energy from rest at θ₀ (gravity is the only force that works; O does none)",
+             sp.latex(energy)),
+        Step("The sphere touches the " + ("floor: the lowest point of the sphere is a depth d below O"
+                                           if surface == "floor" else
+                                           "wall when the rod hangs straight down"),
+             sp.latex(touch) + (r"\quad\Rightarrow\quad " + latex_eq(theta_I, impact_angle)
+                                 if surface == "floor" else "")),
+        Step("Falling (θ decreasing), the root is negative",
+             latex_eq(w_minus, falling.subs(theta, theta_I))),
+        Step("Normal velocity of the contact point is proportional to θ̇; restitution reverses it",
+             latex_eq(sp.Symbol("v_n"), v_n) + r"\quad\Rightarrow\quad "
+             + latex_eq(w_plus, -e * w_minus)),
+        Step("Energy after the bounce up to the highest angle θ_f (θ̇ = 0 there)",
+             sp.latex(rebound)),
+        Step("Hence, whatever the masses",
+             latex_eq(sp.sin(theta_f) - sp.sin(theta_I), sin_rebound - sp.sin(theta_I))),
+    ]
+    chain = [
+        Result("I_O", I_O, inertia, "inertia"),
+        Result("Q", Q, weight_moment, "torque"),
+        Result("theta_impact", theta_I, impact_angle, "angle"),
+        Result("omega_impact", w_minus, falling.subs(theta, theta_I), "angular_speed"),
+        Result("omega_after", w_plus, -e * w_minus, "angular_speed"),
+        Result("theta_rebound", theta_f, sp.asin(sin_rebound), "angle"),
+        Result("energy_loss", loss, sp.Rational(1, 2) * I_O * (w_minus**2 - w_plus**2), "energy"),
+    ]
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+
+
+def _validate(params) -> dict:
+    p = validate_params(PARAMS, params)
+    if p["surface"] == "floor":
+        require(p["d"] > p["r"], f"The floor must lie deeper below the pivot than the sphere's radius "
+                f"(d > r = {p['r']:g} m), got d = {p['d']:g} m: the sphere would start in the floor.")
+        require(p["d"] < p["L"] + 2 * p["r"],
+                f"The floor must be within the sphere's reach, d < L + 2r = {p['L'] + 2 * p['r']:g} m, "
+                f"got d = {p['d']:g} m: the pendulum would swing past without touching it.")
+    return p
+
+
+def solve(**params) -> Solution:
+    p = _validate(params)
+    d_ = derivation(p["sphere"], p["surface"])
+    impact = d_.evaluate(p)["theta_impact"]
+    if not p["theta0"] > impact:
+        raise PhysicalLimitError(
+            f"The release angle θ₀ = {math.degrees(p['theta0']):.4g}° must be above the angle at which "
+            f"the sphere touches the {p['surface']}, θ_I = {math.degrees(impact):.4g}°.",
+            theta_impact=impact)
+    values = d_.evaluate(p)
+    answers = {a.name: values[a.name] for a in ANSWERS}
+    bounces = bounce_sequence(p, answers)
+    steps = list(d_.steps) + d_.numeric_steps(values)
+    checks = _checks(p, answers)
+    notes = (f"Each bounce keeps a fraction e² = {p['e'] ** 2:.3g} of the swing's energy above the "
+             "impact height.",)
+    return Solution("pendulum_rebound", p, answers, tuple(steps), checks, p["surface"], notes,
+                    {"bounce_peaks": bounces})
+
+
+def moment_coefficient(p) -> float:
+    """Q in θ̈ = −Q cos θ / I_O: the weight's moment arm sum, (m_r L/2 + m_s (L + r)) g."""
+    return (p["m_r"] * p["L"] / 2 + p["m_s"] * (p["L"] + p["r"])) * p["g"]
+
+
+def bounce_sequence(p, answers, count: int = 4) -> list[float]:
+    """Peak angles after successive bounces: sin θ_n − sin θ_I = e^{2n} (sin θ₀ − sin θ_I)."""
+    s_I, s_0 = math.sin(answers["theta_impact"]), math.sin(p["theta0"])
+    return [math.asin(s_I + p["e"] ** (2 * n) * (s_0 - s_I)) for n in range(1, count + 1)]
+
+
+def simulate(p, answers, bounces: int = 3, samples_per_leg: int = 40):
+    """θ(t) through ``bounces`` impacts by direct integration of I_O θ̈ = −Q cos θ.
+
+    Returns (t, θ, θ̇, impact_times, legs) with the legs in order: fall, then rise/fall after each
+    impact. Each leg is integrated independently from its start state, so the result is a second
+    method for the closed-form impact speed and rebound angle.
+    """
+    Q, I = moment_coefficient(p), answers["I_O"]
+    acc = lambda q: -Q * math.cos(q) / I  # noqa: E731
+    impact_angle, e_ = answers["theta_impact"], p["e"]
+    period_scale = math.sqrt(I / Q) * 20 + 1.0
+    legs, impacts = [], []
+    state = (0.0, p["theta0"], 0.0)
+    for n in range(bounces + 1):
+        fall = integrate_leg(acc, state[1], state[2], state[0], period_scale, stop_at_angle=impact_angle,
+                             direction=-1, samples=samples_per_leg)
+        legs.append(fall)
+        t_hit, _, w_hit = fall.end
+        impacts.append((t_hit, w_hit))
+        if n == bounces or e_ == 0:
+            break
+        rise = integrate_leg(acc, impact_angle, -e_ * w_hit, t_hit, period_scale, stop_at_rest=True,
+                             samples=samples_per_leg)
+        legs.append(rise)
+        state = rise.end
+    t = np.concatenate([leg.t for leg in legs])
+    q = np.concatenate([leg.theta for leg in legs])
+    w = np.concatenate([leg.omega for leg in legs])
+    return t, q, w, impacts, legs
+
+
+def _checks(p, a) -> tuple[Check, ...]:
+    t, q, w, impacts, legs = simulate(p, a, bounces=1, samples_per_leg=2)
+    checks = [Check("impact speed θ̇⁻ (energy vs. integrating θ̈)", a["omega_impact"], impacts[0][1],
+                    relative_tolerance(a["omega_impact"], 1e-7),
+                    "the fall conserves energy: the pivot does no work")]
+    if len(legs) > 1:
+        checks.append(Check("rebound angle θ_f (energy vs. integrating θ̈)", a["theta_rebound"],
+                            legs[1].end[1], 1e-7,
+                            "after the bounce energy is again conserved up to the peak"))
+    T_before = 0.5 * a["I_O"] * a["omega_impact"] ** 2
+    checks.append(Check("energy lost = (1 − e²) × kinetic energy at impact", a["energy_loss"],
+                        (1 - p["e"] ** 2) * T_before, relative_tolerance(T_before, 1e-9),
+                        "restitution keeps a fraction e² of the kinetic energy"))
+    return tuple(checks)

@@ -1,0 +1,219 @@
+"""A rod and disk fall against a torsional spring (Hibbeler 18-9, "the O'Reilly way").
+
+Model: slender rod (m1, length L) pinned at a fixed, frictionless pivot O where a linear torsional
+spring (stiffness k, untwisted at θ = 0) acts; a uniform disk (m2, radius R) is attached at the
+rod's far end, its centre a distance L + R from O. θ is measured from the upward vertical; the
+assembly is released from rest at θ1 and falls (θ increasing). disk = "welded": the disk turns with
+the rod; "pinned": it rides on a frictionless pin and does not rotate, so only its translation
+carries kinetic energy. The pivot does no work; gravity and the spring do.
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import sympy as sp
+from scipy.optimize import brentq
+
+from .core import (
+    Answer,
+    Check,
+    Choice,
+    Derivation,
+    Number,
+    PhysicalLimitError,
+    Result,
+    Solution,
+    Step,
+    latex_eq,
+    relative_tolerance,
+    require,
+    validate_params,
+)
+from .swing import integrate_leg
+
+PARAMS = (
+    Number("m1", 6.0, "rod mass", "mass", "m_1", low=0, ui_low=0.1, ui_high=30.0, step=0.1),
+    Number("m2", 9.0, "disk mass", "mass", "m_2", low=0, ui_low=0.1, ui_high=30.0, step=0.1),
+    Number("k", 20.0, "spring stiffness", "stiffness", "k", low=0, low_inclusive=True, ui_low=0.0,
+           ui_high=200.0, step=1.0),
+    Number("L", 0.45, "rod length", "length", "L", low=0, ui_low=0.05, ui_high=2.0, step=0.01),
+    Number("R", 0.075, "disk radius", "length", "R", low=0, ui_low=0.01, ui_high=0.5, step=0.005),
+    Number("theta1", 0.0, "release angle from the upward vertical", "angle", r"\theta_1", low=0,
+           high=2 * math.pi, low_inclusive=True, ui_low=0, ui_high=359, step=1.0,
+           help="0 is upright: read it as released with a nudge."),
+    Number("theta2", math.pi / 2, "angle at which the speed is wanted", "angle", r"\theta_2", low=0,
+           high=2 * math.pi, ui_low=1, ui_high=359, step=1.0),
+    Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
+    Choice("disk", "welded", "how the disk is attached", ("welded", "pinned"),
+           ("welded: turns with the rod (the seed)", "pinned: free to spin, so it does not rotate")),
+)
+
+ANSWERS = (
+    Answer("omega2", "angular speed at θ₂", r"|\dot\theta_2|", "angular_speed"),
+    Answer("I_O", "moment of inertia about O (of what turns)", r"I_O", "inertia"),
+    Answer("T2", "kinetic energy at θ₂", r"T_2", "energy"),
+    Answer("U_gravity", "work done by gravity", r"U_g", "energy"),
+    Answer("U_spring", "work done by the spring", r"U_s", "energy"),
+)
+
+ERRATA = (
+    r"The seed's kinetic-energy line has $\tfrac14 m_1 L^2\dot\theta^2$; it should be "
+    r"$\tfrac12 m_1 (L/2)^2\dot\theta^2 = \tfrac18 m_1 L^2\dot\theta^2$.",
+    r"The seed writes the disk's $I_G$ as $\tfrac12 m_2 B^2$ with $B = L + R$; it is "
+    r"$\tfrac12 m_2 R^2$.",
+    r"The spring work is evaluated at $\theta_2 = \pi/8$ in one line; it is $\pi/2$ "
+    r"($U_s = -k\pi^2/8$, as the seed's number $-24.67$ J says).",
+    r"The seed's $\mathbf{X}_2$ has a sign flip; its numbers ($T = 1.455\,\dot\theta^2$, "
+    r"4.90 rad/s) are right.",
+)
+
+m1, m2, k, L, R, g = sp.symbols("m_1 m_2 k L R g", positive=True)
+theta, theta1, theta2 = sp.symbols(r"theta theta_1 theta_2", real=True)
+thetadot = sp.Symbol(r"\dot{\theta}", real=True)
+I_O, U_g, U_s, T2, w2 = sp.symbols(r"I_O U_g U_s T_2 |\dot{\theta}_2|", real=True)
+SYMBOLS = {"m1": m1, "m2": m2, "k": k, "L": L, "R": R, "g": g, "theta1": theta1, "theta2": theta2}
+DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
+
+NUDGE = 1e-6  # rad/s: the push that starts an upright release (θ1 = 0) in the integration
+
+
+class SpringStopsRodError(PhysicalLimitError):
+    """The spring stops the assembly before θ2; ``theta_max`` is the largest angle reached."""
+
+
+@functools.cache
+def derivation(disk: str) -> Derivation:
+    up = lambda q, arm: arm * sp.Matrix([sp.sin(q), sp.cos(q)])  # noqa: E731  position from O
+    x1, x2 = up(theta, L / 2), up(theta, L + R)
+    v1, v2 = sp.diff(x1, theta) * thetadot, sp.diff(x2, theta) * thetadot
+    I_G1, I_G2 = m1 * L**2 / 12, m2 * R**2 / 2
+    spin_disk = 1 if disk == "welded" else 0
+    T = (m1 * v1.dot(v1) / 2 + I_G1 * thetadot**2 / 2
+         + m2 * v2.dot(v2) / 2 + spin_disk * I_G2 * thetadot**2 / 2)
+    T = sp.simplify(T)
+    inertia = sp.factor_terms(sp.expand(sp.simplify(2 * T / thetadot**2)))
+    weight = sp.Matrix([0, -g])
+    work_gravity = sp.simplify(sp.integrate(
+        (m1 * weight.dot(sp.diff(x1, theta)) + m2 * weight.dot(sp.diff(x2, theta))), (theta, theta1, theta2)))
+    work_gravity = sp.factor(work_gravity)
+    work_spring = sp.factor(sp.integrate(-k * theta, (theta, theta1, theta2)))
+    speed = sp.solve(sp.Eq(I_O * thetadot**2 / 2, T2), thetadot)
+    speed = [s_ for s_ in speed if s_.subs({I_O: 1, T2: 1}).is_positive][0]
+
+    steps = [
+        Step("Centres of mass from O (θ from the upward vertical), rod at L/2 and disk at L + R",
+             r"\mathbf{x}_1 = " + sp.latex(x1.T) + r",\quad \mathbf{x}_2 = " + sp.latex(x2.T)),
+        Step("Kinetic energy: translation of each centre plus rotation about it"
+             + (" (the disk turns with the rod)" if disk == "welded" else
+                " (the pinned disk does not rotate: no ½ I_G θ̇² for it)"),
+             latex_eq(sp.Symbol("T"), T) + r" = \tfrac12 I_O \dot\theta^2"),
+        Step("Hence the moment of inertia about O", latex_eq(I_O, inertia)),
+        Step("Work of gravity from θ₁ to θ₂: ∫ F·dx for each weight",
+             latex_eq(U_g, work_gravity)),
+        Step("Work of the torsional spring (moment −kθ)",
+             latex_eq(U_s, sp.Integral(-k * theta, (theta, theta1, theta2))) + " = " + sp.latex(work_spring)),
+        Step("Work–energy from rest: T₂ − 0 = U_g + U_s", latex_eq(T2, U_g + U_s)
+             + r"\;\Rightarrow\;" + latex_eq(w2, speed)),
+    ]
+    chain = [
+        Result("I_O", I_O, inertia, "inertia"),
+        Result("U_gravity", U_g, work_gravity, "energy"),
+        Result("U_spring", U_s, work_spring, "energy"),
+        Result("T2", T2, U_g + U_s, "energy"),
+        Result("omega2", w2, speed, "angular_speed"),
+    ]
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+
+
+def weight_moment(p) -> float:
+    """Q with the gravity moment about O equal to Q sin θ: (m1 L/2 + m2 (L + R)) g."""
+    return (p["m1"] * p["L"] / 2 + p["m2"] * (p["L"] + p["R"])) * p["g"]
+
+
+def kinetic_energy_at(p, angles: np.ndarray) -> np.ndarray:
+    """T(θ) = U_g + U_s from θ1 to θ, for released-from-rest motion (vectorised)."""
+    Q, th1 = weight_moment(p), p["theta1"]
+    return Q * (math.cos(th1) - np.cos(angles)) - p["k"] / 2 * (angles**2 - th1**2)
+
+
+def largest_angle(p) -> float | None:
+    """The angle at which the spring stops the fall, if it is reached before θ2, else None."""
+    Q, th1, th2 = weight_moment(p), p["theta1"], p["theta2"]
+    start_torque = Q * math.sin(th1) - p["k"] * th1
+    if th1 == 0.0 and Q <= p["k"]:
+        return th1  # upright is stable: a nudge does not make it fall
+    if th1 > 0.0 and start_torque <= 0.0:
+        return th1  # the spring already wins at release: it swings back, never past θ1
+    grid = np.linspace(th1, th2, 4097)
+    T = kinetic_energy_at(p, grid)
+    stopped = np.nonzero(T[1:] <= 0.0)[0]
+    if not len(stopped):
+        return None
+    i = stopped[0] + 1
+    f = lambda q: float(kinetic_energy_at(p, np.array([q]))[0])  # noqa: E731
+    return brentq(f, grid[i - 1], grid[i], xtol=1e-14) if f(grid[i - 1]) > 0 else float(grid[i])
+
+
+def _validate(params) -> dict:
+    p = validate_params(PARAMS, params)
+    require(p["theta1"] < p["theta2"],
+            f"θ₂ must be past the release angle θ₁ (θ₁ < θ₂); got θ₁ = {math.degrees(p['theta1']):.4g}°, "
+            f"θ₂ = {math.degrees(p['theta2']):.4g}°.")
+    return p
+
+
+def solve(**params) -> Solution:
+    p = _validate(params)
+    stop = largest_angle(p)
+    if stop is not None:
+        if stop == p["theta1"]:
+            why = (f"at the release angle the spring's moment kθ already beats the weights' moment "
+                   f"Q sin θ (Q = {weight_moment(p):.4g} N·m), so the assembly does not fall toward θ₂ "
+                   f"at all: the largest angle reached is θ₁ = {math.degrees(stop):.4g}°. Soften the "
+                   "spring or release it further over")
+        else:
+            why = (f"the spring stops it at θ = {math.degrees(stop):.4g}° (the largest angle reached) "
+                   "and it swings back; ask for θ₂ below that, or soften the spring")
+        raise SpringStopsRodError(
+            f"The rod never reaches θ₂ = {math.degrees(p['theta2']):.4g}°: {why}.", theta_max=stop)
+    d_ = derivation(p["disk"])
+    values = d_.evaluate(p)
+    answers = {a.name: values[a.name] for a in ANSWERS}
+    steps = list(d_.steps) + d_.numeric_steps(values)
+    return Solution("rod_disk_spring", p, answers, tuple(steps), _checks(p, answers), p["disk"],
+                    (f"Released at θ₁ = {math.degrees(p['theta1']):.4g}°"
+                     + (" (upright: an equilibrium, so read it as released with a tiny nudge)."
+                        if p["theta1"] == 0 else "."),))
+
+
+def equation_of_motion(p, I: float):
+    """θ̈(θ) from I_O θ̈ = Q sin θ − k θ."""
+    Q, k_ = weight_moment(p), p["k"]
+    return lambda q: (Q * math.sin(q) - k_ * q) / I
+
+
+def simulate(p, answers, t_max: float | None = None, samples: int = 200):
+    """θ(t) from release, integrated (swinging on past θ2, until it stops or after t_max)."""
+    acc = equation_of_motion(p, answers["I_O"])
+    omega0 = NUDGE if p["theta1"] == 0 else 0.0
+    horizon = t_max or 40 * math.sqrt(answers["I_O"] / max(weight_moment(p), 1e-9))
+    return integrate_leg(acc, p["theta1"], omega0, 0.0, horizon, stop_at_rest=True, samples=samples)
+
+
+def _checks(p, a) -> tuple[Check, ...]:
+    acc = equation_of_motion(p, a["I_O"])
+    omega0 = NUDGE if p["theta1"] == 0 else 0.0
+    horizon = 200 * math.sqrt(a["I_O"] / weight_moment(p)) + 10
+    leg = integrate_leg(acc, p["theta1"], omega0, 0.0, horizon, stop_at_angle=p["theta2"], direction=1)
+    integrated = leg.end[2] if leg.ended_by_event else float("nan")
+    return (
+        Check(f"θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ (start nudge {NUDGE:g} rad/s)"
+              if p["theta1"] == 0 else "θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ",
+              a["omega2"], integrated, relative_tolerance(a["omega2"], 1e-6) + NUDGE,
+              "work–energy is the first integral of the equation of motion"),
+        Check("energy: T₂ = U_g + U_s", a["T2"], a["U_gravity"] + a["U_spring"],
+              relative_tolerance(abs(a["U_gravity"]) + abs(a["U_spring"]), 1e-12),
+              "the pivot does no work"),
+    )

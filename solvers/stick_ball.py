@@ -1,0 +1,190 @@
+"""A ball slides into a free stick on a frictionless table (ME 230 review, problem 3).
+
+Model: uniform stick (m_stick, length l, I = m_stick l²/12 about its midpoint) at rest on a
+frictionless horizontal table; a ball, a point mass m_ball with no spin, slides at speed v
+perpendicular to the stick and strikes it at a distance s from the midpoint. The impact is
+instantaneous and the table exerts no horizontal impulse, so the linear momentum and the angular
+momentum (about any fixed point) of ball plus stick are conserved. mode "stick": the ball attaches
+and the pair moves as one rigid body. mode "bounce": Newton's restitution e acts on the normal
+velocities at the contact and the ball separates. Motion after impact is free (no friction).
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import sympy as sp
+
+from .core import (
+    Answer,
+    Check,
+    Choice,
+    Derivation,
+    Number,
+    Result,
+    Solution,
+    Step,
+    latex_eq,
+    relative_tolerance,
+    require,
+    validate_params,
+)
+
+PARAMS = (
+    Number("m_ball", 1.0, "ball mass", "mass", r"m_b", low=0, ui_low=0.05, ui_high=10.0, step=0.05),
+    Number("m_stick", 1.0, "stick mass", "mass", r"m_s", low=0, ui_low=0.05, ui_high=10.0, step=0.05),
+    Number("l", 1.0, "stick length", "length", "l", low=0, ui_low=0.1, ui_high=5.0, step=0.05),
+    Number("v", 1.0, "ball speed before impact", "speed", "v", low=0, ui_low=0.1, ui_high=10.0, step=0.1),
+    Number("s", 0.5, "impact point from the stick's midpoint", "length", "s", low=0,
+           ui_low=0.0, ui_high=2.5, step=0.01, help="0 < s ≤ l/2; the default is the end, l/2."),
+    Choice("mode", "stick", "what the ball does", ("stick", "bounce"),
+           ("attaches to the stick (the seed)", "bounces off (restitution e)")),
+    Number("e", 0.5, "coefficient of restitution (bounce only)", "dimensionless", "e", low=0, high=1,
+           low_inclusive=True, high_inclusive=True, ui_low=0, ui_high=1, step=0.05),
+)
+
+ANSWERS_STICK = (
+    Answer("d_cm", "combined CM from the stick's midpoint", r"d_{cm}", "length"),
+    Answer("v_cm", "speed of the combined CM", r"v_{cm}", "speed"),
+    Answer("omega", "angular velocity after", r"\omega", "angular_speed"),
+    Answer("I_cm", "moment of inertia about the combined CM", r"I_{cm}", "inertia"),
+    Answer("T_before", "kinetic energy before", r"T_i", "energy"),
+    Answer("T_after", "kinetic energy after", r"T_f", "energy"),
+    Answer("energy_loss", "kinetic energy lost", r"\Delta T", "energy"),
+    Answer("distance_per_rev", "distance the CM moves per revolution", r"x_{rev}", "length"),
+)
+ANSWERS_BOUNCE = (
+    Answer("v_ball", "ball velocity after (along its approach)", r"v_b'", "speed"),
+    Answer("v_stick", "stick CM velocity after", r"v_s'", "speed"),
+    Answer("omega", "stick angular velocity after", r"\omega", "angular_speed"),
+    Answer("T_before", "kinetic energy before", r"T_i", "energy"),
+    Answer("T_after", "kinetic energy after", r"T_f", "energy"),
+    Answer("energy_loss", "kinetic energy lost", r"\Delta T", "energy"),
+)
+ANSWERS = ANSWERS_STICK  # the default mode's answers
+
+
+def answers_for(mode: str) -> tuple[Answer, ...]:
+    return ANSWERS_STICK if mode == "stick" else ANSWERS_BOUNCE
+
+
+ERRATA = (
+    r"A common slip: taking the angular momentum about the stick's midpoint but the moment of "
+    r"inertia about the combined CM. Use one point for both (here the combined CM, with the "
+    r"parallel-axis terms $m_s d_{cm}^2$ and $m_b (s - d_{cm})^2$).",
+)
+
+m_b, m_s, l, v, s, e = sp.symbols("m_b m_s l v s e", positive=True)
+d_cm, v_cm, w, I_cm, T_i, T_f, loss, x_rev = sp.symbols(
+    r"d_{cm} v_{cm} omega I_{cm} T_i T_f \Delta{T} x_{rev}", real=True)
+v_b1, v_s1, J = sp.symbols(r"v_b' v_s' J", real=True)
+SYMBOLS = {"m_ball": m_b, "m_stick": m_s, "l": l, "v": v, "s": s, "e": e}
+DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
+
+
+@functools.cache
+def derivation(mode: str) -> Derivation:
+    I_stick = m_s * l**2 / 12
+    T_before = m_b * v**2 / 2
+    if mode == "stick":
+        cm = sp.Eq(d_cm, (m_s * 0 + m_b * s) / (m_s + m_b))
+        momentum = sp.Eq(m_b * v, (m_b + m_s) * v_cm)
+        inertia = sp.Eq(I_cm, I_stick + m_s * d_cm**2 + m_b * (s - d_cm) ** 2)
+        # The ball is at distance s − d_cm from the combined CM, moving perpendicular to the stick.
+        angular = sp.Eq(m_b * v * (s - d_cm), I_cm * w)
+        solved_v = sp.solve(momentum, v_cm)[0]
+        solved_w = sp.solve(angular, w)[0]
+        T_after = (m_b + m_s) * v_cm**2 / 2 + I_cm * w**2 / 2
+        steps = [
+            Step("Centre of mass of stick + ball, measured from the stick's midpoint", sp.latex(cm)),
+            Step("No horizontal external impulse: linear momentum is conserved", sp.latex(momentum)
+                 + r"\;\Rightarrow\;" + latex_eq(v_cm, solved_v)),
+            Step("Moment of inertia about the combined CM (parallel-axis theorem for the stick, "
+                 "point mass for the ball)", sp.latex(inertia)),
+            Step("Angular momentum about the combined CM is conserved; before impact only the ball "
+                 "carries it (arm s − d_cm)", sp.latex(angular) + r"\;\Rightarrow\;" + latex_eq(w, solved_w)),
+            Step("Kinetic energy before and after (the impact is perfectly plastic, e = 0)",
+                 latex_eq(T_i, T_before) + r",\quad " + latex_eq(T_f, T_after)),
+            Step("Distance the CM travels while the body turns once", latex_eq(x_rev, v_cm * 2 * sp.pi / w)),
+        ]
+        chain = [
+            Result("d_cm", d_cm, cm.rhs, "length"),
+            Result("v_cm", v_cm, solved_v, "speed"),
+            Result("I_cm", I_cm, inertia.rhs, "inertia"),
+            Result("omega", w, solved_w, "angular_speed"),
+            Result("T_before", T_i, T_before, "energy"),
+            Result("T_after", T_f, T_after, "energy"),
+            Result("energy_loss", loss, T_i - T_f, "energy"),
+            Result("distance_per_rev", x_rev, v_cm * 2 * sp.pi / w, "length"),
+        ]
+    else:
+        ball = sp.Eq(m_b * (v_b1 - v), -J)
+        stick_lin = sp.Eq(m_s * v_s1, J)
+        stick_ang = sp.Eq(I_stick * w, J * s)
+        restitution = sp.Eq(v_s1 + w * s - v_b1, e * v)
+        solved = sp.solve([ball, stick_lin, stick_ang, restitution], [v_b1, v_s1, w, J], dict=True)[0]
+        solved = {k: sp.factor(val) for k, val in solved.items()}
+        T_after = m_b * v_b1**2 / 2 + m_s * v_s1**2 / 2 + I_stick * w**2 / 2
+        steps = [
+            Step("Impulse J on the stick at the contact, −J on the ball", sp.latex(ball) + r",\quad "
+                 + sp.latex(stick_lin)),
+            Step("Angular impulse on the stick about its midpoint", sp.latex(stick_ang)),
+            Step("Newton's restitution on the normal velocities at the contact point", sp.latex(restitution)),
+            Step("Solve the four linear equations",
+                 r",\quad ".join(latex_eq(k, solved[k]) for k in (J, v_b1, v_s1, w))),
+            Step("Kinetic energy before and after", latex_eq(T_i, T_before) + r",\quad " + latex_eq(T_f, T_after)),
+        ]
+        chain = [
+            Result("v_ball", v_b1, solved[v_b1], "speed"),
+            Result("v_stick", v_s1, solved[v_s1], "speed"),
+            Result("omega", w, solved[w], "angular_speed"),
+            Result("T_before", T_i, T_before, "energy"),
+            Result("T_after", T_f, T_after, "energy"),
+            Result("energy_loss", loss, T_i - T_f, "energy"),
+        ]
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+
+
+def solve(**params) -> Solution:
+    if "s" not in params:
+        length = params.get("l", 1.0)
+        # The default impact point is the stick's end, l/2 of whatever l is given (if valid).
+        if isinstance(length, (int, float)) and not isinstance(length, bool) and math.isfinite(length):
+            params = {**params, "s": length / 2}
+    p = validate_params(PARAMS, params)
+    require(p["s"] <= p["l"] / 2 * (1 + 1e-12),
+            f"The impact point must be on the stick: s ≤ l/2 = {p['l'] / 2:g} m, got s = {p['s']:g} m.")
+    d_ = derivation(p["mode"])
+    values = d_.evaluate(p)
+    answers = {a.name: values[a.name] for a in answers_for(p["mode"])}
+    steps = list(d_.steps) + d_.numeric_steps(values)
+    lost = answers["energy_loss"] / answers["T_before"]
+    notes = (f"Energy: {100 * lost:.3g} % of the kinetic energy is lost in the impact"
+             + (" (perfectly plastic: the ball attaches)." if p["mode"] == "stick" else "."),)
+    return Solution("stick_ball", p, answers, tuple(steps), _checks(p, answers), p["mode"], notes)
+
+
+def _checks(p, a) -> tuple[Check, ...]:
+    """Second method: momentum and angular momentum about the stick's midpoint (a fixed point in
+    the table frame, where the stick starts), computed from the separate bodies after impact."""
+    mb, ms, L_, v_, s_ = p["m_ball"], p["m_stick"], p["l"], p["v"], p["s"]
+    I_stick = ms * L_**2 / 12
+    p_before = mb * v_
+    H_before = mb * v_ * s_  # the ball passes at arm s from the midpoint (sign: +E_z)
+    if p["mode"] == "stick":
+        # Rigid-body kinematics: a point at arm y from the midpoint moves at v_cm + ω (y − d_cm).
+        v_mid = a["v_cm"] + a["omega"] * (0 - a["d_cm"])
+        v_ballpt = a["v_cm"] + a["omega"] * (s_ - a["d_cm"])
+    else:
+        v_mid, v_ballpt = a["v_stick"], a["v_ball"]
+    p_after = ms * v_mid + mb * v_ballpt
+    H_after = I_stick * a["omega"] + mb * v_ballpt * s_
+    return (
+        Check("linear momentum", p_before, p_after, relative_tolerance(p_before, 1e-9),
+              "the table exerts no horizontal impulse"),
+        Check("angular momentum about the stick's midpoint", H_before, H_after,
+              relative_tolerance(H_before, 1e-9), "no external moment either"),
+        Check("energy never increases", a["T_before"], max(a["T_before"], a["T_after"]),
+              relative_tolerance(a["T_before"], 1e-9),
+              "e = 0 (sticking) loses the most; e = 1 would lose none"),
+    )
