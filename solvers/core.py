@@ -246,13 +246,13 @@ def latex_number(x: float, sig: int = 4, keep_zeros: bool = True) -> str:
         return r"\infty" if x > 0 else r"-\infty"
     if x == 0:
         return "0"
-    exponent = math.floor(math.log10(abs(x)))
+    mantissa_text, exponent_text = f"{x:.{sig - 1}e}".split("e")
+    exponent = int(exponent_text)
     if -3 <= exponent < 5:
         text = f"{x:#.{sig}g}" if keep_zeros else f"{x:.{sig}g}"
         if "e" not in text:
             return text.rstrip(".")
-    mantissa = x / 10**exponent
-    text = f"{mantissa:.{sig - 1}f}" if keep_zeros else f"{mantissa:.{sig - 1}f}".rstrip("0").rstrip(".")
+    text = mantissa_text if keep_zeros else mantissa_text.rstrip("0").rstrip(".")
     return rf"{text} \times 10^{{{exponent}}}"
 
 
@@ -337,11 +337,14 @@ class Derivation:
             self._dimensions[link.name] = link.dimension
         self._results = {link.name for link in self.chain}
 
-    def evaluate(self, values: Mapping[str, float]) -> dict[str, float]:
-        """Run the chain numerically; returns the parameters plus every result."""
+    def evaluate(self, values: Mapping[str, float], upto: str | None = None) -> dict[str, float]:
+        """Run the chain numerically; returns the parameters plus every result (or those up to
+        and including ``upto``, to test a condition before the rest is meaningful)."""
         out = dict(values)
         for name, func, arg_names in self._compiled:
             out[name] = float(func(*(out[a] for a in arg_names)))
+            if name == upto:
+                break
         return out
 
     def numeric_steps(self, values: Mapping[str, float]) -> list[Step]:

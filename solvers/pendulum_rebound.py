@@ -166,7 +166,7 @@ def _validate(params) -> dict:
 def solve(**params) -> Solution:
     p = _validate(params)
     d_ = derivation(p["sphere"], p["surface"])
-    impact = d_.evaluate(p)["theta_impact"]
+    impact = d_.evaluate(p, upto="theta_impact")["theta_impact"]
     if not p["theta0"] > impact:
         raise PhysicalLimitError(
             f"The release angle θ₀ = {math.degrees(p['theta0']):.4g}° must be above the angle at which "

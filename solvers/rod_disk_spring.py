@@ -76,7 +76,12 @@ I_O, U_g, U_s, T2, w2 = sp.symbols(r"I_O U_g U_s T_2 |\dot{\theta}_2|", real=Tru
 SYMBOLS = {"m1": m1, "m2": m2, "k": k, "L": L, "R": R, "g": g, "theta1": theta1, "theta2": theta2}
 DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
 
-NUDGE = 1e-6  # rad/s: the push that starts an upright release (θ1 = 0) in the integration
+NUDGE = 1e-6  # rad/s: the push that starts a release at or near upright in the integration
+NEAR_UPRIGHT = 1e-3  # rad: below this release angle the integration starts with the nudge
+
+
+def _start_rate(theta1: float) -> float:
+    return NUDGE if theta1 < NEAR_UPRIGHT else 0.0
 
 
 class SpringStopsRodError(PhysicalLimitError):
@@ -197,20 +202,20 @@ def equation_of_motion(p, I: float):
 def simulate(p, answers, t_max: float | None = None, samples: int = 200):
     """θ(t) from release, integrated (swinging on past θ2, until it stops or after t_max)."""
     acc = equation_of_motion(p, answers["I_O"])
-    omega0 = NUDGE if p["theta1"] == 0 else 0.0
+    omega0 = _start_rate(p["theta1"])
     horizon = t_max or 40 * math.sqrt(answers["I_O"] / max(weight_moment(p), 1e-9))
     return integrate_leg(acc, p["theta1"], omega0, 0.0, horizon, stop_at_rest=True, samples=samples)
 
 
 def _checks(p, a) -> tuple[Check, ...]:
     acc = equation_of_motion(p, a["I_O"])
-    omega0 = NUDGE if p["theta1"] == 0 else 0.0
+    omega0 = _start_rate(p["theta1"])
     horizon = 200 * math.sqrt(a["I_O"] / weight_moment(p)) + 10
     leg = integrate_leg(acc, p["theta1"], omega0, 0.0, horizon, stop_at_angle=p["theta2"], direction=1)
     integrated = leg.end[2] if leg.ended_by_event else float("nan")
     return (
         Check(f"θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ (start nudge {NUDGE:g} rad/s)"
-              if p["theta1"] == 0 else "θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ",
+              if omega0 else "θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ",
               a["omega2"], integrated, relative_tolerance(a["omega2"], 1e-6) + NUDGE,
               "work–energy is the first integral of the equation of motion"),
         Check("energy: T₂ = U_g + U_s", a["T2"], a["U_gravity"] + a["U_spring"],

@@ -1,0 +1,94 @@
+"""disk_wall against the seed's closed form and against Routh's method: the impact integrated
+step by step in the normal impulse, with Coulomb friction deciding stick or slip at each step."""
+import math
+
+import pytest
+from hypothesis import given, settings
+
+from solvers import disk_wall
+from tests import strategies
+
+
+def routh(m, R, V, theta, omega, e, mu, steps=20000):
+    """Integrate the impact in the normal impulse p from 0 to (1 + e) m V cos θ (a uniform disk's
+    normal and tangential directions are uncoupled, so Poisson's and Newton's e agree)."""
+    I = 0.5 * m * R**2
+    vx, vy, w = V * math.sin(theta), V * math.cos(theta), omega
+    total = (1 + e) * m * V * math.cos(theta)
+    dp = total / steps
+    Pt = 0.0
+    for _ in range(steps):
+        slip = vx - R * w
+        # tangential impulse that would stop the slip in this step, and friction's cap
+        stop = -slip / (1 / m + R**2 / I)
+        dPt = stop if abs(stop) <= mu * dp else -math.copysign(mu * dp, slip)
+        vx += dPt / m
+        w -= R * dPt / I
+        vy -= dp / m
+        Pt += dPt
+    return vx, vy, w, Pt, -total
+
+
+def test_seed_closed_form_no_slip():
+    V, th, R, w = 2.0, math.radians(30), 0.1, 5.0
+    a = disk_wall.solve().answers
+    assert a["v1x"] == pytest.approx(2 / 3 * V * math.sin(th) + R * w / 3, rel=1e-12)
+    assert a["omega1"] == pytest.approx(a["v1x"] / R, rel=1e-12)
+    assert a["v1y"] == pytest.approx(-V * math.cos(th), rel=1e-12)  # reverses (the seed's slip)
+    assert a["speed1"] == pytest.approx(math.hypot(a["v1x"], a["v1y"]), rel=1e-12)
+    assert a["impulse_n"] == pytest.approx(-2 * 1.0 * V * math.cos(th), rel=1e-12)
+
+
+@settings(max_examples=60, deadline=None)
+@given(strategies.disk_wall)
+def test_agrees_with_routh_integration(p):
+    mu = p["mu"] if math.isfinite(p["mu"]) else 1e9
+    vx, vy, w, Pt, Pn = routh(**{**p, "mu": mu}, steps=4000)
+    a = disk_wall.solve(**p).answers
+    scale = p["V"] + p["R"] * abs(p["omega"])
+    assert a["v1x"] == pytest.approx(vx, abs=2e-3 * scale)
+    assert a["v1y"] == pytest.approx(vy, abs=1e-9 * scale)
+    assert a["omega1"] * p["R"] == pytest.approx(w * p["R"], abs=2e-3 * scale)
+    assert a["impulse_n"] == pytest.approx(Pn, rel=1e-9)
+
+
+@settings(max_examples=100, deadline=None)
+@given(strategies.disk_wall)
+def test_momentum_bookkeeping_and_energy_never_increases(p):
+    a = disk_wall.solve(**p).answers
+    m, R = p["m"], p["R"]
+    I = 0.5 * m * R**2
+    vx0, vy0 = p["V"] * math.sin(p["theta"]), p["V"] * math.cos(p["theta"])
+    assert m * (a["v1x"] - vx0) == pytest.approx(a["impulse_t"], abs=1e-9 * m * (p["V"] + R * abs(p["omega"])))
+    assert m * (a["v1y"] - vy0) == pytest.approx(a["impulse_n"], abs=1e-9 * m * p["V"])
+    # about the contact point: H_B = I ω + m R v_x is unchanged
+    H0 = I * p["omega"] + m * R * vx0
+    H1 = I * a["omega1"] + m * R * a["v1x"]
+    assert H1 == pytest.approx(H0, abs=1e-9 * (abs(I * p["omega"]) + m * R * p["V"]))
+    T0 = 0.5 * m * p["V"] ** 2 + 0.5 * I * p["omega"] ** 2
+    T1 = 0.5 * m * a["speed1"] ** 2 + 0.5 * I * a["omega1"] ** 2
+    assert a["energy_loss"] == pytest.approx(T0 - T1, abs=1e-9 * T0)
+    assert a["energy_loss"] >= -1e-9 * T0
+    if math.isfinite(p["mu"]):
+        assert abs(a["impulse_t"]) <= p["mu"] * abs(a["impulse_n"]) * (1 + 1e-9) + 1e-15
+
+
+def test_limits():
+    # μ = 0: a smooth wall leaves the tangential motion and the spin alone
+    a = disk_wall.solve(mu=0.0, e=0.5).answers
+    assert a["v1x"] == pytest.approx(2.0 * math.sin(math.radians(30)))
+    assert a["omega1"] == pytest.approx(5.0)
+    assert a["v1y"] == pytest.approx(-0.5 * 2.0 * math.cos(math.radians(30)))
+    # μ large: the finite-μ answer becomes the no-slip one
+    assert dict(disk_wall.solve(mu=1e6).answers) == pytest.approx(dict(disk_wall.solve().answers))
+    # e = 0: the disk leaves along the wall
+    assert disk_wall.solve(e=0.0).answers["v1y"] == 0.0
+    # a smooth elastic impact conserves energy
+    assert disk_wall.solve(mu=0.0, e=1.0).answers["energy_loss"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_slip_regime_is_reported_and_limited():
+    s = disk_wall.solve(mu=0.02, omega=-30.0)
+    assert s.regime == "slip"
+    assert abs(s.answers["impulse_t"]) == pytest.approx(0.02 * abs(s.answers["impulse_n"]))
+    assert disk_wall.solve().regime == "stick"

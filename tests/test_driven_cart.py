@@ -1,0 +1,76 @@
+"""driven_cart against the seed's formula and an independent numpy solve of the six equations."""
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+
+from solvers import driven_cart
+from tests import strategies
+
+
+def six_equations(m, a, b, c, mu, g, drive):
+    """Unknowns N1..N4 (vertical), L1..L4 (lateral), xdd; wheels 1 rear-left (−b, +c), 2 front-left
+    (+b, +c), 3 front-right (+b, −c), 4 rear-right (−b, −c), contact at height −a below the CM."""
+    xs, zs = [-b, b, b, -b], [c, c, -c, -c]
+    driven = {"front": [1, 2], "rear": [0, 3], "all": [0, 1, 2, 3]}[drive]
+    t = [mu if i in driven else 0.0 for i in range(4)]
+    A, rhs = [], []
+    A.append([t[0], t[1], t[2], t[3], 0, 0, 0, 0, -m]); rhs.append(0)          # Σ F_x = m ẍ
+    A.append([1, 1, 1, 1, 0, 0, 0, 0, 0]); rhs.append(m * g)                      # Σ F_y = 0
+    A.append([0, 0, 0, 0, 1, 1, 1, 1, 0]); rhs.append(0)                          # Σ F_z = 0
+    # M = r × F with r = (x, −a, z), F = (t N, N, L)
+    A.append([-zs[i] for i in range(4)] + [-a] * 4 + [0]); rhs.append(0)         # M_x
+    A.append([zs[i] * t[i] for i in range(4)] + [-xs[i] for i in range(4)] + [0]); rhs.append(0)  # M_y
+    A.append([xs[i] + a * t[i] for i in range(4)] + [0] * 4 + [0]); rhs.append(0)  # M_z
+    # the seed's assumptions
+    for row in ([1, 0, 0, -1], [0, 1, -1, 0]):
+        A.append(row + [0] * 5); rhs.append(0)
+    for i in range(4):
+        A.append([0] * 4 + [1 if j == i else 0 for j in range(4)] + [0]); rhs.append(0)
+    x, *_ = np.linalg.lstsq(np.array(A, float), np.array(rhs, float), rcond=None)
+    residual = np.array(A, float) @ x - np.array(rhs, float)
+    return x, float(np.abs(residual).max())
+
+
+def test_seed_front_drive_result():
+    a = driven_cart.solve().answers
+    m, aa, b, mu, g = 1200, 0.5, 1.3, 0.8, 9.81
+    assert a["accel"] == pytest.approx(mu * b * g / (mu * aa + 2 * b), rel=1e-12)
+    assert a["N_front"] == pytest.approx(b / (mu * aa + 2 * b) * m * g / 2, rel=1e-12)
+    assert a["N_rear"] == pytest.approx((mu * aa + b) / (mu * aa + 2 * b) * m * g / 2, rel=1e-12)
+    assert a["N_front"] < a["N_rear"]  # load moves to the rear: driven fronts are the unloaded ones
+    assert a["F_drive"] == pytest.approx(m * a["accel"], rel=1e-12)
+
+
+@settings(max_examples=80, deadline=None)
+@given(strategies.driven_cart())
+def test_agrees_with_a_linear_solve_of_all_six_equations(p):
+    x, residual = six_equations(**p)
+    weight = p["m"] * p["g"]
+    assert residual < 1e-8 * weight  # consistent: the assumptions close the system exactly
+    a = driven_cart.solve(**p).answers
+    assert a["accel"] == pytest.approx(x[8], rel=1e-9, abs=1e-9 * p["g"])
+    assert a["N_rear"] == pytest.approx(x[0], rel=1e-9)
+    assert a["N_front"] == pytest.approx(x[1], rel=1e-9)
+    assert a["F_drive"] == pytest.approx(p["m"] * x[8], rel=1e-9, abs=1e-9 * weight)
+    assert a["N_front"] > 0 and a["N_rear"] > 0
+
+
+@pytest.mark.parametrize("drive", ["rear", "all"])
+def test_wheelie_is_refused_at_and_beyond_mu_a_equals_b(drive):
+    for mu in (2.6, 3.0, 5.2, 6.0, 100.0):  # b/a = 2.6; past μa = 2b the rear formula flips sign
+        with pytest.raises(ValueError) as err:
+            driven_cart.solve(drive=drive, mu=mu)
+        assert err.value.mu_lift == pytest.approx(2.6)
+        assert "wheelie" in str(err.value)
+    assert driven_cart.solve(drive=drive, mu=2.59).answers["N_front"] > 0
+
+
+def test_front_drive_never_lifts():
+    a = driven_cart.solve(mu=50.0).answers
+    assert a["N_front"] > 0 and a["accel"] < 9.81 * 1.3 / 0.5
+
+
+def test_all_wheel_drive_gives_mu_g():
+    assert driven_cart.solve(drive="all").answers["accel"] == pytest.approx(0.8 * 9.81)

@@ -1,0 +1,81 @@
+"""eulers_disk against an independent kinematic model: the disk's orientation as Euler angles
+(scipy Rotation), angular velocity and angular momentum by finite differences in the fixed frame."""
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from scipy.spatial.transform import Rotation
+
+from solvers import eulers_disk
+from tests import strategies
+
+
+def orientation(t, theta, precession, spin):
+    """Body frame: z along the disk's normal. R = Rz(φ) Rx(θ) Rz(ψ), φ = precession·t, ψ = spin·t."""
+    return (Rotation.from_euler("z", precession * t) * Rotation.from_euler("x", theta)
+            * Rotation.from_euler("z", spin * t)).as_matrix()
+
+
+def angular_velocity(t, *args, h=1e-6):
+    Rdot = (orientation(t + h, *args) - orientation(t - h, *args)) / (2 * h)
+    W = Rdot @ orientation(t, *args).T
+    return np.array([W[2, 1], W[0, 2], W[1, 0]])
+
+
+def lowest_rim_point(t, r, *args):
+    """Where the tilted rim touches the table: the body-frame rim point with the lowest height."""
+    R = orientation(t, *args)
+    a = np.linspace(0, 2 * np.pi, 1, endpoint=False)
+    # lowest point of a circle in the body x-y plane: along −(projection of E_z onto the plane)
+    ez_body = R.T @ np.array([0, 0, 1.0])
+    d = -ez_body[:2] / np.linalg.norm(ez_body[:2])
+    del a
+    return R @ np.array([r * d[0], r * d[1], 0.0])
+
+
+def test_seed_formula_and_teaching_identities():
+    a = eulers_disk.solve().answers
+    g, r, th, m = 9.81, 0.0375, math.radians(10), 0.4
+    assert a["omega_p"] == pytest.approx(math.sqrt(4 * g / (r * math.sin(th))), rel=1e-12)
+    assert a["omega_s"] == pytest.approx(a["omega_p"] * math.cos(th), rel=1e-12)
+    assert a["omega_total"] == pytest.approx(a["omega_p"] * math.sin(th), rel=1e-12)
+    assert a["energy"] == pytest.approx(1.5 * m * g * r * math.sin(th), rel=1e-12)
+    assert a["period"] == pytest.approx(2 * math.pi / a["omega_p"], rel=1e-12)
+    assert a["contact_speed"] == pytest.approx(a["omega_p"] * r * math.cos(th), rel=1e-12)
+
+
+@settings(max_examples=40, deadline=None)
+@given(strategies.eulers_disk)
+def test_rolling_and_balance_of_angular_momentum_in_a_fixed_frame(p):
+    a = eulers_disk.solve(**p).answers
+    m, r, th, g = p["m"], p["r"], p["theta"], p["g"]
+    # the contact point precesses at −ω_p (seed's sense); the spin relative to that frame is ω_s
+    args = (th, -a["omega_p"], a["omega_s"])
+    t = 0.3 / a["omega_p"]
+    w = angular_velocity(t, *args)
+    assert np.linalg.norm(w) == pytest.approx(a["omega_total"], rel=1e-6)
+    r_AG = lowest_rim_point(t, r, *args)
+    assert r_AG[2] == pytest.approx(-r * math.sin(th), rel=1e-9)  # G at height r sin θ
+    # the material point at the contact is at rest (rolling without slip, G fixed)
+    assert np.linalg.norm(np.cross(w, r_AG)) <= 1e-5 * a["omega_total"] * r
+    I_body = np.diag([m * r**2 / 4, m * r**2 / 4, m * r**2 / 2])
+
+    def H(time):
+        R = orientation(time, *args)
+        return R @ I_body @ R.T @ angular_velocity(time, *args)
+
+    h = 1e-4 / a["omega_p"]
+    dHdt = (H(t + h) - H(t - h)) / (2 * h)
+    torque = np.cross(r_AG, np.array([0, 0, m * g]))
+    assert np.linalg.norm(dHdt - torque) <= 1e-4 * m * g * r
+    # energy: the translational part is zero, G is at rest
+    T = 0.5 * w @ (orientation(t, *args) @ I_body @ orientation(t, *args).T) @ w
+    assert a["energy"] == pytest.approx(m * g * r * math.sin(th) + T, rel=1e-6)
+
+
+def test_finite_time_singularity_trend():
+    small, large = eulers_disk.solve(theta=math.radians(1)), eulers_disk.solve(theta=math.radians(30))
+    assert small.answers["omega_p"] > large.answers["omega_p"]
+    assert small.answers["omega_total"] < large.answers["omega_total"]
+    assert small.answers["energy"] < large.answers["energy"]

@@ -1,0 +1,81 @@
+"""pendulum_rebound against an independent integration of the swing and the e² identity."""
+import math
+
+import pytest
+from hypothesis import given, settings
+from scipy.integrate import solve_ivp
+
+from solvers import pendulum_rebound
+from tests import strategies
+
+SPHERE_K = {"solid": 2 / 5, "hollow": 2 / 3, "disk": 1 / 2}
+
+
+def inertia(p):
+    return p["m_r"] * p["L"] ** 2 / 3 + SPHERE_K[p["sphere"]] * p["m_s"] * p["r"] ** 2 + p["m_s"] * (p["L"] + p["r"]) ** 2
+
+
+def fall(p, theta_I):
+    """θ̇ when the sphere reaches θ_I, integrating Σ M_O = I_O θ̈ (the seed's equation)."""
+    moment = (p["L"] * p["m_r"] * p["g"] / 2 + (p["L"] + p["r"]) * p["m_s"] * p["g"])
+    I = inertia(p)
+    hit = lambda t, y: y[0] - theta_I  # noqa: E731
+    hit.terminal, hit.direction = True, -1
+    sol = solve_ivp(lambda t, y: [y[1], -math.cos(y[0]) * moment / I], (0, 100), [p["theta0"], 0.0],
+                    events=hit, rtol=1e-11, atol=1e-12, method="LSODA")
+    return sol.y_events[0][0][1]
+
+
+def test_solid_sphere_inertia_and_impact_angle():
+    a = pendulum_rebound.solve().answers
+    p = dict(m_s=4.536, m_r=1.814, L=0.6096, r=0.09144, sphere="solid")
+    assert a["I_O"] == pytest.approx(inertia(p), rel=1e-12)
+    assert a["theta_impact"] == pytest.approx(math.asin((0.09144 - 0.5) / (0.6096 + 0.09144)), rel=1e-12)
+    assert a["theta_impact"] < 0  # the floor is below the pivot (the seed had the sign wrong)
+    assert a["omega_impact"] < 0 < a["omega_after"]
+
+
+def test_the_seeds_disk_inertia_is_an_option():
+    solid = pendulum_rebound.solve().answers["I_O"]
+    disk = pendulum_rebound.solve(sphere="disk").answers["I_O"]
+    assert disk - solid == pytest.approx((1 / 2 - 2 / 5) * 4.536 * 0.09144**2, rel=1e-12)
+
+
+@settings(max_examples=50, deadline=None)
+@given(strategies.pendulum_rebound())
+def test_impact_speed_agrees_with_integration_and_rebound_obeys_e_squared(p):
+    a = pendulum_rebound.solve(**p).answers
+    assert a["omega_impact"] == pytest.approx(fall(p, a["theta_impact"]), rel=1e-6)
+    assert a["omega_after"] == pytest.approx(-p["e"] * a["omega_impact"], rel=1e-12, abs=1e-300)
+    sI, s0, sf = math.sin(a["theta_impact"]), math.sin(p["theta0"]), math.sin(a["theta_rebound"])
+    assert sf - sI == pytest.approx(p["e"] ** 2 * (s0 - sI), rel=1e-9, abs=1e-12)
+    T = 0.5 * a["I_O"] * a["omega_impact"] ** 2
+    assert a["energy_loss"] == pytest.approx((1 - p["e"] ** 2) * T, rel=1e-9, abs=1e-12)
+    assert 0 <= a["energy_loss"] <= T * (1 + 1e-12)
+
+
+def test_limits_of_restitution():
+    elastic = pendulum_rebound.solve(e=1.0).answers
+    assert elastic["theta_rebound"] == pytest.approx(0.0, abs=1e-9)  # back to θ0 = 0
+    assert elastic["energy_loss"] == pytest.approx(0.0, abs=1e-12)
+    plastic = pendulum_rebound.solve(e=0.0).answers
+    assert plastic["theta_rebound"] == pytest.approx(plastic["theta_impact"])
+
+
+def test_wall_is_struck_hanging_straight_down():
+    a = pendulum_rebound.solve(surface="wall", d=100.0).answers  # d ignored for the wall
+    assert a["theta_impact"] == pytest.approx(-math.pi / 2)
+
+
+def test_release_below_the_floor_is_refused_with_the_impact_angle():
+    with pytest.raises(ValueError) as err:
+        pendulum_rebound.solve(theta0=math.radians(-50))
+    assert err.value.theta_impact == pytest.approx(math.asin((0.09144 - 0.5) / (0.6096 + 0.09144)))
+
+
+def test_the_ode_of_the_solver_runs_several_bounces():
+    s = pendulum_rebound.solve()
+    t, q, w, impacts, legs = pendulum_rebound.simulate(s.params, s.answers, bounces=3)
+    assert len(impacts) == 4
+    peaks = [leg.end[1] for leg in legs[1::2]]
+    assert peaks == pytest.approx(s.extras["bounce_peaks"][:3], abs=1e-7)

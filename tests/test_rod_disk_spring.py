@@ -1,0 +1,62 @@
+"""rod_disk_spring against the seed's numbers and an independent integration of the motion."""
+import math
+
+import pytest
+from hypothesis import assume, given, settings
+from scipy.integrate import solve_ivp
+
+from solvers import rod_disk_spring
+from tests import strategies
+
+
+def test_seed_numbers():
+    a = rod_disk_spring.solve().answers
+    assert a["omega2"] == pytest.approx(4.90, abs=0.005)
+    assert a["I_O"] / 2 == pytest.approx(1.455, abs=0.0005)  # T = 1.455 θ̇²
+    assert a["U_gravity"] == pytest.approx(13.24 + 46.35, abs=0.01)
+    assert a["U_spring"] == pytest.approx(-20 * math.pi**2 / 8, rel=1e-12)  # −24.67 J
+    assert a["T2"] == pytest.approx(34.92, abs=0.01)
+
+
+def integrate(p, I):
+    Q = (p["m1"] * p["L"] / 2 + p["m2"] * (p["L"] + p["R"])) * p["g"]
+    at = lambda t, y: y[0] - p["theta2"]  # noqa: E731
+    at.terminal, at.direction = True, 1
+    w0 = 1e-7 if p["theta1"] < 1e-3 else 0.0  # near upright (an equilibrium): a stated nudge
+    sol = solve_ivp(lambda t, y: [y[1], (Q * math.sin(y[0]) - p["k"] * y[0]) / I], (0, 1e4),
+                    [p["theta1"], w0], events=at, rtol=1e-11, atol=1e-13, method="LSODA")
+    return sol.y_events[0][0][1]
+
+
+@settings(max_examples=40, deadline=None)
+@given(strategies.rod_disk_spring())
+def test_speed_agrees_with_integration(p):
+    assume(strategies.reaches(p))
+    a = rod_disk_spring.solve(**p).answers
+    I = p["m1"] * p["L"] ** 2 / 3 + p["m2"] * (p["L"] + p["R"]) ** 2 + (
+        p["m2"] * p["R"] ** 2 / 2 if p["disk"] == "welded" else 0.0)
+    assert a["I_O"] == pytest.approx(I, rel=1e-12)
+    assert a["omega2"] == pytest.approx(integrate(p, I), rel=1e-5)
+    assert a["T2"] == pytest.approx(0.5 * I * a["omega2"] ** 2, rel=1e-9)
+
+
+def test_pinned_disk_turns_faster_than_welded():
+    assert rod_disk_spring.solve(disk="pinned").answers["omega2"] > rod_disk_spring.solve().answers["omega2"]
+
+
+def test_spring_that_stops_the_rod_reports_the_largest_angle():
+    with pytest.raises(ValueError) as err:
+        rod_disk_spring.solve(k=40.0, theta2=math.radians(300))
+    theta_max = err.value.theta_max
+    # at θ_max the kinetic energy is zero: gravity's work equals the spring's stored energy
+    Q = (6 * 0.45 / 2 + 9 * 0.525) * 9.81
+    assert Q * (1 - math.cos(theta_max)) == pytest.approx(40.0 / 2 * theta_max**2, rel=1e-9)
+    assert f"{math.degrees(theta_max):.4g}" in str(err.value)
+    # asking for an angle just below it works
+    assert rod_disk_spring.solve(k=40.0, theta2=theta_max * 0.999).answers["omega2"] > 0
+
+
+def test_stiff_spring_holds_it_upright():
+    with pytest.raises(ValueError) as err:
+        rod_disk_spring.solve(k=100.0)
+    assert err.value.theta_max == 0.0
