@@ -56,7 +56,7 @@ ANSWERS = (
 )
 
 ERRATA = (
-    r"The seed writes $v_{1y} = +V\cos\theta$ (\"magnitude conserved\"). After an elastic impact "
+    r"The seed writes $v_{1y} = +V\cos\theta$ (“magnitude conserved”). After an elastic impact "
     r"the normal component **reverses**: $v_{1y} = -eV\cos\theta$, pointing away from the wall.",
 )
 

@@ -53,7 +53,7 @@ ANSWERS = (
 
 ERRATA = (
     r"In the seed the driven wheels 2 and 3 (at $+b$) are the front, yet the line "
-    r"\"$N_1 = N_4 = N_{front}$, $N_2 = N_3 = N_{rear}$\" swaps the names; its equations (7)–(10) "
+    r"“$N_1 = N_4 = N_{front}$, $N_2 = N_3 = N_{rear}$” swaps the names; its equations (7)–(10) "
     r"and boxed results are right. Accelerating moves load to the **rear** axle, so driven front "
     r"wheels are the *unloaded* ones.",
     r"The seed's moment sum drops the traction's yaw term $c\mu(N_2 - N_3)$; it cancels by the "

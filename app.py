@@ -1,0 +1,13 @@
+"""Dynamics Lab: the entry point. A home page and one page per problem, grouped by method."""
+import streamlit as st
+
+from ui.catalog import GROUPS, PROBLEMS
+from ui.home import home
+
+st.set_page_config(page_title="Dynamics Lab", page_icon=":material/rotate_90_degrees_ccw:", layout="wide")
+
+pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True)]}
+for group in GROUPS:
+    pages[group] = [st.Page(p.page_path, title=p.title, icon=p.icon, url_path=p.id)
+                    for p in PROBLEMS if p.group == group]
+st.navigation(pages).run()

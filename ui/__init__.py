@@ -1,0 +1,1 @@
+"""The Streamlit pieces every page shares: catalogue, units, parameter panel, results, page."""

@@ -1,0 +1,23 @@
+"""The home page: what the app is, and the six problems grouped by method."""
+from __future__ import annotations
+
+import streamlit as st
+
+from ui.catalog import GROUPS, PROBLEMS
+
+
+def home() -> None:
+    st.title("Dynamics Lab")
+    st.markdown(
+        "Six worked problems of undergraduate rigid-body dynamics, alive: change a parameter and "
+        "the derivation, the numbers and the motion follow. Every answer is checked a second way "
+        "(a conservation law, a time integration, a linear solve), and where the original worked "
+        "solutions slipped, the page says so."
+    )
+    for group in GROUPS:
+        st.subheader(group)
+        cols = st.columns(2)
+        for col, problem in zip(cols, [p for p in PROBLEMS if p.group == group]):
+            with col.container(border=True):
+                st.page_link(problem.page_path, label=f"**{problem.title}**", icon=problem.icon)
+                st.caption(problem.blurb)

@@ -1,0 +1,103 @@
+"""One problem page, the same for all six: controls -> solve -> answers, figure, derivation."""
+from __future__ import annotations
+
+import importlib
+
+import streamlit as st
+
+from ui import results
+from ui.catalog import BY_ID, Problem
+from ui.params import mirror_to_url, parameter_panel
+
+LECTURE_CSS = """
+<style>
+  .stMainBlockContainer { font-size: 1.3rem; }
+  .stMainBlockContainer h1 { font-size: 2.8rem; }
+  .stMainBlockContainer .katex { font-size: 1.45em; }
+  .stMainBlockContainer table { font-size: 1.25rem; }
+</style>
+"""
+
+
+def _page_flags(problem: Problem) -> tuple[str, bool]:
+    """Unit system and lecture view: sidebar toggles, initialised from ?units=us and ?lecture=1."""
+    units_key, lecture_key = f"{problem.id}__units", f"{problem.id}__lecture"
+    if units_key not in st.session_state:
+        st.session_state[units_key] = "US customary" if (
+            problem.us_units and st.query_params.get("units") == "us") else "SI"
+    if lecture_key not in st.session_state:
+        st.session_state[lecture_key] = st.query_params.get("lecture") == "1"
+    system = "si"
+    if problem.us_units:
+        choice = st.sidebar.segmented_control("Units", ["SI", "US customary"], key=units_key,
+                                              help="The textbook states this problem in lb and ft.")
+        system = "us" if choice == "US customary" else "si"
+    lecture = st.sidebar.toggle("Lecture view", key=lecture_key,
+                                help="Large type and the animation first, for a projector.")
+    return system, lecture
+
+
+def _answers_for(solver, solution):
+    picker = getattr(solver, "answers_for", None)
+    return picker(solution.regime) if picker else solver.ANSWERS
+
+
+def _figure(problem: Problem, solution, system: str) -> None:
+    try:
+        viz = importlib.import_module(f"viz.{problem.id}")
+    except ModuleNotFoundError:
+        return
+    viz.show(solution, system)
+
+
+def _leave_legacy_pages_mode() -> None:
+    """Streamlit runs a deep-linked ``pages/<id>.py`` by itself (its legacy pages-folder mode) until
+    app.py has called st.navigation once in the process, so a student opening a shared link on a
+    freshly started server would get a page without the app's navigation and layout (streamlit
+    issues #9624, #10276). st.navigation clears this process-wide flag on its first call; clear it
+    here and rerun, so app.py runs and serves the same page from the very first visit."""
+    from streamlit.runtime.pages_manager import PagesManager
+
+    if PagesManager.uses_pages_directory:
+        PagesManager.uses_pages_directory = False
+        st.rerun()
+
+
+def problem_page(problem_id: str) -> None:
+    _leave_legacy_pages_mode()
+    problem = BY_ID[problem_id]
+    solver = problem.solver
+    system, lecture = _page_flags(problem)
+    if lecture:
+        st.html(LECTURE_CSS)
+    st.title(problem.title)
+    st.caption(f"{problem.blurb} Source: {problem.source}.")
+    st.sidebar.markdown("### Parameters")
+    params, warnings = parameter_panel(problem, system)
+    mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "",
+                                            "lecture": "1" if lecture else ""})
+    for warning in warnings:
+        st.warning(warning, icon=":material/link_off:")
+    try:
+        solution = solver.solve(**params)
+    except ValueError as error:
+        results.refused(error, system)
+        return
+
+    if lecture:
+        _figure(problem, solution, system)
+    left, right = st.columns([1, 1], gap="large")
+    with left:
+        st.subheader("Answers")
+        results.answers_table(solution, _answers_for(solver, solution), system)
+    with right:
+        st.subheader("Checked a second way")
+        results.checks(solution)
+    if not lecture:
+        _figure(problem, solution, system)
+    derivation_tab, slips_tab = st.tabs(["Derivation, step by step", "Common slips in the worked solution"])
+    with derivation_tab:
+        st.caption("Generated from the sympy derivation; the last steps put in your numbers (SI).")
+        results.derivation(solution)
+    with slips_tab:
+        results.errata(solver.ERRATA)

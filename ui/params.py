@@ -1,0 +1,149 @@
+"""The parameter panel: one control per solver parameter, built from the solver's spec, with every
+value mirrored into the URL (in the units the page shows) so that a link reproduces a state.
+
+A value read from the URL is parsed with ``float()`` only (never evaluated), checked against the
+solver's own range, and replaced by the default with a warning naming it when it is malformed or
+out of range. Combinations are left to the solver, whose message the page shows.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import streamlit as st
+
+from solvers.core import Choice, Number, ParameterError
+from ui import units
+from ui.catalog import Problem
+
+MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed
+PAGE_FLAGS = ("units", "lecture")
+
+
+def _key(problem: Problem, system: str, name: str) -> str:
+    return f"{problem.id}__{system}__{name}"
+
+
+def _is_slider(p: Number) -> bool:
+    return p.dimension == "angle" or (p.low == 0 and p.high == 1)
+
+
+def _parse_url_value(p: Any, raw: str, system: str) -> tuple[Any, str | None]:
+    """(display value, None) if ``raw`` is acceptable for ``p``, else (None, why)."""
+    if len(raw) > MAX_URL_VALUE:
+        return None, "is too long"
+    if isinstance(p, Choice):
+        return (raw, None) if raw in p.options else (None, f"must be one of {', '.join(p.options)}")
+    try:
+        shown = float(raw.strip())
+    except ValueError:
+        return None, "is not a number"
+    if math.isinf(shown) and p.allow_inf and shown > 0:
+        return shown, None
+    try:
+        p.validate(units.to_si(shown, p.dimension, system))
+    except ParameterError:
+        return None, f"is out of range ({p.range_text()})"
+    return shown, None
+
+
+def _initial_values(problem: Problem, system: str) -> list[str]:
+    """Put a value in session state for every control that has none yet: the last values this
+    session used (in SI, if the unit system just changed), else the URL, else the default."""
+    warnings = []
+    remembered = st.session_state.get(f"{problem.id}__si", {})
+    for p in problem.solver.PARAMS:
+        key = _key(problem, system, p.name)
+        if key in st.session_state:
+            continue
+        if p.name in remembered:
+            value = remembered[p.name]
+            st.session_state[key] = value if isinstance(p, Choice) else (
+                units.to_display(value, p.dimension, system))
+            continue
+        default = p.default if isinstance(p, Choice) else units.to_display(p.default, p.dimension, system)
+        raw = st.query_params.get(p.name)
+        value = default
+        if raw is not None:
+            parsed, why = _parse_url_value(p, raw, system)
+            if why is None:
+                value = parsed
+            else:
+                shown = raw if len(raw) <= MAX_URL_VALUE else raw[:MAX_URL_VALUE] + "…"
+                warnings.append(f"The link's value for **{p.name}** ({p.label}), “{shown}”, {why}; "
+                                f"using the default instead.")
+        st.session_state[key] = value
+    return warnings
+
+
+def _label(p: Any, system: str) -> str:
+    if isinstance(p, Choice):
+        return p.label.capitalize()
+    u = units.unit(p.dimension, system)
+    return f"${p.symbol}$ — {p.label}" + (f" ({u})" if u else "")
+
+
+def _control(p: Any, problem: Problem, system: str, container) -> Any:
+    key = _key(problem, system, p.name)
+    if isinstance(p, Choice):
+        return container.selectbox(_label(p, system), p.options, key=key, format_func=p.label_of,
+                                   help=p.help or None)
+    if p.allow_inf:
+        value = st.session_state[key]
+        no_slip = container.toggle(f"No slip at the contact (${p.symbol} = \\infty$)",
+                                   value=math.isinf(value), key=key + "__inf")
+        if no_slip:
+            return math.inf
+        if math.isinf(value):
+            st.session_state[key] = float(p.ui_high or 1.0) / 2
+        return container.number_input(_label(p, system), key=key, step=p.step, format="%.4g",
+                                      help=p.help or None)
+    if _is_slider(p):
+        lo = float(p.ui_low if p.ui_low is not None else p.low)
+        hi = float(p.ui_high if p.ui_high is not None else p.high)
+        current = float(st.session_state[key])
+        st.session_state[key] = current
+        return container.slider(_label(p, system), min(lo, current), max(hi, current), key=key,
+                                step=float(p.step or 0.01), help=p.help or None)
+    factor = units.to_display(1.0, p.dimension, system)
+    step = float(f"{(p.step or 0.01) * factor:.1g}")
+    return container.number_input(_label(p, system), key=key, step=step, format="%.6g",
+                                  help=p.help or None)
+
+
+def parameter_panel(problem: Problem, system: str, container=None) -> tuple[dict, list[str]]:
+    """Draw the controls; return (parameters in SI for ``solve``, warnings about the URL)."""
+    container = container or st.sidebar
+    warnings = _initial_values(problem, system)
+    values = {}
+    for p in problem.solver.PARAMS:
+        shown = _control(p, problem, system, container)
+        if isinstance(p, Choice):
+            values[p.name] = shown
+        elif shown is None:  # an emptied number box
+            values[p.name] = math.nan
+        else:
+            values[p.name] = units.to_si(float(shown), p.dimension, system)
+    st.session_state[f"{problem.id}__si"] = dict(values)
+    return values, warnings
+
+
+def mirror_to_url(problem: Problem, values: dict, system: str, flags: dict[str, str]) -> None:
+    """Write the non-default parameters (display units) and the page flags into the URL."""
+    wanted = {}
+    for p in problem.solver.PARAMS:
+        v = values[p.name]
+        if isinstance(p, Choice):
+            if v != p.default:
+                wanted[p.name] = v
+            continue
+        if isinstance(v, float) and math.isnan(v):
+            continue
+        shown = units.to_display(v, p.dimension, system)
+        default = units.to_display(p.default, p.dimension, system)
+        if not math.isclose(shown, default, rel_tol=1e-12, abs_tol=1e-12):
+            wanted[p.name] = "inf" if math.isinf(shown) else f"{shown:.10g}"
+    wanted.update({k: v for k, v in flags.items() if v})
+    current = {k: st.query_params.get(k) for k in st.query_params.keys()}
+    if current != wanted:
+        st.query_params.from_dict(wanted)

@@ -1,0 +1,57 @@
+"""How a Solution is shown: answers with units, the derivation step by step, the ledger of checks,
+the seed's slips, and a refused case explained (never a traceback)."""
+from __future__ import annotations
+
+import streamlit as st
+
+from solvers.core import Answer, PhysicalLimitError, Solution
+from ui import units
+
+LIMIT_LABELS = {  # attribute carried by a PhysicalLimitError -> (what it is, dimension)
+    "mu_lift": ("μ at which the front wheels lift (μ = b/a)", "dimensionless"),
+    "theta_max": ("largest angle the rod reaches", "angle"),
+    "theta_impact": ("angle at which the sphere touches", "angle"),
+}
+
+
+def answers_table(solution: Solution, answers: tuple[Answer, ...], system: str) -> None:
+    rows = ["| | quantity | value |", "|---|---|---|"]
+    for a in answers:
+        value = units.format_quantity(solution.answers[a.name], a.dimension, system)
+        if a.dimension == "angle":
+            value += f" ({units.format_value(solution.answers[a.name])} rad)"
+        rows.append(f"| ${a.symbol}$ | {a.label} | **{value}** |")
+    st.markdown("\n".join(rows))
+    for note in solution.notes:
+        st.caption(note)
+
+
+def derivation(solution: Solution, numbered_from: int = 1) -> None:
+    for i, step in enumerate(solution.steps, start=numbered_from):
+        st.markdown(f"**{i}.** {step.title}")
+        st.latex(step.latex)
+
+
+def checks(solution: Solution) -> None:
+    """The conservation ledger: each closed-form answer beside an independent second method."""
+    lines = []
+    for c in solution.checks:
+        mark = ":green[:material/check_circle:]" if c.ok else ":red[:material/cancel: **differs**]"
+        lines.append(f"- {mark} **{c.name}**: {units.format_value(c.closed_form, 8)} vs "
+                     f"{units.format_value(c.second_method, 8)}  \n  :gray[{c.explanation}]")
+    st.markdown("\n".join(lines))
+
+
+def errata(notes: tuple[str, ...]) -> None:
+    for note in notes:
+        st.markdown(f"- {note}")
+
+
+def refused(error: ValueError, system: str) -> None:
+    """A case the model cannot describe, or a value out of range: the reason, and the limit."""
+    st.error(str(error), icon=":material/block:")
+    if isinstance(error, PhysicalLimitError):
+        cols = st.columns(max(1, len(error.limits)))
+        for col, (name, value) in zip(cols, error.limits.items()):
+            label, dimension = LIMIT_LABELS.get(name, (name, "dimensionless"))
+            col.metric(label, units.format_quantity(value, dimension, system))
