@@ -301,7 +301,8 @@ class Derivation:
 
     ``symbols`` maps parameter names to their sympy symbols; ``steps`` are the symbolic steps
     (already LaTeX); ``chain`` lists results in order. ``evaluate`` runs lambdified code only, and
-    ``numeric_steps`` fills a LaTeX template built once from the same expressions.
+    ``numeric_steps`` fills a LaTeX template built once from the same expressions. ``labels``
+    names the results in words for the numeric steps' titles.
     """
 
     _PLACEHOLDER = "ZQ{}QZ"
@@ -312,8 +313,10 @@ class Derivation:
         dimensions: Mapping[str, str],
         steps: Iterable[Step],
         chain: Sequence[Result],
+        labels: Mapping[str, str] | None = None,
     ):
         self.steps = tuple(steps)
+        self._labels = dict(labels or {})
         self.chain = tuple(chain)
         self._dimensions = dict(dimensions)
         known: dict[sp.Symbol, str] = {sym: name for name, sym in symbols.items()}
@@ -356,7 +359,7 @@ class Derivation:
                 text = text.replace(placeholder, self._number_for(name, values[name], trig_only))
             text = _DOUBLE_PARENS.sub(r"\\left(\1\\right)", text)
             value = latex_quantity(values[link.name], link.dimension)
-            title = link.title or f"Numbers substituted: {link.name}"
+            title = link.title or f"With your numbers: {self._labels.get(link.name, link.name)}"
             steps.append(Step(title, f"{sp.latex(link.symbol)} = {text} = {value}"))
         return steps
 

@@ -139,7 +139,7 @@ def derivation(regime: str) -> Derivation:
         Result("T_after", T_plus, T(_vec(v1x, v1y), omega1), "energy", "Kinetic energy after"),
         Result("energy_loss", loss, T_minus - T_plus, "energy"),
     ]
-    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
 
 def solve(**params) -> Solution:

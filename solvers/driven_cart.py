@@ -125,7 +125,7 @@ def derivation(drive: str) -> Derivation:
         Result("accel", xdd, solved[xdd], "acceleration"),
         Result("F_drive", F_drive, traction, "force"),
     ]
-    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
 
 class FrontWheelsLiftError(PhysicalLimitError):

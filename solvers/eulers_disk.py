@@ -122,7 +122,7 @@ def derivation() -> Derivation:
         Result("contact_speed", v_A, w_p * r * sp.cos(theta), "speed"),
         Result("period", tau, 2 * sp.pi / w_p, "time"),
     ]
-    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
 
 def solve(**params) -> Solution:

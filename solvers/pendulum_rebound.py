@@ -142,14 +142,14 @@ def derivation(sphere: str, surface: str) -> Derivation:
     ]
     chain = [
         Result("I_O", I_O, inertia, "inertia"),
-        Result("Q", Q, weight_moment, "torque"),
+        Result("Q", Q, weight_moment, "torque", "With your numbers: moment of the weights, Q"),
         Result("theta_impact", theta_I, impact_angle, "angle"),
         Result("omega_impact", w_minus, falling.subs(theta, theta_I), "angular_speed"),
         Result("omega_after", w_plus, -e * w_minus, "angular_speed"),
         Result("theta_rebound", theta_f, sp.asin(sin_rebound), "angle"),
         Result("energy_loss", loss, sp.Rational(1, 2) * I_O * (w_minus**2 - w_plus**2), "energy"),
     ]
-    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
 
 def _validate(params) -> dict:

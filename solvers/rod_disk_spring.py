@@ -129,7 +129,7 @@ def derivation(disk: str) -> Derivation:
         Result("T2", T2, U_g + U_s, "energy"),
         Result("omega2", w2, speed, "angular_speed"),
     ]
-    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
 
 def weight_moment(p) -> float:

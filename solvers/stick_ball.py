@@ -142,7 +142,7 @@ def derivation(mode: str) -> Derivation:
             Result("T_after", T_f, T_after, "energy"),
             Result("energy_loss", loss, T_i - T_f, "energy"),
         ]
-    return Derivation(SYMBOLS, DIMENSIONS, steps, chain)
+    return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS_STICK + ANSWERS_BOUNCE})
 
 
 def solve(**params) -> Solution:

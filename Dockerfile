@@ -1,0 +1,30 @@
+# Dynamics Lab, production image: slim Python, pinned requirements, non-root, health-checked,
+# and nothing fetched from the internet at run time.
+FROM python:3.11-slim
+
+# Optional, build time only: a CA bundle for a TLS-intercepting proxy in front of PyPI
+# (e.g. --build-arg PIP_CERT=/etc/ssl/host-ca.crt with that file mounted). Empty by default.
+ARG PIP_CERT=""
+
+ENV PYTHONDONTWRITEBYTECODE=1 \
+    PYTHONUNBUFFERED=1 \
+    PIP_NO_CACHE_DIR=1 \
+    PIP_DISABLE_PIP_VERSION_CHECK=1 \
+    VIRTUAL_ENV=/opt/venv \
+    PATH=/opt/venv/bin:$PATH
+
+WORKDIR /app
+COPY requirements.txt .
+RUN python -m venv /opt/venv \
+ && if [ -n "$PIP_CERT" ]; then export PIP_CERT; else unset PIP_CERT; fi \
+ && pip install -r requirements.txt \
+ && useradd --create-home --uid 10001 --shell /usr/sbin/nologin app
+
+COPY --chown=app:app . .
+USER app
+
+EXPOSE 8501
+HEALTHCHECK --interval=15s --timeout=5s --start-period=60s --retries=3 \
+  CMD ["python", "-c", "import sys, urllib.request as u; sys.exit(0 if u.urlopen('http://127.0.0.1:8501/_stcore/health', timeout=4).read().strip() == b'ok' else 1)"]
+
+CMD ["python", "-m", "streamlit", "run", "app.py", "--server.port=8501", "--server.address=0.0.0.0"]

@@ -1,0 +1,30 @@
+# The two quick-start commands: `make run` (the app on http://localhost:8501) and `make test`.
+# Each creates ./.venv on first use from the pinned requirements.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+PORT   ?= 8501
+
+.PHONY: run test screenshots bench clean
+
+$(BIN)/.runtime: requirements.txt
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q --upgrade pip
+	$(BIN)/python -m pip install -q -r requirements.txt
+	touch $@
+
+$(BIN)/.dev: $(BIN)/.runtime requirements-dev.txt
+	$(BIN)/python -m pip install -q -r requirements-dev.txt
+	touch $@
+
+run: $(BIN)/.runtime
+	$(BIN)/python -m streamlit run app.py --server.port $(PORT)
+
+test: $(BIN)/.dev
+	$(BIN)/python -m pytest
+
+screenshots: $(BIN)/.dev
+	$(BIN)/python scripts/screenshots.py --themes light dark --sizes wide narrow
+
+clean:
+	rm -rf $(VENV) .pytest_cache .hypothesis

@@ -1,0 +1,186 @@
+"""Every page under Streamlit's AppTest: it runs, its controls drive the derivation and the answers,
+its state round-trips through the URL, and bad input of any kind ends in a plain message."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+from streamlit.testing.v1 import AppTest
+
+from ui.catalog import BY_ID, PROBLEMS
+
+IDS = [p.id for p in PROBLEMS]
+TIMEOUT = 60
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def run_page(pid: str, query: dict | None = None) -> AppTest:
+    at = AppTest.from_file(str(ROOT / "pages" / f"{pid}.py"), default_timeout=TIMEOUT)
+    at.query_params.update(query or {})
+    return at.run()
+
+
+def answers_text(at: AppTest) -> str:
+    return "\n".join(m.value for m in at.markdown if m.value.startswith("| |"))
+
+
+def latex_text(at: AppTest) -> list[str]:
+    return [x.value for x in at.latex]
+
+
+def first_number_control(at: AppTest, pid: str):
+    spec = next(p for p in BY_ID[pid].solver.PARAMS if hasattr(p, "dimension") and not p.allow_inf)
+    key = f"{pid}__si__{spec.name}"
+    for widget in [*at.number_input, *at.slider]:
+        if widget.key == key:
+            return widget, spec
+    raise AssertionError(f"no control for {key}")
+
+
+def assert_clean(at: AppTest) -> None:
+    assert not at.exception, [e.value for e in at.exception]
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_page_runs_with_answers_derivation_and_checks(pid):
+    at = run_page(pid)
+    assert_clean(at)
+    assert not at.error
+    assert at.title[0].value == BY_ID[pid].title
+    answers = answers_text(at)
+    for answer in BY_ID[pid].solver.ANSWERS:
+        assert f"${answer.symbol}$" in answers
+    assert len(at.latex) >= 6
+    ledger = [m.value for m in at.markdown if ":material/check_circle:" in m.value]
+    assert ledger, "the checks are shown"
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_moving_a_control_changes_the_derivation_and_the_answers(pid):
+    at = run_page(pid)
+    before_answers, before_latex = answers_text(at), latex_text(at)
+    widget, spec = first_number_control(at, pid)
+    widget.set_value(widget.value * 1.1).run()
+    assert_clean(at)
+    assert not at.error
+    assert answers_text(at) != before_answers
+    assert latex_text(at) != before_latex
+    assert pid and spec.name in at.query_params
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_url_round_trip_restores_the_same_answers(pid):
+    at = run_page(pid)
+    widget, _ = first_number_control(at, pid)
+    widget.set_value(widget.value * 0.9).run()
+    for box in at.selectbox:  # also move an option, where the problem has one
+        options = [o for o in box.options if o != box.value]
+        if options and pid != "pendulum_rebound":
+            box.set_value(box.options[1] if box.value == box.options[0] else box.options[0]).run()
+            break
+    assert not at.error
+    query = dict(at.query_params)
+    assert query
+    again = run_page(pid, query)
+    assert_clean(again)
+    assert answers_text(again) == answers_text(at)
+    assert latex_text(again) == latex_text(at)
+    assert not again.warning
+
+
+BAD_VALUES = ["abc", "nan", "NaN", "-inf", "1e999", "-5", "1" * 200, "__import__('os')", "<script>x</script>", ""]
+
+
+@pytest.mark.parametrize("pid", IDS)
+@pytest.mark.parametrize("bad", BAD_VALUES)
+def test_bad_url_values_fall_back_to_the_default_with_a_warning(pid, bad):
+    spec = next(p for p in BY_ID[pid].solver.PARAMS if hasattr(p, "dimension") and p.low == 0)
+    at = run_page(pid, {spec.name: bad})
+    assert_clean(at)
+    assert any(f"**{spec.name}**" in w.value for w in at.warning), [w.value for w in at.warning]
+    assert answers_text(at) == answers_text(run_page(pid))  # the default's answers
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_bad_option_in_url_is_named(pid):
+    choice = next((p for p in BY_ID[pid].solver.PARAMS if hasattr(p, "options")), None)
+    if choice is None:
+        pytest.skip("no option parameter on this page")
+    at = run_page(pid, {choice.name: "DROP TABLE"})
+    assert_clean(at)
+    assert any(choice.name in w.value for w in at.warning)
+
+
+@pytest.mark.parametrize("pid,query,limit_label", [
+    ("driven_cart", {"drive": "rear", "mu": "3"}, "front wheels lift"),
+    ("driven_cart", {"drive": "all", "mu": "6"}, "front wheels lift"),
+    ("rod_disk_spring", {"k": "100"}, "largest angle"),
+    ("rod_disk_spring", {"k": "40", "theta2": "300"}, "largest angle"),
+    ("pendulum_rebound", {"theta0": "-60"}, "sphere touches"),
+])
+def test_refused_combinations_explain_the_limit(pid, query, limit_label):
+    at = run_page(pid, query)
+    assert_clean(at)
+    assert at.error and "Traceback" not in at.error[0].value
+    assert any(limit_label in m.label for m in at.metric)
+
+
+@pytest.mark.parametrize("pid,name,value", [
+    ("stick_ball", "s", 0.9),  # off the stick
+    ("pendulum_rebound", "d", 0.01),  # floor above the sphere
+    ("disk_wall", "m", -1.0),  # a negative mass
+    ("eulers_disk", "r", 0.0),
+])
+def test_bad_control_values_show_a_plain_message(pid, name, value):
+    at = run_page(pid)
+    at.number_input(key=f"{pid}__si__{name}").set_value(value).run()
+    assert_clean(at)
+    assert at.error
+    assert name in at.error[0].value or "must" in at.error[0].value
+
+
+def test_no_slip_toggle_gives_finite_mu_control():
+    at = run_page("disk_wall")
+    at.toggle(key="disk_wall__si__mu__inf").set_value(False).run()
+    at.number_input(key="disk_wall__si__mu").set_value(0.02).run()
+    assert_clean(at)
+    assert at.query_params.get("mu") == "0.02"
+    assert any("Slides" in c.value for c in at.caption)
+
+
+def test_pendulum_in_us_customary_units():
+    at = run_page("pendulum_rebound", {"units": "us"})
+    assert_clean(at)
+    mass = at.number_input(key="pendulum_rebound__us__m_s")
+    assert mass.value == pytest.approx(10.0, rel=1e-4)  # the textbook's 10 lb sphere
+    length = at.number_input(key="pendulum_rebound__us__L")
+    assert length.value == pytest.approx(2.0, rel=1e-4)  # 2 ft rod
+    assert "ft·lbf" in answers_text(at)
+    si = run_page("pendulum_rebound")
+    # the same physics: the angle rows are identical in either system, the energy converts
+    angle_rows = lambda t: [r for r in t.splitlines() if "°" in r]  # noqa: E731
+    assert angle_rows(answers_text(at)) and angle_rows(answers_text(at)) == angle_rows(answers_text(si))
+    assert at.query_params.get("units") == "us" and at.query_params.get("m_s") is None  # default, in lb
+
+
+def test_lecture_view_from_the_url():
+    at = run_page("stick_ball", {"lecture": "1"})
+    assert_clean(at)
+    assert at.toggle(key="stick_ball__lecture").value is True
+    assert at.query_params.get("lecture") == "1"
+
+
+def test_home_lists_every_problem_by_group():
+    at = AppTest.from_file(str(ROOT / "app.py"), default_timeout=TIMEOUT).run()
+    assert_clean(at)
+    text = " ".join(m.value for m in at.markdown) + " ".join(s.value for s in at.subheader)
+    for group in ("Impacts", "Work–energy", "Newton–Euler"):
+        assert group in text
+    assert len(at.get("page_link")) == len(PROBLEMS)
+
+
+def test_answers_use_degrees_for_angles():
+    at = run_page("pendulum_rebound")
+    answers = answers_text(at)
+    assert f"{math.degrees(-0.6221593851089576):.4g}".replace("-", "−") + "°" in answers
