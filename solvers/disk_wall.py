@@ -14,6 +14,7 @@ from __future__ import annotations
 import functools
 import math
 
+import numpy as np
 import sympy as sp
 
 from .core import (
@@ -194,3 +195,23 @@ def _notes(p, a, regime, slip_before) -> tuple[str, ...]:
                 f"{p['mu'] * abs(a['impulse_n']):.4g} N·s, so B slides "
                 f"{'forward (+x)' if slip_before > 0 else 'backward (−x)'} through the whole impact.")
     return (note,)
+
+
+def motion(solution: Solution, frames: int = 61) -> dict:
+    """Centre path and rotation through the impact (the impact at t = 0, the centre then at the
+    origin and the wall at y = R): straight lines at the velocities before and after."""
+    p, a = solution.params, solution.answers
+    R_, V_ = p["R"], p["V"]
+    vx0, vy0 = V_ * math.sin(p["theta"]), V_ * math.cos(p["theta"])
+    t_in = 3.0 * R_ / V_
+    t_out = 3.0 * R_ / max(a["speed1"], 0.25 * V_)
+    n_in = frames // 2
+    t = np.concatenate([np.linspace(-t_in, 0.0, n_in + 1), np.linspace(0.0, t_out, frames - n_in)[1:]])
+    after = t > 0
+    x = np.where(after, a["v1x"] * t, vx0 * t)
+    y = np.where(after, a["v1y"] * t, vy0 * t)
+    angle = np.where(after, a["omega1"] * t, p["omega"] * t)
+    vx = np.where(after, a["v1x"], vx0)
+    vy = np.where(after, a["v1y"], vy0)
+    return {"t": t, "x": x, "y": y, "angle": angle, "vx": vx, "vy": vy, "impact_index": n_in,
+            "wall_y": R_}

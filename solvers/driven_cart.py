@@ -12,6 +12,7 @@ longer applies (a wheelie) and ``solve`` refuses.
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 import sympy as sp
@@ -177,3 +178,24 @@ def _numeric_system(drive: str):
     A, rhs = sp.linear_eq_to_matrix(eqs, [*N, *Nz, xdd])
     args = list(SYMBOLS.values())
     return sp.lambdify(args, A, modules="numpy"), sp.lambdify(args, rhs, modules="numpy")
+
+
+def motion(solution: Solution, frames: int = 40, duration: float = 1.5) -> dict:
+    """From rest at constant acceleration: x(t) = ½ ẍ t²."""
+    t = np.linspace(0.0, duration, frames)
+    accel = solution.answers["accel"]
+    return {"t": t, "x": 0.5 * accel * t**2, "v": accel * t}
+
+
+def acceleration_versus_mu(params: dict, mus: np.ndarray) -> dict[str, np.ndarray]:
+    """ẍ against μ for each drive, NaN where the front wheels would lift (μa ≥ b)."""
+    base = {k: v for k, v in params.items() if k not in ("mu", "drive")}
+    curves = {}
+    for drive in DRIVEN:
+        d_ = derivation(drive)
+        values = []
+        for mu_ in mus:
+            lifts = drive != "front" and not mu_ * base["a"] < base["b"]
+            values.append(math.nan if lifts else d_.evaluate({**base, "mu": float(mu_)})["accel"])
+        curves[drive] = np.array(values)
+    return curves

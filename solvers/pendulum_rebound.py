@@ -239,3 +239,13 @@ def _checks(p, a) -> tuple[Check, ...]:
                         (1 - p["e"] ** 2) * T_before, relative_tolerance(T_before, 1e-9),
                         "restitution keeps a fraction e² of the kinetic energy"))
     return tuple(checks)
+
+
+def motion(solution: Solution, frames: int = 90, bounces: int = 3) -> dict:
+    """θ(t) and θ̇(t) through several bounces, integrated, resampled evenly in time."""
+    t, q, w, impacts, _ = simulate(solution.params, solution.answers, bounces=bounces, samples_per_leg=60)
+    t_even = np.linspace(t[0], t[-1], frames)
+    order = np.argsort(t, kind="stable")
+    return {"t": t_even, "theta": np.interp(t_even, t[order], q[order]),
+            "omega": np.interp(t_even, t[order], w[order]), "t_dense": t, "theta_dense": q,
+            "impact_times": [ti for ti, _ in impacts]}

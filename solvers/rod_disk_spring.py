@@ -222,3 +222,20 @@ def _checks(p, a) -> tuple[Check, ...]:
               relative_tolerance(abs(a["U_gravity"]) + abs(a["U_spring"]), 1e-12),
               "the pivot does no work"),
     )
+
+
+def motion(solution: Solution, frames: int = 72) -> dict:
+    """The whole swing from release (and back), integrated, with the energy split per frame:
+    kinetic, gravitational (zero with the assembly hanging straight down) and spring."""
+    p, a = solution.params, solution.answers
+    horizon = 60 * math.sqrt(a["I_O"] / weight_moment(p)) + 5
+    half = simulate(p, a, t_max=horizon, samples=2)
+    duration = 2 * half.end[0] if half.ended_by_event else horizon
+    acc = equation_of_motion(p, a["I_O"])
+    leg = integrate_leg(acc, p["theta1"], _start_rate(p["theta1"]), 0.0, duration, samples=frames)
+    Q = weight_moment(p)
+    kinetic = 0.5 * a["I_O"] * leg.omega**2
+    gravity = Q * (1 + np.cos(leg.theta))
+    spring = 0.5 * p["k"] * leg.theta**2
+    return {"t": leg.t, "theta": leg.theta, "omega": leg.omega, "kinetic": kinetic, "gravity": gravity,
+            "spring": spring}

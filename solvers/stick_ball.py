@@ -13,6 +13,7 @@ from __future__ import annotations
 import functools
 import math
 
+import numpy as np
 import sympy as sp
 
 from .core import (
@@ -188,3 +189,36 @@ def _checks(p, a) -> tuple[Check, ...]:
               relative_tolerance(a["T_before"], 1e-9),
               "e = 0 (sticking) loses the most; e = 1 would lose none"),
     )
+
+
+def motion(solution: Solution, frames: int = 72) -> dict:
+    """Top view (stick along y at x = 0, ball approaching along +x at y = s; impact at t = 0).
+    After the impact the body turns clockwise (the ball's angular momentum is −z)."""
+    p, a = solution.params, solution.answers
+    l_, v_, s_ = p["l"], p["v"], p["s"]
+    t_in = 0.6 * l_ / v_
+    t_out = min(2 * math.pi / a["omega"], 12 * l_ / v_)
+    n_in = max(frames // 5, 8)
+    t = np.concatenate([np.linspace(-t_in, 0.0, n_in + 1), np.linspace(0.0, t_out, frames - n_in)[1:]])
+    tp = np.clip(t, 0.0, None)
+    if p["mode"] == "stick":
+        d_ = a["d_cm"]
+        centre_x, centre_y = a["v_cm"] * tp, np.full_like(t, d_)
+        phi = -a["omega"] * tp
+
+        def body(arm):  # a point at arm y (from the midpoint) along the stick
+            return centre_x - (arm - d_) * np.sin(phi), centre_y + (arm - d_) * np.cos(phi)
+        ball = body(s_)
+        ball = (np.where(t < 0, v_ * t, ball[0]), np.where(t < 0, s_, ball[1]))
+        cm = (centre_x, centre_y)
+    else:
+        phi = -a["omega"] * tp
+
+        def body(arm):
+            return a["v_stick"] * tp - arm * np.sin(phi), arm * np.cos(phi)
+        ball = (np.where(t < 0, v_ * t, a["v_ball"] * tp), np.full_like(t, s_))
+        total = p["m_ball"] + p["m_stick"]
+        cm = ((p["m_ball"] * ball[0] + p["m_stick"] * body(0.0)[0]) / total,
+              (p["m_ball"] * ball[1] + p["m_stick"] * body(0.0)[1]) / total)
+    top, bottom, mid = body(l_ / 2), body(-l_ / 2), body(0.0)
+    return {"t": t, "impact_index": n_in, "top": top, "bottom": bottom, "mid": mid, "ball": ball, "cm": cm}

@@ -54,7 +54,9 @@ def integrate_leg(
     if stop_at_rest:
         def rest(t, y):
             return y[1]
-        rest.terminal, rest.direction = True, 0
+        # θ̇ reverses: from + to − when moving forward (or starting from rest toward +θ), and back.
+        moving_forward = omega0 > 0 or (omega0 == 0 and acceleration(theta0) >= 0)
+        rest.terminal, rest.direction = True, (-1 if moving_forward else 1)
         events.append(rest)
 
     sol = solve_ivp(

@@ -42,12 +42,14 @@ def _answers_for(solver, solution):
     return picker(solution.regime) if picker else solver.ANSWERS
 
 
-def _figure(problem: Problem, solution, system: str) -> None:
-    try:
-        viz = importlib.import_module(f"viz.{problem.id}")
-    except ModuleNotFoundError:
-        return
-    viz.show(solution, system)
+def _figures(problem: Problem, solution, system: str) -> None:
+    """The motion and its companion plots, each with the text a screen reader gets."""
+    viz = importlib.import_module(f"viz.{problem.id}")
+    for figure in viz.figures(solution, system):
+        st.markdown(f"#### {figure.title}")
+        st.plotly_chart(figure.spec, key=figure.key, config={"displayModeBar": False, "responsive": True},
+                        height=figure.height)
+        st.caption(figure.description)
 
 
 def _leave_legacy_pages_mode() -> None:
@@ -85,16 +87,13 @@ def problem_page(problem_id: str) -> None:
         return
 
     if lecture:
-        _figure(problem, solution, system)
-    left, right = st.columns([1, 1], gap="large")
-    with left:
-        st.subheader("Answers")
-        results.answers_table(solution, _answers_for(solver, solution), system)
-    with right:
-        st.subheader("Checked a second way")
-        results.checks(solution)
+        _figures(problem, solution, system)
+    st.subheader("Answers")
+    results.answers_table(solution, _answers_for(solver, solution), system)
+    st.markdown("##### Checked a second way")
+    results.checks(solution)
     if not lecture:
-        _figure(problem, solution, system)
+        _figures(problem, solution, system)
     derivation_tab, slips_tab = st.tabs(["Derivation, step by step", "Common slips in the worked solution"])
     with derivation_tab:
         st.caption("Generated from the sympy derivation; the last steps put in your numbers (SI).")

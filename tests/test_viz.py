@@ -1,0 +1,96 @@
+"""Figures as data: every animation has ≥ 30 frames, Play/Pause and a scrubbing slider, stays under
+300 KB of JSON, is byte-identical for equal inputs, and viz/ holds no physics."""
+from __future__ import annotations
+
+import importlib
+import json
+import math
+from pathlib import Path
+
+import pytest
+from hypothesis import assume, given, settings
+
+from tests import strategies
+
+IDS = ["disk_wall", "pendulum_rebound", "driven_cart", "eulers_disk", "stick_ball", "rod_disk_spring"]
+LIMIT = 300 * 1024
+
+
+def build(pid, **params):
+    solution = importlib.import_module(f"solvers.{pid}").solve(**params)
+    return importlib.import_module(f"viz.{pid}").figures(solution)
+
+
+def check_figures(figures):
+    assert figures
+    animations = [f for f in figures if f.animated]
+    assert animations, "each problem has an animation"
+    for f in figures:
+        text = f.json()
+        assert len(text.encode()) < LIMIT, (f.key, len(text))
+        assert f.description and len(f.description) > 40
+        json.loads(text)  # plain JSON: no NaN, no numpy types
+        assert "NaN" not in text
+    for f in animations:
+        spec = f.spec
+        assert len(spec["frames"]) >= 30
+        labels = [b["label"] for b in spec["layout"]["updatemenus"][0]["buttons"]]
+        assert any("Play" in x for x in labels) and any("Pause" in x for x in labels)
+        steps = spec["layout"]["sliders"][0]["steps"]
+        assert len(steps) == len(spec["frames"])
+        assert spec["layout"]["sliders"][0]["currentvalue"]["prefix"].startswith("t")
+        moving = spec["frames"][0]["traces"]
+        assert all(fr["traces"] == moving for fr in spec["frames"])
+        assert len(moving) < len(spec["data"]) + 1
+        # nothing plays by itself: no autoplay, and the slider starts at the first frame
+        assert spec["layout"]["sliders"][0]["active"] == 0
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_figures_of_the_defaults(pid):
+    check_figures(build(pid))
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_equal_inputs_give_identical_figures(pid):
+    assert [f.json() for f in build(pid)] == [f.json() for f in build(pid)]
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_viz_holds_no_physics(pid):
+    source = (Path(__file__).resolve().parent.parent / "viz" / f"{pid}.py").read_text()
+    for forbidden in ("import sympy", "import scipy", "solve_ivp", "streamlit"):
+        assert forbidden not in source
+
+
+def test_shapes_stay_round_where_they_must():
+    for pid in ("disk_wall", "pendulum_rebound", "stick_ball", "rod_disk_spring", "driven_cart"):
+        for f in build(pid):
+            if f.animated and pid != "eulers_disk":
+                assert f.spec["layout"]["yaxis"].get("scaleanchor") == "x", pid
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(max_examples=8, deadline=None)
+@given(data=strategies.st.data())
+def test_figures_over_random_valid_parameters(pid, data):
+    params = data.draw(strategies.ALL[pid])
+    if pid == "rod_disk_spring":
+        assume(strategies.reaches(params))
+    check_figures(build(pid, **params))
+
+
+def test_eulers_disk_reports_its_slow_motion():
+    fig = build("eulers_disk")[0]
+    period = importlib.import_module("solvers.eulers_disk").solve().answers["period"]
+    assert fig.extra["slow_motion"] == pytest.approx(4.0 / period)
+    assert f"{4.0 / period:.0f}×" in fig.title
+
+
+def test_pendulum_trace_bounces_with_decaying_peaks():
+    from solvers import pendulum_rebound
+    s = pendulum_rebound.solve()
+    m = pendulum_rebound.motion(s)
+    assert len(m["impact_times"]) == 4
+    assert min(m["theta"]) >= s.answers["theta_impact"] - 1e-6  # never through the floor
+    assert math.isclose(m["theta"][0], s.params["theta0"])

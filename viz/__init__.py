@@ -1,0 +1,1 @@
+"""Plotly figure builders: pure functions from a Solution (and its solver's motion) to figure data."""

@@ -1,0 +1,80 @@
+"""Side view of the cart accelerating from rest, with the axle loads and the traction to scale, and
+ẍ against μ for each drive with the lift-off limit μa = b."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from solvers import driven_cart as solver
+from viz.common import COLORS, Figure, animated, arrow, base_layout, circle, join, line, points, r
+
+
+def figures(solution, system: str = "si") -> list[Figure]:
+    return [_animation(solution), _versus_mu(solution)]
+
+
+def _animation(solution) -> Figure:
+    p, a = solution.params, solution.answers
+    m = solver.motion(solution)
+    b, h = p["b"], p["a"]
+    wheel = min(0.3 * b, 0.6 * h)
+    body_bottom, body_top = 0.9 * wheel, max(2 * h, 2.2 * wheel)  # the CM (height a) inside the body
+    weight = p["m"] * p["g"]
+    force_scale = 1.2 * b / weight  # the whole weight mg would be drawn 1.2 b long
+    driven = {"front": (b,), "rear": (-b,), "all": (-b, b)}[p["drive"]]
+    traction_per_axle = a["F_drive"] / len(driven)
+    x_end = m["x"][-1]
+    ground = line(r([-b - 1.5 * wheel, x_end + b + 1.5 * wheel]), [0, 0], "ground", COLORS["ground"], width=4)
+    frames = []
+    for i, x in enumerate(m["x"]):
+        spin = -x / wheel  # rolling: the wheels turn clockwise as the cart moves forward
+        body = (r([x - b - wheel, x + b + wheel, x + b + wheel, x - b - wheel, x - b - wheel]),
+                r([body_bottom, body_bottom, body_top, body_top, body_bottom]))
+        wheels = join(*(circle(x + xa, wheel, wheel, 28) for xa in (-b, b)))
+        spokes = join(*(([x + xa - wheel * math.cos(spin), x + xa + wheel * math.cos(spin)],
+                         [wheel - wheel * math.sin(spin), wheel + wheel * math.sin(spin)]) for xa in (-b, b)))
+        normals = join(arrow(x - b, -2 * a["N_rear"] * force_scale, 0, 2 * a["N_rear"] * force_scale),
+                       arrow(x + b, -2 * a["N_front"] * force_scale, 0, 2 * a["N_front"] * force_scale))
+        traction = join(*(arrow(x + xa - traction_per_axle * force_scale, 0.0,
+                                traction_per_axle * force_scale, 0.0) for xa in driven))
+        frames.append([
+            line(*body, "cart body", COLORS["body"], width=3, fill="toself"),
+            line(*wheels, "wheels", COLORS["ink"], width=3),
+            line(r(spokes[0]), r(spokes[1]), "marked spokes", COLORS["accent"], width=3),
+            points([x], [h], "centre of mass", COLORS["marker"], size=12, symbol="circle-x"),
+            line(*normals, "normal force per axle (2N)", COLORS["force"], width=4),
+            line(*traction, "traction at the driven wheels", COLORS["impulse"], width=4),
+        ])
+    y_lo = -2 * max(a["N_rear"], a["N_front"]) * force_scale - 0.15 * b
+    layout = base_layout(equal_axes=True, x_range=(-b - 2 * wheel, x_end + b + 2 * wheel),
+                         y_range=(y_lo, body_top * 1.4), x_title="x (m)", y_title="height (m)")
+    spec = animated([ground], frames, m["t"], layout, frame_ms=70)
+    description = (f"Side view, front to the right. From rest the cart accelerates at {a['accel']:.3g} m/s² "
+                   f"({p['drive']}-wheel drive). Purple arrows: the ground's normal force on each axle, "
+                   f"{2 * a['N_rear']:.0f} N at the rear and {2 * a['N_front']:.0f} N at the front, drawn to "
+                   "scale below the ground line; red: the traction. Acceleration moves load to the rear.")
+    return Figure("cart_motion", "Accelerating from rest (forces to scale)", spec, description, height=440)
+
+
+def _versus_mu(solution) -> Figure:
+    p = dict(solution.params)
+    mu_lift = p["b"] / p["a"]
+    mu_max = max(1.5 * mu_lift, 1.2 * p["mu"], 1.0)
+    mus = np.linspace(0.0, mu_max, 121)
+    curves = solver.acceleration_versus_mu(p, mus)
+    names = {"front": "front-wheel drive", "rear": "rear-wheel drive", "all": "all-wheel drive"}
+    colors = {"front": COLORS["body"], "rear": COLORS["impulse"], "all": COLORS["velocity"]}
+    dashes = {"front": None, "rear": "dash", "all": "dot"}
+    data = [line(r(mus), r(curves[d]), names[d], colors[d], width=3, dash=dashes[d]) for d in curves]
+    top = float(np.nanmax([np.nanmax(c) for c in curves.values()]))
+    data.append(line(r([mu_lift, mu_lift]), r([0, top * 1.05]), f"front wheels lift: μ = b/a = {mu_lift:.3g}",
+                     COLORS["ink"], width=2, dash="longdash"))
+    data.append(points([p["mu"]], [solution.answers["accel"]], "this cart", COLORS["marker"], size=13))
+    layout = base_layout(equal_axes=False, x_title="friction coefficient μ", y_title="ẍ_C (m/s²)", height=380)
+    layout["margin"]["b"] = 60
+    description = (f"Acceleration against μ for the three drives. Rear and all-wheel drive end at "
+                   f"μ = b/a = {mu_lift:.3g}, where the front wheels lift (a wheelie); front drive never lifts "
+                   "but gains less and less, since it unloads the very wheels that push.")
+    return Figure("cart_versus_mu", "ẍ against μ: which drive wins, and where the front lifts",
+                  {"data": data, "layout": layout}, description, animated=False, height=380)

@@ -1,0 +1,99 @@
+"""Euler's disk in 3-D, slowed down, with a marked radius; and ω_p, |ω| and the energy against the
+tilt, showing the finite-time singularity as θ → 0."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from solvers import eulers_disk as solver
+from viz.common import COLORS, Figure, base_layout, line, r
+
+PLAY_SECONDS = 4.0  # one precession lasts this long on screen
+
+
+def figures(solution, system: str = "si") -> list[Figure]:
+    return [_animation(solution), _versus_tilt(solution)]
+
+
+def _scatter3d(xyz, name, color, width=6, mode="lines", size=6):
+    xyz = np.asarray(xyz)
+    trace = {"type": "scatter3d", "mode": mode, "x": r(xyz[:, 0]), "y": r(xyz[:, 1]), "z": r(xyz[:, 2]),
+             "name": name, "hoverinfo": "skip"}
+    if "lines" in mode:
+        trace["line"] = {"color": color, "width": width}
+    if "markers" in mode:
+        trace["marker"] = {"color": color, "size": size}
+    return trace
+
+
+def _animation(solution) -> Figure:
+    p, a = solution.params, solution.answers
+    m = solver.motion(solution)
+    rad = p["r"]
+    slow = PLAY_SECONDS / a["period"]
+    circle_angles = np.linspace(0, 2 * np.pi, 60)
+    contact_circle = rad * math.cos(p["theta"])
+    table = _scatter3d(np.stack([contact_circle * np.cos(circle_angles), contact_circle * np.sin(circle_angles),
+                                 np.zeros_like(circle_angles)], axis=1), "path of the contact point",
+                       COLORS["trail"], width=4)
+    G = _scatter3d([m["G"]], "centre of mass G (at rest)", COLORS["ink"], mode="markers", size=5)
+    frames = []
+    for i in range(len(m["t"])):
+        frames.append([
+            _scatter3d(m["rim"][i], "disk rim", COLORS["body"], width=8),
+            _scatter3d(m["mark"][i], "marked radius", COLORS["accent"], width=10),
+            _scatter3d([m["contact"][i]], "contact point", COLORS["impulse"], mode="markers", size=7),
+        ])
+    span = 1.15 * rad
+    axis = lambda title, lo, hi: {"range": r([lo, hi]), "title": {"text": title}}  # noqa: E731
+    layout = {
+        "height": 560, "margin": {"l": 0, "r": 0, "t": 10, "b": 90},
+        "legend": {"orientation": "h", "y": 1.0, "x": 0},
+        "scene": {"xaxis": axis("x (m)", -span, span), "yaxis": axis("y (m)", -span, span),
+                  "zaxis": axis("z (m)", 0, span), "aspectmode": "manual",
+                  "aspectratio": {"x": 1, "y": 1, "z": 0.5},
+                  "camera": {"eye": {"x": 1.4, "y": -1.4, "z": 0.9}}},
+    }
+    # 3-D traces need redraw; the frame duration sets the slow motion.
+    frame_ms = int(1000 * PLAY_SECONDS / len(m["t"]))
+    from viz.common import animated
+    spec = animated([table, G], frames, m["t"], layout, frame_ms=frame_ms)
+    for step in spec["layout"]["sliders"][0]["steps"]:
+        step["args"][1]["frame"]["redraw"] = True
+    spec["layout"]["updatemenus"][0]["buttons"][0]["args"][1]["frame"]["redraw"] = True
+    turn = math.degrees(solution.extras["turn_per_precession"])
+    description = (f"Slowed down {slow:.0f}×: one precession takes {a['period'] * 1000:.0f} ms in reality and "
+                   f"{PLAY_SECONDS:.0f} s on screen. The contact point (red) runs once round its circle while "
+                   f"the marked radius turns only {turn:.1f}° relative to the table: the contact whirls, the disk "
+                   "itself barely turns.")
+    return Figure("eulers_disk_motion", f"One precession, slowed down {slow:.0f}×", spec, description,
+                  height=560, extra={"slow_motion": slow})
+
+
+def _versus_tilt(solution) -> Figure:
+    p = dict(solution.params)
+    tilts = np.radians(np.linspace(0.5, 60, 120))
+    curves = solver.versus_tilt(p, tilts)
+    deg = np.degrees(tilts)
+    data = [
+        line(r(deg), r(curves["omega_p"]), "ω_p, precession of the contact (rad/s)", COLORS["impulse"], width=3),
+        line(r(deg), r(curves["omega_total"]), "|ω|, the disk's own rotation (rad/s)", COLORS["body"], width=3,
+             dash="dash"),
+        line(r(deg), r(curves["energy"] * 1000), "energy (mJ)", COLORS["velocity"], width=3, dash="dot",
+             yaxis="y2"),
+        {"type": "scatter", "mode": "markers", "x": r([math.degrees(p["theta"])]),
+         "y": r([solution.answers["omega_p"]]), "name": "this tilt", "hoverinfo": "skip",
+         "marker": {"color": COLORS["marker"], "size": 12, "line": {"width": 1, "color": "#222"}}},
+    ]
+    layout = base_layout(equal_axes=False, x_title="tilt θ (°)", y_title="rate (rad/s, log scale)", height=400)
+    layout["yaxis"]["type"] = "log"
+    layout["yaxis2"] = {"overlaying": "y", "side": "right", "title": {"text": "energy (mJ)"}, "showgrid": False,
+                        "type": "linear", "rangemode": "tozero"}
+    layout["margin"]["b"] = 60
+    layout["margin"]["r"] = 60
+    description = ("As the tilt θ falls toward 0, the precession rate ω_p grows without bound while the disk's "
+                   "own angular velocity and the energy (3/2 m g r sin θ) shrink to zero: Moffatt's "
+                   "finite-time singularity.")
+    return Figure("eulers_disk_versus_tilt", "As θ → 0: the contact whirls faster, the disk turns slower",
+                  {"data": data, "layout": layout}, description, animated=False, height=400)

@@ -1,0 +1,62 @@
+"""Side view of the pendulum: release, swing, bounce and rebound (several bounces), with θ(t)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from solvers import pendulum_rebound as solver
+from ui import units
+from viz.common import COLORS, Figure, animated, arrow, base_layout, circle, line, points, r
+
+
+def figures(solution, system: str = "si") -> list[Figure]:
+    p, a = solution.params, solution.answers
+    m = solver.motion(solution)
+    k = units.to_display(1.0, "length", system)  # lengths drawn in the page's unit
+    L, rad = p["L"] * k, p["r"] * k
+    reach = L + 2 * rad
+    u = units.unit("length", system)
+    floor = p["surface"] == "floor"
+    if floor:
+        ground = line([-reach * 1.1, reach * 1.1], [-p["d"] * k] * 2, "floor", COLORS["ground"], width=6)
+    else:
+        ground = line([-rad] * 2, [-reach * 1.1, 0.3 * reach], "wall", COLORS["ground"], width=6)
+    pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
+    theta_deg = np.degrees(m["theta"])
+    curve = line(r(m["t"]), r(theta_deg), "θ(t)", COLORS["body"], width=2, xaxis="x2", yaxis="y2")
+    impact_line = line(r([m["t"][0], m["t"][-1]]), r([math.degrees(a["theta_impact"])] * 2),
+                       "impact angle θ_I", COLORS["ground"], width=1, dash="dash", xaxis="x2", yaxis="y2")
+    v_scale = 0.35 * reach / max(abs(a["omega_impact"]) * (p["L"] + p["r"]), 1e-12)
+    frames = []
+    trail_x = (L + rad) * np.cos(m["theta"])
+    trail_y = (L + rad) * np.sin(m["theta"])
+    for i, q in enumerate(m["theta"]):
+        c, s = math.cos(q), math.sin(q)
+        cx, cy = (L + rad) * c, (L + rad) * s
+        speed = m["omega"][i] * (p["L"] + p["r"])
+        frames.append([
+            line(r(trail_x[max(0, i - 25): i + 1]), r(trail_y[max(0, i - 25): i + 1]), "path of the sphere",
+                 COLORS["trail"], width=2, dash="dot"),
+            line(r([0, L * c]), r([0, L * s]), "rod", COLORS["ink"], width=5),
+            line(*circle(cx, cy, rad), "sphere", COLORS["body"], width=3, fill="toself"),
+            line(r([cx, cx + rad * math.cos(q + math.pi / 2)]), r([cy, cy + rad * math.sin(q + math.pi / 2)]),
+                 "marked radius", COLORS["accent"], width=4),
+            line(*arrow(cx, cy, -s * speed * v_scale * k, c * speed * v_scale * k), "velocity of the centre",
+                 COLORS["velocity"], width=3),
+            points([m["t"][i]], [theta_deg[i]], "now", COLORS["impulse"], size=10, xaxis="x2", yaxis="y2"),
+        ])
+    layout = base_layout(equal_axes=True, x_range=(-reach * 1.15, reach * 1.15),
+                         y_range=(-reach * 1.15, reach * 1.15), x_title=f"x ({u})", y_title=f"y ({u})")
+    # Stacked, not side by side, so that a phone-width window keeps both readable.
+    layout["yaxis"]["domain"] = [0.38, 1.0]
+    layout["xaxis2"] = {"anchor": "y2", "title": {"text": "t (s)"}}
+    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.24], "title": {"text": "θ (°)"}}
+    layout["height"] = 700
+    spec = animated([ground, pivot, curve, impact_line], frames, m["t"], layout)
+    peaks = ", ".join(f"{math.degrees(q):.1f}°" for q in solution.extras["bounce_peaks"][:3])
+    description = (f"Side view. Released from rest at θ₀ = {math.degrees(p['theta0']):.1f}°, the pendulum "
+                   f"swings down and the sphere strikes the {p['surface']} at θ_I = "
+                   f"{math.degrees(a['theta_impact']):.1f}°, rebounding to {peaks} on successive bounces. "
+                   "Right: θ against time, with the impact angle dashed.")
+    return [Figure("pendulum_motion", "Release, bounce, rebound", spec, description, height=700)]

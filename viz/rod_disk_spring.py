@@ -1,0 +1,52 @@
+"""Side view of the rod and disk falling against the spring, with the energy split over time."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from solvers import rod_disk_spring as solver
+from viz.common import COLORS, Figure, animated, base_layout, circle, line, points, r, zigzag_spiral
+
+
+def figures(solution, system: str = "si") -> list[Figure]:
+    p, a = solution.params, solution.answers
+    m = solver.motion(solution)
+    L, R = p["L"], p["R"]
+    reach = L + 2 * R
+    pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
+    theta2_mark = line(r([0, reach * 1.05 * math.sin(p["theta2"])]), r([0, reach * 1.05 * math.cos(p["theta2"])]),
+                       "θ₂", COLORS["ground"], width=1, dash="dash")
+    top = float(max((m["kinetic"] + m["gravity"] + m["spring"]).max(), 1e-9))
+    frames = []
+    for i, q in enumerate(m["theta"]):
+        s, c = math.sin(q), math.cos(q)
+        cx, cy = (L + R) * s, (L + R) * c
+        spin = q if p["disk"] == "welded" else 0.0  # a pinned disk keeps its orientation
+        spring = zigzag_spiral(0, 0, 0.04 * reach, 0.16 * reach, 1.5 + q / (2 * math.pi), math.pi / 2 - q)
+        frames.append([
+            line(*spring, "torsional spring", COLORS["force"], width=2),
+            line(r([0, L * s]), r([0, L * c]), "rod", COLORS["ink"], width=5),
+            line(*circle(cx, cy, R), "disk", COLORS["body"], width=3, fill="toself"),
+            line(r([cx, cx + R * math.sin(spin)]), r([cy, cy + R * math.cos(spin)]), "marked radius",
+                 COLORS["accent"], width=4),
+            {"type": "bar", "x": ["kinetic", "gravity", "spring"],
+             "y": r([m["kinetic"][i], m["gravity"][i], m["spring"][i]]),
+             "marker": {"color": [COLORS["velocity"], COLORS["body"], COLORS["force"]]},
+             "name": "energy (J)", "xaxis": "x2", "yaxis": "y2", "showlegend": False, "hoverinfo": "skip"},
+        ])
+    layout = base_layout(equal_axes=True, x_range=(-reach * 1.15, reach * 1.15),
+                         y_range=(-reach * 1.15, reach * 1.15))
+    layout["yaxis"]["domain"] = [0.36, 1.0]
+    layout["xaxis2"] = {"anchor": "y2"}
+    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.24], "range": [0, top * 1.05],
+                        "title": {"text": "energy (J)"}}
+    layout["height"] = 700
+    spec = animated([pivot, theta2_mark], frames, m["t"], layout)
+    description = (f"Side view, θ from the upward vertical. Released at θ₁ = {math.degrees(p['theta1']):.0f}°, the "
+                   f"assembly falls, passes θ₂ = {math.degrees(p['theta2']):.0f}° (dashed) at {a['omega2']:.3g} rad/s, "
+                   f"swings on until the spring stops it at about {math.degrees(m['theta'].max()):.0f}°, and returns. "
+                   "Bars: kinetic, gravitational (zero hanging straight down) and spring energy; their sum stays "
+                   "constant.")
+    return [Figure("rod_disk_spring_motion", "The fall and the swing back, with the energy", spec, description,
+                   height=700)]
