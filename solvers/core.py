@@ -196,6 +196,21 @@ class Check:
 
 
 @dataclass(frozen=True)
+class LedgerRow:
+    """Before and after an impact: is the quantity conserved, and why (or why not)."""
+
+    quantity: str
+    before: float
+    after: float
+    dimension: str
+    why: str
+
+    @property
+    def conserved(self) -> bool:
+        return abs(self.after - self.before) <= 1e-9 * max(abs(self.before), abs(self.after), 1e-300)
+
+
+@dataclass(frozen=True)
 class Solution:
     problem: str
     params: Mapping[str, Any]
@@ -204,6 +219,7 @@ class Solution:
     checks: tuple[Check, ...] = ()
     regime: str = ""
     notes: tuple[str, ...] = ()
+    ledger: tuple[LedgerRow, ...] = ()
     extras: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self):
@@ -228,6 +244,7 @@ UNIT_LATEX = {
     "acceleration": r"\mathrm{m/s^2}",
     "force": r"\mathrm{N}",
     "impulse": r"\mathrm{N\,s}",
+    "angular_momentum": r"\mathrm{kg\,m^2/s}",
     "energy": r"\mathrm{J}",
     "inertia": r"\mathrm{kg\,m^2}",
     "stiffness": r"\mathrm{N\,m/rad}",

@@ -22,6 +22,7 @@ from .core import (
     Check,
     Choice,
     Derivation,
+    LedgerRow,
     Number,
     Result,
     Solution,
@@ -160,7 +161,32 @@ def solve(**params) -> Solution:
     steps = list(d.steps) + d.numeric_steps(result)
     answers = {a.name: result[a.name] for a in ANSWERS}
     return Solution("disk_wall", p, answers, tuple(steps), _checks(p, answers), regime,
-                    _notes(p, answers, regime, slip_before))
+                    _notes(p, answers, regime, slip_before), _ledger(p, result))
+
+
+def _ledger(p, v) -> tuple[LedgerRow, ...]:
+    m_, R_ = p["m"], p["R"]
+    I_C = 0.5 * m_ * R_**2
+    vx0, vy0 = p["V"] * math.sin(p["theta"]), p["V"] * math.cos(p["theta"])
+    return (
+        LedgerRow("momentum along the wall, m v_x", m_ * vx0, m_ * v["v1x"], "impulse",
+                  "changed by the friction impulse P_t" if v["impulse_t"] else "no friction impulse"),
+        LedgerRow("momentum into the wall, m v_y", m_ * vy0, m_ * v["v1y"], "impulse",
+                  "reversed by the wall's normal impulse"),
+        LedgerRow("angular momentum about B, I ω + m R v_x", I_C * p["omega"] + m_ * R_ * vx0,
+                  I_C * v["omega1"] + m_ * R_ * v["v1x"], "angular_momentum",
+                  "conserved: the whole impulse acts at B"),
+        LedgerRow("kinetic energy", v["T_before"], v["T_after"], "energy", _energy_reason(p, v)),
+    )
+
+
+def _energy_reason(p, v) -> str:
+    causes = []
+    if p["e"] < 1:
+        causes.append(f"restitution (e = {p['e']:g} < 1)")
+    if abs(v["impulse_t"]) > 1e-12 * abs(v["impulse_n"]):
+        causes.append("friction working against the slip at B")
+    return ("lost to " + " and ".join(causes)) if causes else "conserved: elastic, and no friction work"
 
 
 def _checks(p, a) -> tuple[Check, ...]:

@@ -135,7 +135,7 @@ def solve(**params) -> Solution:
     notes = (f"Per precession the contact point goes once round, but the disk itself turns only "
              f"2π(1 − cos θ) = {math.degrees(turn):.3g}° relative to the table.",)
     return Solution("eulers_disk", p, answers, tuple(steps), _checks(p, answers), "steady", notes,
-                    {"turn_per_precession": turn})
+                    extras={"turn_per_precession": turn})
 
 
 def body_state(p, answers, phase: float = 0.0):

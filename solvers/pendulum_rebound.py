@@ -20,6 +20,7 @@ from .core import (
     Check,
     Choice,
     Derivation,
+    LedgerRow,
     Number,
     PhysicalLimitError,
     Result,
@@ -179,8 +180,15 @@ def solve(**params) -> Solution:
     checks = _checks(p, answers)
     notes = (f"Each bounce keeps a fraction e² = {p['e'] ** 2:.3g} of the swing's energy above the "
              "impact height.",)
-    return Solution("pendulum_rebound", p, answers, tuple(steps), checks, p["surface"], notes,
-                    {"bounce_peaks": bounces})
+    I = answers["I_O"]
+    ledger = (
+        LedgerRow("angular momentum about O, I_O θ̇", I * answers["omega_impact"], I * answers["omega_after"],
+                  "angular_momentum", "the floor's impulse has a moment about O"),
+        LedgerRow("kinetic energy", 0.5 * I * answers["omega_impact"] ** 2, 0.5 * I * answers["omega_after"] ** 2,
+                  "energy", "a fraction e² is kept" if p["e"] < 1 else "conserved: e = 1"),
+    )
+    return Solution("pendulum_rebound", p, answers, tuple(steps), checks, p["surface"], notes, ledger,
+                    extras={"bounce_peaks": bounces})
 
 
 def moment_coefficient(p) -> float:

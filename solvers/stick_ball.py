@@ -21,6 +21,7 @@ from .core import (
     Check,
     Choice,
     Derivation,
+    LedgerRow,
     Number,
     Result,
     Solution,
@@ -162,7 +163,28 @@ def solve(**params) -> Solution:
     lost = answers["energy_loss"] / answers["T_before"]
     notes = (f"Energy: {100 * lost:.3g} % of the kinetic energy is lost in the impact"
              + (" (perfectly plastic: the ball attaches)." if p["mode"] == "stick" else "."),)
-    return Solution("stick_ball", p, answers, tuple(steps), _checks(p, answers), p["mode"], notes)
+    return Solution("stick_ball", p, answers, tuple(steps), _checks(p, answers), p["mode"], notes,
+                    _ledger(p, answers))
+
+
+def _ledger(p, a) -> tuple[LedgerRow, ...]:
+    mb, ms, l_, v_, s_ = p["m_ball"], p["m_stick"], p["l"], p["v"], p["s"]
+    if p["mode"] == "stick":
+        v_mid, v_ballpt = a["v_cm"] - a["omega"] * a["d_cm"], a["v_cm"] + a["omega"] * (s_ - a["d_cm"])
+    else:
+        v_mid, v_ballpt = a["v_stick"], a["v_ball"]
+    I_stick = ms * l_**2 / 12
+    return (
+        LedgerRow("linear momentum", mb * v_, ms * v_mid + mb * v_ballpt, "impulse",
+                  "conserved: the frictionless table gives no horizontal impulse"),
+        LedgerRow("angular momentum about the stick's midpoint", mb * v_ * s_,
+                  I_stick * a["omega"] + mb * v_ballpt * s_, "angular_momentum",
+                  "conserved: no external moment about any fixed point"),
+        LedgerRow("kinetic energy", a["T_before"], a["T_after"], "energy",
+                  "lost: the ball attaches (perfectly plastic)" if p["mode"] == "stick" else
+                  ("conserved: e = 1" if a["energy_loss"] <= 1e-12 * a["T_before"] else
+                   f"lost: restitution e = {p['e']:g} < 1")),
+    )
 
 
 def _checks(p, a) -> tuple[Check, ...]:

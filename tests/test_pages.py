@@ -184,3 +184,11 @@ def test_answers_use_degrees_for_angles():
     at = run_page("pendulum_rebound")
     answers = answers_text(at)
     assert f"{math.degrees(-0.6221593851089576):.4g}".replace("-", "−") + "°" in answers
+
+
+@pytest.mark.parametrize("pid", ["disk_wall", "stick_ball", "pendulum_rebound"])
+def test_impact_pages_show_the_ledger_across_the_impact(pid):
+    at = run_page(pid)
+    assert any("Across the impact" in m.value for m in at.markdown)
+    table = next(m.value for m in at.markdown if m.value.startswith("| quantity | before | after"))
+    assert "kinetic energy" in table and ("conserved" in table or "changes" in table)

@@ -4,6 +4,7 @@ from __future__ import annotations
 import streamlit as st
 
 from ui.catalog import GROUPS, PROBLEMS
+from ui.thumbnails import THUMBNAILS
 
 
 def home() -> None:
@@ -19,5 +20,6 @@ def home() -> None:
         cols = st.columns(2)
         for col, problem in zip(cols, [p for p in PROBLEMS if p.group == group]):
             with col.container(border=True):
+                st.image(THUMBNAILS[problem.id], width=200)
                 st.page_link(problem.page_path, label=f"**{problem.title}**", icon=problem.icon)
                 st.caption(problem.blurb)

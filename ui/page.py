@@ -90,6 +90,9 @@ def problem_page(problem_id: str) -> None:
         _figures(problem, solution, system)
     st.subheader("Answers")
     results.answers_table(solution, _answers_for(solver, solution), system)
+    if solution.ledger:
+        st.markdown("##### Across the impact")
+        results.ledger(solution, system)
     st.markdown("##### Checked a second way")
     results.checks(solution)
     if not lecture:

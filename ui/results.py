@@ -42,6 +42,18 @@ def checks(solution: Solution) -> None:
     st.markdown("\n".join(lines))
 
 
+def ledger(solution: Solution, system: str) -> None:
+    """Before and after the impact: what is conserved, what is not, and why."""
+    if not solution.ledger:
+        return
+    rows = ["| quantity | before | after | |", "|---|---|---|---|"]
+    for row in solution.ledger:
+        mark = ":green[conserved]" if row.conserved else ":orange[changes]"
+        rows.append(f"| {row.quantity} | {units.format_quantity(row.before, row.dimension, system)} | "
+                    f"{units.format_quantity(row.after, row.dimension, system)} | {mark}: {row.why} |")
+    st.markdown("\n".join(rows))
+
+
 def errata(notes: tuple[str, ...]) -> None:
     for note in notes:
         st.markdown(f"- {note}")
