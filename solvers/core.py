@@ -171,6 +171,7 @@ def require(condition: bool, message: str) -> None:
 class Step:
     title: str
     latex: str
+    numeric: bool = False  # the step puts in the numbers (hidden while a student practises)
 
 
 @dataclass(frozen=True)
@@ -221,8 +222,12 @@ class Solution:
     notes: tuple[str, ...] = ()
     ledger: tuple[LedgerRow, ...] = ()
     extras: Mapping[str, Any] = field(default_factory=dict)
+    symbolic_steps: int = -1  # how many leading steps are symbolic (the rest put in the numbers)
 
     def __post_init__(self):
+        if self.symbolic_steps < 0:
+            count = next((i for i, s in enumerate(self.steps) if s.numeric), len(self.steps))
+            object.__setattr__(self, "symbolic_steps", count)
         object.__setattr__(self, "answers", MappingProxyType({k: float(v) for k, v in self.answers.items()}))
         object.__setattr__(self, "params", MappingProxyType(dict(self.params)))
 
@@ -334,6 +339,7 @@ class Derivation:
     ):
         self.steps = tuple(steps)
         self._labels = dict(labels or {})
+        self._symbols = dict(symbols)
         self.chain = tuple(chain)
         self._dimensions = dict(dimensions)
         known: dict[sp.Symbol, str] = {sym: name for name, sym in symbols.items()}
@@ -357,6 +363,27 @@ class Derivation:
             self._dimensions[link.name] = link.dimension
         self._results = {link.name for link in self.chain}
 
+    @property
+    def symbols(self) -> dict[str, sp.Symbol]:
+        """Every symbol of the chain by name: the parameters' and the results'."""
+        return dict(self._symbols) | {link.name: link.symbol for link in self.chain}
+
+    def expression_of(self, name: str) -> sp.Expr:
+        """Result ``name`` as an expression in the parameters alone (earlier results substituted)."""
+        full: dict[sp.Symbol, sp.Expr] = {}
+        for link in self.chain:
+            full[link.symbol] = link.expr.subs(full)
+            if link.name == name:
+                return full[link.symbol]
+        raise KeyError(name)
+
+    def in_parameters(self, expr: sp.Expr) -> sp.Expr:
+        """``expr``, which may use result symbols, rewritten in the parameters alone."""
+        full: dict[sp.Symbol, sp.Expr] = {}
+        for link in self.chain:
+            full[link.symbol] = link.expr.subs(full)
+        return expr.subs(full)
+
     def evaluate(self, values: Mapping[str, float], upto: str | None = None) -> dict[str, float]:
         """Run the chain numerically; returns the parameters plus every result (or those up to
         and including ``upto``, to test a condition before the rest is meaningful)."""
@@ -377,7 +404,7 @@ class Derivation:
             text = _DOUBLE_PARENS.sub(r"\\left(\1\\right)", text)
             value = latex_quantity(values[link.name], link.dimension)
             title = link.title or f"With your numbers: {self._labels.get(link.name, link.name)}"
-            steps.append(Step(title, f"{sp.latex(link.symbol)} = {text} = {value}"))
+            steps.append(Step(title, f"{sp.latex(link.symbol)} = {text} = {value}", numeric=True))
         return steps
 
     def _number_for(self, name: str, x: float, trig_only: bool) -> str:

@@ -161,7 +161,8 @@ def solve(**params) -> Solution:
     steps = list(d.steps) + d.numeric_steps(result)
     answers = {a.name: result[a.name] for a in ANSWERS}
     return Solution("disk_wall", p, answers, tuple(steps), _checks(p, answers), regime,
-                    _notes(p, answers, regime, slip_before), _ledger(p, result))
+                    _notes(p, answers, regime, slip_before), _ledger(p, result),
+                    extras={"chain_inputs": {"slip_direction": values["slip_direction"]}})
 
 
 def _ledger(p, v) -> tuple[LedgerRow, ...]:
@@ -241,3 +242,8 @@ def motion(solution: Solution, frames: int = 61) -> dict:
     vy = np.where(after, a["v1y"], vy0)
     return {"t": t, "x": x, "y": y, "angle": angle, "vx": vx, "vy": vy, "impact_index": n_in,
             "wall_y": R_}
+
+
+def derivation_of(solution: Solution) -> Derivation:
+    """The derivation behind ``solution`` (its option and regime)."""
+    return derivation(solution.regime)

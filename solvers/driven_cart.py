@@ -199,3 +199,8 @@ def acceleration_versus_mu(params: dict, mus: np.ndarray) -> dict[str, np.ndarra
             values.append(math.nan if lifts else d_.evaluate({**base, "mu": float(mu_)})["accel"])
         curves[drive] = np.array(values)
     return curves
+
+
+def derivation_of(solution: Solution) -> Derivation:
+    """The derivation behind ``solution`` (its option and regime)."""
+    return derivation(solution.params["drive"])

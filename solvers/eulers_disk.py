@@ -216,3 +216,8 @@ def versus_tilt(params: dict, tilts: np.ndarray) -> dict[str, np.ndarray]:
     d_ = derivation()
     rows = [d_.evaluate({**params, "theta": float(th)}) for th in tilts]
     return {k: np.array([row[k] for row in rows]) for k in ("omega_p", "omega_total", "energy")}
+
+
+def derivation_of(solution: Solution) -> Derivation:
+    """The derivation behind ``solution`` (its option and regime)."""
+    return derivation()

@@ -257,3 +257,8 @@ def motion(solution: Solution, frames: int = 90, bounces: int = 3) -> dict:
     return {"t": t_even, "theta": np.interp(t_even, t[order], q[order]),
             "omega": np.interp(t_even, t[order], w[order]), "t_dense": t, "theta_dense": q,
             "impact_times": [ti for ti, _ in impacts]}
+
+
+def derivation_of(solution: Solution) -> Derivation:
+    """The derivation behind ``solution`` (its option and regime)."""
+    return derivation(solution.params["sphere"], solution.params["surface"])

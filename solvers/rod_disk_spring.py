@@ -239,3 +239,8 @@ def motion(solution: Solution, frames: int = 72) -> dict:
     spring = 0.5 * p["k"] * leg.theta**2
     return {"t": leg.t, "theta": leg.theta, "omega": leg.omega, "kinetic": kinetic, "gravity": gravity,
             "spring": spring}
+
+
+def derivation_of(solution: Solution) -> Derivation:
+    """The derivation behind ``solution`` (its option and regime)."""
+    return derivation(solution.params["disk"])

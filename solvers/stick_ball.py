@@ -244,3 +244,8 @@ def motion(solution: Solution, frames: int = 72) -> dict:
               (p["m_ball"] * ball[1] + p["m_stick"] * body(0.0)[1]) / total)
     top, bottom, mid = body(l_ / 2), body(-l_ / 2), body(0.0)
     return {"t": t, "impact_index": n_in, "top": top, "bottom": bottom, "mid": mid, "ball": ball, "cm": cm}
+
+
+def derivation_of(solution: Solution) -> Derivation:
+    """The derivation behind ``solution`` (its option and regime)."""
+    return derivation(solution.params["mode"])

@@ -5,7 +5,9 @@ import importlib
 
 import streamlit as st
 
+from practice.variants import variant
 from ui import results
+from ui.practice import instructor_export, practice_panel, seed_from_url
 from ui.catalog import BY_ID, Problem
 from ui.params import mirror_to_url, parameter_panel
 
@@ -19,9 +21,13 @@ LECTURE_CSS = """
 """
 
 
-def _page_flags(problem: Problem) -> tuple[str, bool]:
-    """Unit system and lecture view: sidebar toggles, initialised from ?units=us and ?lecture=1."""
+def _page_flags(problem: Problem) -> tuple[str, bool, bool]:
+    """Unit system, lecture view and practice mode: sidebar toggles, initialised from ?units=us,
+    ?lecture=1 and ?practice=1."""
     units_key, lecture_key = f"{problem.id}__units", f"{problem.id}__lecture"
+    practice_key = f"{problem.id}__practice_mode"
+    if practice_key not in st.session_state:
+        st.session_state[practice_key] = st.query_params.get("practice") == "1"
     if units_key not in st.session_state:
         st.session_state[units_key] = "US customary" if (
             problem.us_units and st.query_params.get("units") == "us") else "SI"
@@ -34,7 +40,9 @@ def _page_flags(problem: Problem) -> tuple[str, bool]:
         system = "us" if choice == "US customary" else "si"
     lecture = st.sidebar.toggle("Lecture view", key=lecture_key,
                                 help="Large type and the animation first, for a projector.")
-    return system, lecture
+    practice = st.sidebar.toggle("Try it yourself", key=practice_key,
+                                 help="Hide the answers, type your own, and get feedback.")
+    return system, lecture, practice
 
 
 def _answers_for(solver, solution):
@@ -69,27 +77,36 @@ def problem_page(problem_id: str) -> None:
     _leave_legacy_pages_mode()
     problem = BY_ID[problem_id]
     solver = problem.solver
-    system, lecture = _page_flags(problem)
+    system, lecture, practice = _page_flags(problem)
     if lecture:
         st.html(LECTURE_CSS)
     st.title(problem.title)
     st.caption(f"{problem.blurb} Source: {problem.source}.")
-    st.sidebar.markdown("### Parameters")
-    params, warnings = parameter_panel(problem, system)
+    seed, seed_warning = seed_from_url()
+    base = variant(solver, problem.id, seed) if seed is not None else {}
+    st.sidebar.markdown("### Parameters" + (f" · variant {seed}" if seed is not None else ""))
+    params, warnings = parameter_panel(problem, system, base)
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "",
-                                            "lecture": "1" if lecture else ""})
-    for warning in warnings:
-        st.warning(warning, icon=":material/link_off:")
+                                            "lecture": "1" if lecture else "", "practice": "1" if practice else "",
+                                            "seed": str(seed) if seed is not None else ""}, base)
+    for warning in [seed_warning, *warnings]:
+        if warning:
+            st.warning(warning, icon=":material/link_off:")
     try:
         solution = solver.solve(**params)
     except ValueError as error:
         results.refused(error, system)
         return
 
+    answers = _answers_for(solver, solution)
+    if practice and not practice_panel(problem, solution, answers, system):
+        _derivation(solver, solution, numeric=False)
+        instructor_export(problem)
+        return
     if lecture:
         _figures(problem, solution, system)
     st.subheader("Answers")
-    results.answers_table(solution, _answers_for(solver, solution), system)
+    results.answers_table(solution, answers, system)
     if solution.ledger:
         st.markdown("##### Across the impact")
         results.ledger(solution, system)
@@ -97,9 +114,19 @@ def problem_page(problem_id: str) -> None:
     results.checks(solution)
     if not lecture:
         _figures(problem, solution, system)
+    _derivation(solver, solution, numeric=True)
+    if practice:
+        instructor_export(problem)
+
+
+def _derivation(solver, solution, numeric: bool) -> None:
     derivation_tab, slips_tab = st.tabs(["Derivation, step by step", "Common slips in the worked solution"])
     with derivation_tab:
-        st.caption("Generated from the sympy derivation; the last steps put in your numbers (SI).")
-        results.derivation(solution)
+        if numeric:
+            st.caption("Generated from the sympy derivation; the last steps put in your numbers (SI).")
+            results.derivation(solution)
+        else:
+            st.caption("The method, without the numbers: the final steps appear with the solution.")
+            results.derivation(solution, symbolic_only=True)
     with slips_tab:
         results.errata(solver.ERRATA)

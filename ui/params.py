@@ -47,9 +47,10 @@ def _parse_url_value(p: Any, raw: str, system: str) -> tuple[Any, str | None]:
     return shown, None
 
 
-def _initial_values(problem: Problem, system: str) -> list[str]:
+def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
     """Put a value in session state for every control that has none yet: the last values this
-    session used (in SI, if the unit system just changed), else the URL, else the default."""
+    session used (in SI, if the unit system just changed), else the URL, else ``base`` (a
+    variant's numbers) or the default."""
     warnings = []
     remembered = st.session_state.get(f"{problem.id}__si", {})
     for p in problem.solver.PARAMS:
@@ -61,7 +62,8 @@ def _initial_values(problem: Problem, system: str) -> list[str]:
             st.session_state[key] = value if isinstance(p, Choice) else (
                 units.to_display(value, p.dimension, system))
             continue
-        default = p.default if isinstance(p, Choice) else units.to_display(p.default, p.dimension, system)
+        start = base.get(p.name, p.default)
+        default = start if isinstance(p, Choice) else units.to_display(start, p.dimension, system)
         raw = st.query_params.get(p.name)
         value = default
         if raw is not None:
@@ -111,10 +113,11 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
                                   help=p.help or None)
 
 
-def parameter_panel(problem: Problem, system: str, container=None) -> tuple[dict, list[str]]:
+def parameter_panel(problem: Problem, system: str, base: dict | None = None,
+                    container=None) -> tuple[dict, list[str]]:
     """Draw the controls; return (parameters in SI for ``solve``, warnings about the URL)."""
     container = container or st.sidebar
-    warnings = _initial_values(problem, system)
+    warnings = _initial_values(problem, system, base or {})
     values = {}
     for p in problem.solver.PARAMS:
         shown = _control(p, problem, system, container)
@@ -128,19 +131,22 @@ def parameter_panel(problem: Problem, system: str, container=None) -> tuple[dict
     return values, warnings
 
 
-def mirror_to_url(problem: Problem, values: dict, system: str, flags: dict[str, str]) -> None:
-    """Write the non-default parameters (display units) and the page flags into the URL."""
+def mirror_to_url(problem: Problem, values: dict, system: str, flags: dict[str, str],
+                  base: dict | None = None) -> None:
+    """Write the parameters that differ from ``base`` or the defaults (display units) and the page
+    flags into the URL."""
     wanted = {}
+    base = base or {}
     for p in problem.solver.PARAMS:
         v = values[p.name]
         if isinstance(p, Choice):
-            if v != p.default:
+            if v != base.get(p.name, p.default):
                 wanted[p.name] = v
             continue
         if isinstance(v, float) and math.isnan(v):
             continue
         shown = units.to_display(v, p.dimension, system)
-        default = units.to_display(p.default, p.dimension, system)
+        default = units.to_display(base.get(p.name, p.default), p.dimension, system)
         if not math.isclose(shown, default, rel_tol=1e-12, abs_tol=1e-12):
             wanted[p.name] = "inf" if math.isinf(shown) else f"{shown:.10g}"
     wanted.update({k: v for k, v in flags.items() if v})

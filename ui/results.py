@@ -26,8 +26,9 @@ def answers_table(solution: Solution, answers: tuple[Answer, ...], system: str) 
         st.caption(note)
 
 
-def derivation(solution: Solution, numbered_from: int = 1) -> None:
-    for i, step in enumerate(solution.steps, start=numbered_from):
+def derivation(solution: Solution, symbolic_only: bool = False) -> None:
+    steps = solution.steps[: solution.symbolic_steps] if symbolic_only else solution.steps
+    for i, step in enumerate(steps, start=1):
         st.markdown(f"**{i}.** {step.title}")
         st.latex(step.latex)
 

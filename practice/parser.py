@@ -1,0 +1,323 @@
+"""A safe parser for answers typed by students: text -> sympy expression, with no eval anywhere.
+
+    parse_expression("2/3*V*sin(theta) + R*omega/3", symbols) -> sympy.Expr
+
+A tokenizer and a recursive-descent grammar build sympy objects directly from a whitelist:
+numbers, the given symbols (by name, by Greek name, or as the Greek letter itself), the constant
+pi, and the functions sin cos tan asin acos atan sqrt exp log abs. Powers are written ^ or **,
+a number or a closing bracket times what follows may omit the * (2V, 2(a+b), (a)(b)), and the
+Unicode minus, × and · are understood. The problem's own symbols come first: where a problem has a
+restitution coefficient, e is that coefficient; Euler's number is exp(1).
+
+Everything is bounded so that no input can take long: its length, its number of tokens, its
+nesting depth, the size of every number, and every exponent (which must be a constant of
+modest size, checked before sympy can evaluate anything). Any refusal is a ValueError whose
+message points at the problem.
+"""
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Iterable
+
+import sympy as sp
+
+MAX_LENGTH = 200
+MAX_TOKENS = 120
+MAX_DEPTH = 25
+MAX_NUMBER_TEXT = 24
+MAX_EXPONENT = 12
+MAX_MAGNITUDE = 1e100
+MAX_EXP_ARGUMENT = 230  # exp(230) ≈ 1e100
+
+GREEK = {
+    "alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ", "eta": "η",
+    "theta": "θ", "iota": "ι", "kappa": "κ", "lambda": "λ", "mu": "μ", "nu": "ν", "xi": "ξ",
+    "pi": "π", "rho": "ρ", "sigma": "σ", "tau": "τ", "phi": "φ", "chi": "χ", "psi": "ψ", "omega": "ω",
+    "Delta": "Δ", "Omega": "Ω", "Theta": "Θ", "Phi": "Φ",
+}
+FUNCTIONS = {
+    "sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "asin": sp.asin, "acos": sp.acos, "atan": sp.atan,
+    "sqrt": sp.sqrt, "exp": sp.exp, "log": sp.log, "ln": sp.log, "abs": sp.Abs,
+    "arcsin": sp.asin, "arccos": sp.acos, "arctan": sp.atan,
+}
+_GREEK_LETTERS = "".join(GREEK.values())
+_TOKEN = re.compile(
+    r"\s*(?:"
+    r"(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)"
+    rf"|(?P<name>[A-Za-z{_GREEK_LETTERS}][A-Za-z0-9_{_GREEK_LETTERS}]*)"
+    r"|(?P<op>\*\*|[-+*/^(),−×·])"
+    r")"
+)
+
+
+@dataclass(frozen=True)
+class Token:
+    kind: str  # number, name, op, end
+    text: str
+    position: int
+
+
+def _where(text: str, position: int) -> str:
+    return f"at position {position + 1}"
+
+
+def tokenize(text: str) -> list[Token]:
+    if not isinstance(text, str):
+        raise ValueError("The answer must be text.")
+    if len(text) > MAX_LENGTH:
+        raise ValueError(f"The answer is too long ({len(text)} characters; at most {MAX_LENGTH}).")
+    tokens: list[Token] = []
+    position = 0
+    while position < len(text):
+        if text[position:].strip() == "":
+            break
+        match = _TOKEN.match(text, position)
+        if not match or match.end() == position:
+            bad = text[position:].lstrip()[:1]
+            where = len(text) - len(text[position:].lstrip())
+            raise ValueError(f"The character {bad!r} (U+{ord(bad):04X}) {_where(text, where)} is not "
+                             "allowed: use numbers, the problem's symbols, + − * / ^ ( ) and "
+                             "sin cos tan asin acos atan sqrt exp log abs.")
+        kind = match.lastgroup
+        start = match.start(kind)
+        value = match.group(kind)
+        tokens.append(Token(kind, value, start))
+        if len(tokens) > MAX_TOKENS:
+            raise ValueError(f"The answer has too many parts (more than {MAX_TOKENS}).")
+        position = match.end()
+    tokens.append(Token("end", "", len(text)))
+    return tokens
+
+
+def _symbol_table(allowed_symbols: Iterable[sp.Symbol]) -> dict[str, sp.Symbol]:
+    """Names a student may type for each symbol: its own name, with Greek names also as letters
+    (theta_0 and θ_0 and θ0), and without underscores or braces (v_{1x}, v_1x, v1x)."""
+    table: dict[str, sp.Symbol] = {}
+    for symbol in allowed_symbols:
+        name = symbol.name
+        plain = re.sub(r"[{}\\]", "", name)  # v_{1x} -> v_1x, \Delta T -> DeltaT
+        plain = plain.replace(" ", "")
+        spellings = {name, plain, plain.replace("_", "")}
+        for spelling in list(spellings):
+            for word, letter in GREEK.items():
+                if spelling.startswith(word):
+                    rest = spelling[len(word):]
+                    spellings |= {letter + rest, letter + rest.replace("_", "")}
+        for spelling in spellings:
+            if re.fullmatch(rf"[A-Za-z{_GREEK_LETTERS}][A-Za-z0-9_{_GREEK_LETTERS}]*", spelling):
+                table.setdefault(spelling, symbol)
+    return table
+
+
+def _magnitude_ok(value: sp.Expr) -> bool:
+    if value.is_Integer or value.is_Rational:
+        p, q = sp.fraction(value)
+        return (abs(int(p)).bit_length() <= 333) and (abs(int(q)).bit_length() <= 333)
+    if value.is_Float:
+        return abs(float(value)) <= MAX_MAGNITUDE
+    return True
+
+
+class _Parser:
+    def __init__(self, text: str, symbols: dict[str, sp.Symbol]):
+        self.text = text
+        self.tokens = tokenize(text)
+        self.i = 0
+        self.symbols = symbols
+        self.depth = 0
+
+    # -- helpers
+    @property
+    def token(self) -> Token:
+        return self.tokens[self.i]
+
+    def advance(self) -> Token:
+        token = self.tokens[self.i]
+        self.i += 1
+        return token
+
+    def expect(self, op: str) -> None:
+        if self.token.kind != "op" or self.token.text != op:
+            found = self.token.text or "the end"
+            raise ValueError(f"Expected {op!r} {_where(self.text, self.token.position)}, found {found!r}.")
+        self.advance()
+
+    def enter(self) -> None:
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise ValueError(f"The answer is nested too deeply (more than {MAX_DEPTH} levels).")
+
+    def leave(self) -> None:
+        self.depth -= 1
+
+    def is_op(self, *ops: str) -> bool:
+        return self.token.kind == "op" and self.token.text in ops
+
+    # -- grammar
+    def parse(self) -> sp.Expr:
+        if self.token.kind == "end":
+            raise ValueError("The answer is empty.")
+        expr = self.sum()
+        if self.token.kind != "end":
+            raise ValueError(f"Unexpected {self.token.text!r} {_where(self.text, self.token.position)}.")
+        return expr
+
+    def sum(self) -> sp.Expr:
+        self.enter()
+        expr = self.product()
+        while self.is_op("+", "-", "−"):
+            op = self.advance().text
+            right = self.product()
+            expr = expr + right if op == "+" else expr - right
+            self.check(expr)
+        self.leave()
+        return expr
+
+    def starts_primary(self) -> bool:
+        return self.token.kind in ("number", "name") or self.is_op("(")
+
+    def product(self) -> sp.Expr:
+        expr = self.unary()
+        while True:
+            if self.is_op("*", "×", "·"):
+                self.advance()
+                expr = expr * self.unary()
+            elif self.is_op("/"):
+                self.advance()
+                divisor = self.unary()
+                if divisor == 0:
+                    raise ValueError("The answer divides by zero.")
+                expr = expr / divisor
+            elif self.starts_primary():  # implicit multiplication: 2V, 2(a+b), R omega
+                expr = expr * self.power()
+            else:
+                return expr
+            self.check(expr)
+
+    def unary(self) -> sp.Expr:
+        if self.is_op("-", "−", "+"):
+            op = self.advance().text
+            self.enter()
+            operand = self.unary()
+            self.leave()
+            return operand if op == "+" else -operand
+        return self.power()
+
+    def power(self) -> sp.Expr:
+        base = self.primary()
+        if self.is_op("^", "**"):
+            position = self.advance().position
+            self.enter()
+            exponent = self.unary()  # right-associative: a^b^c = a^(b^c); a^-1 allowed
+            self.leave()
+            return self.checked_power(base, exponent, position)
+        return base
+
+    def checked_power(self, base: sp.Expr, exponent: sp.Expr, position: int) -> sp.Expr:
+        if exponent.free_symbols:
+            raise ValueError(f"Exponents must be numbers {_where(self.text, position)} (a symbol in an "
+                             "exponent is not expected in these problems).")
+        value = complex(sp.N(exponent, 15))
+        if abs(value.imag) > 0 or abs(value.real) > MAX_EXPONENT:
+            raise ValueError(f"The exponent {_where(self.text, position)} is too large (at most "
+                             f"{MAX_EXPONENT} in size).")
+        if base.is_number and not base.free_symbols:
+            size = abs(complex(sp.N(base, 15)))
+            if size > 0 and abs(math.log10(size) * value.real) > 100:
+                raise ValueError(f"The power {_where(self.text, position)} makes a number too large.")
+        result = sp.Pow(base, exponent)
+        self.check(result)
+        return result
+
+    def primary(self) -> sp.Expr:
+        token = self.token
+        if token.kind == "number":
+            self.advance()
+            return self.number(token)
+        if token.kind == "name":
+            self.advance()
+            return self.name(token)
+        if self.is_op("("):
+            self.advance()
+            self.enter()
+            expr = self.sum()
+            self.leave()
+            self.expect(")")
+            return expr
+        found = token.text or "the end of the answer"
+        raise ValueError(f"Expected a number, a symbol or '(' {_where(self.text, token.position)}, "
+                         f"found {found!r}.")
+
+    def number(self, token: Token) -> sp.Expr:
+        if len(token.text) > MAX_NUMBER_TEXT:
+            raise ValueError(f"The number {_where(self.text, token.position)} has too many digits.")
+        if re.fullmatch(r"\d+", token.text):
+            value = sp.Integer(int(token.text))
+        else:
+            as_float = float(token.text)
+            if not math.isfinite(as_float) or abs(as_float) > MAX_MAGNITUDE:
+                raise ValueError(f"The number {_where(self.text, token.position)} is too large.")
+            value = sp.Rational(token.text) if "e" not in token.text.lower() else sp.Float(token.text, 15)
+        self.check(value)
+        return value
+
+    def name(self, token: Token) -> sp.Expr:
+        text = token.text
+        if text in self.symbols:  # the problem's own symbols come first (e is restitution);
+            return self.symbols[text]  # R(…) then reads as R times (…)
+        split = self.split_into_symbols(text)
+        if split is not None:  # Rω, mgr: adjacent symbols, multiplied
+            return sp.Mul(*split)
+        if text in FUNCTIONS:
+            function = FUNCTIONS[text]
+            if not self.is_op("("):
+                raise ValueError(f"{text} needs brackets: {text}(…) {_where(self.text, token.position)}.")
+            self.advance()
+            self.enter()
+            argument = self.sum()
+            self.leave()
+            self.expect(")")
+            if function is sp.exp and argument.is_number and abs(complex(sp.N(argument, 15))) > MAX_EXP_ARGUMENT:
+                raise ValueError(f"exp of a number that large {_where(self.text, token.position)} is out of range.")
+            result = function(argument)
+            self.check(result)
+            return result
+        if text in ("pi", "π"):
+            return sp.pi
+        hint = " (Euler's number is written exp(1))" if text == "e" else ""
+        known = ", ".join(sorted({s.name for s in self.symbols.values()}))
+        raise ValueError(f"Unknown name {text!r} {_where(self.text, token.position)}{hint}. "
+                         f"This problem's symbols: {known}.")
+
+    def split_into_symbols(self, text: str) -> list[sp.Symbol] | None:
+        """``text`` as a run of the problem's symbol names (longest names first), if it is one."""
+        if text in FUNCTIONS or text in ("pi", "π"):
+            return None
+        best: dict[int, list[sp.Symbol]] = {0: []}
+        for start in range(len(text)):
+            if start not in best:
+                continue
+            for end in range(len(text), start, -1):
+                piece = text[start:end]
+                if piece in self.symbols and end not in best:
+                    best[end] = best[start] + [self.symbols[piece]]
+        return best.get(len(text)) if len(text) in best and len(best[len(text)]) > 1 else None
+
+    def check(self, expr: sp.Expr) -> None:
+        for atom in expr.atoms(sp.Number):
+            if not _magnitude_ok(atom):
+                raise ValueError("A number in the answer is too large.")
+        if sp.zoo in expr.atoms() or sp.nan in expr.atoms():
+            raise ValueError("The answer is undefined (it divides by zero).")
+
+
+def parse_expression(text: str, allowed_symbols: Iterable[sp.Symbol]) -> sp.Expr:
+    """Parse ``text`` into a sympy expression over ``allowed_symbols`` (the very Symbol objects
+    given), or raise ValueError saying what is wrong and where."""
+    symbols = list(allowed_symbols)
+    for s in symbols:
+        if not isinstance(s, sp.Symbol):
+            raise TypeError("allowed_symbols must be sympy Symbols")
+    return _Parser(text, _symbol_table(symbols)).parse()

@@ -1,0 +1,88 @@
+"""Per-student variants: ``?seed=N`` gives reproducible parameters in sensible ranges.
+
+The seed is hashed with SHA-256 (never Python's salted ``hash()``) into numpy's PCG64 generator,
+so a link gives the same numbers in every session, process and machine. Numbers are drawn around
+the textbook's defaults (×0.6 … ×1.4, angles within the control's range), rounded to three
+significant figures, and redrawn until the solver accepts the combination. Options, gravity and
+μ = ∞ keep their defaults, so each variant stays the worked problem with other numbers.
+"""
+from __future__ import annotations
+
+import csv
+import hashlib
+import io
+import math
+from types import ModuleType
+
+import numpy as np
+
+from solvers.core import Choice, Number
+
+MAX_SEED = 10**9
+FIXED = {"g", "c"}  # gravity, and the cart's track (it drops out of the answer)
+ANGLE_RANGES = {  # degrees; None keeps the textbook's value
+    ("disk_wall", "theta"): (10, 70), ("pendulum_rebound", "theta0"): (-20, 60),
+    ("eulers_disk", "theta"): (5, 40), ("rod_disk_spring", "theta1"): None,
+    ("rod_disk_spring", "theta2"): (30, 150),
+}
+
+
+def _generator(problem: str, seed: int, attempt: int) -> np.random.Generator:
+    digest = hashlib.sha256(f"dynamics-lab|{problem}|{seed}|{attempt}".encode()).digest()
+    return np.random.Generator(np.random.PCG64(int.from_bytes(digest[:16], "big")))
+
+
+def _three_figures(x: float) -> float:
+    return float(f"{x:.3g}")
+
+
+def _draw(problem: str, p: Number, rng: np.random.Generator) -> float:
+    if p.dimension == "angle":
+        lo, hi = ANGLE_RANGES.get((problem, p.name), (p.ui_low or 0.0, p.ui_high or 89.0))
+        return math.radians(round(float(rng.uniform(lo, hi))))
+    if p.low == 0 and p.high == 1:  # a coefficient of restitution
+        return round(float(rng.uniform(0.3, 0.9)), 2)
+    if p.default == 0:
+        return _three_figures(float(rng.uniform(p.ui_low or 0.0, p.ui_high or 1.0)))
+    return _three_figures(p.default * float(rng.uniform(0.6, 1.4)))
+
+
+def variant(solver: ModuleType, problem: str, seed: int) -> dict:
+    """The parameters (SI, radians) of variant ``seed``; raises ValueError for a bad seed."""
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed <= MAX_SEED:
+        raise ValueError(f"A variant number is a whole number from 0 to {MAX_SEED}.")
+    for attempt in range(200):
+        rng = _generator(problem, seed, attempt)
+        params = {}
+        for p in solver.PARAMS:
+            if isinstance(p, Choice) or p.name in FIXED or (p.allow_inf and math.isinf(p.default)):
+                continue
+            if ANGLE_RANGES.get((problem, p.name), ()) is None:
+                continue
+            if problem == "stick_ball" and p.name == "s":
+                continue  # the default, l/2: the end of this variant's stick
+            params[p.name] = _draw(problem, p, rng)
+        try:
+            solver.solve(**params)
+        except ValueError:
+            continue
+        return params
+    raise RuntimeError(f"no valid variant found for {problem} seed {seed}")  # pragma: no cover
+
+
+def variants_csv(solver: ModuleType, problem: str, first: int, last: int) -> str:
+    """A table of variants first..last (at most 500): seed, parameters, answers (SI, radians)."""
+    if not (0 <= first <= last <= MAX_SEED) or last - first >= 500:
+        raise ValueError("Ask for at most 500 variants, numbered from 0 to 10⁹, first ≤ last.")
+    out = io.StringIO()
+    writer = None
+    for seed in range(first, last + 1):
+        params = variant(solver, problem, seed)
+        solution = solver.solve(**params)
+        row = {"seed": seed} | {f"param:{k}": v for k, v in solution.params.items()} | {
+            f"answer:{k}": v for k, v in solution.answers.items()}
+        if writer is None:
+            writer = csv.DictWriter(out, fieldnames=list(row))
+            writer.writeheader()
+        writer.writerow(row)
+    return out.getvalue()
