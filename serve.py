@@ -1,0 +1,53 @@
+"""Production entry point: warm every derivation, then start Streamlit in the same process.
+
+Streamlit has no start-up hook, and its health endpoint answers as soon as the server listens.
+Derivations are cached in module globals (functools.cache), so running each problem once here,
+before the server starts, means /_stcore/health answers only when this replica is warm: the
+first student on a new replica waits for nothing. Arguments after the script name go to
+``streamlit run app.py``, e.g. ``python serve.py --server.port 8501``.
+"""
+from __future__ import annotations
+
+import itertools
+import logging
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent
+
+
+def warm() -> float:
+    """Solve every problem for every option (deriving each sympy chain once) and build its figures."""
+    import importlib
+
+    from practice.worker import shared_worker
+    from solvers.core import Choice
+    from ui.catalog import PROBLEMS
+
+    started = time.perf_counter()
+    shared_worker().warm()
+    for problem in PROBLEMS:
+        solver = importlib.import_module(f"solvers.{problem.id}")
+        viz = importlib.import_module(f"viz.{problem.id}")
+        choices = [p for p in solver.PARAMS if isinstance(p, Choice)]
+        for combination in itertools.product(*(c.options for c in choices)):
+            solution = solver.solve(**dict(zip((c.name for c in choices), combination)))
+            viz.figures(solution)
+        if problem.id == "disk_wall":
+            solver.solve(mu=0.01, omega=-40.0)  # the sliding regime's derivation
+    return time.perf_counter() - started
+
+
+def main() -> None:
+    sys.path.insert(0, str(ROOT))
+    seconds = warm()
+    logging.getLogger("dynamics_lab").warning("warmed in %.1f s", seconds)
+    from streamlit.web import cli
+
+    sys.argv = ["streamlit", "run", str(ROOT / "app.py"), *sys.argv[1:]]
+    sys.exit(cli.main())
+
+
+if __name__ == "__main__":
+    main()
