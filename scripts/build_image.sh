@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 
 IMAGE=${IMAGE:-localhost/dynamics-lab:latest}
 BASE=${BASE:-localhost/debian-python:bookworm}
-PORT=${PORT:-18501}
+PORT=8501  # the port the image serves and its HEALTHCHECK probes
 export STORAGE_DRIVER=${STORAGE_DRIVER:-vfs}
 
 need() { command -v "$1" >/dev/null 2>&1 || { apt-get update -qq; DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$2" >/dev/null; }; }
@@ -34,15 +34,17 @@ if ! buildah inspect --type image "$BASE" >/dev/null 2>&1; then
   rm -rf "$rootfs"
 fi
 
+if [ -z "${SKIP_BUILD:-}" ]; then
 echo "== building $IMAGE"
 # The proxy's certificate authority is handed in at build time only (the image does not keep it).
 buildah bud --isolation chroot --format docker --layers=false \
   -v /etc/ssl/certs/ca-certificates.crt:/etc/ssl/host-ca.crt:ro \
   --build-arg PIP_CERT=/etc/ssl/host-ca.crt --build-arg BASE_IMAGE="$BASE" \
   -t "$IMAGE" . >/tmp/dynamics-lab-build.log 2>&1 || { tail -30 /tmp/dynamics-lab-build.log; exit 1; }
+fi
 
 echo "== image facts"
-buildah inspect --type image --format '{{.Docker.Config.User}} {{json .Docker.Config.Healthcheck}}' "$IMAGE"
+buildah inspect --type image --format 'user={{.Docker.Config.User}} healthcheck={{.Docker.Config.Healthcheck}}' "$IMAGE"
 buildah images --format '{{.Name}}:{{.Tag}} {{.Size}}' "$IMAGE"
 
 echo "== running it (buildah run shares the host's network: it answers on 127.0.0.1:$PORT)"
@@ -50,7 +52,7 @@ ctr=$(buildah from "$IMAGE")
 cleanup() { kill "$run_pid" 2>/dev/null || true; sleep 1; buildah rm "$ctr" >/dev/null 2>&1 || true; }
 trap cleanup EXIT
 cmd=$(buildah inspect --type image --format '{{range .Docker.Config.Cmd}}{{.}} {{end}}' "$IMAGE")
-buildah run --isolation chroot --user app --workingdir /app "$ctr" -- $cmd --server.port="$PORT" &
+buildah run --isolation chroot --user app --workingdir /app "$ctr" -- $cmd &
 run_pid=$!
 health=$(buildah inspect --type image --format '{{range .Docker.Config.Healthcheck.Test}}{{.}}|{{end}}' "$IMAGE")
 for i in $(seq 1 90); do
