@@ -9,6 +9,7 @@ from practice.variants import variant
 from ui import results
 from ui.practice import instructor_export, practice_panel, seed_from_url
 from ui.catalog import BY_ID, Problem
+from ui.figure import show as show_figure
 from ui.params import mirror_to_url, parameter_panel
 
 LECTURE_CSS = """
@@ -55,8 +56,7 @@ def _figures(problem: Problem, solution, system: str) -> None:
     viz = importlib.import_module(f"viz.{problem.id}")
     for figure in viz.figures(solution, system):
         st.markdown(f"#### {figure.title}")
-        st.plotly_chart(figure.spec, key=figure.key, config={"displayModeBar": False, "responsive": True},
-                        height=figure.height)
+        show_figure(figure)
         st.caption(figure.description)
 
 

@@ -14,7 +14,7 @@ import numpy as np
 # Okabe & Ito's palette, distinguishable with every common colour-vision deficiency.
 COLORS = {
     "body": "#0072B2", "accent": "#E69F00", "velocity": "#009E73", "impulse": "#D55E00",
-    "force": "#CC79A7", "trail": "#56B4E9", "ground": "#7f7f7f", "marker": "#F0E442", "ink": "#444444",
+    "force": "#CC79A7", "trail": "#56B4E9", "ground": "#9a9a9a", "marker": "#F0E442", "ink": "#8a8a8a",
 }
 DIGITS = 4
 

@@ -1,0 +1,35 @@
+"""Show a figure (viz.common.Figure) through a small custom component instead of st.plotly_chart.
+
+st.plotly_chart rebuilds and validates every figure through plotly's go.Figure on each call
+(tens of milliseconds for an animation; see BENCHMARKS.md). This component takes the figure's
+JSON as it is and draws it with the plotly.js that ships inside the plotly package (no network),
+keeps an animation running across reruns when the figure is unchanged, and adds real Play/Pause
+buttons that work from the keyboard (Space, ← →).
+"""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import plotly
+import streamlit.components.v1 as components
+
+from viz.common import Figure
+
+_DIR = Path(__file__).resolve().parent / "plotly_component"
+_PLOTLY_JS = Path(plotly.__file__).resolve().parent / "package_data" / "plotly.min.js"
+
+
+def _ensure_plotly_js() -> None:
+    target = _DIR / "plotly.min.js"
+    if not target.exists() or target.stat().st_size != _PLOTLY_JS.stat().st_size:
+        shutil.copyfile(_PLOTLY_JS, target)
+
+
+_ensure_plotly_js()
+_component = components.declare_component("dynamics_lab_figure", path=str(_DIR))
+
+
+def show(figure: Figure) -> None:
+    _component(spec=figure.json(), height=figure.height, description=figure.description,
+               key=figure.key, default=None)
