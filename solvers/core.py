@@ -340,6 +340,7 @@ class Derivation:
         self.steps = tuple(steps)
         self._labels = dict(labels or {})
         self._symbols = dict(symbols)
+        self._vectorized: dict[str, Callable[..., np.ndarray]] = {}
         self.chain = tuple(chain)
         self._dimensions = dict(dimensions)
         known: dict[sp.Symbol, str] = {sym: name for name, sym in symbols.items()}
@@ -383,6 +384,19 @@ class Derivation:
         for link in self.chain:
             full[link.symbol] = link.expr.subs(full)
         return expr.subs(full)
+
+    def vectorized(self, name: str) -> Callable[..., np.ndarray]:
+        """Result ``name`` as a numpy function of the parameters (keyword arguments, arrays
+        welcome), for curves over a range of one parameter; compiled once."""
+        if name not in self._vectorized:
+            expr = self.expression_of(name)
+            names = {sym: pname for pname, sym in self._symbols.items()}
+            args = sorted(expr.free_symbols, key=lambda s: s.name)
+            func = sp.lambdify(args, expr, modules="numpy")
+            arg_names = [names[a] for a in args]
+            self._vectorized[name] = lambda **kw: np.broadcast_to(
+                func(*(kw[n] for n in arg_names)), np.broadcast(*(np.asarray(v) for v in kw.values())).shape)
+        return self._vectorized[name]
 
     def evaluate(self, values: Mapping[str, float], upto: str | None = None) -> dict[str, float]:
         """Run the chain numerically; returns the parameters plus every result (or those up to

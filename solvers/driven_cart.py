@@ -189,15 +189,14 @@ def motion(solution: Solution, frames: int = 40, duration: float = 1.5) -> dict:
 
 def acceleration_versus_mu(params: dict, mus: np.ndarray) -> dict[str, np.ndarray]:
     """ẍ against μ for each drive, NaN where the front wheels would lift (μa ≥ b)."""
-    base = {k: v for k, v in params.items() if k not in ("mu", "drive")}
+    base = {k: v for k, v in params.items() if k in SYMBOLS and k != "mu"}
+    mus = np.asarray(mus, dtype=float)
     curves = {}
     for drive in DRIVEN:
-        d_ = derivation(drive)
-        values = []
-        for mu_ in mus:
-            lifts = drive != "front" and not mu_ * base["a"] < base["b"]
-            values.append(math.nan if lifts else d_.evaluate({**base, "mu": float(mu_)})["accel"])
-        curves[drive] = np.array(values)
+        accel = np.array(derivation(drive).vectorized("accel")(mu=mus, **base), dtype=float)
+        if drive != "front":
+            accel[~(mus * base["a"] < base["b"])] = np.nan
+        curves[drive] = accel
     return curves
 
 

@@ -214,8 +214,9 @@ def motion(solution: Solution, frames: int = 48, rim_points: int = 36) -> dict:
 def versus_tilt(params: dict, tilts: np.ndarray) -> dict[str, np.ndarray]:
     """ω_p, |ω| and the energy against the tilt θ, the other parameters held."""
     d_ = derivation()
-    rows = [d_.evaluate({**params, "theta": float(th)}) for th in tilts]
-    return {k: np.array([row[k] for row in rows]) for k in ("omega_p", "omega_total", "energy")}
+    base = {k: v for k, v in params.items() if k in SYMBOLS and k != "theta"}
+    return {k: np.array(d_.vectorized(k)(theta=np.asarray(tilts, dtype=float), **base), dtype=float)
+            for k in ("omega_p", "omega_total", "energy")}
 
 
 def derivation_of(solution: Solution) -> Derivation:

@@ -31,7 +31,7 @@ from .core import (
     require,
     validate_params,
 )
-from .swing import integrate_leg
+from .swing import Leg, integrate_leg
 
 PARAMS = (
     Number("m1", 6.0, "rod mass", "mass", "m_1", low=0, ui_low=0.1, ui_high=30.0, step=0.1),
@@ -200,18 +200,38 @@ def equation_of_motion(p, I: float):
 
 
 def simulate(p, answers, t_max: float | None = None, samples: int = 200):
-    """θ(t) from release, integrated (swinging on past θ2, until it stops or after t_max)."""
-    acc = equation_of_motion(p, answers["I_O"])
-    omega0 = _start_rate(p["theta1"])
-    horizon = t_max or 40 * math.sqrt(answers["I_O"] / max(weight_moment(p), 1e-9))
-    return integrate_leg(acc, p["theta1"], omega0, 0.0, horizon, stop_at_rest=True, samples=samples)
+    """θ(t) from release until the swing turns (or after t_max), integrated: to θ2 first (the
+    second method's leg), then on from there, so checks and animation share one integration."""
+    to_theta2, beyond = _legs(tuple(sorted(p.items())) + (("I_O", answers["I_O"]),), t_max)
+    if beyond is None:
+        leg = to_theta2
+    else:
+        leg = Leg(np.concatenate([to_theta2.t, beyond.t[1:]]), np.concatenate([to_theta2.theta, beyond.theta[1:]]),
+                  np.concatenate([to_theta2.omega, beyond.omega[1:]]), beyond.ended_by_event)
+    if samples:
+        even = np.linspace(leg.t[0], leg.t[-1], samples)
+        return Leg(even, np.interp(even, leg.t, leg.theta), np.interp(even, leg.t, leg.omega), leg.ended_by_event)
+    return leg
+
+
+@functools.lru_cache(maxsize=256)
+def _legs(key: tuple, t_max: float | None):
+    """(release → θ2, θ2 → turning point), each integrated once and cached."""
+    p = dict(key)
+    acc = equation_of_motion(p, p["I_O"])
+    horizon = t_max or 200 * math.sqrt(p["I_O"] / weight_moment(p)) + 10
+    first = integrate_leg(acc, p["theta1"], _start_rate(p["theta1"]), 0.0, horizon,
+                          stop_at_angle=p["theta2"], direction=1)
+    if not first.ended_by_event:
+        return first, None
+    t2, q2, w2 = first.end
+    rest = integrate_leg(acc, q2, w2, t2, horizon, stop_at_rest=True)
+    return first, rest
 
 
 def _checks(p, a) -> tuple[Check, ...]:
-    acc = equation_of_motion(p, a["I_O"])
     omega0 = _start_rate(p["theta1"])
-    horizon = 200 * math.sqrt(a["I_O"] / weight_moment(p)) + 10
-    leg = integrate_leg(acc, p["theta1"], omega0, 0.0, horizon, stop_at_angle=p["theta2"], direction=1)
+    leg, _ = _legs(tuple(sorted(p.items())) + (("I_O", a["I_O"]),), None)
     integrated = leg.end[2] if leg.ended_by_event else float("nan")
     return (
         Check(f"θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ (start nudge {NUDGE:g} rad/s)"
@@ -224,21 +244,24 @@ def _checks(p, a) -> tuple[Check, ...]:
     )
 
 
-def motion(solution: Solution, frames: int = 72) -> dict:
-    """The whole swing from release (and back), integrated, with the energy split per frame:
-    kinetic, gravitational (zero with the assembly hanging straight down) and spring."""
+def motion(solution: Solution, frames: int = 54) -> dict:
+    """The whole swing from release and back, with the energy split per frame: kinetic,
+    gravitational (zero with the assembly hanging straight down) and spring. The fall is
+    integrated once; the system is conservative, so the return is its mirror in time."""
     p, a = solution.params, solution.answers
-    horizon = 60 * math.sqrt(a["I_O"] / weight_moment(p)) + 5
-    half = simulate(p, a, t_max=horizon, samples=2)
-    duration = 2 * half.end[0] if half.ended_by_event else horizon
-    acc = equation_of_motion(p, a["I_O"])
-    leg = integrate_leg(acc, p["theta1"], _start_rate(p["theta1"]), 0.0, duration, samples=frames)
+    half = simulate(p, a, samples=0)
+    if half.ended_by_event:
+        turn = half.t[-1]
+        t = np.concatenate([half.t, 2 * turn - half.t[-2::-1]])
+        theta = np.concatenate([half.theta, half.theta[-2::-1]])
+        omega = np.concatenate([half.omega, -half.omega[-2::-1]])
+    else:
+        t, theta, omega = half.t, half.theta, half.omega
+    even = np.linspace(t[0], t[-1], frames)
+    theta, omega = np.interp(even, t, theta), np.interp(even, t, omega)
     Q = weight_moment(p)
-    kinetic = 0.5 * a["I_O"] * leg.omega**2
-    gravity = Q * (1 + np.cos(leg.theta))
-    spring = 0.5 * p["k"] * leg.theta**2
-    return {"t": leg.t, "theta": leg.theta, "omega": leg.omega, "kinetic": kinetic, "gravity": gravity,
-            "spring": spring}
+    return {"t": even, "theta": theta, "omega": omega, "kinetic": 0.5 * a["I_O"] * omega**2,
+            "gravity": Q * (1 + np.cos(theta)), "spring": 0.5 * p["k"] * theta**2}
 
 
 def derivation_of(solution: Solution) -> Derivation:

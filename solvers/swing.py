@@ -1,18 +1,25 @@
-"""Time integration of a one-degree-of-freedom swing, θ̈ = f(θ), with scipy's solve_ivp.
+"""Time integration of a one-degree-of-freedom swing, θ̈ = f(θ), with events.
 
 Used as the second method for the work-energy answers (pendulum, rod and spring) and to produce
-the trajectories the animations draw. Tolerances are tight (rtol 1e-10) so that a check against a
-closed form can use a tolerance that would catch a wrong factor.
+the trajectories the animations draw. The integrator is scipy's odeint (LSODA, compiled), run over
+a time grid in chunks: a crossing (θ reaches an angle, or θ̇ reverses) is bracketed on the grid,
+located on the cubic Hermite interpolant of the grid states, and the state at the event comes
+from one short, tight integration to that instant. Tolerances are tight (rtol 1e-11) so a check
+against a closed form can use a tolerance that would catch a wrong factor; it costs a fraction
+of a millisecond per leg, which keeps a slider change cheap (see BENCHMARKS.md).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import odeint
+from scipy.optimize import brentq
 
-RTOL, ATOL = 1e-10, 1e-12
+RTOL, ATOL = 1e-11, 1e-12
+GRID = 48  # grid points per chunk
 
 
 @dataclass(frozen=True)
@@ -29,6 +36,17 @@ class Leg:
         return float(self.t[-1]), float(self.theta[-1]), float(self.omega[-1])
 
 
+def _hermite(t0, t1, y0, y1, d0, d1):
+    """Cubic Hermite interpolant through (t0, y0, y0'), (t1, y1, y1')."""
+    h = t1 - t0
+
+    def value(t):
+        s = (t - t0) / h
+        h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2
+        return h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1
+    return value
+
+
 def integrate_leg(
     acceleration: Callable[[float], float],
     theta0: float,
@@ -39,50 +57,63 @@ def integrate_leg(
     stop_at_rest: bool = False,
     direction: int = 0,
     samples: int = 0,
+    chunk: float | None = None,
 ) -> Leg:
-    """Integrate from (θ0, θ̇0) until θ reaches ``stop_at_angle``, θ̇ changes sign, or ``t_max``.
-
-    ``direction`` is passed to the event (−1: only when the event function is decreasing).
-    ``samples`` > 0 returns that many evenly spaced samples (dense output) instead of the steps.
-    """
-    events = []
-    if stop_at_angle is not None:
-        def hit(t, y):
-            return y[0] - stop_at_angle
-        hit.terminal, hit.direction = True, direction
-        events.append(hit)
-    if stop_at_rest:
-        def rest(t, y):
-            return y[1]
-        # θ̇ reverses: from + to − when moving forward (or starting from rest toward +θ), and back.
-        moving_forward = omega0 > 0 or (omega0 == 0 and acceleration(theta0) >= 0)
-        rest.terminal, rest.direction = True, (-1 if moving_forward else 1)
-        events.append(rest)
-
-    sol = solve_ivp(
-        lambda t, y: (y[1], acceleration(y[0])),
-        (t0, t0 + t_max),
-        (theta0, omega0),
-        method="DOP853",
-        rtol=RTOL,
-        atol=ATOL,
-        events=events or None,
-        dense_output=samples > 0,
-    )
-    ended = any(len(te) for te in (sol.t_events or []))
-    t_end = float(sol.t[-1])
-    y_end = sol.y[:, -1]
-    if ended:
-        # Land exactly on the event (solve_ivp already reports the located event state).
-        for te, ye in zip(sol.t_events, sol.y_events):
-            if len(te):
-                t_end, y_end = float(te[0]), ye[0]
+    """Integrate from (θ0, θ̇0) until θ reaches ``stop_at_angle`` (crossing in ``direction``: −1
+    decreasing, +1 increasing, 0 either), θ̇ reverses (``stop_at_rest``), or ``t_max`` has passed.
+    ``samples`` > 0 returns that many evenly spaced samples, else the grid points.
+    ``chunk`` is the time span integrated at a time (default: a fraction of a natural period)."""
+    rhs = lambda y, t: (y[1], acceleration(y[0]))  # noqa: E731
+    if chunk is None:
+        stiffness = abs(acceleration(theta0 + 1e-3) - acceleration(theta0 - 1e-3)) / 2e-3
+        chunk = 0.25 * 2 * math.pi / math.sqrt(max(stiffness, 1e-6)) if stiffness else 1.0
+        chunk = min(max(chunk, 1e-3), t_max)
+    ts, ys = [np.array([t0])], [np.array([[theta0, omega0]])]
+    t_start, y_start = t0, np.array([theta0, omega0], dtype=float)
+    ended = False
+    while t_start < t0 + t_max - 1e-15:
+        t_end = min(t_start + chunk, t0 + t_max)
+        grid = np.linspace(t_start, t_end, GRID)
+        y = odeint(rhs, y_start, grid, rtol=RTOL, atol=ATOL)
+        event, kind = None, ""
+        for i in range(1, len(grid)):
+            a, b = y[i - 1], y[i]
+            if stop_at_angle is not None:
+                fa, fb = a[0] - stop_at_angle, b[0] - stop_at_angle
+                crosses = fa * fb <= 0 and fa != fb and not (i == 1 and fa == 0 and t_start == t0)
+                if crosses and (direction == 0 or np.sign(fb - fa) == direction):
+                    interp = _hermite(grid[i - 1], grid[i], a[0], b[0], a[1], b[1])
+                    event, kind = brentq(lambda t: interp(t) - stop_at_angle, grid[i - 1], grid[i], xtol=1e-15), "angle"
+                    break
+            if stop_at_rest and a[1] != 0 and (a[1] * b[1] < 0 or b[1] == 0):  # θ̇ reverses
+                interp = _hermite(grid[i - 1], grid[i], a[1], b[1], acceleration(a[0]), acceleration(b[0]))
+                event, kind = brentq(interp, grid[i - 1], grid[i], xtol=1e-15), "rest"
                 break
+        if event is not None:
+            k = max(1, int(np.searchsorted(grid, event)))  # grid[k-1] < event <= grid[k]
+            exact = odeint(rhs, y[k - 1], [grid[k - 1], event], rtol=RTOL, atol=ATOL)[-1]
+            for _ in range(3):  # Newton on the exact state: land on the event itself
+                residual, rate = ((exact[0] - stop_at_angle, exact[1]) if kind == "angle"
+                                  else (exact[1], acceleration(exact[0])))
+                if rate == 0 or abs(residual) <= 1e-14 * max(1.0, abs(exact[0]), abs(exact[1])):
+                    break
+                event -= residual / rate
+                exact = odeint(rhs, y[k - 1], [grid[k - 1], event], rtol=RTOL, atol=ATOL)[-1]
+            ts.append(np.append(grid[1:k], event))
+            ys.append(np.vstack([y[1:k], exact]))
+            ended = True
+            break
+        ts.append(grid[1:])
+        ys.append(y[1:])
+        t_start, y_start = t_end, y[-1]
+    t = np.concatenate(ts)
+    y = np.vstack(ys)
+    if ended and kind == "angle":
+        y[-1, 0] = stop_at_angle  # exactly on the event
     if samples > 0:
-        t = np.linspace(t0, t_end, samples)
-        y = sol.sol(t)
-        y[:, -1] = y_end
-        return Leg(t, y[0], y[1], ended)
-    t = np.append(sol.t[sol.t < t_end], t_end)
-    y = np.column_stack([sol.y[:, sol.t < t_end], y_end])
-    return Leg(t, y[0], y[1], ended)
+        even = np.linspace(t[0], t[-1], samples)
+        theta = np.interp(even, t, y[:, 0])
+        omega = np.interp(even, t, y[:, 1])
+        theta[-1], omega[-1] = y[-1]
+        return Leg(even, theta, omega, ended)
+    return Leg(t, y[:, 0], y[:, 1], ended)

@@ -31,5 +31,6 @@ _component = components.declare_component("dynamics_lab_figure", path=str(_DIR))
 
 
 def show(figure: Figure) -> None:
-    _component(spec=figure.json(), height=figure.height, description=figure.description,
-               key=figure.key, default=None)
+    # Bytes travel as a binary argument: no second JSON encoding of the figure by Streamlit.
+    _component(spec=figure.json_bytes(), height=figure.height, title=figure.title,
+               description=figure.description, key=figure.key, default=None)

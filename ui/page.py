@@ -55,9 +55,7 @@ def _figures(problem: Problem, solution, system: str) -> None:
     """The motion and its companion plots, each with the text a screen reader gets."""
     viz = importlib.import_module(f"viz.{problem.id}")
     for figure in viz.figures(solution, system):
-        st.markdown(f"#### {figure.title}")
-        show_figure(figure)
-        st.caption(figure.description)
+        show_figure(figure)  # title and text description are drawn with it
 
 
 def _leave_legacy_pages_mode() -> None:
@@ -80,8 +78,7 @@ def problem_page(problem_id: str) -> None:
     system, lecture, practice = _page_flags(problem)
     if lecture:
         st.html(LECTURE_CSS)
-    st.title(problem.title)
-    st.caption(f"{problem.blurb} Source: {problem.source}.")
+    st.markdown(f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]")
     seed, seed_warning = seed_from_url()
     base = variant(solver, problem.id, seed) if seed is not None else {}
     st.sidebar.markdown("### Parameters" + (f" · variant {seed}" if seed is not None else ""))
@@ -105,13 +102,7 @@ def problem_page(problem_id: str) -> None:
         return
     if lecture:
         _figures(problem, solution, system)
-    st.subheader("Answers")
-    results.answers_table(solution, answers, system)
-    if solution.ledger:
-        st.markdown("##### Across the impact")
-        results.ledger(solution, system)
-    st.markdown("##### Checked a second way")
-    results.checks(solution)
+    results.answer_section(solution, answers, system)
     if not lecture:
         _figures(problem, solution, system)
     _derivation(solver, solution, numeric=True)

@@ -2,6 +2,8 @@
 the seed's slips, and a refused case explained (never a traceback)."""
 from __future__ import annotations
 
+import re
+
 import streamlit as st
 
 from solvers.core import Answer, PhysicalLimitError, Solution
@@ -14,50 +16,62 @@ LIMIT_LABELS = {  # attribute carried by a PhysicalLimitError -> (what it is, di
 }
 
 
-def answers_table(solution: Solution, answers: tuple[Answer, ...], system: str) -> None:
+def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str) -> None:
+    """Answers, notes, the ledger across an impact and the checks: one Markdown element."""
+    parts = ["### Answers", answers_table(solution, answers, system)]
+    parts += [f":gray[{note}]" for note in solution.notes]
+    if solution.ledger:
+        parts += ["##### Across the impact", ledger(solution, system)]
+    parts += ["##### Checked a second way", checks(solution)]
+    st.markdown("\n\n".join(parts))
+
+
+def answers_table(solution: Solution, answers: tuple[Answer, ...], system: str) -> str:
     rows = ["| | quantity | value |", "|---|---|---|"]
     for a in answers:
         value = units.format_quantity(solution.answers[a.name], a.dimension, system)
         if a.dimension == "angle":
             value += f" ({units.format_value(solution.answers[a.name])} rad)"
         rows.append(f"| ${a.symbol}$ | {a.label} | **{value}** |")
-    st.markdown("\n".join(rows))
-    for note in solution.notes:
-        st.caption(note)
+    return "\n".join(rows)
+
+
+_MARKDOWN_SPECIAL = re.compile(r"([\\`*_{}\[\]#+!|<>~$])")
+
+
+def _escaped(text: str) -> str:
+    return _MARKDOWN_SPECIAL.sub(r"\\\1", text)
 
 
 def derivation(solution: Solution, symbolic_only: bool = False) -> None:
+    """All steps in one Markdown element (display math in $$ … $$): one element, not two per step."""
     steps = solution.steps[: solution.symbolic_steps] if symbolic_only else solution.steps
-    for i, step in enumerate(steps, start=1):
-        st.markdown(f"**{i}.** {step.title}")
-        st.latex(step.latex)
+    blocks = [f"**{i}.** {_escaped(step.title)}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(steps, start=1)]
+    st.markdown("\n\n".join(blocks))
 
 
-def checks(solution: Solution) -> None:
+def checks(solution: Solution) -> str:
     """The conservation ledger: each closed-form answer beside an independent second method."""
     lines = []
     for c in solution.checks:
         mark = ":green[:material/check_circle:]" if c.ok else ":red[:material/cancel: **differs**]"
         lines.append(f"- {mark} **{c.name}**: {units.format_value(c.closed_form, 8)} vs "
                      f"{units.format_value(c.second_method, 8)}  \n  :gray[{c.explanation}]")
-    st.markdown("\n".join(lines))
+    return "\n".join(lines)
 
 
-def ledger(solution: Solution, system: str) -> None:
+def ledger(solution: Solution, system: str) -> str:
     """Before and after the impact: what is conserved, what is not, and why."""
-    if not solution.ledger:
-        return
     rows = ["| quantity | before | after | |", "|---|---|---|---|"]
     for row in solution.ledger:
         mark = ":green[conserved]" if row.conserved else ":orange[changes]"
         rows.append(f"| {row.quantity} | {units.format_quantity(row.before, row.dimension, system)} | "
                     f"{units.format_quantity(row.after, row.dimension, system)} | {mark}: {row.why} |")
-    st.markdown("\n".join(rows))
+    return "\n".join(rows)
 
 
 def errata(notes: tuple[str, ...]) -> None:
-    for note in notes:
-        st.markdown(f"- {note}")
+    st.markdown("\n".join(f"- {note}" for note in notes))
 
 
 def refused(error: ValueError, system: str) -> None:

@@ -4,12 +4,12 @@ drawn comes from a solver. Coordinates are rounded so equal inputs give byte-equ
 """
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
 import numpy as np
+import orjson
 
 # Okabe & Ito's palette, distinguishable with every common colour-vision deficiency.
 COLORS = {
@@ -31,19 +31,35 @@ class Figure:
     height: int = 520
     extra: dict = field(default_factory=dict)
 
+    def json_bytes(self) -> bytes:
+        return orjson.dumps(self.spec, option=orjson.OPT_SERIALIZE_NUMPY)
+
     def json(self) -> str:
-        return json.dumps(self.spec, separators=(",", ":"))
+        return self.json_bytes().decode()
 
 
-def r(values) -> list:
-    """Round for JSON: arrays to DIGITS decimals, NaN (a gap) to None."""
-    arr = np.round(np.asarray(values, dtype=float), DIGITS)
-    return [None if not math.isfinite(v) else float(v) for v in arr]
+def r(values) -> np.ndarray:
+    """Round for JSON: arrays to DIGITS decimals; NaN (a gap in a polyline, or None given) is
+    written as null by orjson."""
+    return np.round(np.asarray(values, dtype=float), DIGITS)
 
 
-def circle(cx: float, cy: float, radius: float, n: int = 40) -> tuple[list, list]:
-    a = np.linspace(0, 2 * np.pi, n)
-    return r(cx + radius * np.cos(a)), r(cy + radius * np.sin(a))
+_UNIT = {n: (np.cos(np.linspace(0, 2 * np.pi, n)), np.sin(np.linspace(0, 2 * np.pi, n))) for n in (24, 28, 40)}
+
+
+def circle(cx: float, cy: float, radius: float, n: int = 40) -> tuple[np.ndarray, np.ndarray]:
+    c, s = _UNIT[n]
+    return r(cx + radius * c), r(cy + radius * s)
+
+
+def circles(cx, cy, radius: float, n: int = 40) -> tuple[np.ndarray, np.ndarray]:
+    """Circles of one radius at many centres (one row each), computed and rounded at once."""
+    c, s = _UNIT[n]
+    return r(np.asarray(cx)[:, None] + radius * c), r(np.asarray(cy)[:, None] + radius * s)
+
+
+def _round(v: float | None):
+    return None if v is None or not math.isfinite(v) else round(v, DIGITS)
 
 
 def arrow(x0: float, y0: float, dx: float, dy: float, head: float | None = None) -> tuple[list, list]:
@@ -57,14 +73,14 @@ def arrow(x0: float, y0: float, dx: float, dy: float, head: float | None = None)
     wing = 0.5
     lx, ly = x1 - head * (ux - wing * uy), y1 - head * (uy + wing * ux)
     rx, ry = x1 - head * (ux + wing * uy), y1 - head * (uy - wing * ux)
-    return r([x0, x1, None, lx, x1, rx]), r([y0, y1, None, ly, y1, ry])
+    return [_round(v) for v in (x0, x1, None, lx, x1, rx)], [_round(v) for v in (y0, y1, None, ly, y1, ry)]
 
 
 def join(*polylines: tuple[list, list]) -> tuple[list, list]:
     """Several polylines in one trace, separated by gaps."""
     xs, ys = [], []
     for x, y in polylines:
-        if xs and x:
+        if len(xs) and len(x):
             xs.append(None)
             ys.append(None)
         xs.extend(x)
@@ -72,12 +88,14 @@ def join(*polylines: tuple[list, list]) -> tuple[list, list]:
     return xs, ys
 
 
-def zigzag_spiral(cx: float, cy: float, inner: float, outer: float, turns: float, start: float,
-                  n: int = 80) -> tuple[list, list]:
-    """A flat spiral (a torsional spring) from ``inner`` to ``outer`` radius, ``turns`` turns."""
-    a = np.linspace(0, 2 * np.pi * max(turns, 0.05), n)
-    rad = inner + (outer - inner) * a / a[-1]
-    return r(cx + rad * np.cos(start + a)), r(cy + rad * np.sin(start + a))
+def spirals(inner: float, outer: float, turns, start, n: int = 48) -> tuple[np.ndarray, np.ndarray]:
+    """Flat spirals about the origin (a torsional spring), one row per frame: ``turns[i]`` turns
+    from ``inner`` to ``outer`` radius, starting at angle ``start[i]``."""
+    s = np.linspace(0.0, 1.0, n)[None, :]
+    a = 2 * np.pi * np.maximum(np.asarray(turns, dtype=float), 0.05)[:, None] * s
+    rad = inner + (outer - inner) * s
+    phase = np.asarray(start, dtype=float)[:, None] + a
+    return r(rad * np.cos(phase)), r(rad * np.sin(phase))
 
 
 def line(x, y, name: str, color: str, width: float = 3, dash: str | None = None, show_legend: bool = True,
@@ -95,7 +113,8 @@ def line(x, y, name: str, color: str, width: float = 3, dash: str | None = None,
 
 def points(x, y, name: str, color: str, size: float = 10, symbol: str = "circle", show_legend: bool = True,
            xaxis: str = "x", yaxis: str = "y") -> dict:
-    return {"type": "scatter", "mode": "markers", "x": r(x), "y": r(y), "name": name,
+    return {"type": "scatter", "mode": "markers", "x": [_round(float(v)) for v in x],
+            "y": [_round(float(v)) for v in y], "name": name,
             "marker": {"color": color, "size": size, "symbol": symbol, "line": {"width": 1, "color": "#222"}},
             "hoverinfo": "skip", "showlegend": show_legend, "xaxis": xaxis, "yaxis": yaxis}
 

@@ -7,7 +7,7 @@ import numpy as np
 
 from solvers import pendulum_rebound as solver
 from ui import units
-from viz.common import COLORS, Figure, animated, arrow, base_layout, circle, line, points, r
+from viz.common import COLORS, Figure, animated, arrow, base_layout, circles, line, points, r
 
 
 def figures(solution, system: str = "si") -> list[Figure]:
@@ -29,18 +29,19 @@ def figures(solution, system: str = "si") -> list[Figure]:
                        "impact angle θ_I", COLORS["ground"], width=1, dash="dash", xaxis="x2", yaxis="y2")
     v_scale = 0.35 * reach / max(abs(a["omega_impact"]) * (p["L"] + p["r"]), 1e-12)
     frames = []
-    trail_x = (L + rad) * np.cos(m["theta"])
-    trail_y = (L + rad) * np.sin(m["theta"])
+    centre_x, centre_y = (L + rad) * np.cos(m["theta"]), (L + rad) * np.sin(m["theta"])
+    trail_x, trail_y = r(centre_x), r(centre_y)
+    spheres_x, spheres_y = circles(centre_x, centre_y, rad)
     for i, q in enumerate(m["theta"]):
         c, s = math.cos(q), math.sin(q)
-        cx, cy = (L + rad) * c, (L + rad) * s
+        cx, cy = float(centre_x[i]), float(centre_y[i])
         speed = m["omega"][i] * (p["L"] + p["r"])
         frames.append([
-            line(r(trail_x[max(0, i - 25): i + 1]), r(trail_y[max(0, i - 25): i + 1]), "path of the sphere",
+            line(trail_x[max(0, i - 25): i + 1], trail_y[max(0, i - 25): i + 1], "path of the sphere",
                  COLORS["trail"], width=2, dash="dot"),
-            line(r([0, L * c]), r([0, L * s]), "rod", COLORS["ink"], width=5),
-            line(*circle(cx, cy, rad), "sphere", COLORS["body"], width=3, fill="toself"),
-            line(r([cx, cx + rad * math.cos(q + math.pi / 2)]), r([cy, cy + rad * math.sin(q + math.pi / 2)]),
+            line([0, round(L * c, 4)], [0, round(L * s, 4)], "rod", COLORS["ink"], width=5),
+            line(spheres_x[i], spheres_y[i], "sphere", COLORS["body"], width=3, fill="toself"),
+            line([round(cx, 4), round(cx - rad * s, 4)], [round(cy, 4), round(cy + rad * c, 4)],
                  "marked radius", COLORS["accent"], width=4),
             line(*arrow(cx, cy, -s * speed * v_scale * k, c * speed * v_scale * k), "velocity of the centre",
                  COLORS["velocity"], width=3),

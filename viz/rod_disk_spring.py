@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from solvers import rod_disk_spring as solver
-from viz.common import COLORS, Figure, animated, base_layout, circle, line, points, r, zigzag_spiral
+from viz.common import COLORS, Figure, animated, base_layout, circles, line, points, r, spirals
 
 
 def figures(solution, system: str = "si") -> list[Figure]:
@@ -19,19 +19,21 @@ def figures(solution, system: str = "si") -> list[Figure]:
                        "θ₂", COLORS["ground"], width=1, dash="dash")
     top = float(max((m["kinetic"] + m["gravity"] + m["spring"]).max(), 1e-9))
     frames = []
+    centre_x, centre_y = (L + R) * np.sin(m["theta"]), (L + R) * np.cos(m["theta"])
+    disks_x, disks_y = circles(centre_x, centre_y, R)
+    energy = r(np.stack([m["kinetic"], m["gravity"], m["spring"]], axis=1))
+    springs_x, springs_y = spirals(0.04 * reach, 0.16 * reach, 1.5 + m["theta"] / (2 * math.pi), math.pi / 2 - m["theta"])
     for i, q in enumerate(m["theta"]):
         s, c = math.sin(q), math.cos(q)
-        cx, cy = (L + R) * s, (L + R) * c
+        cx, cy = float(centre_x[i]), float(centre_y[i])
         spin = q if p["disk"] == "welded" else 0.0  # a pinned disk keeps its orientation
-        spring = zigzag_spiral(0, 0, 0.04 * reach, 0.16 * reach, 1.5 + q / (2 * math.pi), math.pi / 2 - q)
         frames.append([
-            line(*spring, "torsional spring", COLORS["force"], width=2),
-            line(r([0, L * s]), r([0, L * c]), "rod", COLORS["ink"], width=5),
-            line(*circle(cx, cy, R), "disk", COLORS["body"], width=3, fill="toself"),
-            line(r([cx, cx + R * math.sin(spin)]), r([cy, cy + R * math.cos(spin)]), "marked radius",
-                 COLORS["accent"], width=4),
-            {"type": "bar", "x": ["kinetic", "gravity", "spring"],
-             "y": r([m["kinetic"][i], m["gravity"][i], m["spring"][i]]),
+            line(springs_x[i], springs_y[i], "torsional spring", COLORS["force"], width=2),
+            line([0, round(L * s, 4)], [0, round(L * c, 4)], "rod", COLORS["ink"], width=5),
+            line(disks_x[i], disks_y[i], "disk", COLORS["body"], width=3, fill="toself"),
+            line([round(cx, 4), round(cx + R * math.sin(spin), 4)], [round(cy, 4), round(cy + R * math.cos(spin), 4)],
+                 "marked radius", COLORS["accent"], width=4),
+            {"type": "bar", "x": ["kinetic", "gravity", "spring"], "y": energy[i],
              "marker": {"color": [COLORS["velocity"], COLORS["body"], COLORS["force"]]},
              "name": "energy (J)", "xaxis": "x2", "yaxis": "y2", "showlegend": False, "hoverinfo": "skip"},
         ])

@@ -1,0 +1,78 @@
+"""Benchmark 1 and 3: server time per control change on every page, against an empty page with one
+slider measured in the same run; and each figure's JSON size.
+
+    python bench/interaction.py [--changes 25]
+
+Server time is AppTest's run after a widget change (the script run plus Streamlit's own work),
+median of distinct values, so no cache can answer for the page. Prints a Markdown table.
+"""
+from __future__ import annotations
+
+import argparse
+import importlib
+import statistics
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from streamlit.testing.v1 import AppTest  # noqa: E402
+
+CONTROLS = {  # page -> (widget key, default value, kind)
+    "disk_wall": ("disk_wall__si__V", 2.0, "number"),
+    "pendulum_rebound": ("pendulum_rebound__si__e", 0.6, "slider"),
+    "driven_cart": ("driven_cart__si__mu", 0.8, "number"),
+    "eulers_disk": ("eulers_disk__si__theta", 10.0, "slider"),
+    "stick_ball": ("stick_ball__si__v", 1.0, "number"),
+    "rod_disk_spring": ("rod_disk_spring__si__k", 20.0, "number"),
+}
+
+
+def widget(at, key, kind):
+    return at.slider(key=key) if kind == "slider" else at.number_input(key=key)
+
+
+def paired_changes(path: Path, key: str, start: float, kind: str, changes: int) -> tuple[float, float, float]:
+    """Alternate a change on the page with a change on the empty page, so that drift on a shared
+    machine hits both alike; returns (page median, empty median, median of the paired ratios)."""
+    page = AppTest.from_file(str(path), default_timeout=120).run()
+    empty = AppTest.from_file(str(ROOT / "bench" / "empty_page.py"), default_timeout=120).run()
+    page_times, empty_times = [], []
+    for i in range(1, changes + 1):
+        value = round(start * (1 - 0.3 * i / changes), 6) if kind == "slider" else start * (1 + 0.004 * i)
+        w = widget(page, key, kind)
+        began = time.perf_counter()
+        w.set_value(value).run()
+        page_times.append(time.perf_counter() - began)
+        assert not page.exception, page.exception
+        e = empty.slider(key="x")
+        began = time.perf_counter()
+        e.set_value(round(0.9 - 0.5 * i / changes, 6)).run()
+        empty_times.append(time.perf_counter() - began)
+    ratios = [p / e for p, e in zip(page_times, empty_times)]
+    return statistics.median(page_times), statistics.median(empty_times), statistics.median(ratios)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--changes", type=int, default=30)
+    args = parser.parse_args()
+    print("| page | median server time per change | empty page, same run | × empty page (median of pairs) |")
+    print("|---|---|---|---|")
+    worst = 0.0
+    for pid, (key, start, kind) in CONTROLS.items():
+        page, empty, ratio = paired_changes(ROOT / "pages" / f"{pid}.py", key, start, kind, args.changes)
+        worst = max(worst, ratio)
+        print(f"| {pid} | {page * 1000:.1f} ms | {empty * 1000:.1f} ms | {ratio:.2f} |")
+    print(f"\nworst ratio: {worst:.2f}")
+    print("\n| figure | frames | JSON size |\n|---|---|---|")
+    for pid in CONTROLS:
+        solution = importlib.import_module(f"solvers.{pid}").solve()
+        for fig in importlib.import_module(f"viz.{pid}").figures(solution):
+            print(f"| {pid}: {fig.key} | {len(fig.spec.get('frames', []))} | {len(fig.json_bytes()) / 1024:.0f} KB |")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,233 @@
+"""Benchmark 4, the lecture: hundreds of students open the same link, then each moves a control.
+
+    python bench/lecture_load.py [--sessions 200] [--join 20] [--changes 5] [--processes 1]
+                                 [--pages disk_wall ...]
+
+A load generator that speaks Streamlit's own websocket protocol (the protobuf messages in
+streamlit.proto): each session connects to /_stcore/stream, sends BackMsg.rerun_script for its
+page and reads ForwardMsgs until script_finished (first load), then moves one control ``changes``
+times, 2–4 s apart, sending the widget's new state (interaction). Hundreds of sessions run from
+one asyncio process. The same scenario runs against an empty one-slider app in the same run.
+Reports first-load and interaction latency (p50/p95/p99), errors, bytes per interaction and server
+memory per session. Loopback only, bounded in count and time.
+"""
+from __future__ import annotations
+
+import argparse
+import asyncio
+import os
+import random
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import websockets
+from streamlit.proto.BackMsg_pb2 import BackMsg
+from streamlit.proto.ForwardMsg_pb2 import ForwardMsg
+from streamlit.proto.WidgetStates_pb2 import WidgetState
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+from scripts.balancer_check import start_nginx  # noqa: E402
+from scripts.live_app import free_port, wait_healthy  # noqa: E402
+
+CONTROLS = {  # page -> (widget key suffix, start value, step per change)
+    "": ("x", 0.5, 0.01),  # the empty app's slider
+    "disk_wall": ("disk_wall__si__V", 2.0, 0.05),
+    "pendulum_rebound": ("pendulum_rebound__si__e", 0.6, -0.05),
+    "driven_cart": ("driven_cart__si__mu", 0.8, 0.02),
+    "eulers_disk": ("eulers_disk__si__theta", 10.0, 1.0),
+    "stick_ball": ("stick_ball__si__v", 1.0, 0.05),
+    "rod_disk_spring": ("rod_disk_spring__si__k", 20.0, 0.5),
+}
+SESSION_TIMEOUT = 120.0
+
+
+@dataclass
+class Results:
+    first_load: list[float] = field(default_factory=list)
+    interaction: list[float] = field(default_factory=list)
+    interaction_bytes: list[int] = field(default_factory=list)
+    errors: list[str] = field(default_factory=list)
+
+
+async def run_script(ws, page: str, widgets: list[WidgetState]) -> tuple[float, int, list[ForwardMsg]]:
+    msg = BackMsg()
+    msg.rerun_script.page_name = page
+    msg.rerun_script.query_string = ""
+    msg.rerun_script.widget_states.widgets.extend(widgets)
+    started = time.perf_counter()
+    await ws.send(msg.SerializeToString())
+    received, messages = 0, []
+    while True:
+        data = await asyncio.wait_for(ws.recv(), timeout=SESSION_TIMEOUT)
+        received += len(data)
+        forward = ForwardMsg()
+        forward.ParseFromString(data)
+        messages.append(forward)
+        if forward.HasField("script_finished") and forward.script_finished != ForwardMsg.FINISHED_EARLY_FOR_RERUN:
+            return time.perf_counter() - started, received, messages
+
+
+def widget_id(messages: list[ForwardMsg], key: str) -> tuple[str, str] | None:
+    """(id, kind) of the slider or number box whose key is ``key``."""
+    for forward in messages:
+        if forward.HasField("delta") and forward.delta.HasField("new_element"):
+            element = forward.delta.new_element
+            kind = element.WhichOneof("type")
+            if kind in ("slider", "number_input"):
+                wid = getattr(element, kind).id
+                if wid.endswith(key):
+                    return wid, kind
+    return None
+
+
+def widget_state(wid: str, kind: str, value: float) -> WidgetState:
+    state = WidgetState(id=wid)
+    if kind == "slider":  # a slider's value is an array (it may be a range)
+        state.double_array_value.data.append(value)
+    else:
+        state.double_value = value
+    return state
+
+
+async def session(url: str, page: str, delay: float, changes: int, results: Results, rng: random.Random) -> None:
+    await asyncio.sleep(delay)
+    key, value, step = CONTROLS[page]
+    try:
+        async with websockets.connect(url, subprotocols=["streamlit"], max_size=None, open_timeout=60,
+                                      ping_interval=None) as ws:
+            seconds, _, messages = await run_script(ws, page, [])
+            results.first_load.append(seconds)
+            found = widget_id(messages, key)
+            if found is None:
+                results.errors.append(f"no widget {key} on {page or 'empty'}")
+                return
+            wid, kind = found
+            for _ in range(changes):
+                await asyncio.sleep(rng.uniform(2.0, 4.0))
+                value = round(value + step, 6)
+                seconds, size, messages = await run_script(ws, page, [widget_state(wid, kind, value)])
+                if any(m.HasField("delta") and m.delta.HasField("new_element")
+                       and m.delta.new_element.WhichOneof("type") == "exception" for m in messages):
+                    results.errors.append("exception element")
+                results.interaction.append(seconds)
+                results.interaction_bytes.append(size)
+    except Exception as error:  # noqa: BLE001 - every failure is counted, none is fatal
+        results.errors.append(f"{type(error).__name__}: {error}"[:200])
+
+
+def rss_mb(pids: list[int]) -> float:
+    total = 0
+    for pid in pids:
+        try:
+            for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+                if line.startswith("VmRSS:"):
+                    total += int(line.split()[1])
+        except OSError:
+            pass
+    return total / 1024
+
+
+def percentile(values: list[float], q: float) -> float:
+    if not values:
+        return float("nan")
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, int(round(q / 100 * (len(ordered) - 1))))]
+
+
+def start_servers(app: Path, processes: int) -> tuple[list[subprocess.Popen], str, Path | None, subprocess.Popen | None]:
+    env = {**os.environ, "STREAMLIT_LOGGER_HIDE_WELCOME_MESSAGE": "true", "STREAMLIT_SERVER_COOKIE_SECRET": "bench"}
+    ports = [free_port() for _ in range(processes)]
+    procs = []
+    for port in ports:
+        cmd = ([sys.executable, str(ROOT / "serve.py")] if app.name == "app.py" else
+               [sys.executable, "-m", "streamlit", "run", str(app)])
+        procs.append(subprocess.Popen(cmd + ["--server.port", str(port), "--server.address", "127.0.0.1",
+                                             "--server.headless", "true", "--browser.gatherUsageStats", "false"],
+                                      cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+    for port, proc in zip(ports, procs):
+        wait_healthy(f"http://127.0.0.1:{port}", timeout=180, proc=proc)
+    if processes == 1:
+        return procs, f"ws://127.0.0.1:{ports[0]}/_stcore/stream", None, None
+    workdir = Path(tempfile.mkdtemp(prefix="dl-bench-nginx-"))
+    listen = free_port()
+    nginx = start_nginx(ports, listen, workdir)
+    return procs, f"ws://127.0.0.1:{listen}/_stcore/stream", workdir, nginx
+
+
+async def scenario(url: str, page: str, sessions: int, join: float, changes: int, pids: list[int]) -> tuple[Results, float]:
+    results = Results()
+    rng = random.Random(1234)
+    before = rss_mb(pids)
+    tasks = [asyncio.create_task(session(url, page, rng.uniform(0, join), changes, results, random.Random(i)))
+             for i in range(sessions)]
+    await asyncio.sleep(join + 1.0)
+    peak = rss_mb(pids)
+    await asyncio.wait_for(asyncio.gather(*tasks), timeout=join + changes * 4 + 2 * SESSION_TIMEOUT)
+    return results, (peak - before) / sessions
+
+
+def report(label: str, r: Results, mb_per_session: float) -> dict:
+    row = {
+        "page": label,
+        "first p50": percentile(r.first_load, 50), "first p95": percentile(r.first_load, 95),
+        "int p50": percentile(r.interaction, 50), "int p95": percentile(r.interaction, 95),
+        "int p99": percentile(r.interaction, 99), "errors": len(r.errors),
+        "interactions": len(r.interaction),
+        "KB/interaction": statistics.mean(r.interaction_bytes) / 1024 if r.interaction_bytes else float("nan"),
+        "MB/session": mb_per_session,
+    }
+    if r.errors:
+        print(f"  {label}: first errors: {r.errors[:3]}", file=sys.stderr)
+    return row
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--sessions", type=int, default=200)
+    parser.add_argument("--join", type=float, default=20.0)
+    parser.add_argument("--changes", type=int, default=5)
+    parser.add_argument("--processes", type=int, default=1)
+    parser.add_argument("--pages", nargs="*", default=[p for p in CONTROLS if p])
+    args = parser.parse_args()
+    rows = []
+    targets = [("empty page", ROOT / "bench" / "empty_app.py", "")] + [
+        (page, ROOT / "app.py", page) for page in args.pages]
+    for label, app, page in targets:
+        procs, url, workdir, nginx = start_servers(app, args.processes)
+        try:
+            results, mb = asyncio.run(scenario(url, page, args.sessions, args.join, args.changes, [p.pid for p in procs]))
+            rows.append(report(label, results, mb))
+            print(f"  done: {label}", file=sys.stderr)
+        finally:
+            if nginx:
+                nginx.terminate()
+            for proc in procs:
+                proc.terminate()
+            for proc in procs:
+                try:
+                    proc.wait(15)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+            if workdir:
+                shutil.rmtree(workdir, ignore_errors=True)
+    empty_p95 = rows[0]["int p95"]
+    print(f"\n{args.sessions} sessions joining over {args.join:g} s, {args.changes} changes each 2–4 s apart, "
+          f"{args.processes} process(es){' behind nginx' if args.processes > 1 else ''}\n")
+    print("| page | first load p50 / p95 | interaction p50 / p95 / p99 | p95 × empty | errors | KB per interaction | server MB per session |")
+    print("|---|---|---|---|---|---|---|")
+    for row in rows:
+        print(f"| {row['page']} | {row['first p50'] * 1000:.0f} / {row['first p95'] * 1000:.0f} ms | "
+              f"{row['int p50'] * 1000:.0f} / {row['int p95'] * 1000:.0f} / {row['int p99'] * 1000:.0f} ms | "
+              f"{row['int p95'] / empty_p95:.1f} | {row['errors']} ({row['interactions']} done) | "
+              f"{row['KB/interaction']:.0f} | {row['MB/session']:.2f} |")
+
+
+if __name__ == "__main__":
+    main()
