@@ -36,6 +36,11 @@ def warm() -> float:
             viz.figures(solution)
         if problem.id == "disk_wall":
             solver.solve(mu=0.01, omega=-40.0)  # the sliding regime's derivation
+    # The one costly on-request figure, for the textbook's numbers (shared by every session).
+    from ui.page import _requested
+
+    default = importlib.import_module("solvers.eulers_disk").solve()
+    _requested("eulers_disk", tuple(sorted(default.params.items())))
     return time.perf_counter() - started
 
 

@@ -96,9 +96,12 @@ def widget_state(wid: str, kind: str, value: float) -> WidgetState:
     return state
 
 
-async def session(url: str, page: str, delay: float, changes: int, results: Results, rng: random.Random) -> None:
+async def session(url: str, page: str, delay: float, changes: int, results: Results, rng: random.Random,
+                  spread: bool) -> None:
     await asyncio.sleep(delay)
     key, value, step = CONTROLS[page]
+    if spread:  # every student her own values: no two sessions ask for the same state
+        step = step * rng.uniform(0.05, 0.95)
     try:
         async with websockets.connect(url, subprotocols=["streamlit"], max_size=None, open_timeout=60,
                                       ping_interval=None) as ws:
@@ -161,12 +164,13 @@ def start_servers(app: Path, processes: int) -> tuple[list[subprocess.Popen], st
     return procs, f"ws://127.0.0.1:{listen}/_stcore/stream", workdir, nginx
 
 
-async def scenario(url: str, page: str, sessions: int, join: float, changes: int, pids: list[int]) -> tuple[Results, float]:
+async def scenario(url: str, page: str, sessions: int, join: float, changes: int, pids: list[int],
+                   spread: bool) -> tuple[Results, float]:
     results = Results()
     rng = random.Random(1234)
     before = rss_mb(pids)
-    tasks = [asyncio.create_task(session(url, page, rng.uniform(0, join), changes, results, random.Random(i)))
-             for i in range(sessions)]
+    tasks = [asyncio.create_task(session(url, page, rng.uniform(0, join), changes, results, random.Random(i),
+                                         spread)) for i in range(sessions)]
     await asyncio.sleep(join + 1.0)
     peak = rss_mb(pids)
     await asyncio.wait_for(asyncio.gather(*tasks), timeout=join + changes * 4 + 2 * SESSION_TIMEOUT)
@@ -195,6 +199,8 @@ def main() -> None:
     parser.add_argument("--changes", type=int, default=5)
     parser.add_argument("--processes", type=int, default=1)
     parser.add_argument("--pages", nargs="*", default=[p for p in CONTROLS if p])
+    parser.add_argument("--spread", action="store_true",
+                        help="each session moves its control by its own random steps (no shared states)")
     args = parser.parse_args()
     rows = []
     targets = [("empty page", ROOT / "bench" / "empty_app.py", "")] + [
@@ -202,7 +208,8 @@ def main() -> None:
     for label, app, page in targets:
         procs, url, workdir, nginx = start_servers(app, args.processes)
         try:
-            results, mb = asyncio.run(scenario(url, page, args.sessions, args.join, args.changes, [p.pid for p in procs]))
+            results, mb = asyncio.run(scenario(url, page, args.sessions, args.join, args.changes,
+                                               [p.pid for p in procs], args.spread))
             rows.append(report(label, results, mb))
             print(f"  done: {label}", file=sys.stderr)
         finally:
@@ -219,7 +226,8 @@ def main() -> None:
                 shutil.rmtree(workdir, ignore_errors=True)
     empty_p95 = rows[0]["int p95"]
     print(f"\n{args.sessions} sessions joining over {args.join:g} s, {args.changes} changes each 2–4 s apart, "
-          f"{args.processes} process(es){' behind nginx' if args.processes > 1 else ''}\n")
+          f"{args.processes} process(es){' behind nginx' if args.processes > 1 else ''}, "
+          f"{'each session its own values' if args.spread else 'the same values in every session'}\n")
     print("| page | first load p50 / p95 | interaction p50 / p95 / p99 | p95 × empty | errors | KB per interaction | server MB per session |")
     print("|---|---|---|---|---|---|---|")
     for row in rows:

@@ -200,10 +200,12 @@ def _checks(p, a) -> tuple[Check, ...]:
     vB_after = (a["v1x"] - R_ * a["omega1"], a["v1y"])
     work = (a["impulse_t"] * (vB_before[0] + vB_after[0]) + a["impulse_n"] * (vB_before[1] + vB_after[1])) / 2
     return (
-        Check("angular momentum about B", H_B_before, H_B_after, relative_tolerance(H_B_before, 1e-9),
+        Check("angular momentum about B", H_B_before, H_B_after,
+              relative_tolerance(I_C * abs(p["omega"]) + m_ * R_ * p["V"], 1e-9),
               "conserved: the wall's impulse acts at B, so it has no moment about B"),
         Check("linear momentum along x", m_ * (a["v1x"] - vx0), a["impulse_t"],
-              relative_tolerance(m_ * vx0, 1e-9), "changes by exactly the friction impulse"),
+              relative_tolerance(m_ * (p["V"] + R_ * abs(p["omega"])), 1e-9),
+              "changes by exactly the friction impulse"),
         Check("energy lost = −work of the impulse (Kelvin)", a["energy_loss"], -work,
               relative_tolerance(0.5 * m_ * p["V"] ** 2 + 0.5 * I_C * p["omega"] ** 2, 1e-9),
               "never negative; zero only for e = 1 with no slip work"),

@@ -165,6 +165,9 @@ def _checks(p, a) -> tuple[Check, ...]:
     dHdt = (H_later - H_earlier) / (2 * dt)
     torque = np.cross(r_AG, np.array([0.0, 0.0, p["m"] * p["g"]]))
     scale = p["m"] * p["g"] * p["r"]
+    from . import eulers_disk_dynamics as dynamics  # the full equations (Kane's method)
+
+    steady = dynamics.integrate_steady(p, a["omega_p"], periods=1.0)
     return (
         Check("contact point at rest: |ω × r_A/G|", 0.0, float(np.linalg.norm(np.cross(omega, r_AG))),
               relative_tolerance(a["omega_total"] * p["r"], 1e-9), "rolling without slip"),
@@ -172,6 +175,10 @@ def _checks(p, a) -> tuple[Check, ...]:
               relative_tolerance(a["energy"], 1e-9), "the steady state conserves energy"),
         Check("|M_G − dH_G/dt| (finite difference)", 0.0, float(np.linalg.norm(torque - dHdt)),
               1e-5 * scale, "balance of angular momentum about G, vector by vector"),
+        Check("tilt after one precession, Kane's equations integrated", p["theta"], p["theta"] + steady["tilt_drift"],
+              1e-8, "the full rolling-disk equations keep the steady state steady"),
+        Check("precession rate from Kane's equations", a["omega_p"], abs(steady["precession"][-1]),
+              relative_tolerance(a["omega_p"], 1e-7), "the same ω_p from the general equations of motion"),
     )
 
 

@@ -1,7 +1,9 @@
 """One problem page, the same for all six: controls -> solve -> answers, figure, derivation."""
 from __future__ import annotations
 
+import functools
 import importlib
+import math
 
 import streamlit as st
 
@@ -51,10 +53,42 @@ def _answers_for(solver, solution):
     return picker(solution.regime) if picker else solver.ANSWERS
 
 
-def _figures(problem: Problem, solution, system: str) -> None:
-    """The motion and its companion plots, each with the text a screen reader gets."""
+@functools.lru_cache(maxsize=256)
+def _computed(problem_id: str, key: tuple, system: str):
+    """Solution and figures for one state, shared by every session of this process: in a lecture
+    many students ask for the same numbers. Refusals (ValueError) are not cached."""
+    solution = BY_ID[problem_id].solver.solve(**dict(key))
+    figures = tuple(importlib.import_module(f"viz.{problem_id}").figures(solution, system))
+    for figure in figures:
+        figure.json_bytes()  # serialise once, here
+    return solution, figures
+
+
+def _solve_and_draw(problem: Problem, params: dict, system: str):
+    if any(isinstance(v, float) and math.isnan(v) for v in params.values()):
+        return problem.solver.solve(**params), ()  # refused with the solver's message
+    return _computed(problem.id, tuple(sorted(params.items())), system)
+
+
+def _on_request(problem: Problem, solution) -> None:
+    """A costly extra figure some problems offer (e.g. Euler's disk running down), drawn only when
+    asked for and cached by parameters across sessions."""
     viz = importlib.import_module(f"viz.{problem.id}")
-    for figure in viz.figures(solution, system):
+    if hasattr(viz, "on_request") and st.toggle(viz.on_request.__doc__.split(":")[0],
+                                                key=f"{problem.id}__on_request"):
+        with st.spinner("Integrating the equations of motion…"):
+            show_figure(_requested(problem.id, tuple(sorted(solution.params.items()))))
+
+
+@functools.lru_cache(maxsize=64)
+def _requested(problem_id: str, key: tuple):
+    solution = BY_ID[problem_id].solver.solve(**dict(key))
+    return importlib.import_module(f"viz.{problem_id}").on_request(solution)
+
+
+def _figures(figures) -> None:
+    """The motion and its companion plots, each with the text a screen reader gets."""
+    for figure in figures:
         show_figure(figure)  # title and text description are drawn with it
 
 
@@ -90,7 +124,7 @@ def problem_page(problem_id: str) -> None:
         if warning:
             st.warning(warning, icon=":material/link_off:")
     try:
-        solution = solver.solve(**params)
+        solution, figures = _solve_and_draw(problem, params, system)
     except ValueError as error:
         results.refused(error, system)
         return
@@ -101,10 +135,11 @@ def problem_page(problem_id: str) -> None:
         instructor_export(problem)
         return
     if lecture:
-        _figures(problem, solution, system)
+        _figures(figures)
     results.answer_section(solution, answers, system)
     if not lecture:
-        _figures(problem, solution, system)
+        _figures(figures)
+    _on_request(problem, solution)
     _derivation(solver, solution, numeric=True)
     if practice:
         instructor_export(problem)

@@ -32,7 +32,12 @@ class Figure:
     extra: dict = field(default_factory=dict)
 
     def json_bytes(self) -> bytes:
-        return orjson.dumps(self.spec, option=orjson.OPT_SERIALIZE_NUMPY)
+        """The figure as JSON, serialised once and kept (figures are shared between sessions)."""
+        cached = self.__dict__.get("_json")
+        if cached is None:
+            cached = orjson.dumps(self.spec, option=orjson.OPT_SERIALIZE_NUMPY)
+            object.__setattr__(self, "_json", cached)
+        return cached
 
     def json(self) -> str:
         return self.json_bytes().decode()

@@ -97,3 +97,26 @@ def _versus_tilt(solution) -> Figure:
                    "finite-time singularity.")
     return Figure("eulers_disk_versus_tilt", "As θ → 0: the contact whirls faster, the disk turns slower",
                   {"data": data, "layout": layout}, description, animated=False, height=400)
+
+
+def on_request(solution, damping: float = 5e-6) -> Figure:
+    """Letting it run down: the full equations with a resisting torque −c ω (costly: on request)."""
+    from solvers import eulers_disk_dynamics as dynamics
+
+    d = dynamics.decay(dict(solution.params), damping, t_max=120.0)
+    data = [
+        line(r(d["t"]), r(np.degrees(d["tilt"])), "tilt θ (°)", COLORS["body"], width=3),
+        line(r(d["t"]), r(d["precession"]), "precession rate ω_p (rad/s)", COLORS["impulse"], width=3,
+             yaxis="y2"),
+    ]
+    layout = base_layout(equal_axes=False, x_title="t (s)", y_title="tilt θ (°)", height=380)
+    layout["yaxis2"] = {"overlaying": "y", "side": "right", "title": {"text": "ω_p (rad/s)"}, "showgrid": False}
+    layout["margin"]["b"] = 60
+    layout["margin"]["r"] = 60
+    ending = (f"the tilt reaches 1° after {d['time_to_stop']:.0f} s" if d["reached"] else
+              f"after {d['time_to_stop']:.0f} s the tilt is {math.degrees(d['tilt'][-1]):.1f}°")
+    description = (f"Kane's equations of the rolling disk integrated with a resisting torque −cω (c = {damping:g} "
+                   f"N·m·s): energy drains, the disk settles and the contact whirls faster; {ending}, with ω_p "
+                   f"grown from {d['precession'][0]:.0f} to {d['precession'][-1]:.0f} rad/s.")
+    return Figure("eulers_disk_decay", "Letting it run down (full equations, with dissipation)",
+                  {"data": data, "layout": layout}, description, animated=False, height=380)
