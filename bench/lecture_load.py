@@ -169,12 +169,19 @@ async def scenario(url: str, page: str, sessions: int, join: float, changes: int
     results = Results()
     rng = random.Random(1234)
     before = rss_mb(pids)
+    samples = [before]
     tasks = [asyncio.create_task(session(url, page, rng.uniform(0, join), changes, results, random.Random(i),
                                          spread)) for i in range(sessions)]
-    await asyncio.sleep(join + 1.0)
-    peak = rss_mb(pids)
+
+    async def sample_memory():
+        while not all(t.done() for t in tasks):
+            samples.append(rss_mb(pids))
+            await asyncio.sleep(0.5)
+
+    sampler = asyncio.create_task(sample_memory())
     await asyncio.wait_for(asyncio.gather(*tasks), timeout=join + changes * 4 + 2 * SESSION_TIMEOUT)
-    return results, (peak - before) / sessions
+    await sampler
+    return results, max(0.0, max(samples) - before) / sessions
 
 
 def report(label: str, r: Results, mb_per_session: float) -> dict:

@@ -79,3 +79,28 @@ def test_finite_time_singularity_trend():
     assert small.answers["omega_p"] > large.answers["omega_p"]
     assert small.answers["omega_total"] < large.answers["omega_total"]
     assert small.answers["energy"] < large.answers["energy"]
+
+
+def test_kanes_equations_keep_the_steady_state_and_its_rate():
+    from solvers import eulers_disk_dynamics as dynamics
+
+    for tilt in (5, 10, 30, 60):
+        s = eulers_disk.solve(theta=math.radians(tilt))
+        steady = dynamics.integrate_steady(dict(s.params), s.answers["omega_p"], periods=2)
+        assert steady["tilt_drift"] < 1e-9
+        assert all(abs(abs(w) - s.answers["omega_p"]) < 1e-7 * s.answers["omega_p"] for w in steady["precession"])
+        assert abs(steady["yaw_turned"]) == pytest.approx(2 * 2 * math.pi, rel=1e-8)  # two precessions
+
+
+def test_dissipation_drains_energy_and_the_contact_whirls_faster():
+    from solvers import eulers_disk_dynamics as dynamics
+
+    params = dict(eulers_disk.solve(theta=math.radians(8)).params)
+    run = dynamics.decay(params, damping=4e-5, t_max=4.0)
+    energy = run["energy"]
+    assert all(b <= a * (1 + 1e-7) for a, b in zip(energy, energy[1:])), "energy never increases"
+    assert energy[-1] < 0.95 * energy[0]
+    assert run["tilt"][-1] < run["tilt"][0]
+    assert run["precession"][-1] > run["precession"][0]
+    undamped = dynamics.decay(params, damping=0.0, t_max=1.0)
+    assert undamped["energy"][-1] == pytest.approx(undamped["energy"][0], rel=1e-6)  # conserved without it
