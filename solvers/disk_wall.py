@@ -176,7 +176,7 @@ def _ledger(p, v) -> tuple[LedgerRow, ...]:
                   "reversed by the wall's normal impulse"),
         LedgerRow("angular momentum about B, I ω + m R v_x", I_C * p["omega"] + m_ * R_ * vx0,
                   I_C * v["omega1"] + m_ * R_ * v["v1x"], "angular_momentum",
-                  "conserved: the whole impulse acts at B"),
+                  "the whole impulse acts at B"),
         LedgerRow("kinetic energy", v["T_before"], v["T_after"], "energy", _energy_reason(p, v)),
     )
 
@@ -187,7 +187,7 @@ def _energy_reason(p, v) -> str:
         causes.append(f"restitution (e = {p['e']:g} < 1)")
     if abs(v["impulse_t"]) > 1e-12 * abs(v["impulse_n"]):
         causes.append("friction working against the slip at B")
-    return ("lost to " + " and ".join(causes)) if causes else "conserved: elastic, and no friction work"
+    return ("lost to " + " and ".join(causes)) if causes else "elastic, and no friction work"
 
 
 def _checks(p, a) -> tuple[Check, ...]:

@@ -42,7 +42,7 @@ PARAMS = (
 ANSWERS = (
     Answer("omega_p", "precession rate of the contact point", r"\omega_p", "angular_speed"),
     Answer("omega_s", "spin rate relative to the precessing frame", r"\omega_s", "angular_speed"),
-    Answer("omega_total", "magnitude of the disk's angular velocity", r"|\boldsymbol\omega|",
+    Answer("omega_total", "magnitude of the disk's angular velocity", r"\lvert\boldsymbol\omega\rvert",
            "angular_speed"),
     Answer("energy", "total energy (zero with the disk flat)", r"E", "energy"),
     Answer("contact_speed", "speed of the contact point around its circle", r"v_A", "speed"),

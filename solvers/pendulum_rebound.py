@@ -185,7 +185,7 @@ def solve(**params) -> Solution:
         LedgerRow("angular momentum about O, I_O θ̇", I * answers["omega_impact"], I * answers["omega_after"],
                   "angular_momentum", "the floor's impulse has a moment about O"),
         LedgerRow("kinetic energy", 0.5 * I * answers["omega_impact"] ** 2, 0.5 * I * answers["omega_after"] ** 2,
-                  "energy", "a fraction e² is kept" if p["e"] < 1 else "conserved: e = 1"),
+                  "energy", "a fraction e² is kept" if p["e"] < 1 else "elastic: e = 1"),
     )
     return Solution("pendulum_rebound", p, answers, tuple(steps), checks, p["surface"], notes, ledger,
                     extras={"bounce_peaks": bounces})

@@ -51,7 +51,7 @@ PARAMS = (
 )
 
 ANSWERS = (
-    Answer("omega2", "angular speed at θ₂", r"|\dot\theta_2|", "angular_speed"),
+    Answer("omega2", "angular speed at θ₂", r"\lvert\dot\theta_2\rvert", "angular_speed"),
     Answer("I_O", "moment of inertia about O (of what turns)", r"I_O", "inertia"),
     Answer("T2", "kinetic energy at θ₂", r"T_2", "energy"),
     Answer("U_gravity", "work done by gravity", r"U_g", "energy"),

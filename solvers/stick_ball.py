@@ -176,13 +176,13 @@ def _ledger(p, a) -> tuple[LedgerRow, ...]:
     I_stick = ms * l_**2 / 12
     return (
         LedgerRow("linear momentum", mb * v_, ms * v_mid + mb * v_ballpt, "impulse",
-                  "conserved: the frictionless table gives no horizontal impulse"),
+                  "the frictionless table gives no horizontal impulse"),
         LedgerRow("angular momentum about the stick's midpoint", mb * v_ * s_,
                   I_stick * a["omega"] + mb * v_ballpt * s_, "angular_momentum",
-                  "conserved: no external moment about any fixed point"),
+                  "no external moment about any fixed point"),
         LedgerRow("kinetic energy", a["T_before"], a["T_after"], "energy",
                   "lost: the ball attaches (perfectly plastic)" if p["mode"] == "stick" else
-                  ("conserved: e = 1" if a["energy_loss"] <= 1e-12 * a["T_before"] else
+                  ("elastic: e = 1" if a["energy_loss"] <= 1e-12 * a["T_before"] else
                    f"lost: restitution e = {p['e']:g} < 1")),
     )
 

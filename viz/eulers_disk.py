@@ -81,22 +81,23 @@ def _versus_tilt(solution) -> Figure:
         line(r(deg), r(curves["omega_total"]), "|ω|, the disk's own rotation (rad/s)", COLORS["body"], width=3,
              dash="dash"),
         line(r(deg), r(curves["energy"] * 1000), "energy (mJ)", COLORS["velocity"], width=3, dash="dot",
-             yaxis="y2"),
+             xaxis="x2", yaxis="y2"),
         {"type": "scatter", "mode": "markers", "x": r([math.degrees(p["theta"])]),
          "y": r([solution.answers["omega_p"]]), "name": "this tilt", "hoverinfo": "skip",
          "marker": {"color": COLORS["marker"], "size": 12, "line": {"width": 1, "color": "#222"}}},
     ]
-    layout = base_layout(equal_axes=False, x_title="tilt θ (°)", y_title="rate (rad/s, log scale)", height=400)
-    layout["yaxis"]["type"] = "log"
-    layout["yaxis2"] = {"overlaying": "y", "side": "right", "title": {"text": "energy (mJ)"}, "showgrid": False,
-                        "type": "linear", "rangemode": "tozero"}
+    layout = base_layout(equal_axes=False, x_title="", y_title="rate (rad/s, log)", height=460)
+    layout["yaxis"].update({"type": "log", "domain": [0.42, 1.0]})
+    layout["xaxis"].update({"matches": "x2", "showticklabels": False})
+    layout["xaxis2"] = {"anchor": "y2", "title": {"text": "tilt θ (°)"}}
+    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.32], "title": {"text": "energy (mJ)"}, "rangemode": "tozero"}
     layout["margin"]["b"] = 60
     layout["margin"]["r"] = 60
     description = ("As the tilt θ falls toward 0, the precession rate ω_p grows without bound while the disk's "
                    "own angular velocity and the energy (3/2 m g r sin θ) shrink to zero: Moffatt's "
                    "finite-time singularity.")
     return Figure("eulers_disk_versus_tilt", "As θ → 0: the contact whirls faster, the disk turns slower",
-                  {"data": data, "layout": layout}, description, animated=False, height=400)
+                  {"data": data, "layout": layout}, description, animated=False, height=460)
 
 
 def on_request(solution, damping: float = 5e-6) -> Figure:
