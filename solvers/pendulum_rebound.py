@@ -202,33 +202,23 @@ def bounce_sequence(p, answers, count: int = 4) -> list[float]:
     return [math.asin(s_I + p["e"] ** (2 * n) * (s_0 - s_I)) for n in range(1, count + 1)]
 
 
-def simulate(p, answers, bounces: int = 3, samples_per_leg: int = 0):
+def simulate(p, answers, bounces: int = 3):
     """θ(t) through ``bounces`` impacts by direct integration of I_O θ̈ = −Q cos θ.
 
     Returns (t, θ, θ̇, impacts, legs) with the legs in order: the fall from rest, then after each
     impact the rise to the peak and the fall back. The first fall and every rise are integrated
     from their start states (a second method for the closed-form impact speed and rebound
     angles); each later fall is the rise mirrored in time (the swing is conservative). The legs
-    are cached, so the checks and the animation share one integration. ``samples_per_leg`` is
-    kept for callers that want evenly spaced samples on each leg.
+    are cached, so the checks and the animation share one integration.
     """
     key = tuple(sorted((k, v) for k, v in p.items())) + (("I_O", answers["I_O"]),
                                                            ("theta_impact", answers["theta_impact"]))
     legs = _legs(key, bounces)
-    if samples_per_leg:
-        legs = tuple(_resampled(leg, samples_per_leg) for leg in legs)
     impacts = [(leg.end[0], leg.end[2]) for leg in legs[0::2]]
     t = np.concatenate([leg.t for leg in legs])
     q = np.concatenate([leg.theta for leg in legs])
     w = np.concatenate([leg.omega for leg in legs])
     return t, q, w, impacts, list(legs)
-
-
-def _resampled(leg, samples: int):
-    even = np.linspace(leg.t[0], leg.t[-1], samples)
-    theta, omega = np.interp(even, leg.t, leg.theta), np.interp(even, leg.t, leg.omega)
-    theta[-1], omega[-1] = leg.theta[-1], leg.omega[-1]
-    return type(leg)(even, theta, omega, leg.ended_by_event)
 
 
 @functools.lru_cache(maxsize=256)

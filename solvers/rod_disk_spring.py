@@ -199,27 +199,22 @@ def equation_of_motion(p, I: float):
     return lambda q: (Q * math.sin(q) - k_ * q) / I
 
 
-def simulate(p, answers, t_max: float | None = None, samples: int = 200):
-    """θ(t) from release until the swing turns (or after t_max), integrated: to θ2 first (the
-    second method's leg), then on from there, so checks and animation share one integration."""
-    to_theta2, beyond = _legs(tuple(sorted(p.items())) + (("I_O", answers["I_O"]),), t_max)
+def simulate(p, answers) -> Leg:
+    """θ(t) from release until the swing turns, integrated: to θ2 first (the second method's
+    leg), then on from there, so checks and animation share one integration."""
+    to_theta2, beyond = _legs(tuple(sorted(p.items())) + (("I_O", answers["I_O"]),))
     if beyond is None:
-        leg = to_theta2
-    else:
-        leg = Leg(np.concatenate([to_theta2.t, beyond.t[1:]]), np.concatenate([to_theta2.theta, beyond.theta[1:]]),
-                  np.concatenate([to_theta2.omega, beyond.omega[1:]]), beyond.ended_by_event)
-    if samples:
-        even = np.linspace(leg.t[0], leg.t[-1], samples)
-        return Leg(even, np.interp(even, leg.t, leg.theta), np.interp(even, leg.t, leg.omega), leg.ended_by_event)
-    return leg
+        return to_theta2
+    return Leg(np.concatenate([to_theta2.t, beyond.t[1:]]), np.concatenate([to_theta2.theta, beyond.theta[1:]]),
+               np.concatenate([to_theta2.omega, beyond.omega[1:]]), beyond.ended_by_event)
 
 
 @functools.lru_cache(maxsize=256)
-def _legs(key: tuple, t_max: float | None):
+def _legs(key: tuple):
     """(release → θ2, θ2 → turning point), each integrated once and cached."""
     p = dict(key)
     acc = equation_of_motion(p, p["I_O"])
-    horizon = t_max or 200 * math.sqrt(p["I_O"] / weight_moment(p)) + 10
+    horizon = 200 * math.sqrt(p["I_O"] / weight_moment(p)) + 10
     first = integrate_leg(acc, p["theta1"], _start_rate(p["theta1"]), 0.0, horizon,
                           stop_at_angle=p["theta2"], direction=1)
     if not first.ended_by_event:
@@ -231,7 +226,7 @@ def _legs(key: tuple, t_max: float | None):
 
 def _checks(p, a) -> tuple[Check, ...]:
     omega0 = _start_rate(p["theta1"])
-    leg, _ = _legs(tuple(sorted(p.items())) + (("I_O", a["I_O"]),), None)
+    leg, _ = _legs(tuple(sorted(p.items())) + (("I_O", a["I_O"]),))
     integrated = leg.end[2] if leg.ended_by_event else float("nan")
     return (
         Check(f"θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ (start nudge {NUDGE:g} rad/s)"
@@ -249,7 +244,7 @@ def motion(solution: Solution, frames: int = 54) -> dict:
     gravitational (zero with the assembly hanging straight down) and spring. The fall is
     integrated once; the system is conservative, so the return is its mirror in time."""
     p, a = solution.params, solution.answers
-    half = simulate(p, a, samples=0)
+    half = simulate(p, a)
     if half.ended_by_event:
         turn = half.t[-1]
         t = np.concatenate([half.t, 2 * turn - half.t[-2::-1]])

@@ -12,14 +12,7 @@ from practice.variants import MAX_SEED, variants_csv
 from solvers.core import Solution
 from ui import units
 from ui.catalog import Problem
-
-_MARKDOWN_SPECIAL = re.compile(r"([\\`*_{}\[\]()#+!|<>~$-])")
-
-
-def plain(text: str) -> str:
-    """Text shown literally inside Streamlit's Markdown (no links, images or formatting)."""
-    return _MARKDOWN_SPECIAL.sub(r"\\\1", text)
-
+from ui.results import plain
 
 def seed_from_url() -> tuple[int | None, str | None]:
     raw = st.query_params.get("seed")

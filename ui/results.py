@@ -36,17 +36,18 @@ def answers_table(solution: Solution, answers: tuple[Answer, ...], system: str) 
     return "\n".join(rows)
 
 
-_MARKDOWN_SPECIAL = re.compile(r"([\\`*_{}\[\]#+!|<>~$])")
+_MARKDOWN_SPECIAL = re.compile(r"([\\`*_{}\[\]()#+!|<>~$-])")
 
 
-def _escaped(text: str) -> str:
+def plain(text: str) -> str:
+    """Text shown literally inside Streamlit's Markdown: no links, images, formatting or math."""
     return _MARKDOWN_SPECIAL.sub(r"\\\1", text)
 
 
 def derivation(solution: Solution, symbolic_only: bool = False) -> None:
     """All steps in one Markdown element (display math in $$ … $$): one element, not two per step."""
     steps = solution.steps[: solution.symbolic_steps] if symbolic_only else solution.steps
-    blocks = [f"**{i}.** {_escaped(step.title)}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(steps, start=1)]
+    blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(steps, start=1)]
     st.markdown("\n\n".join(blocks))
 
 
