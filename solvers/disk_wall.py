@@ -226,7 +226,7 @@ def _notes(p, a, regime, slip_before) -> tuple[str, ...]:
     return (note,)
 
 
-def motion(solution: Solution, frames: int = 45) -> dict:
+def motion(solution: Solution, frames: int = 40) -> dict:
     """Centre path and rotation through the impact (the impact at t = 0, the centre then at the
     origin and the wall at y = R): straight lines at the velocities before and after."""
     p, a = solution.params, solution.answers

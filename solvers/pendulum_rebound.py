@@ -257,7 +257,7 @@ def _checks(p, a) -> tuple[Check, ...]:
     return tuple(checks)
 
 
-def motion(solution: Solution, frames: int = 72, bounces: int = 3) -> dict:
+def motion(solution: Solution, frames: int = 60, bounces: int = 3) -> dict:
     """θ(t) and θ̇(t) through several bounces, integrated, resampled evenly in time."""
     t, q, w, impacts, _ = simulate(solution.params, solution.answers, bounces=bounces)
     t_even = np.linspace(t[0], t[-1], frames)

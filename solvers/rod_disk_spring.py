@@ -239,7 +239,7 @@ def _checks(p, a) -> tuple[Check, ...]:
     )
 
 
-def motion(solution: Solution, frames: int = 54) -> dict:
+def motion(solution: Solution, frames: int = 45) -> dict:
     """The whole swing from release and back, with the energy split per frame: kinetic,
     gravitational (zero with the assembly hanging straight down) and spring. The fall is
     integrated once; the system is conservative, so the return is its mirror in time."""

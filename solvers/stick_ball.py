@@ -213,7 +213,7 @@ def _checks(p, a) -> tuple[Check, ...]:
     )
 
 
-def motion(solution: Solution, frames: int = 54) -> dict:
+def motion(solution: Solution, frames: int = 45) -> dict:
     """Top view (stick along y at x = 0, ball approaching along +x at y = s; impact at t = 0).
     After the impact the body turns clockwise (the ball's angular momentum is −z)."""
     p, a = solution.params, solution.answers

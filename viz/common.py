@@ -49,15 +49,15 @@ def r(values) -> np.ndarray:
     return np.round(np.asarray(values, dtype=float), DIGITS)
 
 
-_UNIT = {n: (np.cos(np.linspace(0, 2 * np.pi, n)), np.sin(np.linspace(0, 2 * np.pi, n))) for n in (24, 28, 40)}
+_UNIT = {n: (np.cos(np.linspace(0, 2 * np.pi, n)), np.sin(np.linspace(0, 2 * np.pi, n))) for n in (24, 28, 32)}
 
 
-def circle(cx: float, cy: float, radius: float, n: int = 40) -> tuple[np.ndarray, np.ndarray]:
+def circle(cx: float, cy: float, radius: float, n: int = 32) -> tuple[np.ndarray, np.ndarray]:
     c, s = _UNIT[n]
     return r(cx + radius * c), r(cy + radius * s)
 
 
-def circles(cx, cy, radius: float, n: int = 40) -> tuple[np.ndarray, np.ndarray]:
+def circles(cx, cy, radius: float, n: int = 32) -> tuple[np.ndarray, np.ndarray]:
     """Circles of one radius at many centres (one row each), computed and rounded at once."""
     c, s = _UNIT[n]
     return r(np.asarray(cx)[:, None] + radius * c), r(np.asarray(cy)[:, None] + radius * s)
