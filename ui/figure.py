@@ -9,6 +9,7 @@ buttons that work from the keyboard (Space, ← →).
 from __future__ import annotations
 
 import shutil
+import threading
 from pathlib import Path
 
 import plotly
@@ -26,11 +27,22 @@ def _ensure_plotly_js() -> None:
         shutil.copyfile(_PLOTLY_JS, target)
 
 
-_ensure_plotly_js()
-_component = components.declare_component("dynamics_lab_figure", path=str(_DIR))
+_lock = threading.Lock()
+_component = None
+
+
+def _declared():
+    """Declare the component on first use, inside a running app: a declaration made before the
+    runtime exists (serve.py imports this module while warming up) would not be registered."""
+    global _component
+    with _lock:
+        if _component is None:
+            _ensure_plotly_js()
+            _component = components.declare_component("dynamics_lab_figure", path=str(_DIR))
+        return _component
 
 
 def show(figure: Figure) -> None:
     # Bytes travel as a binary argument: no second JSON encoding of the figure by Streamlit.
-    _component(spec=figure.json_bytes(), height=figure.height, title=figure.title,
-               description=figure.description, key=figure.key, default=None)
+    _declared()(spec=figure.json_bytes(), height=figure.height, title=figure.title,
+                description=figure.description, key=figure.key, default=None)
