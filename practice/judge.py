@@ -88,6 +88,8 @@ class Judge:
         inputs = dict(solution.params) | dict(solution.extras.get("chain_inputs", {}))
         self.values = {name: float(v) for name, v in derivation.evaluate(inputs).items()
                        if isinstance(v, (int, float)) and not isinstance(v, bool)}
+        self.symbols = derivation.symbols  # name -> sympy symbol, parameters and results
+        self.by_symbol = {self.symbols[n]: v for n, v in self.values.items() if n in self.symbols}
 
     # -- what students may type
     def typeable_symbols(self) -> dict[str, sp.Symbol]:
@@ -95,7 +97,7 @@ class Judge:
         where that can be typed (theta, I_O, v_1x ...), and every result also under its answer name
         (omega_impact, N_front ...). Values are the chain's symbols or stand-ins for them."""
         out: dict[str, sp.Symbol] = {}
-        for name, sym in self.derivation.symbols.items():
+        for name, sym in self.symbols.items():
             ascii_spellings = sorted((k for k in _symbol_table([sym]) if re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", k)),
                                      key=lambda k: ("_" not in k, len(k)))
             if ascii_spellings:
@@ -108,8 +110,8 @@ class Judge:
         """Parse typed text into an expression over the chain's own symbols."""
         table = self.typeable_symbols()
         expr = parse_expression(text, table.values())
-        stand_ins = {stand_in: self.derivation.symbols[name] for name, stand_in in table.items()
-                     if name in self.derivation.symbols and stand_in is not self.derivation.symbols[name]}
+        stand_ins = {stand_in: self.symbols[name] for name, stand_in in table.items()
+                     if name in self.symbols and stand_in is not self.symbols[name]}
         return expr.subs(stand_ins)
 
     # -- judging
@@ -191,9 +193,8 @@ class Judge:
 
     def _value_of(self, expr: sp.Expr) -> float | None:
         expr = self.derivation.in_parameters(expr)
-        subs = {self.derivation.symbols[n]: v for n, v in self.values.items() if n in self.derivation.symbols}
         try:
-            value = complex(sp.N(expr.subs(subs), 15))
+            value = complex(sp.N(expr.subs(self.by_symbol), 15))
         except (TypeError, ValueError, ZeroDivisionError):
             return None
         return value.real if abs(value.imag) < 1e-12 and math.isfinite(value.real) else None
@@ -226,7 +227,7 @@ class Judge:
         """Equal at the student's parameters and at 7 random points near them (8 trials, at least
         3 of them defined)."""
         free = sorted((a.free_symbols | b.free_symbols), key=lambda s: s.name)
-        by_symbol = {self.derivation.symbols[n]: v for n, v in self.values.items() if n in self.derivation.symbols}
+        by_symbol = self.by_symbol
         if any(s not in by_symbol for s in free):
             return False
         try:

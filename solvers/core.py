@@ -6,6 +6,7 @@ equations once per process with sympy, and hands the result chain to :class:`Der
 """
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 import re
@@ -369,21 +370,24 @@ class Derivation:
         """Every symbol of the chain by name: the parameters' and the results'."""
         return dict(self._symbols) | {link.name: link.symbol for link in self.chain}
 
-    def expression_of(self, name: str) -> sp.Expr:
-        """Result ``name`` as an expression in the parameters alone (earlier results substituted)."""
+    @functools.cached_property
+    def _in_parameters(self) -> dict[sp.Symbol, sp.Expr]:
+        """Each result's symbol -> its expression in the parameters alone (built once)."""
         full: dict[sp.Symbol, sp.Expr] = {}
         for link in self.chain:
             full[link.symbol] = link.expr.subs(full)
-            if link.name == name:
-                return full[link.symbol]
-        raise KeyError(name)
+        return full
+
+    def expression_of(self, name: str) -> sp.Expr:
+        """Result ``name`` as an expression in the parameters alone (earlier results substituted)."""
+        link = next((link for link in self.chain if link.name == name), None)
+        if link is None:
+            raise KeyError(name)
+        return self._in_parameters[link.symbol]
 
     def in_parameters(self, expr: sp.Expr) -> sp.Expr:
         """``expr``, which may use result symbols, rewritten in the parameters alone."""
-        full: dict[sp.Symbol, sp.Expr] = {}
-        for link in self.chain:
-            full[link.symbol] = link.expr.subs(full)
-        return expr.subs(full)
+        return expr.subs(self._in_parameters)
 
     def vectorized(self, name: str) -> Callable[..., np.ndarray]:
         """Result ``name`` as a numpy function of the parameters (keyword arguments, arrays

@@ -166,19 +166,22 @@ def solve(**params) -> Solution:
 
 
 def _ledger(p, v) -> tuple[LedgerRow, ...]:
-    m_, R_ = p["m"], p["R"]
-    I_C = 0.5 * m_ * R_**2
+    m_ = p["m"]
     vx0, vy0 = p["V"] * math.sin(p["theta"]), p["V"] * math.cos(p["theta"])
     return (
         LedgerRow("momentum along the wall, m v_x", m_ * vx0, m_ * v["v1x"], "impulse",
                   "changed by the friction impulse P_t" if v["impulse_t"] else "no friction impulse"),
         LedgerRow("momentum into the wall, m v_y", m_ * vy0, m_ * v["v1y"], "impulse",
                   "reversed by the wall's normal impulse"),
-        LedgerRow("angular momentum about B, I ω + m R v_x", I_C * p["omega"] + m_ * R_ * vx0,
-                  I_C * v["omega1"] + m_ * R_ * v["v1x"], "angular_momentum",
-                  "the whole impulse acts at B"),
+        LedgerRow("angular momentum about B, I ω + m R v_x", _H_B(p, p["omega"], vx0),
+                  _H_B(p, v["omega1"], v["v1x"]), "angular_momentum", "the whole impulse acts at B"),
         LedgerRow("kinetic energy", v["T_before"], v["T_after"], "energy", _energy_reason(p, v)),
     )
+
+
+def _H_B(p, omega, vx) -> float:
+    """Angular momentum about the contact point B: I_C ω + m R v_x (C is R below B)."""
+    return 0.5 * p["m"] * p["R"] ** 2 * omega + p["m"] * p["R"] * vx
 
 
 def _energy_reason(p, v) -> str:
@@ -193,8 +196,7 @@ def _energy_reason(p, v) -> str:
 def _checks(p, a) -> tuple[Check, ...]:
     m_, R_, I_C = p["m"], p["R"], 0.5 * p["m"] * p["R"] ** 2
     vx0, vy0 = p["V"] * math.sin(p["theta"]), p["V"] * math.cos(p["theta"])
-    H_B_before = I_C * p["omega"] + m_ * R_ * vx0
-    H_B_after = I_C * a["omega1"] + m_ * R_ * a["v1x"]
+    H_B_before, H_B_after = _H_B(p, p["omega"], vx0), _H_B(p, a["omega1"], a["v1x"])
     # Kelvin's theorem: the work of an impulse is P · (v_B⁻ + v_B⁺)/2 at its point of action.
     vB_before = (vx0 - R_ * p["omega"], vy0)
     vB_after = (a["v1x"] - R_ * a["omega1"], a["v1y"])

@@ -16,6 +16,7 @@ import math
 import numpy as np
 import sympy as sp
 
+from . import eulers_disk_dynamics as dynamics  # the full equations (Kane's method)
 from .core import (
     Answer,
     Check,
@@ -154,9 +155,7 @@ def _checks(p, a) -> tuple[Check, ...]:
     """Second method: numpy vectors in the fixed frame at an arbitrary phase, with the inertia
     tensor built from the principal moments, and dH/dt by finite rotation of the frame."""
     omega, n, r_AG = body_state(p, a, phase=0.7)
-    I_axis, I_diam = p["m"] * p["r"] ** 2 / 2, p["m"] * p["r"] ** 2 / 4
-    inertia = I_diam * np.eye(3) + (I_axis - I_diam) * np.outer(n, n)
-    H = inertia @ omega
+    H = _H_at(p, a, 0.7)
     kinetic = 0.5 * omega @ H
     potential = p["m"] * p["g"] * p["r"] * math.sin(p["theta"])
     dt = 1e-6 / a["omega_p"]
@@ -165,8 +164,6 @@ def _checks(p, a) -> tuple[Check, ...]:
     dHdt = (H_later - H_earlier) / (2 * dt)
     torque = np.cross(r_AG, np.array([0.0, 0.0, p["m"] * p["g"]]))
     scale = p["m"] * p["g"] * p["r"]
-    from . import eulers_disk_dynamics as dynamics  # the full equations (Kane's method)
-
     steady = dynamics.integrate_steady(p, a["omega_p"], periods=1.0)
     return (
         Check("contact point at rest: |ω × r_A/G|", 0.0, float(np.linalg.norm(np.cross(omega, r_AG))),

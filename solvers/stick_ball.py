@@ -167,18 +167,27 @@ def solve(**params) -> Solution:
                     _ledger(p, answers))
 
 
-def _ledger(p, a) -> tuple[LedgerRow, ...]:
-    mb, ms, l_, v_, s_ = p["m_ball"], p["m_stick"], p["l"], p["v"], p["s"]
+def _momenta(p, a) -> tuple[float, float, float, float]:
+    """Linear momentum, and angular momentum about the stick's midpoint (a fixed point in the table
+    frame, where the stick starts), before and after, from the separate bodies' velocities."""
+    mb, ms, v_, s_ = p["m_ball"], p["m_stick"], p["v"], p["s"]
     if p["mode"] == "stick":
-        v_mid, v_ballpt = a["v_cm"] - a["omega"] * a["d_cm"], a["v_cm"] + a["omega"] * (s_ - a["d_cm"])
+        # Rigid-body kinematics: a point at arm y from the midpoint moves at v_cm + ω (y − d_cm).
+        v_mid = a["v_cm"] + a["omega"] * (0 - a["d_cm"])
+        v_ballpt = a["v_cm"] + a["omega"] * (s_ - a["d_cm"])
     else:
         v_mid, v_ballpt = a["v_stick"], a["v_ball"]
-    I_stick = ms * l_**2 / 12
+    I_stick = ms * p["l"] ** 2 / 12
+    # the ball passes at arm s from the midpoint (sign: +E_z)
+    return mb * v_, ms * v_mid + mb * v_ballpt, mb * v_ * s_, I_stick * a["omega"] + mb * v_ballpt * s_
+
+
+def _ledger(p, a) -> tuple[LedgerRow, ...]:
+    p_before, p_after, H_before, H_after = _momenta(p, a)
     return (
-        LedgerRow("linear momentum", mb * v_, ms * v_mid + mb * v_ballpt, "impulse",
+        LedgerRow("linear momentum", p_before, p_after, "impulse",
                   "the frictionless table gives no horizontal impulse"),
-        LedgerRow("angular momentum about the stick's midpoint", mb * v_ * s_,
-                  I_stick * a["omega"] + mb * v_ballpt * s_, "angular_momentum",
+        LedgerRow("angular momentum about the stick's midpoint", H_before, H_after, "angular_momentum",
                   "no external moment about any fixed point"),
         LedgerRow("kinetic energy", a["T_before"], a["T_after"], "energy",
                   "lost: the ball attaches (perfectly plastic)" if p["mode"] == "stick" else
@@ -188,20 +197,9 @@ def _ledger(p, a) -> tuple[LedgerRow, ...]:
 
 
 def _checks(p, a) -> tuple[Check, ...]:
-    """Second method: momentum and angular momentum about the stick's midpoint (a fixed point in
-    the table frame, where the stick starts), computed from the separate bodies after impact."""
-    mb, ms, L_, v_, s_ = p["m_ball"], p["m_stick"], p["l"], p["v"], p["s"]
-    I_stick = ms * L_**2 / 12
-    p_before = mb * v_
-    H_before = mb * v_ * s_  # the ball passes at arm s from the midpoint (sign: +E_z)
-    if p["mode"] == "stick":
-        # Rigid-body kinematics: a point at arm y from the midpoint moves at v_cm + ω (y − d_cm).
-        v_mid = a["v_cm"] + a["omega"] * (0 - a["d_cm"])
-        v_ballpt = a["v_cm"] + a["omega"] * (s_ - a["d_cm"])
-    else:
-        v_mid, v_ballpt = a["v_stick"], a["v_ball"]
-    p_after = ms * v_mid + mb * v_ballpt
-    H_after = I_stick * a["omega"] + mb * v_ballpt * s_
+    """Second method: momentum and angular momentum about the stick's midpoint, computed from the
+    separate bodies after impact."""
+    p_before, p_after, H_before, H_after = _momenta(p, a)
     return (
         Check("linear momentum", p_before, p_after, relative_tolerance(p_before, 1e-9),
               "the table exerts no horizontal impulse"),
