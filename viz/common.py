@@ -4,7 +4,6 @@ drawn comes from a solver. Coordinates are rounded so equal inputs give byte-equ
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
@@ -49,48 +48,65 @@ def r(values) -> np.ndarray:
     return np.round(np.asarray(values, dtype=float), DIGITS)
 
 
+# Shapes for every frame at once: each returns (x, y) arrays with one row per frame, rounded, which
+# orjson writes straight from numpy (a row of a C-ordered array is contiguous).
+
 _UNIT = {n: (np.cos(np.linspace(0, 2 * np.pi, n)), np.sin(np.linspace(0, 2 * np.pi, n))) for n in (24, 28, 32)}
 
 
-def circle(cx: float, cy: float, radius: float, n: int = 32) -> tuple[np.ndarray, np.ndarray]:
-    c, s = _UNIT[n]
-    return r(cx + radius * c), r(cy + radius * s)
-
-
 def circles(cx, cy, radius: float, n: int = 32) -> tuple[np.ndarray, np.ndarray]:
-    """Circles of one radius at many centres (one row each), computed and rounded at once."""
+    """Circles of one radius at many centres (one row each)."""
     c, s = _UNIT[n]
-    return r(np.asarray(cx)[:, None] + radius * c), r(np.asarray(cy)[:, None] + radius * s)
+    return r(np.asarray(cx, dtype=float)[:, None] + radius * c), r(np.asarray(cy, dtype=float)[:, None] + radius * s)
 
 
-def _round(v: float | None):
-    return None if v is None or not math.isfinite(v) else round(v, DIGITS)
+def column(values) -> np.ndarray:
+    """One point per frame: an (n, 1) array."""
+    return r(values).reshape(-1, 1)
 
 
-def arrow(x0: float, y0: float, dx: float, dy: float, head: float | None = None) -> tuple[list, list]:
-    """An arrow as one polyline: shaft, a gap, then a V-shaped head. Empty when too short."""
-    length = math.hypot(dx, dy)
-    if length < 1e-12:
-        return [], []
-    head = min(head or 0.25 * length, 0.45 * length)
-    ux, uy = dx / length, dy / length
+def segments(x0, y0, x1, y1) -> tuple[np.ndarray, np.ndarray]:
+    """A straight segment per frame from (x0, y0) to (x1, y1); scalars stand for every frame."""
+    x0, x1, y0, y1 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x0, x1, y0, y1)))
+    return r(np.stack([x0, x1], axis=1)), r(np.stack([y0, y1], axis=1))
+
+
+def arrows(x0, y0, dx, dy, head: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """An arrow per frame as one polyline: shaft, a gap, then a V-shaped head (a quarter of the
+    length, at most 0.45 of it). A frame whose arrow has no length draws nothing."""
+    x0, y0, dx, dy = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float)) for v in (x0, y0, dx, dy)))
+    length = np.hypot(dx, dy)
+    none = length < 1e-12
+    h = np.minimum(0.25 * length if head is None else head, 0.45 * length)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ux, uy = dx / length, dy / length
     x1, y1 = x0 + dx, y0 + dy
     wing = 0.5
-    lx, ly = x1 - head * (ux - wing * uy), y1 - head * (uy + wing * ux)
-    rx, ry = x1 - head * (ux + wing * uy), y1 - head * (uy - wing * ux)
-    return [_round(v) for v in (x0, x1, None, lx, x1, rx)], [_round(v) for v in (y0, y1, None, ly, y1, ry)]
+    gap = np.full_like(x0, np.nan)
+    xs = np.stack([x0, x1, gap, x1 - h * (ux - wing * uy), x1, x1 - h * (ux + wing * uy)], axis=1)
+    ys = np.stack([y0, y1, gap, y1 - h * (uy + wing * ux), y1, y1 - h * (uy - wing * ux)], axis=1)
+    xs[none] = np.nan
+    ys[none] = np.nan
+    return r(xs), r(ys)
 
 
-def join(*polylines: tuple[list, list]) -> tuple[list, list]:
-    """Several polylines in one trace, separated by gaps."""
+def joined(*polylines: tuple[np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Several polylines per frame in one trace, separated by gaps."""
+    gap = np.full((polylines[0][0].shape[0], 1), np.nan)
     xs, ys = [], []
     for x, y in polylines:
-        if len(xs) and len(x):
-            xs.append(None)
-            ys.append(None)
-        xs.extend(x)
-        ys.extend(y)
-    return xs, ys
+        if xs:
+            xs.append(gap)
+            ys.append(gap)
+        xs.append(x)
+        ys.append(y)
+    return np.hstack(xs), np.hstack(ys)
+
+
+def as_one(xs: np.ndarray, ys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Many polylines (one per row) drawn as one trace, separated by gaps."""
+    gap = np.full((xs.shape[0], 1), np.nan)
+    return np.hstack([xs, gap]).ravel()[:-1], np.hstack([ys, gap]).ravel()[:-1]
 
 
 def spirals(inner: float, outer: float, turns, start, n: int = 48) -> tuple[np.ndarray, np.ndarray]:
@@ -103,8 +119,16 @@ def spirals(inner: float, outer: float, turns, start, n: int = 48) -> tuple[np.n
     return r(rad * np.cos(phase)), r(rad * np.sin(phase))
 
 
+def trails(x, y, keep: int | None = None) -> tuple[list, list]:
+    """The path so far in every frame (the last ``keep`` points, if given): views of one array."""
+    x, y = r(x), r(y)
+    first = (lambda i: 0) if keep is None else (lambda i: max(0, i - keep))
+    return [x[first(i): i + 1] for i in range(len(x))], [y[first(i): i + 1] for i in range(len(y))]
+
+
 def line(x, y, name: str, color: str, width: float = 3, dash: str | None = None, show_legend: bool = True,
          fill: str | None = None, xaxis: str = "x", yaxis: str = "y") -> dict:
+    """A polyline's trace; ``x`` and ``y`` may be None for a moving trace (see ``moving``)."""
     trace = {"type": "scatter", "mode": "lines", "x": x, "y": y, "name": name,
              "line": {"color": color, "width": width}, "hoverinfo": "skip", "showlegend": show_legend,
              "xaxis": xaxis, "yaxis": yaxis}
@@ -118,27 +142,48 @@ def line(x, y, name: str, color: str, width: float = 3, dash: str | None = None,
 
 def points(x, y, name: str, color: str, size: float = 10, symbol: str = "circle", show_legend: bool = True,
            xaxis: str = "x", yaxis: str = "y") -> dict:
-    return {"type": "scatter", "mode": "markers", "x": [_round(float(v)) for v in x],
-            "y": [_round(float(v)) for v in y], "name": name,
+    return {"type": "scatter", "mode": "markers", "x": None if x is None else r(x),
+            "y": None if y is None else r(y), "name": name,
             "marker": {"color": color, "size": size, "symbol": symbol, "line": {"width": 1, "color": "#222"}},
             "hoverinfo": "skip", "showlegend": show_legend, "xaxis": xaxis, "yaxis": yaxis}
 
 
+@dataclass(frozen=True)
+class Moving:
+    """A trace that moves: its style, and for each coordinate (x, y, z) one array per frame."""
+
+    style: dict
+    per_frame: dict
+
+    def first(self) -> dict:
+        return {**self.style, **{k: v[0] for k, v in self.per_frame.items()}}
+
+    def at(self, i: int) -> dict:
+        return {k: v[i] for k, v in self.per_frame.items()}
+
+
+def moving(style: dict, x=None, y=None, z=None) -> Moving:
+    per_frame = {k: v for k, v in (("x", x), ("y", y), ("z", z)) if v is not None}
+    counts = {len(v) for v in per_frame.values()}
+    assert len(counts) == 1, f"{style.get('name')}: coordinates with different frame counts {counts}"
+    return Moving(style, per_frame)
+
+
 def animated(
     static: Sequence[dict],
-    frames: Sequence[Sequence[dict]],
+    traces: Sequence[Moving],
     times: Iterable[float],
     layout: dict,
     frame_ms: int = 60,
     time_label: str = "t = ",
     time_unit: str = " s",
 ) -> dict:
-    """A figure whose first len(static) traces never move and whose moving traces are given per
-    frame. Frames carry only the moving traces (``traces`` indices) and animate with
+    """A figure whose ``static`` traces never move and whose ``traces`` move. A frame carries only
+    the moving traces' coordinates (plotly merges them into the traces' style) and animates with
     ``redraw: False``. Nothing plays by itself: Play starts the motion."""
-    moving = list(range(len(static), len(static) + len(frames[0])))
-    names = [str(i) for i in range(len(frames))]
+    indices = list(range(len(static), len(static) + len(traces)))
     times = list(times)
+    names = [str(i) for i in range(len(times))]
     play = {"frame": {"duration": frame_ms, "redraw": False}, "fromcurrent": True,
             "transition": {"duration": 0}, "mode": "immediate"}
     pause = {"frame": {"duration": 0, "redraw": False}, "mode": "immediate", "transition": {"duration": 0}}
@@ -161,9 +206,10 @@ def animated(
         }],
     }
     return {
-        "data": [*static, *frames[0]],
+        "data": [*static, *(t.first() for t in traces)],
         "layout": layout,
-        "frames": [{"name": name, "data": list(data), "traces": moving} for name, data in zip(names, frames)],
+        "frames": [{"name": name, "data": [t.at(i) for t in traces], "traces": indices}
+                   for i, name in enumerate(names)],
     }
 
 

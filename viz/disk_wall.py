@@ -6,7 +6,8 @@ import math
 import numpy as np
 
 from solvers import disk_wall as solver
-from viz.common import COLORS, Figure, animated, arrow, base_layout, circle, line, padded, points
+from viz.common import (COLORS, Figure, animated, arrows, as_one, base_layout, circles, line, moving, padded, r,
+                         segments, trails)
 
 
 def figures(solution, system: str = "si") -> list[Figure]:
@@ -18,33 +19,27 @@ def figures(solution, system: str = "si") -> list[Figure]:
     y_lo = min(m["y"].min(), -R) - 1.2 * R
     y_hi = m["wall_y"] + 0.8 * R
     wide = 3 * (x_hi - x_lo)  # the wall runs past the view whatever the window's aspect
-    wall = line([x_lo - wide, x_hi + wide], [m["wall_y"]] * 2, "wall", COLORS["ground"], width=6)
-    hatch_x, hatch_y = [], []
-    for xh in np.linspace(x_lo - wide, x_hi + wide, 168):
-        hatch_x += [xh, xh + 0.25 * R, None]
-        hatch_y += [m["wall_y"], m["wall_y"] + 0.25 * R, None]
-    hatch = line(hatch_x, hatch_y, "wall (hatched)", COLORS["ground"], width=1, show_legend=False)
+    wall = line(r([x_lo - wide, x_hi + wide]), r([m["wall_y"]] * 2), "wall", COLORS["ground"], width=6)
+    foot = np.linspace(x_lo - wide, x_hi + wide, 168)
+    hatch = line(*as_one(*segments(foot, m["wall_y"], foot + 0.25 * R, m["wall_y"] + 0.25 * R)),
+                 "wall (hatched)", COLORS["ground"], width=1, show_legend=False)
+    x, y, angle = m["x"], m["y"], m["angle"]
     impulse_scale = 1.6 * R / max(math.hypot(a["impulse_t"], a["impulse_n"]), 1e-12)
-    frames = []
-    for i, t in enumerate(m["t"]):
-        cx, cy, ang = m["x"][i], m["y"][i], m["angle"][i]
-        disk = circle(cx, cy, R)
-        mark = ([cx, cx + R * math.cos(ang)], [cy, cy + R * math.sin(ang)])
-        vel = arrow(cx, cy, m["vx"][i] * scale, m["vy"][i] * scale)
-        at_impact = i == m["impact_index"]
-        imp = arrow(0.0, m["wall_y"], a["impulse_t"] * impulse_scale, a["impulse_n"] * impulse_scale) \
-            if at_impact else ([], [])
-        frames.append([
-            line(m["x"][: i + 1].round(5).tolist(), m["y"][: i + 1].round(5).tolist(), "path of the centre",
-                 COLORS["trail"], width=2, dash="dot"),
-            line(*disk, "disk", COLORS["body"], width=3, fill="toself"),
-            line(*mark, "marked radius", COLORS["accent"], width=4),
-            line(*vel, "velocity of the centre", COLORS["velocity"], width=3),
-            line(*imp, "impulse on the disk at B", COLORS["impulse"], width=5),
-        ])
+    at_impact = np.arange(len(m["t"])) == m["impact_index"]  # the impulse is drawn in that frame only
+    moving_traces = [
+        moving(line(None, None, "path of the centre", COLORS["trail"], width=2, dash="dot"), *trails(x, y)),
+        moving(line(None, None, "disk", COLORS["body"], width=3, fill="toself"), *circles(x, y, R)),
+        moving(line(None, None, "marked radius", COLORS["accent"], width=4),
+               *segments(x, y, x + R * np.cos(angle), y + R * np.sin(angle))),
+        moving(line(None, None, "velocity of the centre", COLORS["velocity"], width=3),
+               *arrows(x, y, m["vx"] * scale, m["vy"] * scale)),
+        moving(line(None, None, "impulse on the disk at B", COLORS["impulse"], width=5),
+               *arrows(0.0, m["wall_y"], at_impact * a["impulse_t"] * impulse_scale,
+                       at_impact * a["impulse_n"] * impulse_scale)),
+    ]
     layout = base_layout(equal_axes=True, x_range=(x_lo, x_hi), y_range=(y_lo, y_hi),
                          x_title="x, along the wall (m)", y_title="y, toward the wall (m)")
-    spec = animated([wall, hatch], frames, m["t"], layout)
+    spec = animated([wall, hatch], moving_traces, m["t"], layout)
     regime = "sticks (B stops slipping)" if solution.regime == "stick" else "slides along the wall throughout"
     description = (f"Top view. The disk slides toward the wall at {p['V']:.3g} m/s, spinning at "
                    f"{p['omega']:.3g} rad/s, strikes it at t = 0 and {regime}; it leaves at "

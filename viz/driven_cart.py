@@ -2,12 +2,11 @@
 ẍ against μ for each drive with the lift-off limit μa = b."""
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from solvers import driven_cart as solver
-from viz.common import COLORS, Figure, animated, arrow, base_layout, circle, join, line, points, r
+from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, joined, line, moving,
+                         points, r, segments)
 
 
 def figures(solution, system: str = "si") -> list[Figure]:
@@ -26,30 +25,31 @@ def _animation(solution) -> Figure:
     traction_per_axle = a["F_drive"] / len(driven)
     x_end = m["x"][-1]
     ground = line(r([-b - 1.5 * wheel, x_end + b + 1.5 * wheel]), [0, 0], "ground", COLORS["ground"], width=4)
-    frames = []
-    for i, x in enumerate(m["x"]):
-        spin = -x / wheel  # rolling: the wheels turn clockwise as the cart moves forward
-        body = (r([x - b - wheel, x + b + wheel, x + b + wheel, x - b - wheel, x - b - wheel]),
-                r([body_bottom, body_bottom, body_top, body_top, body_bottom]))
-        wheels = join(*(circle(x + xa, wheel, wheel, 28) for xa in (-b, b)))
-        spokes = join(*(([x + xa - wheel * math.cos(spin), x + xa + wheel * math.cos(spin)],
-                         [wheel - wheel * math.sin(spin), wheel + wheel * math.sin(spin)]) for xa in (-b, b)))
-        normals = join(arrow(x - b, -2 * a["N_rear"] * force_scale, 0, 2 * a["N_rear"] * force_scale),
-                       arrow(x + b, -2 * a["N_front"] * force_scale, 0, 2 * a["N_front"] * force_scale))
-        traction = join(*(arrow(x + xa - traction_per_axle * force_scale, 0.0,
-                                traction_per_axle * force_scale, 0.0) for xa in driven))
-        frames.append([
-            line(*body, "cart body", COLORS["body"], width=3, fill="toself"),
-            line(*wheels, "wheels", COLORS["ink"], width=3),
-            line(r(spokes[0]), r(spokes[1]), "marked spokes", COLORS["accent"], width=3),
-            points([x], [h], "centre of mass", COLORS["marker"], size=12, symbol="circle-x"),
-            line(*normals, "normal force per axle (2N)", COLORS["force"], width=4),
-            line(*traction, "traction at the driven wheels", COLORS["impulse"], width=4),
-        ])
+    x = m["x"]
+    n = len(x)
+    spin = -x / wheel  # rolling: the wheels turn clockwise as the cart moves forward
+    corners = np.array([-b - wheel, b + wheel, b + wheel, -b - wheel, -b - wheel])
+    body = (r(x[:, None] + corners), r(np.tile([body_bottom, body_bottom, body_top, body_top, body_bottom], (n, 1))))
+    wheels = joined(*(circles(x + xa, np.full(n, wheel), wheel, 28) for xa in (-b, b)))
+    spokes = joined(*(segments(x + xa - wheel * np.cos(spin), wheel - wheel * np.sin(spin),
+                               x + xa + wheel * np.cos(spin), wheel + wheel * np.sin(spin)) for xa in (-b, b)))
+    normals = joined(*(arrows(x + xa, -2 * N * force_scale, 0.0, 2 * N * force_scale)
+                       for xa, N in ((-b, a["N_rear"]), (b, a["N_front"]))))
+    traction = joined(*(arrows(x + xa - traction_per_axle * force_scale, 0.0, traction_per_axle * force_scale, 0.0)
+                        for xa in driven))
+    moving_traces = [
+        moving(line(None, None, "cart body", COLORS["body"], width=3, fill="toself"), *body),
+        moving(line(None, None, "wheels", COLORS["ink"], width=3), *wheels),
+        moving(line(None, None, "marked spokes", COLORS["accent"], width=3), *spokes),
+        moving(points(None, None, "centre of mass", COLORS["marker"], size=12, symbol="circle-x"),
+               column(x), column(np.full(n, h))),
+        moving(line(None, None, "normal force per axle (2N)", COLORS["force"], width=4), *normals),
+        moving(line(None, None, "traction at the driven wheels", COLORS["impulse"], width=4), *traction),
+    ]
     y_lo = -2 * max(a["N_rear"], a["N_front"]) * force_scale - 0.15 * b
     layout = base_layout(equal_axes=True, x_range=(-b - 2 * wheel, x_end + b + 2 * wheel),
                          y_range=(y_lo, body_top * 1.4), x_title="x (m)", y_title="height (m)")
-    spec = animated([ground], frames, m["t"], layout, frame_ms=70)
+    spec = animated([ground], moving_traces, m["t"], layout, frame_ms=70)
     description = (f"Side view, front to the right. From rest the cart accelerates at {a['accel']:.3g} m/s² "
                    f"({p['drive']}-wheel drive). Purple arrows: the ground's normal force on each axle, "
                    f"{2 * a['N_rear']:.0f} N at the rear and {2 * a['N_front']:.0f} N at the front, drawn to "

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from solvers import eulers_disk as solver
-from viz.common import COLORS, Figure, base_layout, line, r
+from viz.common import COLORS, Figure, animated, base_layout, line, moving, r
 
 PLAY_SECONDS = 4.0  # one precession lasts this long on screen
 
@@ -38,13 +38,16 @@ def _animation(solution) -> Figure:
                                  np.zeros_like(circle_angles)], axis=1), "path of the contact point",
                        COLORS["trail"], width=4)
     G = _scatter3d([m["G"]], "centre of mass G (at rest)", COLORS["ink"], mode="markers", size=5)
-    frames = []
-    for i in range(len(m["t"])):
-        frames.append([
-            _scatter3d(m["rim"][i], "disk rim", COLORS["body"], width=8),
-            _scatter3d(m["mark"][i], "marked radius", COLORS["accent"], width=10),
-            _scatter3d([m["contact"][i]], "contact point", COLORS["impulse"], mode="markers", size=7),
-        ])
+    def xyz(path):  # (frames, points, 3) -> one (frames, points) array per coordinate
+        path = r(path)
+        return [np.ascontiguousarray(path[..., k]) for k in range(3)]
+
+    moving_traces = [
+        moving(_scatter3d(np.zeros((1, 3)), "disk rim", COLORS["body"], width=8), *xyz(m["rim"])),
+        moving(_scatter3d(np.zeros((1, 3)), "marked radius", COLORS["accent"], width=10), *xyz(m["mark"])),
+        moving(_scatter3d(np.zeros((1, 3)), "contact point", COLORS["impulse"], mode="markers", size=7),
+               *xyz(m["contact"][:, None, :])),
+    ]
     span = 1.15 * rad
     axis = lambda title, lo, hi: {"range": r([lo, hi]), "title": {"text": title}}  # noqa: E731
     layout = {
@@ -57,8 +60,7 @@ def _animation(solution) -> Figure:
     }
     # 3-D traces need redraw; the frame duration sets the slow motion.
     frame_ms = int(1000 * PLAY_SECONDS / len(m["t"]))
-    from viz.common import animated
-    spec = animated([table, G], frames, m["t"], layout, frame_ms=frame_ms)
+    spec = animated([table, G], moving_traces, m["t"], layout, frame_ms=frame_ms)
     for step in spec["layout"]["sliders"][0]["steps"]:
         step["args"][1]["frame"]["redraw"] = True
     spec["layout"]["updatemenus"][0]["buttons"][0]["args"][1]["frame"]["redraw"] = True

@@ -7,7 +7,8 @@ import numpy as np
 
 from solvers import pendulum_rebound as solver
 from ui import units
-from viz.common import COLORS, Figure, animated, arrow, base_layout, circles, line, points, r
+from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, line, moving, points, r,
+                         segments, trails)
 
 
 def figures(solution, system: str = "si") -> list[Figure]:
@@ -28,25 +29,21 @@ def figures(solution, system: str = "si") -> list[Figure]:
     impact_line = line(r([m["t"][0], m["t"][-1]]), r([math.degrees(a["theta_impact"])] * 2),
                        "impact angle θ_I", COLORS["ground"], width=1, dash="dash", xaxis="x2", yaxis="y2")
     v_scale = 0.35 * reach / max(abs(a["omega_impact"]) * (p["L"] + p["r"]), 1e-12)
-    frames = []
-    centre_x, centre_y = (L + rad) * np.cos(m["theta"]), (L + rad) * np.sin(m["theta"])
-    trail_x, trail_y = r(centre_x), r(centre_y)
-    spheres_x, spheres_y = circles(centre_x, centre_y, rad)
-    for i, q in enumerate(m["theta"]):
-        c, s = math.cos(q), math.sin(q)
-        cx, cy = float(centre_x[i]), float(centre_y[i])
-        speed = m["omega"][i] * (p["L"] + p["r"])
-        frames.append([
-            line(trail_x[max(0, i - 25): i + 1], trail_y[max(0, i - 25): i + 1], "path of the sphere",
-                 COLORS["trail"], width=2, dash="dot"),
-            line([0, round(L * c, 4)], [0, round(L * s, 4)], "rod", COLORS["ink"], width=5),
-            line(spheres_x[i], spheres_y[i], "sphere", COLORS["body"], width=3, fill="toself"),
-            line([round(cx, 4), round(cx - rad * s, 4)], [round(cy, 4), round(cy + rad * c, 4)],
-                 "marked radius", COLORS["accent"], width=4),
-            line(*arrow(cx, cy, -s * speed * v_scale * k, c * speed * v_scale * k), "velocity of the centre",
-                 COLORS["velocity"], width=3),
-            points([m["t"][i]], [theta_deg[i]], "now", COLORS["impulse"], size=10, xaxis="x2", yaxis="y2"),
-        ])
+    theta = m["theta"]
+    c, s = np.cos(theta), np.sin(theta)
+    cx, cy = (L + rad) * c, (L + rad) * s
+    speed = m["omega"] * (p["L"] + p["r"])
+    moving_traces = [
+        moving(line(None, None, "path of the sphere", COLORS["trail"], width=2, dash="dot"), *trails(cx, cy, keep=25)),
+        moving(line(None, None, "rod", COLORS["ink"], width=5), *segments(0.0, 0.0, L * c, L * s)),
+        moving(line(None, None, "sphere", COLORS["body"], width=3, fill="toself"), *circles(cx, cy, rad)),
+        moving(line(None, None, "marked radius", COLORS["accent"], width=4),
+               *segments(cx, cy, cx - rad * s, cy + rad * c)),
+        moving(line(None, None, "velocity of the centre", COLORS["velocity"], width=3),
+               *arrows(cx, cy, -s * speed * v_scale * k, c * speed * v_scale * k)),
+        moving(points(None, None, "now", COLORS["impulse"], size=10, xaxis="x2", yaxis="y2"),
+               column(m["t"]), column(theta_deg)),
+    ]
     layout = base_layout(equal_axes=True, x_range=(-reach * 1.15, reach * 1.15),
                          y_range=(-reach * 1.15, reach * 1.15), x_title=f"x ({u})", y_title=f"y ({u})")
     # Stacked, not side by side, so that a phone-width window keeps both readable.
@@ -54,7 +51,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
     layout["xaxis2"] = {"anchor": "y2", "title": {"text": "t (s)"}}
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.24], "title": {"text": "θ (°)"}}
     layout["height"] = 700
-    spec = animated([ground, pivot, curve, impact_line], frames, m["t"], layout)
+    spec = animated([ground, pivot, curve, impact_line], moving_traces, m["t"], layout)
     peaks = ", ".join(f"{math.degrees(q):.1f}°" for q in solution.extras["bounce_peaks"][:3])
     description = (f"Side view. Released from rest at θ₀ = {math.degrees(p['theta0']):.1f}°, the pendulum "
                    f"swings down and the sphere strikes the {p['surface']} at θ_I = "

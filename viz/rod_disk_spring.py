@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from solvers import rod_disk_spring as solver
-from viz.common import COLORS, Figure, animated, base_layout, circles, line, points, r, spirals
+from viz.common import COLORS, Figure, animated, base_layout, circles, line, moving, points, r, segments, spirals
 
 
 def figures(solution, system: str = "si") -> list[Figure]:
@@ -18,25 +18,23 @@ def figures(solution, system: str = "si") -> list[Figure]:
     theta2_mark = line(r([0, reach * 1.05 * math.sin(p["theta2"])]), r([0, reach * 1.05 * math.cos(p["theta2"])]),
                        "θ₂", COLORS["ground"], width=1, dash="dash")
     top = float(max((m["kinetic"] + m["gravity"] + m["spring"]).max(), 1e-9))
-    frames = []
-    centre_x, centre_y = (L + R) * np.sin(m["theta"]), (L + R) * np.cos(m["theta"])
-    disks_x, disks_y = circles(centre_x, centre_y, R)
+    theta = m["theta"]
+    s, c = np.sin(theta), np.cos(theta)
+    cx, cy = (L + R) * s, (L + R) * c
+    spin = theta if p["disk"] == "welded" else np.zeros_like(theta)  # a pinned disk keeps its orientation
     energy = r(np.stack([m["kinetic"], m["gravity"], m["spring"]], axis=1))
-    springs_x, springs_y = spirals(0.04 * reach, 0.16 * reach, 1.5 + m["theta"] / (2 * math.pi), math.pi / 2 - m["theta"])
-    for i, q in enumerate(m["theta"]):
-        s, c = math.sin(q), math.cos(q)
-        cx, cy = float(centre_x[i]), float(centre_y[i])
-        spin = q if p["disk"] == "welded" else 0.0  # a pinned disk keeps its orientation
-        frames.append([
-            line(springs_x[i], springs_y[i], "torsional spring", COLORS["force"], width=2),
-            line([0, round(L * s, 4)], [0, round(L * c, 4)], "rod", COLORS["ink"], width=5),
-            line(disks_x[i], disks_y[i], "disk", COLORS["body"], width=3, fill="toself"),
-            line([round(cx, 4), round(cx + R * math.sin(spin), 4)], [round(cy, 4), round(cy + R * math.cos(spin), 4)],
-                 "marked radius", COLORS["accent"], width=4),
-            {"type": "bar", "x": ["kinetic", "gravity", "spring"], "y": energy[i],
-             "marker": {"color": [COLORS["velocity"], COLORS["body"], COLORS["force"]]},
-             "name": "energy (J)", "xaxis": "x2", "yaxis": "y2", "showlegend": False, "hoverinfo": "skip"},
-        ])
+    bars = {"type": "bar", "x": ["kinetic", "gravity", "spring"],
+            "marker": {"color": [COLORS["velocity"], COLORS["body"], COLORS["force"]]},
+            "name": "energy (J)", "xaxis": "x2", "yaxis": "y2", "showlegend": False, "hoverinfo": "skip"}
+    moving_traces = [
+        moving(line(None, None, "torsional spring", COLORS["force"], width=2),
+               *spirals(0.04 * reach, 0.16 * reach, 1.5 + theta / (2 * math.pi), math.pi / 2 - theta)),
+        moving(line(None, None, "rod", COLORS["ink"], width=5), *segments(0.0, 0.0, L * s, L * c)),
+        moving(line(None, None, "disk", COLORS["body"], width=3, fill="toself"), *circles(cx, cy, R)),
+        moving(line(None, None, "marked radius", COLORS["accent"], width=4),
+               *segments(cx, cy, cx + R * np.sin(spin), cy + R * np.cos(spin))),
+        moving(bars, y=energy),
+    ]
     layout = base_layout(equal_axes=True, x_range=(-reach * 1.15, reach * 1.15),
                          y_range=(-reach * 1.15, reach * 1.15))
     layout["yaxis"]["domain"] = [0.36, 1.0]
@@ -44,7 +42,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.24], "range": [0, top * 1.05],
                         "title": {"text": "energy (J)"}}
     layout["height"] = 700
-    spec = animated([pivot, theta2_mark], frames, m["t"], layout)
+    spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout)
     description = (f"Side view, θ from the upward vertical. Released at θ₁ = {math.degrees(p['theta1']):.0f}°, the "
                    f"assembly falls, passes θ₂ = {math.degrees(p['theta2']):.0f}° (dashed) at {a['omega2']:.3g} rad/s, "
                    f"swings on until the spring stops it at about {math.degrees(m['theta'].max()):.0f}°, and returns. "

@@ -4,7 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from solvers import stick_ball as solver
-from viz.common import COLORS, Figure, animated, base_layout, circle, line, padded, points, r
+from viz.common import (COLORS, Figure, animated, base_layout, circles, column, line, moving, padded, points, r,
+                         segments, trails)
 
 
 def figures(solution, system: str = "si") -> list[Figure]:
@@ -17,20 +18,16 @@ def figures(solution, system: str = "si") -> list[Figure]:
     x_range, y_range = padded(xs.min() - ball_r, xs.max() + ball_r), padded(ys.min() - ball_r, ys.max() + ball_r)
     cm_path = line(r(m["cm"][0]), r(m["cm"][1]), "path of the combined CM (straight)", COLORS["velocity"],
                    width=2, dash="dash")
-    frames = []
-    for i in range(len(m["t"])):
-        frames.append([
-            line(r(m["top"][0][: i + 1]), r(m["top"][1][: i + 1]), "trail of the stick's end", COLORS["trail"],
-                 width=2, dash="dot"),
-            line(r([m["bottom"][0][i], m["top"][0][i]]), r([m["bottom"][1][i], m["top"][1][i]]), "stick",
-                 COLORS["body"], width=7),
-            line(*circle(m["ball"][0][i], m["ball"][1][i], ball_r, 24), "ball", COLORS["impulse"], width=2,
-                 fill="toself"),
-            points([m["mid"][0][i]], [m["mid"][1][i]], "stick's midpoint", COLORS["ink"], size=7),
-            points([m["cm"][0][i]], [m["cm"][1][i]], "combined CM", COLORS["marker"], size=12, symbol="circle-x"),
-        ])
+    moving_traces = [
+        moving(line(None, None, "trail of the stick's end", COLORS["trail"], width=2, dash="dot"), *trails(*m["top"])),
+        moving(line(None, None, "stick", COLORS["body"], width=7), *segments(*m["bottom"], *m["top"])),
+        moving(line(None, None, "ball", COLORS["impulse"], width=2, fill="toself"), *circles(*m["ball"], ball_r, 24)),
+        moving(points(None, None, "stick's midpoint", COLORS["ink"], size=7), column(m["mid"][0]), column(m["mid"][1])),
+        moving(points(None, None, "combined CM", COLORS["marker"], size=12, symbol="circle-x"),
+               column(m["cm"][0]), column(m["cm"][1])),
+    ]
     layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range)
-    spec = animated([cm_path], frames, m["t"], layout)
+    spec = animated([cm_path], moving_traces, m["t"], layout)
     if p["mode"] == "stick":
         what = (f"the ball attaches; the pair moves on at {a['v_cm']:.3g} m/s and turns at {a['omega']:.3g} rad/s "
                 f"about the combined centre of mass, which travels {a['distance_per_rev']:.3g} m per turn in a "
