@@ -80,12 +80,12 @@ def integrate_leg(
             a, b = y[i - 1], y[i]
             if stop_at_angle is not None:
                 fa, fb = a[0] - stop_at_angle, b[0] - stop_at_angle
-                crosses = fa * fb <= 0 and fa != fb and not (i == 1 and fa == 0 and t_start == t0)
+                crosses = np.sign(fa) * np.sign(fb) <= 0 and fa != fb  # signs: fa * fb can underflow and not (i == 1 and fa == 0 and t_start == t0)
                 if crosses and (direction == 0 or np.sign(fb - fa) == direction):
                     interp = _hermite(grid[i - 1], grid[i], a[0], b[0], a[1], b[1])
                     event, kind = brentq(lambda t: interp(t) - stop_at_angle, grid[i - 1], grid[i], xtol=1e-15), "angle"
                     break
-            if stop_at_rest and a[1] != 0 and (a[1] * b[1] < 0 or b[1] == 0):  # θ̇ reverses
+            if stop_at_rest and a[1] != 0 and (b[1] == 0 or (a[1] > 0) != (b[1] > 0)):  # θ̇ reverses
                 interp = _hermite(grid[i - 1], grid[i], a[1], b[1], acceleration(a[0]), acceleration(b[0]))
                 event, kind = brentq(interp, grid[i - 1], grid[i], xtol=1e-15), "rest"
                 break
