@@ -63,6 +63,8 @@ def integrate_leg(
     decreasing, +1 increasing, 0 either), θ̇ reverses (``stop_at_rest``), or ``t_max`` has passed.
     ``samples`` > 0 returns that many evenly spaced samples, else the grid points.
     ``chunk`` is the time span integrated at a time (default: a fraction of a natural period)."""
+    if stop_at_rest and omega0 == 0:  # already at rest: the turn is here (e.g. a rebound that underflowed)
+        return Leg(np.array([t0]), np.array([theta0]), np.array([0.0]), True)
     rhs = lambda y, t: (y[1], acceleration(y[0]))  # noqa: E731
     if chunk is None:
         stiffness = abs(acceleration(theta0 + 1e-3) - acceleration(theta0 - 1e-3)) / 2e-3

@@ -81,10 +81,11 @@ def test_the_ode_of_the_solver_runs_several_bounces():
     assert peaks == pytest.approx(s.extras["bounce_peaks"][:3], abs=1e-7)
 
 
-def test_a_rebound_too_small_to_multiply_still_turns_back():
-    """Found by hypothesis: with e = 5e-324 the rebound rate is subnormal, θ̇⁻ × θ̇⁺ underflows to 0
-    and the integrator missed the turn, swinging on through the floor. It must stop at once."""
-    s = pendulum_rebound.solve(m_s=1.0, m_r=1.0, L=1.0, r=1.0, d=2.0, e=5e-324, theta0=0.0, g=1.0,
+@pytest.mark.parametrize("d", [2.0, 1.25])
+def test_a_rebound_too_small_to_multiply_still_turns_back(d):
+    """Found by hypothesis: with e = 5e-324 the rebound rate is subnormal (θ̇⁻ × θ̇⁺ underflows to 0)
+    or zero, and the integrator missed the turn, swinging on through the floor. It must stop at once."""
+    s = pendulum_rebound.solve(m_s=1.0, m_r=1.0, L=1.0, r=1.0, d=d, e=5e-324, theta0=0.0, g=1.0,
                                sphere="solid", surface="floor")
     assert all(c.ok for c in s.checks), s.checks
     assert s.answers["theta_rebound"] == pytest.approx(s.answers["theta_impact"], abs=1e-9)
