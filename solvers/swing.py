@@ -4,7 +4,8 @@ Used as the second method for the work-energy answers (pendulum, rod and spring)
 the trajectories the animations draw. The integrator is scipy's odeint (LSODA, compiled), run over
 a time grid in chunks: a crossing (θ reaches an angle, or θ̇ reverses) is bracketed on the grid,
 located on the cubic Hermite interpolant of the grid states, and the state at the event comes
-from one short, tight integration to that instant. Tolerances are tight (rtol 1e-11) so a check
+from one short, tight integration to that instant (Newton then moves it onto the event by
+Taylor steps of the equation itself). The event search is one numpy pass per chunk. Tolerances are tight (rtol 1e-11) so a check
 against a closed form can use a tolerance that would catch a wrong factor; it costs a fraction
 of a millisecond per leg, which keeps a slider change cheap (see BENCHMARKS.md).
 """
@@ -47,6 +48,65 @@ def _hermite(t0, t1, y0, y1, d0, d1):
     return value
 
 
+def _first_event(grid, y, acceleration, angle, at_rest, direction, first_chunk):
+    """(time, kind) of the first event between grid points, located on the cubic Hermite
+    interpolant of the grid states; (None, "") if there is none. Sign tests, not products, which
+    can underflow to 0."""
+    found = []
+    if angle is not None:
+        f = y[:, 0] - angle
+        s = np.sign(f)
+        hit = (s[:-1] * s[1:] <= 0) & (f[:-1] != f[1:])
+        if direction:
+            hit &= np.sign(f[1:] - f[:-1]) == direction
+        if first_chunk and f[0] == 0:
+            hit[0] = False  # starting on the angle is not reaching it
+        if hit.any():
+            found.append((int(np.argmax(hit)) + 1, 0, "angle"))
+    if at_rest:
+        w = y[:, 1]
+        hit = (w[:-1] != 0) & ((w[1:] == 0) | ((w[:-1] > 0) != (w[1:] > 0)))
+        if hit.any():
+            found.append((int(np.argmax(hit)) + 1, 1, "rest"))
+    if not found:
+        return None, ""
+    i, _, kind = min(found)  # the earlier interval; at the same one, the angle first
+    t0, t1, a, b = grid[i - 1], grid[i], y[i - 1], y[i]
+    if kind == "angle":
+        interp = _hermite(t0, t1, a[0], b[0], a[1], b[1])
+        return brentq(lambda t: interp(t) - angle, t0, t1, xtol=1e-15), kind
+    interp = _hermite(t0, t1, a[1], b[1], acceleration(a[0]), acceleration(b[0]))
+    return brentq(interp, t0, t1, xtol=1e-15), kind
+
+
+def _taylor(acceleration, state, dt: float) -> np.ndarray:
+    """The state dt later by a third-order Taylor step of θ̈ = f(θ) (dt is tiny here)."""
+    q, w = state
+    f = acceleration(q)
+    eps = 1e-7 * max(1.0, abs(q))
+    df = (acceleration(q + eps) - acceleration(q - eps)) / (2 * eps)
+    return np.array([q + w * dt + f * dt**2 / 2 + df * w * dt**3 / 6,
+                     w + f * dt + df * w * dt**2 / 2])
+
+
+def _polished(rhs, acceleration, start, t_start, event, kind, angle):
+    """(time, state) of the event: the state integrated from the grid point before it, then Newton
+    on that exact state, moving along the solution by Taylor steps while the correction is tiny
+    (a fresh integration otherwise), so an event costs one short integration."""
+    exact = odeint(rhs, start, [t_start, event], rtol=RTOL, atol=ATOL)[-1]
+    for _ in range(4):
+        residual, rate = ((exact[0] - angle, exact[1]) if kind == "angle" else (exact[1], acceleration(exact[0])))
+        if rate == 0 or abs(residual) <= 1e-14 * max(1.0, abs(exact[0]), abs(exact[1])):
+            break
+        step = -residual / rate
+        event += step
+        if abs(step) < 1e-4 * max(event - t_start, 1e-12):
+            exact = _taylor(acceleration, exact, step)
+        else:
+            exact = odeint(rhs, start, [t_start, event], rtol=RTOL, atol=ATOL)[-1]
+    return event, exact
+
+
 def integrate_leg(
     acceleration: Callable[[float], float],
     theta0: float,
@@ -62,7 +122,7 @@ def integrate_leg(
     """Integrate from (θ0, θ̇0) until θ reaches ``stop_at_angle`` (crossing in ``direction``: −1
     decreasing, +1 increasing, 0 either), θ̇ reverses (``stop_at_rest``), or ``t_max`` has passed.
     ``samples`` > 0 returns that many evenly spaced samples, else the grid points.
-    ``chunk`` is the time span integrated at a time (default: a fraction of a natural period)."""
+    ``chunk`` is the time span integrated at a time (default: a quarter of a natural period)."""
     if stop_at_rest and omega0 == 0:  # already at rest: the turn is here (e.g. a rebound that underflowed)
         return Leg(np.array([t0]), np.array([theta0]), np.array([0.0]), True)
     rhs = lambda y, t: (y[1], acceleration(y[0]))  # noqa: E731
@@ -77,30 +137,11 @@ def integrate_leg(
         t_end = min(t_start + chunk, t0 + t_max)
         grid = np.linspace(t_start, t_end, GRID)
         y = odeint(rhs, y_start, grid, rtol=RTOL, atol=ATOL)
-        event, kind = None, ""
-        for i in range(1, len(grid)):
-            a, b = y[i - 1], y[i]
-            if stop_at_angle is not None:
-                fa, fb = a[0] - stop_at_angle, b[0] - stop_at_angle
-                crosses = np.sign(fa) * np.sign(fb) <= 0 and fa != fb  # signs: fa * fb can underflow and not (i == 1 and fa == 0 and t_start == t0)
-                if crosses and (direction == 0 or np.sign(fb - fa) == direction):
-                    interp = _hermite(grid[i - 1], grid[i], a[0], b[0], a[1], b[1])
-                    event, kind = brentq(lambda t: interp(t) - stop_at_angle, grid[i - 1], grid[i], xtol=1e-15), "angle"
-                    break
-            if stop_at_rest and a[1] != 0 and (b[1] == 0 or (a[1] > 0) != (b[1] > 0)):  # θ̇ reverses
-                interp = _hermite(grid[i - 1], grid[i], a[1], b[1], acceleration(a[0]), acceleration(b[0]))
-                event, kind = brentq(interp, grid[i - 1], grid[i], xtol=1e-15), "rest"
-                break
+        event, kind = _first_event(grid, y, acceleration, stop_at_angle, stop_at_rest, direction,
+                                   first_chunk=t_start == t0)
         if event is not None:
             k = max(1, int(np.searchsorted(grid, event)))  # grid[k-1] < event <= grid[k]
-            exact = odeint(rhs, y[k - 1], [grid[k - 1], event], rtol=RTOL, atol=ATOL)[-1]
-            for _ in range(3):  # Newton on the exact state: land on the event itself
-                residual, rate = ((exact[0] - stop_at_angle, exact[1]) if kind == "angle"
-                                  else (exact[1], acceleration(exact[0])))
-                if rate == 0 or abs(residual) <= 1e-14 * max(1.0, abs(exact[0]), abs(exact[1])):
-                    break
-                event -= residual / rate
-                exact = odeint(rhs, y[k - 1], [grid[k - 1], event], rtol=RTOL, atol=ATOL)[-1]
+            event, exact = _polished(rhs, acceleration, y[k - 1], grid[k - 1], event, kind, stop_at_angle)
             ts.append(np.append(grid[1:k], event))
             ys.append(np.vstack([y[1:k], exact]))
             ended = True
