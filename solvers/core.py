@@ -346,7 +346,7 @@ class Derivation:
         self._dimensions = dict(dimensions)
         known: dict[sp.Symbol, str] = {sym: name for name, sym in symbols.items()}
         self._compiled: list[tuple[str, Callable, tuple[str, ...]]] = []
-        self._templates: list[tuple[Result, str, tuple[tuple[str, str, bool], ...]]] = []
+        self._templates: list[tuple[Result, str, str, tuple[tuple[str, str, bool], ...]]] = []
         for link in self.chain:
             free = sorted(link.expr.free_symbols, key=lambda s: s.name)
             missing = [s for s in free if s not in known]
@@ -360,7 +360,7 @@ class Derivation:
             slots = tuple(
                 (names[s], known[s], _only_inside_trig(link.expr, s)) for s in free
             )
-            self._templates.append((link, template, slots))
+            self._templates.append((link, sp.latex(link.symbol), template, slots))
             known[link.symbol] = link.name
             self._dimensions[link.name] = link.dimension
         self._results = {link.name for link in self.chain}
@@ -415,14 +415,14 @@ class Derivation:
     def numeric_steps(self, values: Mapping[str, float]) -> list[Step]:
         """One step per chain link: the expression with numbers substituted, then its value."""
         steps = []
-        for link, template, slots in self._templates:
+        for link, symbol, template, slots in self._templates:
             text = template
             for placeholder, name, trig_only in slots:
                 text = text.replace(placeholder, self._number_for(name, values[name], trig_only))
             text = _DOUBLE_PARENS.sub(r"\\left(\1\\right)", text)
             value = latex_quantity(values[link.name], link.dimension)
             title = link.title or f"With your numbers: {self._labels.get(link.name, link.name)}"
-            steps.append(Step(title, f"{sp.latex(link.symbol)} = {text} = {value}", numeric=True))
+            steps.append(Step(title, f"{symbol} = {text} = {value}", numeric=True))
         return steps
 
     def _number_for(self, name: str, x: float, trig_only: bool) -> str:

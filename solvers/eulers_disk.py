@@ -185,12 +185,15 @@ def _H_at(p, a, phase: float) -> np.ndarray:
     return (I_diam * np.eye(3) + (I_axis - I_diam) * np.outer(n, n)) @ omega
 
 
-def orientation(p, answers, t: float) -> np.ndarray:
-    """The disk's attitude at time t: R = Rz(φ) Rx(θ) Rz(ψ), body z along the disk's normal, with
-    the precession φ = −ω_p t and the spin ψ = ω_s t (the rolling condition ψ̇ = ω_p cos θ)."""
+def orientations(p, answers, t) -> np.ndarray:
+    """The disk's attitude at each time t, shape (len(t), 3, 3): R = Rz(φ) Rx(θ) Rz(ψ), body z
+    along the disk's normal, with the precession φ = −ω_p t and the spin ψ = ω_s t (the rolling
+    condition ψ̇ = ω_p cos θ)."""
     def rz(a):
-        c, s = math.cos(a), math.sin(a)
-        return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        c, s, zero, one = np.cos(a), np.sin(a), np.zeros_like(a), np.ones_like(a)
+        return np.stack([np.stack([c, -s, zero], -1), np.stack([s, c, zero], -1),
+                         np.stack([zero, zero, one], -1)], -2)
+    t = np.asarray(t, dtype=float)
     c, s = math.cos(p["theta"]), math.sin(p["theta"])
     rx = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
     return rz(-answers["omega_p"] * t) @ rx @ rz(answers["omega_s"] * t)
@@ -200,19 +203,18 @@ def motion(solution: Solution, frames: int = 48, rim_points: int = 36) -> dict:
     """One precession: the rim, a marked radius and the contact point, in the table frame, with G
     fixed at height r sin θ above the origin."""
     p, a = solution.params, solution.answers
+    r = p["r"]
     t = np.linspace(0.0, a["period"], frames)
-    G = np.array([0.0, 0.0, p["r"] * math.sin(p["theta"])])
+    G = np.array([0.0, 0.0, r * math.sin(p["theta"])])
     angles = np.linspace(0.0, 2 * np.pi, rim_points)
-    rim_body = p["r"] * np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)])
-    rims, marks, contacts = [], [], []
-    for ti in t:
-        R_ = orientation(p, a, ti)
-        rims.append((R_ @ rim_body).T + G)
-        marks.append(np.stack([G, G + R_ @ np.array([p["r"], 0.0, 0.0])]))
-        down = R_.T @ np.array([0.0, 0.0, -1.0])
-        d = down[:2] / np.hypot(down[0], down[1])
-        contacts.append(G + R_ @ np.array([p["r"] * d[0], p["r"] * d[1], 0.0]))
-    return {"t": t, "rim": np.array(rims), "mark": np.array(marks), "contact": np.array(contacts), "G": G}
+    rim_body = r * np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)])
+    R = orientations(p, a, t)
+    rims = np.swapaxes(R @ rim_body, 1, 2) + G
+    marks = np.stack([np.broadcast_to(G, (frames, 3)), G + r * R[:, :, 0]], axis=1)
+    down = -R[:, 2, :]  # the table's downward vertical in body axes: Rᵀ (0, 0, −1)
+    d = down[:, :2] / np.hypot(down[:, 0], down[:, 1])[:, None]  # toward the lowest point of the rim
+    contacts = G + r * (R[:, :, 0] * d[:, :1] + R[:, :, 1] * d[:, 1:])
+    return {"t": t, "rim": rims, "mark": marks, "contact": contacts, "G": G}
 
 
 def versus_tilt(params: dict, tilts: np.ndarray) -> dict[str, np.ndarray]:

@@ -33,7 +33,7 @@ from .core import (
     require,
     validate_params,
 )
-from .swing import integrate_leg
+from .swing import ATOL, DRAWING, RTOL, integrate_leg
 
 PARAMS = (
     Number("m_s", 4.536, "sphere mass", "mass", "m_s", low=0, ui_low=0.1, ui_high=20.0, step=0.1),
@@ -224,21 +224,36 @@ def simulate(p, answers, bounces: int = 3):
 @functools.lru_cache(maxsize=256)
 def _legs(key: tuple, bounces: int):
     p = dict(key)
-    Q, I = moment_coefficient(p), p["I_O"]
-    acc = lambda q: -Q * math.cos(q) / I  # noqa: E731
-    impact_angle, e_ = p["theta_impact"], p["e"]
-    horizon = math.sqrt(I / Q) * 20 + 1.0
-    fall = integrate_leg(acc, p["theta0"], 0.0, 0.0, horizon, stop_at_angle=impact_angle, direction=-1)
-    legs = [fall]
-    for _ in range(bounces):
+    acc = _acceleration(p)
+    legs = [_fall(tuple((k, v) for k, v in key if k != "e"))]  # the fall before the first impact ignores e
+    for bounce in range(bounces):
         t_hit, _, w_hit = legs[-1].end
-        if e_ == 0:
+        if p["e"] == 0:
             break
-        rise = integrate_leg(acc, impact_angle, -e_ * w_hit, t_hit, horizon, stop_at_rest=True)
+        # The first rise checks θ_f (tight tolerances); later ones are only drawn.
+        rise = integrate_leg(acc, p["theta_impact"], -p["e"] * w_hit, t_hit, _horizon(p), stop_at_rest=True,
+                             tolerances=(RTOL, ATOL) if bounce == 0 else DRAWING)
         peak = rise.end[0]
         back = type(rise)(2 * peak - rise.t[::-1], rise.theta[::-1].copy(), -rise.omega[::-1], True)
         legs += [rise, back]
     return tuple(legs)
+
+
+@functools.lru_cache(maxsize=256)
+def _fall(key: tuple):
+    """From release to the first impact (checks the impact speed)."""
+    p = dict(key)
+    return integrate_leg(_acceleration(p), p["theta0"], 0.0, 0.0, _horizon(p), stop_at_angle=p["theta_impact"],
+                         direction=-1)
+
+
+def _acceleration(p):
+    Q, I = moment_coefficient(p), p["I_O"]
+    return lambda q: -Q * math.cos(q) / I
+
+
+def _horizon(p) -> float:
+    return math.sqrt(p["I_O"] / moment_coefficient(p)) * 20 + 1.0
 
 
 def _checks(p, a) -> tuple[Check, ...]:

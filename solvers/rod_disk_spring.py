@@ -31,7 +31,7 @@ from .core import (
     require,
     validate_params,
 )
-from .swing import Leg, integrate_leg
+from .swing import DRAWING, Leg, integrate_leg
 
 PARAMS = (
     Number("m1", 6.0, "rod mass", "mass", "m_1", low=0, ui_low=0.1, ui_high=30.0, step=0.1),
@@ -220,7 +220,7 @@ def _legs(key: tuple):
     if not first.ended_by_event:
         return first, None
     t2, q2, w2 = first.end
-    rest = integrate_leg(acc, q2, w2, t2, horizon, stop_at_rest=True)
+    rest = integrate_leg(acc, q2, w2, t2, horizon, stop_at_rest=True, tolerances=DRAWING)  # only drawn
     return first, rest
 
 

@@ -19,7 +19,8 @@ import numpy as np
 from scipy.integrate import odeint
 from scipy.optimize import brentq
 
-RTOL, ATOL = 1e-11, 1e-12
+RTOL, ATOL = 1e-11, 1e-12  # for a leg that checks an answer
+DRAWING = 1e-8, 1e-10  # (rtol, atol) for a leg that is only drawn: far below a pixel
 GRID = 48  # grid points per chunk
 
 
@@ -89,11 +90,11 @@ def _taylor(acceleration, state, dt: float) -> np.ndarray:
                      w + f * dt + df * w * dt**2 / 2])
 
 
-def _polished(rhs, acceleration, start, t_start, event, kind, angle):
+def _polished(rhs, acceleration, start, t_start, event, kind, angle, tol):
     """(time, state) of the event: the state integrated from the grid point before it, then Newton
     on that exact state, moving along the solution by Taylor steps while the correction is tiny
     (a fresh integration otherwise), so an event costs one short integration."""
-    exact = odeint(rhs, start, [t_start, event], rtol=RTOL, atol=ATOL)[-1]
+    exact = odeint(rhs, start, [t_start, event], rtol=tol[0], atol=tol[1])[-1]
     for _ in range(4):
         residual, rate = ((exact[0] - angle, exact[1]) if kind == "angle" else (exact[1], acceleration(exact[0])))
         if rate == 0 or abs(residual) <= 1e-14 * max(1.0, abs(exact[0]), abs(exact[1])):
@@ -103,7 +104,7 @@ def _polished(rhs, acceleration, start, t_start, event, kind, angle):
         if abs(step) < 1e-4 * max(event - t_start, 1e-12):
             exact = _taylor(acceleration, exact, step)
         else:
-            exact = odeint(rhs, start, [t_start, event], rtol=RTOL, atol=ATOL)[-1]
+            exact = odeint(rhs, start, [t_start, event], rtol=tol[0], atol=tol[1])[-1]
     return event, exact
 
 
@@ -118,11 +119,13 @@ def integrate_leg(
     direction: int = 0,
     samples: int = 0,
     chunk: float | None = None,
+    tolerances: tuple[float, float] = (RTOL, ATOL),
 ) -> Leg:
     """Integrate from (θ0, θ̇0) until θ reaches ``stop_at_angle`` (crossing in ``direction``: −1
     decreasing, +1 increasing, 0 either), θ̇ reverses (``stop_at_rest``), or ``t_max`` has passed.
     ``samples`` > 0 returns that many evenly spaced samples, else the grid points.
-    ``chunk`` is the time span integrated at a time (default: a quarter of a natural period)."""
+    ``chunk`` is the time span integrated at a time (default: a quarter of a natural period);
+    ``tolerances`` (rtol, atol) default to the tight ones a check needs (DRAWING for a leg only drawn)."""
     if stop_at_rest and omega0 == 0:  # already at rest: the turn is here (e.g. a rebound that underflowed)
         return Leg(np.array([t0]), np.array([theta0]), np.array([0.0]), True)
     rhs = lambda y, t: (y[1], acceleration(y[0]))  # noqa: E731
@@ -136,12 +139,13 @@ def integrate_leg(
     while t_start < t0 + t_max - 1e-15:
         t_end = min(t_start + chunk, t0 + t_max)
         grid = np.linspace(t_start, t_end, GRID)
-        y = odeint(rhs, y_start, grid, rtol=RTOL, atol=ATOL)
+        y = odeint(rhs, y_start, grid, rtol=tolerances[0], atol=tolerances[1])
         event, kind = _first_event(grid, y, acceleration, stop_at_angle, stop_at_rest, direction,
                                    first_chunk=t_start == t0)
         if event is not None:
             k = max(1, int(np.searchsorted(grid, event)))  # grid[k-1] < event <= grid[k]
-            event, exact = _polished(rhs, acceleration, y[k - 1], grid[k - 1], event, kind, stop_at_angle)
+            event, exact = _polished(rhs, acceleration, y[k - 1], grid[k - 1], event, kind, stop_at_angle,
+                                     tolerances)
             ts.append(np.append(grid[1:k], event))
             ys.append(np.vstack([y[1:k], exact]))
             ended = True

@@ -34,12 +34,19 @@ def latex_text(at: AppTest) -> list[str]:
 
 
 def first_number_control(at: AppTest, pid: str):
-    spec = next(p for p in BY_ID[pid].solver.PARAMS if hasattr(p, "dimension") and not p.allow_inf)
+    """The first numeric control always on show (a primary parameter)."""
+    spec = next(p for p in BY_ID[pid].solver.PARAMS
+                if hasattr(p, "dimension") and not p.allow_inf and p.name in BY_ID[pid].primary)
     key = f"{pid}__si__{spec.name}"
     for widget in [*at.number_input, *at.slider]:
         if widget.key == key:
             return widget, spec
     raise AssertionError(f"no control for {key}")
+
+
+def show_more(at: AppTest, pid: str) -> AppTest:
+    """Open "More parameters" (masses, lengths, g)."""
+    return at.toggle(key=f"{pid}__more").set_value(True).run()
 
 
 def assert_clean(at: AppTest) -> None:
@@ -137,7 +144,7 @@ def test_refused_combinations_explain_the_limit(pid, query, limit_label):
     ("eulers_disk", "r", 0.0),
 ])
 def test_bad_control_values_show_a_plain_message(pid, name, value):
-    at = run_page(pid)
+    at = show_more(run_page(pid), pid)
     at.number_input(key=f"{pid}__si__{name}").set_value(value).run()
     assert_clean(at)
     assert at.error
@@ -154,7 +161,7 @@ def test_no_slip_toggle_gives_finite_mu_control():
 
 
 def test_pendulum_in_us_customary_units():
-    at = run_page("pendulum_rebound", {"units": "us"})
+    at = show_more(run_page("pendulum_rebound", {"units": "us"}), "pendulum_rebound")
     assert_clean(at)
     mass = at.number_input(key="pendulum_rebound__us__m_s")
     assert mass.value == pytest.approx(10.0, rel=1e-4)  # the textbook's 10 lb sphere
@@ -171,8 +178,23 @@ def test_pendulum_in_us_customary_units():
 def test_lecture_view_from_the_url():
     at = run_page("stick_ball", {"lecture": "1"})
     assert_clean(at)
-    assert at.toggle(key="stick_ball__lecture").value is True
+    view = next(w for w in at.get("button_group") if w.key == "stick_ball__view")
+    assert view.value == "Lecture" or view.value == ["Lecture"]
     assert at.query_params.get("lecture") == "1"
+
+
+def test_one_view_control_switches_between_study_lecture_and_practice():
+    at = run_page("disk_wall", {"practice": "1"})
+    assert at.query_params.get("practice") == "1"
+    assert not any("| | quantity | value |" in m.value for m in at.markdown)  # practice hides the answers
+    at.session_state["disk_wall__view"] = "Lecture"
+    at.run()
+    assert_clean(at)
+    assert at.query_params.get("lecture") == "1" and at.query_params.get("practice") is None
+    assert any("| | quantity | value |" in m.value for m in at.markdown)
+    at.session_state["disk_wall__view"] = "Study"
+    at.run()
+    assert at.query_params.get("lecture") is None and at.query_params.get("practice") is None
 
 
 def test_home_lists_every_problem_by_group():
@@ -196,3 +218,34 @@ def test_impact_pages_show_the_ledger_across_the_impact(pid):
     assert any("Across the impact" in m.value for m in at.markdown)
     table = next(m.value for m in at.markdown if "| quantity | before | after" in m.value)
     assert "kinetic energy" in table and ("conserved" in table or "changes" in table)
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_more_parameters_are_hidden_until_asked_for_and_keep_their_values(pid):
+    problem = BY_ID[pid]
+    hidden = [p for p in problem.solver.PARAMS if p.name not in problem.primary]
+    spec = next(p for p in hidden if hasattr(p, "dimension"))
+    key = f"{pid}__si__{spec.name}"
+    at = run_page(pid)
+    keys = {w.key for w in [*at.number_input, *at.slider, *at.selectbox, *at.toggle]}
+    on_show = {f"{pid}__si__{p.name}" + ("__inf" if getattr(p, "allow_inf", False) else "")
+               for p in problem.solver.PARAMS if p.name in problem.primary}
+    assert on_show <= keys and key not in keys
+    default_answers = answers_text(at)
+    show_more(at, pid).number_input(key=key).set_value(spec.default * 1.2).run()
+    assert_clean(at)
+    changed = answers_text(at)
+    assert changed != default_answers and at.query_params.get(spec.name)
+    at.toggle(key=f"{pid}__more").set_value(False).run()
+    at.run()  # a second run: the hidden control's widget state is gone, the value is not
+    assert key not in {w.key for w in at.number_input}
+    assert answers_text(at) == changed and at.query_params.get(spec.name)
+    assert show_more(at, pid).number_input(key=key).value == pytest.approx(spec.default * 1.2)
+
+
+def test_a_link_that_changes_a_hidden_parameter_opens_more_parameters():
+    at = run_page("pendulum_rebound", {"m_s": "3"})
+    assert_clean(at)
+    assert at.toggle(key="pendulum_rebound__more").value is True
+    assert at.number_input(key="pendulum_rebound__si__m_s").value == pytest.approx(3.0)
+    assert run_page("pendulum_rebound").toggle(key="pendulum_rebound__more").value is False

@@ -15,6 +15,9 @@ class Problem:
     icon: str
     source: str
     us_units: bool = False  # the textbook's data are in US customary units
+    # The parameters the lesson turns on, always shown; the rest (masses, lengths, g) sit behind
+    # "More parameters", which opens by itself when a link changes one of them.
+    primary: tuple[str, ...] = ()
 
     @property
     def solver(self) -> ModuleType:
@@ -28,22 +31,28 @@ class Problem:
 PROBLEMS = (
     Problem("disk_wall", "Spinning disk hits a rough wall", "Impacts",
             "A spinning disk strikes a wall: does it stick or slide, and where does it go?",
-            ":material/sports_hockey:", "ME 230 final-exam review, problem 1"),
+            ":material/sports_hockey:", "ME 230 final-exam review, problem 1",
+            primary=("V", "omega", "theta", "e", "mu")),
     Problem("stick_ball", "Ball slides into a free stick", "Impacts",
             "A ball hits a stick on ice and sticks (or bounces): momentum and angular momentum at work.",
-            ":material/sports_cricket:", "ME 230 final-exam review, problem 3"),
+            ":material/sports_cricket:", "ME 230 final-exam review, problem 3",
+            primary=("v", "s", "mode", "e")),
     Problem("pendulum_rebound", "Rod-and-sphere pendulum bounces off the floor", "Work–energy",
             "Release, swing, bounce: each bounce keeps a fraction e² of the swing.",
-            ":material/height:", "Hibbeler 19-56", us_units=True),
+            ":material/height:", "Hibbeler 19-56", us_units=True,
+            primary=("theta0", "e", "d", "surface")),
     Problem("rod_disk_spring", "Rod and disk on a torsional spring", "Work–energy",
             "Gravity pulls, the spring resists: how fast is it turning at θ₂?",
-            ":material/rotate_right:", "Hibbeler 18-9"),
+            ":material/rotate_right:", "Hibbeler 18-9",
+            primary=("k", "theta1", "theta2", "disk")),
     Problem("driven_cart", "Cart with driven wheels", "Newton–Euler",
             "Front, rear or all-wheel drive: how hard can it accelerate before the front lifts?",
-            ":material/directions_car:", "O'Reilly 9.3"),
+            ":material/directions_car:", "O'Reilly 9.3",
+            primary=("mu", "drive", "a", "b")),
     Problem("eulers_disk", "Euler's disk", "Newton–Euler",
             "A coin-like disk whirls ever faster as it settles: steady precession and its singularity.",
-            ":material/album:", "ME 230 final-exam review; Moffatt, Nature 404 (2000)"),
+            ":material/album:", "ME 230 final-exam review; Moffatt, Nature 404 (2000)",
+            primary=("theta", "r")),
 )
 
 BY_ID = {p.id: p for p in PROBLEMS}

@@ -24,28 +24,28 @@ LECTURE_CSS = """
 """
 
 
-def _page_flags(problem: Problem) -> tuple[str, bool, bool]:
-    """Unit system, lecture view and practice mode: sidebar toggles, initialised from ?units=us,
-    ?lecture=1 and ?practice=1."""
-    units_key, lecture_key = f"{problem.id}__units", f"{problem.id}__lecture"
-    practice_key = f"{problem.id}__practice_mode"
-    if practice_key not in st.session_state:
-        st.session_state[practice_key] = st.query_params.get("practice") == "1"
+VIEWS = ("Study", "Lecture", "Practice")
+VIEW_HELP = ("Study: answers, animation and derivation. Lecture: large type and the animation first, for "
+             "a projector. Practice: the answers are hidden; type your own and get feedback.")
+
+
+def _page_flags(problem: Problem) -> tuple[str, str]:
+    """Unit system and view (Study, Lecture or Practice): sidebar controls, initialised from
+    ?units=us, ?lecture=1 and ?practice=1."""
+    units_key, view_key = f"{problem.id}__units", f"{problem.id}__view"
+    if view_key not in st.session_state:
+        st.session_state[view_key] = ("Practice" if st.query_params.get("practice") == "1" else
+                                      "Lecture" if st.query_params.get("lecture") == "1" else "Study")
     if units_key not in st.session_state:
         st.session_state[units_key] = "US customary" if (
             problem.us_units and st.query_params.get("units") == "us") else "SI"
-    if lecture_key not in st.session_state:
-        st.session_state[lecture_key] = st.query_params.get("lecture") == "1"
     system = "si"
     if problem.us_units:
-        choice = st.sidebar.segmented_control("Units", ["SI", "US customary"], key=units_key,
+        choice = st.sidebar.segmented_control("Units", ["SI", "US customary"], key=units_key, required=True,
                                               help="The textbook states this problem in lb and ft.")
         system = "us" if choice == "US customary" else "si"
-    lecture = st.sidebar.toggle("Lecture view", key=lecture_key,
-                                help="Large type and the animation first, for a projector.")
-    practice = st.sidebar.toggle("Try it yourself", key=practice_key,
-                                 help="Hide the answers, type your own, and get feedback.")
-    return system, lecture, practice
+    view = st.sidebar.segmented_control("View", VIEWS, key=view_key, required=True, help=VIEW_HELP)
+    return system, view
 
 
 def _answers_for(solver, solution):
@@ -109,7 +109,8 @@ def problem_page(problem_id: str) -> None:
     _leave_legacy_pages_mode()
     problem = BY_ID[problem_id]
     solver = problem.solver
-    system, lecture, practice = _page_flags(problem)
+    system, view = _page_flags(problem)
+    lecture, practice = view == "Lecture", view == "Practice"
     if lecture:
         st.html(LECTURE_CSS)
     st.markdown(f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]")
@@ -149,10 +150,10 @@ def _derivation(solver, solution, numeric: bool) -> None:
     derivation_tab, slips_tab = st.tabs(["Derivation, step by step", "Common slips in the worked solution"])
     with derivation_tab:
         if numeric:
-            st.caption("Generated from the sympy derivation; the last steps put in your numbers (SI).")
-            results.derivation(solution)
+            results.derivation(solution, caption="Generated from the sympy derivation; the last steps put in "
+                                                 "your numbers (SI).")
         else:
-            st.caption("The method, without the numbers: the final steps appear with the solution.")
-            results.derivation(solution, symbolic_only=True)
+            results.derivation(solution, symbolic_only=True,
+                               caption="The method, without the numbers: the final steps appear with the solution.")
     with slips_tab:
         results.errata(solver.ERRATA)

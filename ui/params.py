@@ -113,20 +113,54 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
                                   help=p.help or None)
 
 
+def _in_si(p: Any, shown: Any, system: str) -> Any:
+    if isinstance(p, Choice):
+        return shown
+    if shown is None:  # an emptied number box
+        return math.nan
+    return units.to_si(float(shown), p.dimension, system)
+
+
+def _differs(p: Any, value: Any, base: dict) -> bool:
+    """Whether ``value`` (SI) is not the starting value (the variant's, else the default)."""
+    start = base.get(p.name, p.default)
+    if isinstance(p, Choice) or isinstance(value, str):
+        return value != start
+    if math.isnan(value):
+        return False
+    return not math.isclose(value, start, rel_tol=1e-12, abs_tol=1e-12)
+
+
 def parameter_panel(problem: Problem, system: str, base: dict | None = None,
                     container=None) -> tuple[dict, list[str]]:
-    """Draw the controls; return (parameters in SI for ``solve``, warnings about the URL)."""
+    """Draw the controls; return (parameters in SI for ``solve``, warnings about the URL).
+
+    The problem's primary parameters are always shown; the others behind a "More parameters"
+    toggle, which starts open when one of them is not at its starting value (a link that changes
+    a mass shows it). A hidden parameter keeps its value."""
     container = container or st.sidebar
-    warnings = _initial_values(problem, system, base or {})
-    values = {}
-    for p in problem.solver.PARAMS:
-        shown = _control(p, problem, system, container)
-        if isinstance(p, Choice):
-            values[p.name] = shown
-        elif shown is None:  # an emptied number box
-            values[p.name] = math.nan
-        else:
-            values[p.name] = units.to_si(float(shown), p.dimension, system)
+    base = base or {}
+    warnings = _initial_values(problem, system, base)
+    params = problem.solver.PARAMS
+    first = [p for p in params if p.name in problem.primary] or list(params)
+    rest = [p for p in params if p not in first]
+    values = {p.name: _in_si(p, _control(p, problem, system, container), system) for p in first}
+    if rest:
+        more_key = f"{problem.id}__more"
+        stored = {p.name: _in_si(p, st.session_state[_key(problem, system, p.name)], system) for p in rest}
+        if more_key not in st.session_state:
+            st.session_state[more_key] = any(_differs(p, stored[p.name], base) for p in rest)
+        more = container.toggle("More parameters", key=more_key,
+                                help=", ".join(p.label for p in rest).capitalize() + ".")
+        for p in rest:
+            if more:
+                values[p.name] = _in_si(p, _control(p, problem, system, container), system)
+            else:
+                # Re-set it as a plain value: Streamlit drops the state of a widget not drawn in a run.
+                key = _key(problem, system, p.name)
+                st.session_state[key] = st.session_state[key]
+                values[p.name] = stored[p.name]
+    values = {p.name: values[p.name] for p in params}  # the solver's order
     st.session_state[f"{problem.id}__si"] = dict(values)
     return values, warnings
 
@@ -139,15 +173,12 @@ def mirror_to_url(problem: Problem, values: dict, system: str, flags: dict[str, 
     base = base or {}
     for p in problem.solver.PARAMS:
         v = values[p.name]
+        if not _differs(p, v, base):
+            continue
         if isinstance(p, Choice):
-            if v != base.get(p.name, p.default):
-                wanted[p.name] = v
-            continue
-        if isinstance(v, float) and math.isnan(v):
-            continue
-        shown = units.to_display(v, p.dimension, system)
-        default = units.to_display(base.get(p.name, p.default), p.dimension, system)
-        if not math.isclose(shown, default, rel_tol=1e-12, abs_tol=1e-12):
+            wanted[p.name] = v
+        else:
+            shown = units.to_display(v, p.dimension, system)
             wanted[p.name] = "inf" if math.isinf(shown) else f"{shown:.10g}"
     wanted.update({k: v for k, v in flags.items() if v})
     current = {k: st.query_params.get(k) for k in st.query_params.keys()}

@@ -44,11 +44,12 @@ def plain(text: str) -> str:
     return _MARKDOWN_SPECIAL.sub(r"\\\1", text)
 
 
-def derivation(solution: Solution, symbolic_only: bool = False) -> None:
-    """All steps in one Markdown element (display math in $$ … $$): one element, not two per step."""
+def derivation(solution: Solution, symbolic_only: bool = False, caption: str = "") -> None:
+    """All steps in one Markdown element (display math in $$ … $$), under a grey caption: one
+    element, not two per step."""
     steps = solution.steps[: solution.symbolic_steps] if symbolic_only else solution.steps
     blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(steps, start=1)]
-    st.markdown("\n\n".join(blocks))
+    st.markdown("\n\n".join([f":gray[{caption}]"] * bool(caption) + blocks))
 
 
 def checks(solution: Solution) -> str:
