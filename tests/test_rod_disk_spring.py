@@ -60,3 +60,18 @@ def test_stiff_spring_holds_it_upright():
     with pytest.raises(ValueError) as err:
         rod_disk_spring.solve(k=100.0)
     assert err.value.theta_max == 0.0
+
+
+@pytest.mark.parametrize("theta1", [0.0, 5e-4])
+def test_the_linearised_escape_from_upright_matches_integrating_all_the_way(theta1):
+    """A nudged release leaves upright on its linearised motion for ESCAPE rad; integrating the
+    full equation from the nudge itself (hundreds of steps more) lands on the same θ̇ at θ₂."""
+    from solvers.swing import integrate_leg
+    s = rod_disk_spring.solve(theta1=theta1)
+    p = dict(s.params)
+    acc = rod_disk_spring.equation_of_motion(p, s.answers["I_O"])
+    whole = integrate_leg(acc, theta1, rod_disk_spring.NUDGE, 0.0, 100.0, stop_at_angle=p["theta2"], direction=1)
+    leg, _ = rod_disk_spring._legs(tuple(sorted(p.items())) + (("I_O", s.answers["I_O"]),))
+    assert leg.t[0] == 0.0 and leg.theta[0] == theta1
+    assert leg.end[2] == pytest.approx(whole.end[2], rel=1e-9)
+    assert leg.end[0] == pytest.approx(whole.end[0], rel=1e-6)

@@ -158,8 +158,14 @@ class Moving:
     def first(self) -> dict:
         return {**self.style, **{k: v[0] for k, v in self.per_frame.items()}}
 
-    def at(self, i: int) -> dict:
-        return {k: v[i] for k, v in self.per_frame.items()}
+    def frames(self) -> list[dict]:
+        """The update each frame carries for this trace: its coordinates only."""
+        names, columns = list(self.per_frame), list(self.per_frame.values())
+        if len(names) == 1:
+            return [{names[0]: a} for a in columns[0]]
+        if len(names) == 2:
+            return [{names[0]: a, names[1]: b} for a, b in zip(*columns)]
+        return [dict(zip(names, values)) for values in zip(*columns)]
 
 
 def moving(style: dict, x=None, y=None, z=None) -> Moving:
@@ -208,8 +214,8 @@ def animated(
     return {
         "data": [*static, *(t.first() for t in traces)],
         "layout": layout,
-        "frames": [{"name": name, "data": [t.at(i) for t in traces], "traces": indices}
-                   for i, name in enumerate(names)],
+        "frames": [{"name": name, "data": list(data), "traces": indices}
+                   for name, data in zip(names, zip(*(t.frames() for t in traces)))],
     }
 
 
