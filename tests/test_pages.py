@@ -24,7 +24,7 @@ def run_page(pid: str, query: dict | None = None) -> AppTest:
 def answers_text(at: AppTest) -> str:
     """The answers table (the Markdown of the answer section, up to the ledger and checks)."""
     section = next((m.value for m in at.markdown if "| | quantity | value |" in m.value), "")
-    return section.split("#####")[0]
+    return section[section.find("### Answers"):].split("#####")[0]  # (the study view's heading shares it)
 
 
 def latex_text(at: AppTest) -> list[str]:

@@ -113,7 +113,7 @@ def problem_page(problem_id: str) -> None:
     lecture, practice = view == "Lecture", view == "Practice"
     if lecture:
         st.html(LECTURE_CSS)
-    st.markdown(f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]")
+    heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
     seed, seed_warning = seed_from_url()
     base = variant(solver, problem.id, seed) if seed is not None else {}
     st.sidebar.markdown("### Parameters" + (f" · variant {seed}" if seed is not None else ""))
@@ -121,29 +121,38 @@ def problem_page(problem_id: str) -> None:
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "",
                                             "lecture": "1" if lecture else "", "practice": "1" if practice else "",
                                             "seed": str(seed) if seed is not None else ""}, base)
-    for warning in [seed_warning, *warnings]:
-        if warning:
-            st.warning(warning, icon=":material/link_off:")
+    notices = [w for w in (seed_warning, *warnings) if w]
     try:
         solution, figures = _solve_and_draw(problem, params, system)
     except ValueError as error:
+        _heading(heading, notices)
         results.refused(error, system)
         return
 
     answers = _answers_for(solver, solution)
+    # In the study view the heading shares the answers' Markdown element: one element less per run.
+    together = view == "Study" and not notices
+    if not together:
+        _heading(heading, notices)
     if practice and not practice_panel(problem, solution, answers, system):
         _derivation(solver, solution, numeric=False)
         instructor_export(problem)
         return
     if lecture:
         _figures(figures)
-    results.answer_section(solution, answers, system)
+    results.answer_section(solution, answers, system, heading=heading if together else "")
     if not lecture:
         _figures(figures)
     _on_request(problem, solution)
     _derivation(solver, solution, numeric=True)
     if practice:
         instructor_export(problem)
+
+
+def _heading(heading: str, notices: list[str]) -> None:
+    st.markdown(heading)
+    for notice in notices:
+        st.warning(notice, icon=":material/link_off:")
 
 
 def _derivation(solver, solution, numeric: bool) -> None:

@@ -16,9 +16,10 @@ LIMIT_LABELS = {  # attribute carried by a PhysicalLimitError -> (what it is, di
 }
 
 
-def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str) -> None:
-    """Answers, notes, the ledger across an impact and the checks: one Markdown element."""
-    parts = ["### Answers", answers_table(solution, answers, system)]
+def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str, heading: str = "") -> None:
+    """Answers, notes, the ledger across an impact and the checks (under ``heading``, if given): one
+    Markdown element."""
+    parts = [heading] * bool(heading) + ["### Answers", answers_table(solution, answers, system)]
     parts += [f":gray[{note}]" for note in solution.notes]
     if solution.ledger:
         parts += ["##### Across the impact", ledger(solution, system)]
