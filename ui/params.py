@@ -17,7 +17,6 @@ from ui import units
 from ui.catalog import Problem
 
 MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed
-PAGE_FLAGS = ("units", "lecture")
 
 
 def _key(problem: Problem, system: str, name: str) -> str:
