@@ -81,8 +81,14 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
     page.get_by_role("heading", name=problem.title).wait_for()
     before_answers, before_text = answers_table(page), main_text(page)
 
-    # Change the first number box as a person does: select, type, Enter.
-    box = page.locator("[data-testid='stSidebar'] [data-testid='stNumberInput'] input").first
+    # Change the first number box as a person does: select, type, Enter. A page whose lesson
+    # parameters are all sliders has its number boxes under "More parameters": open it first.
+    boxes = page.locator("[data-testid='stSidebar'] [data-testid='stNumberInput'] input")
+    if boxes.count() == 0:
+        page.locator("[data-testid='stSidebar']").get_by_text("More parameters", exact=True).click()
+        boxes.first.wait_for(timeout=30_000)
+        wait_until_idle(page)
+    box = boxes.first
     box.click()
     value = float(box.input_value())
     box.press("Control+a")
