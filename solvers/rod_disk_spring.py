@@ -31,7 +31,7 @@ from .core import (
     require,
     validate_params,
 )
-from .swing import DRAWING, Leg, integrate_leg
+from .swing import DRAWING, Leg, integrate_leg, slope
 
 PARAMS = (
     Number("m1", 6.0, "rod mass", "mass", "m_1", low=0, ui_low=0.1, ui_high=30.0, step=0.1),
@@ -235,16 +235,15 @@ def _linear_escape(acc, theta1: float, omega0: float, samples: int = 12) -> Leg:
     the release, θ̈ = f₁ + λ² (θ − θ₁), exactly until θ − θ₁ = ESCAPE; the neglected terms are
     O(ESCAPE³) (sin θ is odd about upright), about 1e-9 of θ̇ at θ₂, far below the check's
     tolerance. Returns just the release state when there is no nudge or upright is stable."""
-    eps = 1e-7
-    lam2 = (acc(theta1 + eps) - acc(theta1 - eps)) / (2 * eps)
+    lam2 = slope(acc, theta1)
     if omega0 == 0 or lam2 <= 0:
         return Leg(np.array([0.0]), np.array([theta1]), np.array([omega0]), False)
     lam, shift = math.sqrt(lam2), acc(theta1) / lam2
-    away = lambda t: shift * (math.cosh(lam * t) - 1) + omega0 / lam * math.sinh(lam * t)  # noqa: E731
+    away = lambda t: shift * (np.cosh(lam * t) - 1) + omega0 / lam * np.sinh(lam * t)  # noqa: E731
     latest = 1.001 * math.asinh(ESCAPE * lam / omega0) / lam  # shift ≥ 0 here: the nudge alone is slower
     t_end = brentq(lambda t: away(t) - ESCAPE, 0.0, latest)
     t = np.linspace(0.0, t_end, samples)
-    theta = theta1 + shift * (np.cosh(lam * t) - 1) + omega0 / lam * np.sinh(lam * t)
+    theta = theta1 + away(t)
     omega = shift * lam * np.sinh(lam * t) + omega0 * np.cosh(lam * t)
     return Leg(t, theta, omega, False)
 

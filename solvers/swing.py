@@ -80,12 +80,16 @@ def _first_event(grid, y, acceleration, angle, at_rest, direction, first_chunk):
     return brentq(interp, t0, t1, xtol=1e-15), kind
 
 
+def slope(acceleration: Callable[[float], float], q: float, eps: float = 1e-7) -> float:
+    """dθ̈/dθ at q, by a central difference of step eps."""
+    return (acceleration(q + eps) - acceleration(q - eps)) / (2 * eps)
+
+
 def _taylor(acceleration, state, dt: float) -> np.ndarray:
     """The state dt later by a third-order Taylor step of θ̈ = f(θ) (dt is tiny here)."""
     q, w = state
     f = acceleration(q)
-    eps = 1e-7 * max(1.0, abs(q))
-    df = (acceleration(q + eps) - acceleration(q - eps)) / (2 * eps)
+    df = slope(acceleration, q, eps=1e-7 * max(1.0, abs(q)))
     return np.array([q + w * dt + f * dt**2 / 2 + df * w * dt**3 / 6,
                      w + f * dt + df * w * dt**2 / 2])
 
@@ -130,7 +134,7 @@ def integrate_leg(
         return Leg(np.array([t0]), np.array([theta0]), np.array([0.0]), True)
     rhs = lambda y, t: (y[1], acceleration(y[0]))  # noqa: E731
     if chunk is None:
-        stiffness = abs(acceleration(theta0 + 1e-3) - acceleration(theta0 - 1e-3)) / 2e-3
+        stiffness = abs(slope(acceleration, theta0, eps=1e-3))
         chunk = 0.25 * 2 * math.pi / math.sqrt(max(stiffness, 1e-6)) if stiffness else 1.0
         chunk = min(max(chunk, 1e-3), t_max)
     ts, ys = [np.array([t0])], [np.array([[theta0, omega0]])]
