@@ -3,7 +3,8 @@
 Streamlit has no start-up hook, and its health endpoint answers as soon as the server listens.
 Derivations are cached in module globals (functools.cache), so running each problem once here,
 before the server starts, means /_stcore/health answers only when this replica is warm: the
-first student on a new replica waits for nothing. Arguments after the script name go to
+first student on a new replica waits for nothing. It also turns Nagle's algorithm off on every
+connection (see ``accept_without_nagle``). Arguments after the script name go to
 ``streamlit run app.py``, e.g. ``python serve.py --server.port 8501``.
 """
 from __future__ import annotations
@@ -11,6 +12,7 @@ from __future__ import annotations
 import gc
 import itertools
 import logging
+import socket
 import sys
 import time
 from pathlib import Path
@@ -45,18 +47,50 @@ def warm() -> float:
     return time.perf_counter() - started
 
 
-def main() -> None:
-    sys.path.insert(0, str(ROOT))
-    seconds = warm()
-    logging.getLogger("dynamics_lab").warning("warmed in %.1f s", seconds)
+def accept_without_nagle() -> None:
+    """Let every accepted connection send at once (TCP_NODELAY), as asyncio means it to.
+
+    Streamlit binds its listening socket itself (``_bind_socket``) and leaves its protocol number
+    at 0. Accepted sockets inherit that, and asyncio turns TCP_NODELAY on only for sockets that
+    say IPPROTO_TCP, so every connection kept Nagle's algorithm: a small message written while the
+    previous one is unacknowledged waits for the browser's delayed ACK, 40 ms on Linux. That was a
+    fixed 40 ms on every first load and on some 5–10 % of the interactions under load (the same
+    bug as uvicorn #3149). Re-wrapping the bound socket with its true protocol is enough.
+    """
+    from streamlit.web.server.starlette import starlette_server
+
+    bind = starlette_server._bind_socket  # fails loudly if a Streamlit upgrade renames it
+
+    def bind_tcp(address: str, port: int, backlog: int) -> socket.socket:
+        bound = bind(address, port, backlog)
+        if bound.family not in (socket.AF_INET, socket.AF_INET6) or bound.proto == socket.IPPROTO_TCP:
+            return bound
+        tcp = socket.socket(bound.family, bound.type, socket.IPPROTO_TCP, fileno=bound.detach())
+        tcp.setblocking(False)
+        tcp.set_inheritable(True)
+        return tcp
+
+    starlette_server._bind_socket = bind_tcp
+
+
+def run(script: Path, argv: list[str]) -> None:
+    """``streamlit run script *argv`` in this process, with Nagle off and the warmed heap frozen."""
+    accept_without_nagle()
     # The warmed derivations (sympy trees, lambdified code) live as long as the process: move them
     # out of the collector's sight, so a full collection under load scans only what requests make.
     gc.collect()
     gc.freeze()
     from streamlit.web import cli
 
-    sys.argv = ["streamlit", "run", str(ROOT / "app.py"), *sys.argv[1:]]
+    sys.argv = ["streamlit", "run", str(script), *argv]
     sys.exit(cli.main())
+
+
+def main() -> None:
+    sys.path.insert(0, str(ROOT))
+    seconds = warm()
+    logging.getLogger("dynamics_lab").warning("warmed in %.1f s", seconds)
+    run(ROOT / "app.py", sys.argv[1:])
 
 
 if __name__ == "__main__":

@@ -149,8 +149,8 @@ def start_servers(app: Path, processes: int) -> tuple[list[subprocess.Popen], st
     ports = [free_port() for _ in range(processes)]
     procs = []
     for port in ports:
-        cmd = ([sys.executable, str(ROOT / "serve.py")] if app.name == "app.py" else
-               [sys.executable, "-m", "streamlit", "run", str(app)])
+        # The empty baseline runs on the same server as the app (serve.run), without the warm-up.
+        cmd = [sys.executable, str(ROOT / ("serve.py" if app.name == "app.py" else "bench/serve_empty.py"))]
         procs.append(subprocess.Popen(cmd + ["--server.port", str(port), "--server.address", "127.0.0.1",
                                              "--server.headless", "true", "--browser.gatherUsageStats", "false"],
                                       cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))

@@ -1,0 +1,67 @@
+"""serve.py's server fix: every connection Streamlit accepts sends at once (TCP_NODELAY).
+
+Without it each small message written behind an unacknowledged one waits for the browser's
+delayed ACK (40 ms on Linux): see serve.accept_without_nagle and BENCHMARKS.md.
+"""
+from __future__ import annotations
+
+import asyncio
+import socket
+import sys
+
+import pytest
+from streamlit.web.server.starlette import starlette_server
+
+import serve
+
+pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="asyncio's TCP_NODELAY rule, on Linux")
+
+
+def nodelay_of_accepted(bind) -> int:
+    """Bind a listener with ``bind``, serve it with asyncio as uvicorn does, connect once, and
+    read TCP_NODELAY on the server's side of the connection."""
+    async def accept_one() -> int:
+        seen: asyncio.Future[int] = asyncio.get_running_loop().create_future()
+
+        class Report(asyncio.Protocol):
+            def connection_made(self, transport):
+                sock = transport.get_extra_info("socket")
+                seen.set_result(sock.getsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY))
+                transport.close()
+
+        listener = bind("127.0.0.1", 0, 8)
+        server = await asyncio.get_running_loop().create_server(Report, sock=listener)
+        async with server:
+            _, writer = await asyncio.open_connection("127.0.0.1", listener.getsockname()[1])
+            value = await asyncio.wait_for(seen, 5)
+            writer.close()
+        return value
+
+    return asyncio.run(accept_one())
+
+
+@pytest.fixture
+def patched(monkeypatch):
+    monkeypatch.setattr(starlette_server, "_bind_socket", starlette_server._bind_socket)  # restored after
+    serve.accept_without_nagle()
+    return starlette_server._bind_socket
+
+
+def test_streamlits_own_listener_leaves_nagle_on():
+    """The bug, shown on the pinned Streamlit: if this starts failing, upstream fixed it and
+    accept_without_nagle can go."""
+    assert nodelay_of_accepted(starlette_server._bind_socket) == 0
+
+
+def test_served_connections_send_without_nagle(patched):
+    assert nodelay_of_accepted(patched) != 0
+
+
+def test_listener_stays_a_usable_server_socket(patched):
+    listener = patched("127.0.0.1", 0, 8)
+    try:
+        assert listener.proto == socket.IPPROTO_TCP
+        assert listener.getblocking() is False and listener.get_inheritable()
+        assert listener.getsockopt(socket.SOL_SOCKET, socket.SO_ACCEPTCONN)
+    finally:
+        listener.close()
