@@ -33,7 +33,7 @@ from .core import (
     require,
     validate_params,
 )
-from .swing import ATOL, DRAWING, RTOL, integrate_leg
+from .swing import ATOL, DRAWING, RTOL, drawn_to_turn, integrate_leg
 
 PARAMS = (
     Number("m_s", 4.536, "sphere mass", "mass", "m_s", low=0, ui_low=0.1, ui_high=20.0, step=0.1),
@@ -230,13 +230,31 @@ def _legs(key: tuple, bounces: int):
         t_hit, _, w_hit = legs[-1].end
         if p["e"] == 0:
             break
-        # The first rise checks θ_f (tight tolerances); later ones are only drawn.
-        rise = integrate_leg(acc, p["theta_impact"], -p["e"] * w_hit, t_hit, _horizon(p), stop_at_rest=True,
-                             tolerances=(RTOL, ATOL) if bounce == 0 else DRAWING)
+        drawn = _rise_drawn(p, acc, -p["e"] * w_hit, t_hit)
+        if bounce == 0 or drawn is None:
+            # The first rise checks θ_f, so it is integrated (tight tolerances), in one chunk sized
+            # by the drawn rise's duration; later rises are only drawn.
+            chunk = 1.05 * (drawn.t[-1] - t_hit) if drawn is not None else None
+            rise = integrate_leg(acc, p["theta_impact"], -p["e"] * w_hit, t_hit, _horizon(p), stop_at_rest=True,
+                                 chunk=chunk or None, tolerances=(RTOL, ATOL) if bounce == 0 else DRAWING)
+        else:
+            rise = drawn
         peak = rise.end[0]
         back = type(rise)(2 * peak - rise.t[::-1], rise.theta[::-1].copy(), -rise.omega[::-1], True)
         legs += [rise, back]
     return tuple(legs)
+
+
+def _rise_drawn(p, acc, speed: float, t_hit: float):
+    """A rise from the impact angle at θ̇ = ``speed``, drawn from energy conservation,
+    θ̇² = speed² − 2 (Q/I_O)(sin θ − sin θ_I), up to its peak sin θ_p = sin θ_I + I_O speed²/(2Q);
+    None if there is no peak to draw (at rest, or over the top)."""
+    Q, I, theta_I = moment_coefficient(p), p["I_O"], p["theta_impact"]
+    sin_peak = math.sin(theta_I) + I * speed**2 / (2 * Q)
+    if speed == 0 or not -1 < sin_peak < 1:
+        return None
+    return drawn_to_turn(lambda q: speed**2 - 2 * Q / I * (np.sin(q) - math.sin(theta_I)), acc, theta_I,
+                         math.asin(sin_peak), t_hit)
 
 
 @functools.lru_cache(maxsize=256)

@@ -31,7 +31,7 @@ from .core import (
     require,
     validate_params,
 )
-from .swing import DRAWING, Leg, integrate_leg, slope
+from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
 
 PARAMS = (
     Number("m1", 6.0, "rod mass", "mass", "m_1", low=0, ui_low=0.1, ui_high=30.0, step=0.1),
@@ -218,15 +218,35 @@ def _legs(key: tuple):
     horizon = 200 * math.sqrt(p["I_O"] / weight_moment(p)) + 10
     escape = _linear_escape(acc, p["theta1"], _start_rate(p["theta1"]))
     t0, q0, w0 = escape.end
-    first = integrate_leg(acc, q0, w0, t0, horizon, stop_at_angle=p["theta2"], direction=1)
+    rate_squared = lambda q: 2 * kinetic_energy_at(p, q) / p["I_O"]  # noqa: E731  the first integral
+    # One chunk, sized by the energy integral's estimate of the time to θ2, spares the integrator
+    # its restarts; the estimate only sizes the work, the integration alone finds θ2.
+    chunk = 1.05 * crossing_time(rate_squared, q0, p["theta2"])
+    first = integrate_leg(acc, q0, w0, t0, horizon, stop_at_angle=p["theta2"], direction=1,
+                          chunk=chunk if 0 < chunk < horizon else None)
     if len(escape.t) > 1:
         first = Leg(np.concatenate([escape.t, first.t[1:]]), np.concatenate([escape.theta, first.theta[1:]]),
                     np.concatenate([escape.omega, first.omega[1:]]), first.ended_by_event)
     if not first.ended_by_event:
         return first, None
     t2, q2, w2 = first.end
-    rest = integrate_leg(acc, q2, w2, t2, horizon, stop_at_rest=True, tolerances=DRAWING)  # only drawn
+    turn = _turning_angle(p, q2)
+    rest = drawn_to_turn(rate_squared, acc, q2, turn, t2) if turn is not None else None  # only drawn
+    if rest is None:
+        rest = integrate_leg(acc, q2, w2, t2, horizon, stop_at_rest=True, tolerances=DRAWING)
     return first, rest
+
+
+def _turning_angle(p, past: float) -> float | None:
+    """The first angle beyond ``past`` where the kinetic energy is spent (the spring always wins in
+    the end), or None if there is none within a few turns."""
+    T = lambda q: float(kinetic_energy_at(p, np.array([q]))[0])  # noqa: E731
+    grid = past + np.linspace(0.0, 4 * math.pi, 513)
+    spent = np.nonzero(kinetic_energy_at(p, grid) <= 0.0)[0]
+    if not len(spent) or spent[0] == 0:
+        return None
+    i = spent[0]
+    return brentq(T, grid[i - 1], grid[i], xtol=1e-14)
 
 
 def _linear_escape(acc, theta1: float, omega0: float, samples: int = 12) -> Leg:

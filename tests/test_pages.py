@@ -63,6 +63,9 @@ def test_page_runs_with_answers_derivation_and_checks(pid):
     for answer in BY_ID[pid].solver.ANSWERS:
         assert f"${answer.symbol}$" in answers
     assert len(latex_text(at)) >= 6
+    derivation = next(m.value for m in at.markdown if "### Derivation, step by step" in m.value)
+    assert "Common slips in the worked solution" in derivation
+    assert all(f"- {slip}" in derivation for slip in BY_ID[pid].solver.ERRATA), "the seed's slips follow it"
     ledger = [m.value for m in at.markdown if ":material/check_circle:" in m.value]
     assert ledger, "the checks are shown"
 

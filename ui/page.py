@@ -156,13 +156,10 @@ def _heading(heading: str, notices: list[str]) -> None:
 
 
 def _derivation(solver, solution, numeric: bool) -> None:
-    derivation_tab, slips_tab = st.tabs(["Derivation, step by step", "Common slips in the worked solution"])
-    with derivation_tab:
-        if numeric:
-            results.derivation(solution, caption="Generated from the sympy derivation; the last steps put in "
-                                                 "your numbers (SI).")
-        else:
-            results.derivation(solution, symbolic_only=True,
-                               caption="The method, without the numbers: the final steps appear with the solution.")
-    with slips_tab:
-        results.errata(solver.ERRATA)
+    """The derivation and the seed's slips below it, in one element (tabs would cost a widget's time
+    on every run)."""
+    if numeric:
+        caption = "Generated from the sympy derivation; the last steps put in your numbers (SI)."
+    else:
+        caption = "The method, without the numbers: the final steps appear with the solution."
+    results.derivation(solution, symbolic_only=not numeric, caption=caption, slips=solver.ERRATA)

@@ -45,12 +45,16 @@ def plain(text: str) -> str:
     return _MARKDOWN_SPECIAL.sub(r"\\\1", text)
 
 
-def derivation(solution: Solution, symbolic_only: bool = False, caption: str = "") -> None:
-    """All steps in one Markdown element (display math in $$ … $$), under a grey caption: one
-    element, not two per step."""
+def derivation(solution: Solution, symbolic_only: bool = False, caption: str = "",
+               slips: tuple[str, ...] = ()) -> None:
+    """The derivation, all steps (display math in $$ … $$) under a grey caption, then the worked
+    solution's common slips: one Markdown element, not two per step."""
     steps = solution.steps[: solution.symbolic_steps] if symbolic_only else solution.steps
     blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(steps, start=1)]
-    st.markdown("\n\n".join([f":gray[{caption}]"] * bool(caption) + blocks))
+    parts = ["### Derivation, step by step"] + [f":gray[{caption}]"] * bool(caption) + blocks
+    if slips:
+        parts += ["#### Common slips in the worked solution", "\n".join(f"- {note}" for note in slips)]
+    st.markdown("\n\n".join(parts))
 
 
 def checks(solution: Solution) -> str:
@@ -71,10 +75,6 @@ def ledger(solution: Solution, system: str) -> str:
         rows.append(f"| {row.quantity} | {units.format_quantity(row.before, row.dimension, system)} | "
                     f"{units.format_quantity(row.after, row.dimension, system)} | {mark}: {row.why} |")
     return "\n".join(rows)
-
-
-def errata(notes: tuple[str, ...]) -> None:
-    st.markdown("\n".join(f"- {note}" for note in notes))
 
 
 def refused(error: ValueError, system: str) -> None:
