@@ -71,7 +71,7 @@ def main() -> None:
     for pid in CONTROLS:
         solution = importlib.import_module(f"solvers.{pid}").solve()
         for fig in importlib.import_module(f"viz.{pid}").figures(solution):
-            print(f"| {pid}: {fig.key} | {len(fig.spec.get('frames', []))} | {len(fig.json_bytes()) / 1024:.0f} KB |")
+            print(f"| {pid}: {fig.key} | {len(fig.spec['animation']['times']) if 'animation' in fig.spec else 0} | {len(fig.json_bytes()) / 1024:.0f} KB |")
 
 
 if __name__ == "__main__":

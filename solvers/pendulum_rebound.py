@@ -33,7 +33,7 @@ from .core import (
     require,
     validate_params,
 )
-from .swing import ATOL, DRAWING, RTOL, drawn_to_turn, integrate_leg
+from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, integrate_leg
 
 PARAMS = (
     Number("m_s", 4.536, "sphere mass", "mass", "m_s", low=0, ui_low=0.1, ui_high=20.0, step=0.1),
@@ -234,9 +234,9 @@ def _legs(key: tuple, bounces: int):
         if bounce == 0 or drawn is None:
             # The first rise checks θ_f, so it is integrated (tight tolerances), in one chunk sized
             # by the drawn rise's duration; later rises are only drawn.
-            chunk = 1.05 * (drawn.t[-1] - t_hit) if drawn is not None else None
             rise = integrate_leg(acc, p["theta_impact"], -p["e"] * w_hit, t_hit, _horizon(p), stop_at_rest=True,
-                                 chunk=chunk or None, tolerances=(RTOL, ATOL) if bounce == 0 else DRAWING)
+                                 expected=drawn.t[-1] - t_hit if drawn is not None else None,
+                                 tolerances=(RTOL, ATOL) if bounce == 0 else DRAWING)
         else:
             rise = drawn
         peak = rise.end[0]
@@ -261,8 +261,10 @@ def _rise_drawn(p, acc, speed: float, t_hit: float):
 def _fall(key: tuple):
     """From release to the first impact (checks the impact speed)."""
     p = dict(key)
-    return integrate_leg(_acceleration(p), p["theta0"], 0.0, 0.0, _horizon(p), stop_at_angle=p["theta_impact"],
-                         direction=-1)
+    Q, I, theta0 = moment_coefficient(p), p["I_O"], p["theta0"]
+    expected = crossing_time(lambda q: 2 * Q / I * (math.sin(theta0) - np.sin(q)), theta0, p["theta_impact"])
+    return integrate_leg(_acceleration(p), theta0, 0.0, 0.0, _horizon(p), stop_at_angle=p["theta_impact"],
+                         direction=-1, expected=expected)
 
 
 def _acceleration(p):

@@ -221,9 +221,8 @@ def _legs(key: tuple):
     rate_squared = lambda q: 2 * kinetic_energy_at(p, q) / p["I_O"]  # noqa: E731  the first integral
     # One chunk, sized by the energy integral's estimate of the time to θ2, spares the integrator
     # its restarts; the estimate only sizes the work, the integration alone finds θ2.
-    chunk = 1.05 * crossing_time(rate_squared, q0, p["theta2"])
     first = integrate_leg(acc, q0, w0, t0, horizon, stop_at_angle=p["theta2"], direction=1,
-                          chunk=chunk if 0 < chunk < horizon else None)
+                          expected=crossing_time(rate_squared, q0, p["theta2"]))
     if len(escape.t) > 1:
         first = Leg(np.concatenate([escape.t, first.t[1:]]), np.concatenate([escape.theta, first.theta[1:]]),
                     np.concatenate([escape.omega, first.omega[1:]]), first.ended_by_event)

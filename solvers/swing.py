@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from scipy.integrate import odeint, simpson
+from scipy.integrate import odeint
 from scipy.optimize import brentq
 
 RTOL, ATOL = 1e-11, 1e-12  # for a leg that checks an answer
@@ -94,21 +94,30 @@ def _taylor(acceleration, state, dt: float) -> np.ndarray:
                      w + f * dt + df * w * dt**2 / 2])
 
 
-def _polished(rhs, acceleration, start, t_start, event, kind, angle, tol):
-    """(time, state) of the event: the state integrated from the grid point before it, then Newton
-    on that exact state, moving along the solution by Taylor steps while the correction is tiny
-    (a fresh integration otherwise), so an event costs one short integration."""
-    exact = odeint(rhs, start, [t_start, event], rtol=tol[0], atol=tol[1])[-1]
+def _stepped(acceleration, state, dt: float) -> np.ndarray | None:
+    """The state dt away by a Taylor step, if one step and two half steps agree to rounding
+    (dt is tiny next to the motion's time scale); else None."""
+    whole = _taylor(acceleration, state, dt)
+    halves = _taylor(acceleration, _taylor(acceleration, state, dt / 2), dt / 2)
+    return whole if np.all(np.abs(whole - halves) <= 1e-14 * max(1.0, *np.abs(whole))) else None
+
+
+def _polished(rhs, acceleration, start, t_start, event, kind, angle, tol, near=None):
+    """(time, state) of the event: the state at the event, by a Taylor step from the grid point
+    ``near`` (t, state) when it is close enough, else integrated from the grid point before it;
+    then Newton on that state, moving along the solution by Taylor steps while the correction is
+    tiny (a fresh integration otherwise), so an event costs at most one short integration."""
+    exact = _stepped(acceleration, near[1], event - near[0]) if near is not None else None
+    if exact is None:
+        exact = odeint(rhs, start, [t_start, event], rtol=tol[0], atol=tol[1])[-1]
     for _ in range(4):
         residual, rate = ((exact[0] - angle, exact[1]) if kind == "angle" else (exact[1], acceleration(exact[0])))
         if rate == 0 or abs(residual) <= 1e-14 * max(1.0, abs(exact[0]), abs(exact[1])):
             break
         step = -residual / rate
         event += step
-        if abs(step) < 1e-4 * max(event - t_start, 1e-12):
-            exact = _taylor(acceleration, exact, step)
-        else:
-            exact = odeint(rhs, start, [t_start, event], rtol=tol[0], atol=tol[1])[-1]
+        stepped = _stepped(acceleration, exact, step)
+        exact = stepped if stepped is not None else odeint(rhs, start, [t_start, event], rtol=tol[0], atol=tol[1])[-1]
     return event, exact
 
 
@@ -134,7 +143,7 @@ def drawn_to_turn(
     if d == 0 or not pull > 0 or not math.isfinite(pull):
         return None
     previous = None
-    for n in (129, 257, 513, 1025, 2049, 4097, 8193):
+    for n in (65, 129, 257, 513, 1025, 2049, 4097, 8193):
         w = np.linspace(0.0, 1.0, n)  # from the turn (w = 0) back to the start (w = 1)
         theta = theta_turn - d * w**2
         rate = np.sqrt(np.maximum(rate_squared(theta), 0.0))
@@ -167,7 +176,7 @@ def crossing_time(rate_squared: Callable[[np.ndarray], np.ndarray], theta0: floa
     with np.errstate(divide="ignore", invalid="ignore"):
         integrand = 2 * abs(theta1 - theta0) * u / rate
     integrand[0] = 0.0 if rate[0] > 0 else integrand[1]
-    return float(simpson(integrand, x=u))
+    return float(_simpson_cumulative(integrand, u[1])[-1])
 
 
 def integrate_leg(
@@ -182,12 +191,16 @@ def integrate_leg(
     samples: int = 0,
     chunk: float | None = None,
     tolerances: tuple[float, float] = (RTOL, ATOL),
+    expected: float | None = None,
 ) -> Leg:
     """Integrate from (θ0, θ̇0) until θ reaches ``stop_at_angle`` (crossing in ``direction``: −1
     decreasing, +1 increasing, 0 either), θ̇ reverses (``stop_at_rest``), or ``t_max`` has passed.
     ``samples`` > 0 returns that many evenly spaced samples, else the grid points.
     ``chunk`` is the time span integrated at a time (default: a quarter of a natural period);
-    ``tolerances`` (rtol, atol) default to the tight ones a check needs (DRAWING for a leg only drawn)."""
+    ``tolerances`` (rtol, atol) default to the tight ones a check needs (DRAWING for a leg only drawn).
+    ``expected``, an estimate of the leg's duration (e.g. from the energy integral), sizes the first
+    chunk to end just past it, so the integrator runs once without restarts; it only sizes the work:
+    the integration alone finds the event."""
     if stop_at_rest and omega0 == 0:  # already at rest: the turn is here (e.g. a rebound that underflowed)
         return Leg(np.array([t0]), np.array([theta0]), np.array([0.0]), True)
     rhs = lambda y, t: (y[1], acceleration(y[0]))  # noqa: E731
@@ -199,15 +212,20 @@ def integrate_leg(
     t_start, y_start = t0, np.array([theta0, omega0], dtype=float)
     ended = False
     while t_start < t0 + t_max - 1e-15:
-        t_end = min(t_start + chunk, t0 + t_max)
-        grid = np.linspace(t_start, t_end, GRID)
+        if t_start == t0 and expected is not None and 0 < expected < t_max / 1.05:
+            # The expected instant is a grid point: the event lies a Taylor step from it.
+            grid = np.append(np.linspace(t0, t0 + expected, GRID), t0 + 1.05 * expected)
+        else:
+            grid = np.linspace(t_start, min(t_start + chunk, t0 + t_max), GRID)
+        t_end = grid[-1]
         y = odeint(rhs, y_start, grid, rtol=tolerances[0], atol=tolerances[1])
         event, kind = _first_event(grid, y, acceleration, stop_at_angle, stop_at_rest, direction,
                                    first_chunk=t_start == t0)
         if event is not None:
             k = max(1, int(np.searchsorted(grid, event)))  # grid[k-1] < event <= grid[k]
+            j = k if grid[k] - event < event - grid[k - 1] else k - 1
             event, exact = _polished(rhs, acceleration, y[k - 1], grid[k - 1], event, kind, stop_at_angle,
-                                     tolerances)
+                                     tolerances, near=(grid[j], y[j]))
             ts.append(np.append(grid[1:k], event))
             ys.append(np.vstack([y[1:k], exact]))
             ended = True

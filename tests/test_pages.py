@@ -88,7 +88,7 @@ def test_url_round_trip_restores_the_same_answers(pid):
     at = run_page(pid)
     widget, _ = first_number_control(at, pid)
     widget.set_value(widget.value * 0.9).run()
-    for box in at.selectbox:  # also move an option, where the problem has one
+    for box in at.radio:  # also move an option, where the problem has one
         options = [o for o in box.options if o != box.value]
         if options and pid != "pendulum_rebound":
             box.set_value(box.options[1] if box.value == box.options[0] else box.options[0]).run()
@@ -178,6 +178,16 @@ def test_pendulum_in_us_customary_units():
     assert at.query_params.get("units") == "us" and at.query_params.get("m_s") is None  # default, in lb
 
 
+def test_the_units_switch_converts_the_shown_values_and_keeps_the_physics():
+    at = run_page("pendulum_rebound")
+    si_answers = answers_text(at)
+    at.toggle(key="pendulum_rebound__us").set_value(True).run()
+    assert_clean(at)
+    assert "ft·lbf" in answers_text(at) and at.query_params.get("units") == "us"
+    at.toggle(key="pendulum_rebound__us").set_value(False).run()
+    assert answers_text(at) == si_answers and at.query_params.get("units") is None
+
+
 def test_lecture_view_from_the_url():
     at = run_page("stick_ball", {"lecture": "1"})
     assert_clean(at)
@@ -230,7 +240,7 @@ def test_more_parameters_are_hidden_until_asked_for_and_keep_their_values(pid):
     spec = next(p for p in hidden if hasattr(p, "dimension"))
     key = f"{pid}__si__{spec.name}"
     at = run_page(pid)
-    keys = {w.key for w in [*at.number_input, *at.slider, *at.selectbox, *at.toggle]}
+    keys = {w.key for w in [*at.number_input, *at.slider, *at.radio, *at.toggle]}
     on_show = {f"{pid}__si__{p.name}" + ("__inf" if getattr(p, "allow_inf", False) else "")
                for p in problem.solver.PARAMS if p.name in problem.primary}
     assert on_show <= keys and key not in keys

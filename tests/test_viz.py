@@ -10,7 +10,10 @@ from pathlib import Path
 import pytest
 from hypothesis import assume, given, settings
 
+import plotly.graph_objects as go
+
 from tests import strategies
+from viz.common import expanded
 
 IDS = ["disk_wall", "pendulum_rebound", "driven_cart", "eulers_disk", "stick_ball", "rod_disk_spring"]
 LIMIT = 300 * 1024
@@ -32,7 +35,11 @@ def check_figures(figures):
         json.loads(text)  # plain JSON: no NaN, no numpy types
         assert "NaN" not in text
     for f in animations:
-        spec = f.spec
+        anim = f.spec["animation"]  # compact: one row of coordinates per frame for each moving trace
+        assert all(len(rows) == len(anim["times"]) for coords in anim["coords"] for rows in coords.values())
+        assert len(anim["coords"]) == len(anim["traces"])
+        spec = expanded(json.loads(f.json()))  # the plotly figure the browser component unfolds
+        go.Figure(spec)  # plotly's own validation of every trace, frame and slider step
         assert len(spec["frames"]) >= 30
         labels = [b["label"] for b in spec["layout"]["updatemenus"][0]["buttons"]]
         assert any("Play" in x for x in labels) and any("Pause" in x for x in labels)

@@ -32,18 +32,17 @@ VIEW_HELP = ("Study: answers, animation and derivation. Lecture: large type and 
 def _page_flags(problem: Problem) -> tuple[str, str]:
     """Unit system and view (Study, Lecture or Practice): sidebar controls, initialised from
     ?units=us, ?lecture=1 and ?practice=1."""
-    units_key, view_key = f"{problem.id}__units", f"{problem.id}__view"
+    us_key, view_key = f"{problem.id}__us", f"{problem.id}__view"
     if view_key not in st.session_state:
         st.session_state[view_key] = ("Practice" if st.query_params.get("practice") == "1" else
                                       "Lecture" if st.query_params.get("lecture") == "1" else "Study")
-    if units_key not in st.session_state:
-        st.session_state[units_key] = "US customary" if (
-            problem.us_units and st.query_params.get("units") == "us") else "SI"
     system = "si"
     if problem.us_units:
-        choice = st.sidebar.segmented_control("Units", ["SI", "US customary"], key=units_key, required=True,
-                                              help="The textbook states this problem in lb and ft.")
-        system = "us" if choice == "US customary" else "si"
+        if us_key not in st.session_state:
+            st.session_state[us_key] = st.query_params.get("units") == "us"
+        us = st.sidebar.toggle("US customary units (lb, ft)", key=us_key,
+                               help="The textbook states this problem in lb and ft; off: SI (kg, m).")
+        system = "us" if us else "si"
     view = st.sidebar.segmented_control("View", VIEWS, key=view_key, required=True, help=VIEW_HELP)
     return system, view
 

@@ -87,8 +87,8 @@ def _label(p: Any, system: str) -> str:
 def _control(p: Any, problem: Problem, system: str, container) -> Any:
     key = _key(problem, system, p.name)
     if isinstance(p, Choice):
-        return container.selectbox(_label(p, system), p.options, key=key, format_func=p.label_of,
-                                   help=p.help or None)
+        return container.radio(_label(p, system), p.options, key=key, format_func=p.label_of,
+                               help=p.help or None)
     if p.allow_inf:
         value = st.session_state[key]
         no_slip = container.toggle(f"No slip at the contact (${p.symbol} = \\infty$)",

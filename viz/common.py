@@ -150,22 +150,13 @@ def points(x, y, name: str, color: str, size: float = 10, symbol: str = "circle"
 
 @dataclass(frozen=True)
 class Moving:
-    """A trace that moves: its style, and for each coordinate (x, y, z) one array per frame."""
+    """A trace that moves: its style, and for each coordinate (x, y, z) one row per frame."""
 
     style: dict
     per_frame: dict
 
     def first(self) -> dict:
         return {**self.style, **{k: v[0] for k, v in self.per_frame.items()}}
-
-    def frames(self) -> list[dict]:
-        """The update each frame carries for this trace: its coordinates only."""
-        names, columns = list(self.per_frame), list(self.per_frame.values())
-        if len(names) == 1:
-            return [{names[0]: a} for a in columns[0]]
-        if len(names) == 2:
-            return [{names[0]: a, names[1]: b} for a, b in zip(*columns)]
-        return [dict(zip(names, values)) for values in zip(*columns)]
 
 
 def moving(style: dict, x=None, y=None, z=None) -> Moving:
@@ -183,40 +174,54 @@ def animated(
     frame_ms: int = 60,
     time_label: str = "t = ",
     time_unit: str = " s",
+    redraw: bool = False,
 ) -> dict:
-    """A figure whose ``static`` traces never move and whose ``traces`` move. A frame carries only
-    the moving traces' coordinates (plotly merges them into the traces' style) and animates with
-    ``redraw: False``. Nothing plays by itself: Play starts the motion."""
-    indices = list(range(len(static), len(static) + len(traces)))
-    times = list(times)
-    names = [str(i) for i in range(len(times))]
-    play = {"frame": {"duration": frame_ms, "redraw": False}, "fromcurrent": True,
-            "transition": {"duration": 0}, "mode": "immediate"}
-    pause = {"frame": {"duration": 0, "redraw": False}, "mode": "immediate", "transition": {"duration": 0}}
+    """A figure whose ``static`` traces never move and whose ``traces`` move, as compact data: the
+    plotly figure's ``data`` and ``layout``, and an ``animation`` holding, per moving trace, one row
+    of coordinates per frame. The browser component (ui/plotly_component) unfolds it into plotly
+    frames (each carries only the moving traces' coordinates; plotly merges them into the traces'
+    style) and the time slider's steps, as ``expanded`` does here: the server builds a few arrays,
+    not a few hundred dicts per change. Nothing plays by itself: Play starts the motion."""
     layout = {
         **layout,
-        "updatemenus": [{
-            "type": "buttons", "direction": "left", "showactive": False, "x": 0.0, "y": -0.13,
-            "xanchor": "left", "yanchor": "top", "pad": {"r": 8, "t": 8},
-            "buttons": [{"label": "▶ Play", "method": "animate", "args": [None, play]},
-                        {"label": "❚❚ Pause", "method": "animate", "args": [[None], pause]}],
-        }],
         "sliders": [{
-            "active": 0, "x": 0.22, "len": 0.78, "y": -0.1, "yanchor": "top", "pad": {"t": 30, "b": 0},
+            "active": 0, "x": 0.0, "len": 1.0, "y": -0.1, "yanchor": "top", "pad": {"t": 30, "b": 0},
             "currentvalue": {"prefix": time_label, "suffix": time_unit, "visible": True, "xanchor": "right",
                              "font": {"size": 14, "color": "#888888"}},
             # Every step keeps its label for the readout, but the row of tick labels is hidden.
             "font": {"color": "rgba(0,0,0,0)", "size": 8}, "tickcolor": "rgba(136,136,136,0.5)", "ticklen": 3,
-            "steps": [{"label": f"{t:.2f}", "method": "animate",
-                       "args": [[name], pause]} for name, t in zip(names, times)],
         }],
     }
     return {
         "data": [*static, *(t.first() for t in traces)],
         "layout": layout,
-        "frames": [{"name": name, "data": list(data), "traces": indices}
-                   for name, data in zip(names, zip(*(t.frames() for t in traces)))],
+        "animation": {"traces": list(range(len(static), len(static) + len(traces))), "times": r(list(times)),
+                      "coords": [t.per_frame for t in traces], "frame_ms": frame_ms, "redraw": redraw},
     }
+
+
+def expanded(spec: dict) -> dict:
+    """The plain plotly figure a compact animation stands for: frames, the slider's steps and
+    Play/Pause buttons (what the browser component builds; for plotly in Python and the tests)."""
+    if "animation" not in spec:
+        return spec
+    anim = spec["animation"]
+    step = {"frame": {"duration": 0, "redraw": anim["redraw"]}, "mode": "immediate", "transition": {"duration": 0}}
+    play = {**step, "frame": {"duration": anim["frame_ms"], "redraw": anim["redraw"]}, "fromcurrent": True}
+    names = [str(i) for i in range(len(anim["times"]))]
+    slider = {**spec["layout"]["sliders"][0], "x": 0.22, "len": 0.78, "steps": [
+        {"label": f"{t:.2f}", "method": "animate", "args": [[name], step]} for name, t in zip(names, anim["times"])]}
+    buttons = {"type": "buttons", "direction": "left", "showactive": False, "x": 0.0, "y": -0.13,
+               "xanchor": "left", "yanchor": "top", "pad": {"r": 8, "t": 8},
+               "buttons": [{"label": "▶ Play", "method": "animate", "args": [None, play]},
+                           {"label": "❚❚ Pause", "method": "animate", "args": [[None], step]}]}
+    kinds = [spec["data"][j].get("type", "scatter") for j in anim["traces"]]
+    frames = [{"name": name, "traces": anim["traces"],
+               "data": [{"type": kind, **{k: rows[i] for k, rows in coords.items()}}
+                        for kind, coords in zip(kinds, anim["coords"])]}
+              for i, name in enumerate(names)]
+    return {"data": spec["data"], "layout": {**spec["layout"], "sliders": [slider], "updatemenus": [buttons]},
+            "frames": frames}
 
 
 def base_layout(title: str = "", equal_axes: bool = True, x_range=None, y_range=None, height: int = 520,

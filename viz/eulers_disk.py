@@ -60,10 +60,7 @@ def _animation(solution) -> Figure:
     }
     # 3-D traces need redraw; the frame duration sets the slow motion.
     frame_ms = int(1000 * PLAY_SECONDS / len(m["t"]))
-    spec = animated([table, G], moving_traces, m["t"], layout, frame_ms=frame_ms)
-    for step in spec["layout"]["sliders"][0]["steps"]:
-        step["args"][1]["frame"]["redraw"] = True
-    spec["layout"]["updatemenus"][0]["buttons"][0]["args"][1]["frame"]["redraw"] = True
+    spec = animated([table, G], moving_traces, m["t"], layout, frame_ms=frame_ms, redraw=True)
     turn = math.degrees(solution.extras["turn_per_precession"])
     description = (f"Slowed down {slow:.0f}×: one precession takes {a['period'] * 1000:.0f} ms in reality and "
                    f"{PLAY_SECONDS:.0f} s on screen. The contact point (red) runs once round its circle while "
