@@ -206,9 +206,10 @@ def simulate(p, answers, bounces: int = 3):
     """θ(t) through ``bounces`` impacts by direct integration of I_O θ̈ = −Q cos θ.
 
     Returns (t, θ, θ̇, impacts, legs) with the legs in order: the fall from rest, then after each
-    impact the rise to the peak and the fall back. The first fall and every rise are integrated
-    from their start states (a second method for the closed-form impact speed and rebound
-    angles); each later fall is the rise mirrored in time (the swing is conservative). The legs
+    impact the rise to the peak and the fall back. The first fall and the first rise are
+    integrated from their start states (the second method for the closed-form impact speed and
+    rebound angle); later rises, only drawn, come from the energy integral (swing.drawn_to_turn);
+    each fall after a bounce is the rise mirrored in time (the swing is conservative). The legs
     are cached, so the checks and the animation share one integration.
     """
     key = tuple(sorted((k, v) for k, v in p.items())) + (("I_O", answers["I_O"]),

@@ -201,8 +201,8 @@ def equation_of_motion(p, I: float):
 
 
 def simulate(p, answers) -> Leg:
-    """θ(t) from release until the swing turns, integrated: to θ2 first (the second method's
-    leg), then on from there, so checks and animation share one integration."""
+    """θ(t) from release until the swing turns: integrated to θ2 (the second method's leg), then
+    drawn on to the turn from the energy integral; checks and animation share the legs."""
     to_theta2, beyond = _legs(tuple(sorted(p.items())) + (("I_O", answers["I_O"]),))
     if beyond is None:
         return to_theta2
@@ -212,7 +212,7 @@ def simulate(p, answers) -> Leg:
 
 @functools.lru_cache(maxsize=256)
 def _legs(key: tuple):
-    """(release → θ2, θ2 → turning point), each integrated once and cached."""
+    """(release → θ2 integrated, θ2 → turning point drawn from the energy integral), cached."""
     p = dict(key)
     acc = equation_of_motion(p, p["I_O"])
     horizon = 200 * math.sqrt(p["I_O"] / weight_moment(p)) + 10

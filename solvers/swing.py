@@ -1,13 +1,17 @@
-"""Time integration of a one-degree-of-freedom swing, θ̈ = f(θ), with events.
+"""Time integration of a one-degree-of-freedom swing, θ̈ = f(θ), with events; and legs drawn from
+the energy integral where they are only drawn.
 
 Used as the second method for the work-energy answers (pendulum, rod and spring) and to produce the
 trajectories the animations draw. The integrator is scipy's odeint (LSODA, compiled), run over a
 time grid in chunks: a crossing (θ reaches an angle, or θ̇ reverses) is bracketed on the grid,
 located on the cubic Hermite interpolant of the grid states, and the state at the event comes from
-one short, tight integration to that instant (Newton then moves it onto the event by Taylor steps of
-the equation itself). The event search is one numpy pass per chunk. Tolerances are tight (rtol
-1e-11) so a check against a closed form can use a tolerance that would catch a wrong factor; it
-costs a fraction of a millisecond per leg, which keeps a slider change cheap (see BENCHMARKS.md).
+a checked Taylor step from the nearest grid point, or else one short, tight integration to that
+instant (Newton then moves it onto the event by Taylor steps of the equation itself). Given an
+estimate of the leg's duration (``crossing_time``, or a drawn leg's), the first chunk ends just
+past it, so LSODA runs once without restarts and the event sits a Taylor step from a grid point.
+Tolerances are tight (rtol 1e-11) so a check against a closed form can use a tolerance that would
+catch a wrong factor. A leg that is only drawn, up to a turning point, comes from the first
+integral θ̇² = F(θ) by quadrature instead (``drawn_to_turn``): no integration at all.
 """
 from __future__ import annotations
 
