@@ -45,7 +45,8 @@ def figures(solution, system: str = "si") -> list[Figure]:
     spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout)
     description = (f"Side view, θ from the upward vertical. Released at θ₁ = {math.degrees(p['theta1']):.0f}°, the "
                    f"assembly falls, passes θ₂ = {math.degrees(p['theta2']):.0f}° (dashed) at {a['omega2']:.3g} rad/s, "
-                   f"swings on until the spring stops it at about {math.degrees(m['theta'].max()):.0f}°, and returns. "
+                   f"swings on until {'the spring stops it' if p['k'] > 0 else 'it comes to rest'} at about "
+                   f"{math.degrees(m['theta'].max()):.0f}°, and returns. "
                    "Bars: kinetic, gravitational (zero hanging straight down) and spring energy; their sum stays "
                    "constant.")
     return [Figure("rod_disk_spring_motion", "The fall and the swing back, with the energy", spec, description,
