@@ -15,6 +15,7 @@ integral θ̇² = F(θ) by quadrature instead (``drawn_to_turn``): no integratio
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Callable
@@ -147,9 +148,9 @@ def drawn_to_turn(
     if d == 0 or not pull > 0 or not math.isfinite(pull):
         return None
     previous = None
-    for n in (65, 129, 257, 513, 1025, 2049, 4097, 8193):
-        w = np.linspace(0.0, 1.0, n)  # from the turn (w = 0) back to the start (w = 1)
-        theta = theta_turn - d * w**2
+    for n in _LEVELS:
+        w, w2 = _unit_grid(n)  # from the turn (w = 0) back to the start (w = 1)
+        theta = theta_turn - d * w2
         rate = np.sqrt(np.maximum(rate_squared(theta), 0.0))
         dt_dw = np.empty_like(w)
         dt_dw[0] = 2 * abs(d) / math.sqrt(pull)
@@ -160,6 +161,19 @@ def drawn_to_turn(
             return Leg(t[::-1], theta[::2][::-1], math.copysign(1.0, d) * rate[::2][::-1], True)
         previous = from_turn
     return None
+
+
+_LEVELS = (65, 129, 257, 513, 1025, 2049, 4097, 8193)
+
+
+@functools.cache
+def _unit_grid(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """n evenly spaced points on [0, 1] and their squares (made once; read only)."""
+    u = np.linspace(0.0, 1.0, n)
+    u.flags.writeable = False
+    u2 = u**2
+    u2.flags.writeable = False
+    return u, u2
 
 
 def _simpson_cumulative(f: np.ndarray, h: float) -> np.ndarray:
@@ -174,8 +188,8 @@ def crossing_time(rate_squared: Callable[[np.ndarray], np.ndarray], theta0: floa
     """About how long the motion takes from θ0 to θ1 if it does not turn between them:
     ∫ dθ/|θ̇| with θ̇² = rate_squared(θ), on a grid packed towards θ0 (a slow start) by Simpson's
     rule. An estimate, for sizing an integration's first chunk."""
-    u = np.linspace(0.0, 1.0, samples)
-    theta = theta0 + (theta1 - theta0) * u**2
+    u, u2 = _unit_grid(samples)
+    theta = theta0 + (theta1 - theta0) * u2
     rate = np.sqrt(np.maximum(rate_squared(theta), 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         integrand = 2 * abs(theta1 - theta0) * u / rate

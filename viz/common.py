@@ -45,7 +45,7 @@ class Figure:
 def r(values) -> np.ndarray:
     """Round for JSON: arrays to DIGITS decimals; NaN (a gap in a polyline, or None given) is
     written as null by orjson."""
-    return np.round(np.asarray(values, dtype=float), DIGITS)
+    return np.asarray(values, dtype=float).round(DIGITS)
 
 
 # Shapes for every frame at once: each returns (x, y) arrays with one row per frame, rounded, which
@@ -122,8 +122,8 @@ def spirals(inner: float, outer: float, turns, start, n: int = 48) -> tuple[np.n
 def trails(x, y, keep: int | None = None) -> tuple[list, list]:
     """The path so far in every frame (the last ``keep`` points, if given): views of one array."""
     x, y = r(x), r(y)
-    first = (lambda i: 0) if keep is None else (lambda i: max(0, i - keep))
-    return [x[first(i): i + 1] for i in range(len(x))], [y[first(i): i + 1] for i in range(len(y))]
+    starts = [0] * len(x) if keep is None else [max(0, i - keep) for i in range(len(x))]
+    return ([x[a: i + 1] for i, a in enumerate(starts)], [y[a: i + 1] for i, a in enumerate(starts)])
 
 
 def line(x, y, name: str, color: str, width: float = 3, dash: str | None = None, show_legend: bool = True,
