@@ -138,8 +138,9 @@ def weight_moment(p) -> float:
     return (p["m1"] * p["L"] / 2 + p["m2"] * (p["L"] + p["R"])) * p["g"]
 
 
-def kinetic_energy_at(p, angles: np.ndarray) -> np.ndarray:
-    """T(θ) = U_g + U_s from θ1 to θ, for released-from-rest motion (vectorised)."""
+def kinetic_energy_at(p, angles: np.ndarray | float) -> np.ndarray:
+    """T(θ) = U_g + U_s from θ1 to θ, for released-from-rest motion (vectorised; a float gives a
+    numpy scalar)."""
     Q, th1 = weight_moment(p), p["theta1"]
     return Q * (math.cos(th1) - np.cos(angles)) - p["k"] / 2 * (angles**2 - th1**2)
 
@@ -158,7 +159,7 @@ def largest_angle(p) -> float | None:
     if not len(stopped):
         return None
     i = stopped[0] + 1
-    f = lambda q: float(kinetic_energy_at(p, np.array([q]))[0])  # noqa: E731
+    f = lambda q: float(kinetic_energy_at(p, q))  # noqa: E731
     return brentq(f, grid[i - 1], grid[i], xtol=1e-14) if f(grid[i - 1]) > 0 else float(grid[i])
 
 
@@ -239,7 +240,7 @@ def _legs(key: tuple):
 def _turning_angle(p, past: float) -> float | None:
     """The first angle beyond ``past`` where the kinetic energy is spent (the spring always wins in
     the end), or None if there is none within a few turns."""
-    T = lambda q: float(kinetic_energy_at(p, np.array([q]))[0])  # noqa: E731
+    T = lambda q: float(kinetic_energy_at(p, q))  # noqa: E731
     grid = past + np.linspace(0.0, 4 * math.pi, 513)
     spent = np.nonzero(kinetic_energy_at(p, grid) <= 0.0)[0]
     if not len(spent) or spent[0] == 0:

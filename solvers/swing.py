@@ -184,17 +184,27 @@ def _simpson_cumulative(f: np.ndarray, h: float) -> np.ndarray:
 
 
 def crossing_time(rate_squared: Callable[[np.ndarray], np.ndarray], theta0: float, theta1: float,
-                  samples: int = 257) -> float:
+                  tolerance: float = 1e-4) -> float:
     """About how long the motion takes from θ0 to θ1 if it does not turn between them:
-    ∫ dθ/|θ̇| with θ̇² = rate_squared(θ), on a grid packed towards θ0 (a slow start) by Simpson's
-    rule. An estimate, for sizing an integration's first chunk."""
-    u, u2 = _unit_grid(samples)
-    theta = theta0 + (theta1 - theta0) * u2
-    rate = np.sqrt(np.maximum(rate_squared(theta), 0.0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        integrand = 2 * abs(theta1 - theta0) * u / rate
-    integrand[0] = 0.0 if rate[0] > 0 else integrand[1]
-    return float(_simpson_cumulative(integrand, u[1])[-1])
+    ∫ dθ/|θ̇| with θ̇² = rate_squared(θ), by Simpson's rule after θ = θ0 + D (3u² − 2u³), which
+    packs the grid towards both ends (a slow start, or a near-stop at θ1) and removes a square-root
+    singularity at either; the grid doubles until the estimate settles to ``tolerance``. An
+    estimate, for sizing an integration's first chunk."""
+    span = theta1 - theta0
+    previous = math.nan
+    for n in _LEVELS:
+        u, u2 = _unit_grid(n)
+        theta = theta0 + span * (3 * u2 - 2 * u2 * u)
+        rate = np.sqrt(np.maximum(rate_squared(theta), 0.0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            integrand = 6 * abs(span) * u * (1 - u) / rate
+        for end, inner in ((0, 1), (-1, -2)):  # the ends: 0 while moving, the limit at a standstill
+            integrand[end] = 0.0 if rate[end] > 0 else integrand[inner]
+        estimate = float(_simpson_cumulative(integrand, u[1])[-1])
+        if abs(estimate - previous) <= tolerance * estimate:
+            break
+        previous = estimate
+    return estimate
 
 
 def integrate_leg(

@@ -23,8 +23,10 @@ def reference(acc, theta0, omega0, until_rest: bool, angle=None):
     """(t, θ(t) as a dense function) by DOP853 at tight tolerances, to the turn or to ``angle``."""
     event = (lambda t, y: y[1]) if until_rest else (lambda t, y: y[0] - angle)
     event.terminal = True
+    # max_step: a grazing crossing (up past the angle and straight back) inside one long step
+    # would hide from the event search.
     sol = solve_ivp(lambda t, y: [y[1], acc(y[0])], (0, 1e3), [theta0, omega0], method="DOP853",
-                    events=event, dense_output=True, rtol=1e-12, atol=1e-13)
+                    events=event, dense_output=True, rtol=1e-12, atol=1e-13, max_step=0.01)
     return sol.t_events[0][0], sol.sol
 
 
