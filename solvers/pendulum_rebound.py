@@ -231,11 +231,12 @@ def _legs(key: tuple, bounces: int):
         t_hit, _, w_hit = legs[-1].end
         if p["e"] == 0:
             break
-        drawn = _rise_drawn(p, acc, -p["e"] * w_hit, t_hit)
+        speed = -p["e"] * w_hit  # the floor reverses and scales the angular velocity
+        drawn = _rise_drawn(p, acc, speed, t_hit)
         if bounce == 0 or drawn is None:
             # The first rise checks θ_f, so it is integrated (tight tolerances), in one chunk sized
             # by the drawn rise's duration; later rises are only drawn.
-            rise = integrate_leg(acc, p["theta_impact"], -p["e"] * w_hit, t_hit, _horizon(p), stop_at_rest=True,
+            rise = integrate_leg(acc, p["theta_impact"], speed, t_hit, _horizon(p), stop_at_rest=True,
                                  expected=drawn.t[-1] - t_hit if drawn is not None else None,
                                  tolerances=(RTOL, ATOL) if bounce == 0 else DRAWING)
         else:

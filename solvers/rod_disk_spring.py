@@ -153,14 +153,19 @@ def largest_angle(p) -> float | None:
         return th1  # upright is stable: a nudge does not make it fall
     if th1 > 0.0 and start_torque <= 0.0:
         return th1  # the spring already wins at release: it swings back, never past θ1
-    grid = np.linspace(th1, th2, 4097)
-    T = kinetic_energy_at(p, grid)
-    stopped = np.nonzero(T[1:] <= 0.0)[0]
+    return _first_stop(p, th1, th2, 4097)
+
+
+def _first_stop(p, start: float, end: float, points: int) -> float | None:
+    """The first angle after ``start`` (up to ``end``) where the kinetic energy is spent: found
+    on a grid of ``points``, then to 1e-14 rad by Brent's method; None if there is none."""
+    grid = np.linspace(start, end, points)
+    stopped = np.nonzero(kinetic_energy_at(p, grid[1:]) <= 0.0)[0]
     if not len(stopped):
         return None
     i = stopped[0] + 1
-    f = lambda q: float(kinetic_energy_at(p, q))  # noqa: E731
-    return brentq(f, grid[i - 1], grid[i], xtol=1e-14) if f(grid[i - 1]) > 0 else float(grid[i])
+    T = lambda q: float(kinetic_energy_at(p, q))  # noqa: E731
+    return brentq(T, grid[i - 1], grid[i], xtol=1e-14) if T(grid[i - 1]) > 0 else float(grid[i])
 
 
 def _validate(params) -> dict:
@@ -230,23 +235,11 @@ def _legs(key: tuple):
     if not first.ended_by_event:
         return first, None
     t2, q2, w2 = first.end
-    turn = _turning_angle(p, q2)
+    turn = _first_stop(p, q2, q2 + 4 * math.pi, 513)  # the spring always wins within a few turns
     rest = drawn_to_turn(rate_squared, acc, q2, turn, t2) if turn is not None else None  # only drawn
     if rest is None:
         rest = integrate_leg(acc, q2, w2, t2, horizon, stop_at_rest=True, tolerances=DRAWING)
     return first, rest
-
-
-def _turning_angle(p, past: float) -> float | None:
-    """The first angle beyond ``past`` where the kinetic energy is spent (the spring always wins in
-    the end), or None if there is none within a few turns."""
-    T = lambda q: float(kinetic_energy_at(p, q))  # noqa: E731
-    grid = past + np.linspace(0.0, 4 * math.pi, 513)
-    spent = np.nonzero(kinetic_energy_at(p, grid) <= 0.0)[0]
-    if not len(spent) or spent[0] == 0:
-        return None
-    i = spent[0]
-    return brentq(T, grid[i - 1], grid[i], xtol=1e-14)
 
 
 def _linear_escape(acc, theta1: float, omega0: float, samples: int = 12) -> Leg:
