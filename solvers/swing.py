@@ -154,8 +154,11 @@ def drawn_to_turn(
         rate = np.sqrt(np.maximum(rate_squared(theta), 0.0))
         dt_dw = np.empty_like(w)
         dt_dw[0] = 2 * abs(d) / math.sqrt(pull)
-        dt_dw[1:] = 2 * abs(d) * w[1:] / np.maximum(rate[1:], np.finfo(float).tiny)
+        with np.errstate(over="ignore"):  # θ̇ = 0 short of the turn: an infinite time, left to the integrator
+            dt_dw[1:] = 2 * abs(d) * w[1:] / np.maximum(rate[1:], np.finfo(float).tiny)
         from_turn = _simpson_cumulative(dt_dw, w[1])  # time from w[::2] to the turn
+        if not np.isfinite(from_turn[-1]):
+            return None
         if previous is not None and np.abs(from_turn[::2] - previous).max() <= tolerance * from_turn[-1]:
             t = t0 + (from_turn[-1] - from_turn)
             return Leg(t[::-1], theta[::2][::-1], math.copysign(1.0, d) * rate[::2][::-1], True)
@@ -216,15 +219,12 @@ def integrate_leg(
     stop_at_angle: float | None = None,
     stop_at_rest: bool = False,
     direction: int = 0,
-    samples: int = 0,
-    chunk: float | None = None,
     tolerances: tuple[float, float] = (RTOL, ATOL),
     expected: float | None = None,
 ) -> Leg:
     """Integrate from (θ0, θ̇0) until θ reaches ``stop_at_angle`` (crossing in ``direction``: −1
-    decreasing, +1 increasing, 0 either), θ̇ reverses (``stop_at_rest``), or ``t_max`` has passed.
-    ``samples`` > 0 returns that many evenly spaced samples, else the grid points.
-    ``chunk`` is the time span integrated at a time (default: a quarter of a natural period);
+    decreasing, +1 increasing, 0 either), θ̇ reverses (``stop_at_rest``), or ``t_max`` has passed;
+    returns the grid points, integrated a chunk (a quarter of a natural period) at a time.
     ``tolerances`` (rtol, atol) default to the tight ones a check needs (DRAWING for a leg only drawn).
     ``expected``, an estimate of the leg's duration (e.g. from the energy integral), sizes the first
     chunk to end just past it, so the integrator runs once without restarts; it only sizes the work:
@@ -232,10 +232,9 @@ def integrate_leg(
     if stop_at_rest and omega0 == 0:  # already at rest: the turn is here (e.g. a rebound that underflowed)
         return Leg(np.array([t0]), np.array([theta0]), np.array([0.0]), True)
     rhs = lambda y, t: (y[1], acceleration(y[0]))  # noqa: E731
-    if chunk is None:
-        stiffness = abs(slope(acceleration, theta0, eps=1e-3))
-        chunk = 0.25 * 2 * math.pi / math.sqrt(max(stiffness, 1e-6)) if stiffness else 1.0
-        chunk = min(max(chunk, 1e-3), t_max)
+    stiffness = abs(slope(acceleration, theta0, eps=1e-3))
+    chunk = 0.25 * 2 * math.pi / math.sqrt(max(stiffness, 1e-6)) if stiffness else 1.0
+    chunk = min(max(chunk, 1e-3), t_max)
     ts, ys = [np.array([t0])], [np.array([[theta0, omega0]])]
     t_start, y_start = t0, np.array([theta0, omega0], dtype=float)
     ended = False
@@ -265,10 +264,4 @@ def integrate_leg(
     y = np.vstack(ys)
     if ended and kind == "angle":
         y[-1, 0] = stop_at_angle  # exactly on the event
-    if samples > 0:
-        even = np.linspace(t[0], t[-1], samples)
-        theta = np.interp(even, t, y[:, 0])
-        omega = np.interp(even, t, y[:, 1])
-        theta[-1], omega[-1] = y[-1]
-        return Leg(even, theta, omega, ended)
     return Leg(t, y[:, 0], y[:, 1], ended)
