@@ -49,7 +49,7 @@ PARAMS = (
            help="Must be above the impact angle; 90° (upright) is an equilibrium."),
     Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
     Choice("sphere", "solid", "the ball's inertia", ("solid", "hollow", "disk"),
-           ("solid sphere, ⅖ m r²", "hollow sphere, ⅔ m r²", "disk, ½ m r² (the seed)")),
+           ("solid sphere, ⅖ m r²", "hollow sphere, ⅔ m r²", "disk, ½ m r² (the worked solution)")),
     Choice("surface", "floor", "what the sphere strikes", ("floor", "wall"),
            ("a floor a depth d below O", "a wall where the rod hangs straight down")),
 )
@@ -64,13 +64,13 @@ ANSWERS = (
 )
 
 ERRATA = (
-    r"The seed takes the sphere's own inertia as $\tfrac12 m_s r^2$, a **disk's** value; a solid "
-    r"sphere has $\tfrac25 m_s r^2$ (choose *sphere* = disk to reproduce the seed).",
-    r"The seed starts the energy integral at $\theta = 90^\circ$ (an equilibrium), giving "
+    r"The worked solution takes the sphere's own inertia as $\tfrac12 m_s r^2$, a **disk's** value; a solid "
+    r"sphere has $\tfrac25 m_s r^2$ (choose *sphere* = disk to reproduce the worked solution).",
+    r"The worked solution starts the energy integral at $\theta = 90^\circ$ (an equilibrium), giving "
     r"$(1-\sin\theta)$; released from $\theta_0$ it is $(\sin\theta_0 - \sin\theta)$.",
-    r"For a floor below the pivot, $\sin\theta_I = (r-d)/(L+r)$ is **negative**; the seed writes "
+    r"For a floor below the pivot, $\sin\theta_I = (r-d)/(L+r)$ is **negative**; the worked solution writes "
     r"$(d-r)/(L+r)$.",
-    r"The seed writes $e = \dot\theta'/\dot\theta$, against its own next line "
+    r"The worked solution writes $e = \dot\theta'/\dot\theta$, against its own next line "
     r"$\dot\theta' = -e\dot\theta$: the rod reverses, so $e = -\dot\theta'/\dot\theta$.",
     r"Whatever the masses, $\sin\theta_f - \sin\theta_I = e^2(\sin\theta_0 - \sin\theta_I)$.",
 )
@@ -120,7 +120,7 @@ def derivation(sphere: str, surface: str) -> Derivation:
 
     steps = [
         Step("Moment of inertia about the pivot O (parallel-axis theorem for rod and "
-             f"{'sphere' if sphere != 'disk' else 'ball, with the seed’s disk value'})",
+             f"{'sphere' if sphere != 'disk' else 'ball, with the worked solution’s disk value'})",
              latex_eq(I_O, inertia)),
         Step("Moment of the weights about O per unit cos θ: the potential energy is V = Q sin θ",
              latex_eq(Q, weight_moment)),
@@ -295,13 +295,18 @@ def _checks(p, a) -> tuple[Check, ...]:
 
 
 def motion(solution: Solution, frames: int = 60, bounces: int = 3) -> dict:
-    """θ(t) and θ̇(t) through several bounces, integrated, resampled evenly in time."""
+    """θ(t) and θ̇(t) through several bounces, integrated, resampled evenly in time with a frame at
+    each impact (so the animation shows the sphere touching); the dense samples draw θ(t)."""
     t, q, w, impacts, _ = simulate(solution.params, solution.answers, bounces=bounces)
-    t_even = np.linspace(t[0], t[-1], frames)
+    impact_times = [ti for ti, _ in impacts]
+    t_frames = np.union1d(np.linspace(t[0], t[-1], frames), impact_times)
     order = np.argsort(t, kind="stable")
-    return {"t": t_even, "theta": np.interp(t_even, t[order], q[order]),
-            "omega": np.interp(t_even, t[order], w[order]), "t_dense": t, "theta_dense": q,
-            "impact_times": [ti for ti, _ in impacts]}
+    theta = np.interp(t_frames, t[order], q[order])
+    # At an impact frame θ is θ_I exactly; interpolating across the cusp would land beside it.
+    at_impact = np.isin(t_frames, impact_times)
+    theta[at_impact] = solution.answers["theta_impact"]
+    return {"t": t_frames, "theta": theta, "omega": np.interp(t_frames, t[order], w[order]),
+            "t_dense": t, "theta_dense": q, "impact_times": impact_times}
 
 
 def derivation_of(solution: Solution) -> Derivation:

@@ -47,7 +47,7 @@ PARAMS = (
            high=2 * math.pi, ui_low=1, ui_high=359, step=1.0),
     Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
     Choice("disk", "welded", "how the disk is attached", ("welded", "pinned"),
-           ("welded: turns with the rod (the seed)", "pinned: free to spin, so it does not rotate")),
+           ("welded: turns with the rod (the worked solution)", "pinned: free to spin, so it does not rotate")),
 )
 
 ANSWERS = (
@@ -59,13 +59,13 @@ ANSWERS = (
 )
 
 ERRATA = (
-    r"The seed's kinetic-energy line has $\tfrac14 m_1 L^2\dot\theta^2$; it should be "
+    r"The worked solution's kinetic-energy line has $\tfrac14 m_1 L^2\dot\theta^2$; it should be "
     r"$\tfrac12 m_1 (L/2)^2\dot\theta^2 = \tfrac18 m_1 L^2\dot\theta^2$.",
-    r"The seed writes the disk's $I_G$ as $\tfrac12 m_2 B^2$ with $B = L + R$; it is "
+    r"The worked solution writes the disk's $I_G$ as $\tfrac12 m_2 B^2$ with $B = L + R$; it is "
     r"$\tfrac12 m_2 R^2$.",
     r"The spring work is evaluated at $\theta_2 = \pi/8$ in one line; it is $\pi/2$ "
-    r"($U_s = -k\pi^2/8$, as the seed's number $-24.67$ J says).",
-    r"The seed's $\mathbf{X}_2$ has a sign flip; its numbers ($T = 1.455\,\dot\theta^2$, "
+    r"($U_s = -k\pi^2/8$, as the worked solution's number $-24.67$ J says).",
+    r"The worked solution's $\mathbf{X}_2$ has a sign flip; its numbers ($T = 1.455\,\dot\theta^2$, "
     r"4.90 rad/s) are right.",
 )
 

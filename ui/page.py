@@ -155,7 +155,7 @@ def _heading(heading: str, notices: list[str]) -> None:
 
 
 def _derivation(solver, solution, numeric: bool) -> None:
-    """The derivation and the seed's slips below it, in one element (tabs would cost a widget's time
+    """The derivation and the worked solution's slips below it, in one element (tabs would cost a widget's time
     on every run)."""
     if numeric:
         caption = "Generated from the sympy derivation; the last steps put in your numbers (SI)."
