@@ -180,10 +180,12 @@ def _numeric_system(drive: str):
     return sp.lambdify(args, A, modules="numpy"), sp.lambdify(args, rhs, modules="numpy")
 
 
-def motion(solution: Solution, frames: int = 40, duration: float = 1.5) -> dict:
-    """From rest at constant acceleration: x(t) = ½ ẍ t²."""
-    t = np.linspace(0.0, duration, frames)
+def motion(solution: Solution, frames: int = 40, duration: float = 1.5, wheelbases: float = 3.0) -> dict:
+    """From rest at constant acceleration: x(t) = ½ ẍ t², for ``duration`` or until the cart has
+    gone ``wheelbases`` wheelbases, whichever is first (a hard-driven cart would leave the view)."""
     accel = solution.answers["accel"]
+    reach = wheelbases * 2 * solution.params["b"]
+    t = np.linspace(0.0, min(duration, math.sqrt(2 * reach / accel)) if accel > 0 else duration, frames)
     return {"t": t, "x": 0.5 * accel * t**2, "v": accel * t}
 
 
@@ -198,6 +200,12 @@ def acceleration_versus_mu(params: dict, mus: np.ndarray) -> dict[str, np.ndarra
             accel[~(mus * base["a"] < base["b"])] = np.nan
         curves[drive] = accel
     return curves
+
+
+def method(params) -> tuple[Step, ...]:
+    """The symbolic steps for ``params`` without numbers: shown beside a refusal, where they say why
+    (the last one: the front wheels stay down only while μa < b)."""
+    return derivation(validate_params(PARAMS, params)["drive"]).steps
 
 
 def derivation_of(solution: Solution) -> Derivation:

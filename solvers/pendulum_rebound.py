@@ -309,6 +309,13 @@ def motion(solution: Solution, frames: int = 60, bounces: int = 3) -> dict:
             "t_dense": t, "theta_dense": q, "impact_times": impact_times}
 
 
+def method(params) -> tuple[Step, ...]:
+    """The symbolic steps for ``params`` without numbers, shown beside a refusal (a release below
+    the impact angle): they say where the sphere touches."""
+    p = validate_params(PARAMS, params)
+    return derivation(p["sphere"], p["surface"]).steps
+
+
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["sphere"], solution.params["surface"])

@@ -283,14 +283,15 @@ def gap(p, a, rho: float, t) -> np.ndarray:
 
 def _second_contact(p, a, rho: float, t_end: float) -> float | None:
     """The first time after the bounce that the stick reaches the ball again, if before t_end."""
+    slack = 1e-9 * p["l"]  # a touch closer than this is the bounce's own contact, or rounding
     t = np.linspace(0.0, t_end, 4001)[1:]
-    touching = np.nonzero(gap(p, a, rho, t) < -1e-9 * p["l"])[0]
+    touching = np.nonzero(gap(p, a, rho, t) < -slack)[0]
     if not len(touching):
         return None
     i = touching[0]
     if i == 0:
         return float(t[0])
-    return float(brentq(lambda q: float(gap(p, a, rho, q)[0]), t[i - 1], t[i], xtol=1e-12))
+    return float(brentq(lambda q: float(gap(p, a, rho, q)[0]) + slack, t[i - 1], t[i], xtol=1e-12))
 
 
 def derivation_of(solution: Solution) -> Derivation:
