@@ -13,6 +13,7 @@ import functools
 import math
 
 import numpy as np
+from scipy.interpolate import CubicHermiteSpline
 import sympy as sp
 
 from .core import (
@@ -294,19 +295,37 @@ def _checks(p, a) -> tuple[Check, ...]:
     return tuple(checks)
 
 
-def motion(solution: Solution, frames: int = 60, bounces: int = 3) -> dict:
-    """θ(t) and θ̇(t) through several bounces, integrated, resampled evenly in time with a frame at
-    each impact (so the animation shows the sphere touching); the dense samples draw θ(t)."""
-    t, q, w, impacts, _ = simulate(solution.params, solution.answers, bounces=bounces)
+def motion(solution: Solution, frames: int = 60, bounces: int = 3, curve_points: int = 400) -> dict:
+    """θ(t) and θ̇(t) through several bounces, integrated, at frames even in time plus one at each
+    impact (so the animation shows the sphere touching), and θ(t) densely for its plot. Between
+    the integrator's samples each leg is a cubic Hermite curve through (θ, θ̇), which the equation
+    of motion makes smooth; the legs meet at the impacts, where θ̇ jumps (the cusps on θ_I)."""
+    t, q, w, impacts, legs = simulate(solution.params, solution.answers, bounces=bounces)
     impact_times = [ti for ti, _ in impacts]
     t_frames = np.union1d(np.linspace(t[0], t[-1], frames), impact_times)
-    order = np.argsort(t, kind="stable")
-    theta = np.interp(t_frames, t[order], q[order])
-    # At an impact frame θ is θ_I exactly; interpolating across the cusp would land beside it.
-    at_impact = np.isin(t_frames, impact_times)
-    theta[at_impact] = solution.answers["theta_impact"]
-    return {"t": t_frames, "theta": theta, "omega": np.interp(t_frames, t[order], w[order]),
-            "t_dense": t, "theta_dense": q, "impact_times": impact_times}
+    t_curve = np.union1d(np.linspace(t[0], t[-1], curve_points), impact_times)
+    theta, omega = _on_legs(legs, t_frames)
+    return {"t": t_frames, "theta": theta, "omega": omega, "t_curve": t_curve, "theta_curve": _on_legs(legs, t_curve)[0],
+            "impact_times": impact_times}
+
+
+def _on_legs(legs, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """θ and θ̇ at ``times`` (sorted), each from the leg it falls in (an impact's time: the leg that
+    ends there, at θ_I with the speed before)."""
+    theta, omega = np.empty_like(times), np.empty_like(times)
+    start = 0
+    for leg in legs:
+        t_leg, keep = np.unique(leg.t, return_index=True)
+        stop = int(np.searchsorted(times, t_leg[-1], side="right"))
+        inside = slice(start, stop)
+        if len(t_leg) > 1:
+            curve = CubicHermiteSpline(t_leg, leg.theta[keep], leg.omega[keep])
+            theta[inside], omega[inside] = curve(times[inside]), curve(times[inside], 1)
+        else:
+            theta[inside], omega[inside] = leg.theta[0], leg.omega[0]
+        start = stop
+    theta[start:], omega[start:] = legs[-1].theta[-1], legs[-1].omega[-1]
+    return theta, omega
 
 
 def method(params) -> tuple[Step, ...]:

@@ -26,9 +26,8 @@ def figures(solution, system: str = "si") -> list[Figure]:
         ground = line([-rad] * 2, [-reach * 1.1, 0.3 * reach], "wall", COLORS["ground"], width=6)
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
     theta_deg = np.degrees(m["theta"])
-    order = np.argsort(m["t_dense"], kind="stable")  # the dense samples: the cusps land on θ_I
-    curve = line(r(m["t_dense"][order]), r(np.degrees(m["theta_dense"][order])), "θ(t)", COLORS["body"], width=2,
-                 xaxis="x2", yaxis="y2")
+    curve = line(r(m["t_curve"]), r(np.degrees(m["theta_curve"])), "θ(t)", COLORS["body"], width=2,
+                 xaxis="x2", yaxis="y2")  # dense, with a point at each impact: the cusps land on θ_I
     impact_line = line(r([m["t"][0], m["t"][-1]]), r([math.degrees(a["theta_impact"])] * 2),
                        "impact angle θ_I", COLORS["ground"], width=1, dash="dash", xaxis="x2", yaxis="y2")
     v_scale = 0.35 * reach / max(abs(a["omega_impact"]) * (p["L"] + p["r"]), 1e-12)

@@ -28,9 +28,10 @@ def figures(solution, system: str = "si") -> list[Figure]:
     bars = {"type": "bar", "x": ["kinetic", "gravity", "spring"],
             "marker": {"color": [COLORS["velocity"], COLORS["body"], COLORS["force"]]},
             "name": "energy (J)", "xaxis": "x2", "yaxis": "y2", "showlegend": False, "hoverinfo": "skip"}
+    spring = [moving(line(None, None, "torsional spring", COLORS["force"], width=2),
+                     *spirals(0.25 * coil, coil, 1.5 + theta / (2 * math.pi), math.pi / 2 - theta))] * (p["k"] > 0)
     moving_traces = [
-        moving(line(None, None, "torsional spring", COLORS["force"], width=2),
-               *spirals(0.25 * coil, coil, 1.5 + theta / (2 * math.pi), math.pi / 2 - theta)),
+        *spring,  # k = 0: there is no spring to draw
         moving(line(None, None, "rod", COLORS["ink"], width=5), *segments(0.0, 0.0, L * s, L * c)),
         moving(line(None, None, "disk", COLORS["body"], width=3, fill="toself"), *circles(cx, cy, R)),
         moving(line(None, None, "marked radius", COLORS["accent"], width=4),
