@@ -5,7 +5,7 @@ y the wall normal pointing from the disk into the wall, ω counter-clockwise (E_
 The contact point is B = C + R E_y. The impact is instantaneous: gravity and any finite force are
 negligible against the impulse P = P_t E_x + P_n E_y at B. Newton's restitution e acts on the
 normal velocity of B; Coulomb friction μ bounds the tangential impulse, |P_t| ≤ μ |P_n|.
-μ = ∞ (the seed's assumption) means B does not slip at the end of the impact. For a uniform
+μ = ∞ (the worked solution's assumption) means B does not slip at the end of the impact. For a uniform
 disk the tangential and normal directions are uncoupled at B, so with finite μ either the impact
 ends in sticking or B slides in one direction throughout.
 """
@@ -58,7 +58,7 @@ ANSWERS = (
 )
 
 ERRATA = (
-    r"The seed writes $v_{1y} = +V\cos\theta$ (“magnitude conserved”). After an elastic impact "
+    r"The worked solution writes $v_{1y} = +V\cos\theta$ (“magnitude conserved”). After an elastic impact "
     r"the normal component **reverses**: $v_{1y} = -eV\cos\theta$, pointing away from the wall.",
 )
 
@@ -127,7 +127,7 @@ def derivation(regime: str) -> Derivation:
         steps.append(Step("Friction must supply this: no slip is possible only while |P_t| ≤ μ|P_n|",
                           r"\left|P_t\right| \le \mu \left|P_n\right|"))
     steps.append(Step("Angular momentum about the contact point B is conserved (the impulse has "
-                      "no moment about B); the seed's route",
+                      "no moment about B); the worked solution's route",
                       latex_eq(I_C * omega + m * R * v_before[0], I_C * omega1 + m * R * v1x)))
 
     chain = [
@@ -217,7 +217,7 @@ def _checks(p, a) -> tuple[Check, ...]:
 def _notes(p, a, regime, slip_before) -> tuple[str, ...]:
     if regime == "stick":
         if math.isinf(p["mu"]):
-            note = "Rough wall (μ = ∞): B stops slipping; the seed's assumption."
+            note = "Rough wall (μ = ∞): B stops slipping; the worked solution's assumption."
         else:
             note = (f"Sticks: no slip needs |P_t| = {abs(a['impulse_t']):.4g} N·s, within "
                     f"μ|P_n| = {p['mu'] * abs(a['impulse_n']):.4g} N·s.")

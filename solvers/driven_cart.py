@@ -3,9 +3,9 @@
 Model: rigid cart of mass m translating along E_x (no pitch, all four wheels on the ground), CM at
 height a, axles at x = ±b from the CM (front at +b), wheels at z = ±c. Wheels are massless; each
 driven wheel pushes forward with traction at the friction limit, F_i = μ N_i, and the free wheels
-carry no traction. Wheel numbering follows the seed: 1 (rear, +c), 2 (front, +c), 3 (front, −c),
+carry no traction. Wheel numbering follows the worked solution: 1 (rear, +c), 2 (front, +c), 3 (front, −c),
 4 (rear, −c). Nine unknowns (four normal forces, four lateral forces, ẍ) meet six equations, so,
-as in the seed, the lateral forces are taken as zero and the load as symmetric left to right.
+as in the worked solution, the lateral forces are taken as zero and the load as symmetric left to right.
 Rear- and all-wheel drive unload the front axle and lift it once μa ≥ b; the model then no
 longer applies (a wheelie) and ``solve`` refuses.
 """
@@ -42,7 +42,7 @@ PARAMS = (
            low_inclusive=True, ui_low=0.0, ui_high=3.0, step=0.05),
     Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
     Choice("drive", "front", "driven wheels", ("front", "rear", "all"),
-           ("front-wheel drive (the seed)", "rear-wheel drive", "all-wheel drive")),
+           ("front-wheel drive (the worked solution)", "rear-wheel drive", "all-wheel drive")),
 )
 
 ANSWERS = (
@@ -53,11 +53,11 @@ ANSWERS = (
 )
 
 ERRATA = (
-    r"In the seed the driven wheels 2 and 3 (at $+b$) are the front, yet the line "
+    r"In the worked solution, the driven wheels 2 and 3 (at $+b$) are the front, yet the line "
     r"“$N_1 = N_4 = N_{front}$, $N_2 = N_3 = N_{rear}$” swaps the names; its equations (7)–(10) "
     r"and boxed results are right. Accelerating moves load to the **rear** axle, so driven front "
     r"wheels are the *unloaded* ones.",
-    r"The seed's moment sum drops the traction's yaw term $c\mu(N_2 - N_3)$; it cancels by the "
+    r"The worked solution's moment sum drops the traction's yaw term $c\mu(N_2 - N_3)$; it cancels by the "
     r"left–right symmetry, so the answers stand.",
 )
 
@@ -111,7 +111,7 @@ def derivation(drive: str) -> Derivation:
         Step("Balance of angular momentum about the CM, ΣM_C = 0 (the cart translates)",
              r"\\ ".join(rf"{names[i]}:\; " + sp.latex(eq) for i, eq in enumerate(equations[3:]))),
         Step("Nine unknowns, six equations: take the lateral forces as zero and the loads symmetric "
-             "left to right (the seed's assumption)",
+             "left to right (the worked solution's assumption)",
              r",\;".join([r"N_{iz} = 0", r"N_1 = N_4 = N_{rear}", r"N_2 = N_3 = N_{front}"])),
         Step("What remains (the others hold identically)",
              r"\\ ".join(sp.latex(eq) for eq in independent)),
@@ -180,10 +180,12 @@ def _numeric_system(drive: str):
     return sp.lambdify(args, A, modules="numpy"), sp.lambdify(args, rhs, modules="numpy")
 
 
-def motion(solution: Solution, frames: int = 40, duration: float = 1.5) -> dict:
-    """From rest at constant acceleration: x(t) = ½ ẍ t²."""
-    t = np.linspace(0.0, duration, frames)
+def motion(solution: Solution, frames: int = 40, duration: float = 1.5, wheelbases: float = 3.0) -> dict:
+    """From rest at constant acceleration: x(t) = ½ ẍ t², for ``duration`` or until the cart has
+    gone ``wheelbases`` wheelbases, whichever is first (a hard-driven cart would leave the view)."""
     accel = solution.answers["accel"]
+    reach = wheelbases * 2 * solution.params["b"]
+    t = np.linspace(0.0, min(duration, math.sqrt(2 * reach / accel)) if accel > 0 else duration, frames)
     return {"t": t, "x": 0.5 * accel * t**2, "v": accel * t}
 
 
@@ -198,6 +200,12 @@ def acceleration_versus_mu(params: dict, mus: np.ndarray) -> dict[str, np.ndarra
             accel[~(mus * base["a"] < base["b"])] = np.nan
         curves[drive] = accel
     return curves
+
+
+def method(params) -> tuple[Step, ...]:
+    """The symbolic steps for ``params`` without numbers: shown beside a refusal, where they say why
+    (the last one: the front wheels stay down only while μa < b)."""
+    return derivation(validate_params(PARAMS, params)["drive"]).steps
 
 
 def derivation_of(solution: Solution) -> Derivation:

@@ -13,6 +13,7 @@ import functools
 import math
 
 import numpy as np
+from scipy.interpolate import CubicHermiteSpline
 import sympy as sp
 
 from .core import (
@@ -49,7 +50,7 @@ PARAMS = (
            help="Must be above the impact angle; 90° (upright) is an equilibrium."),
     Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
     Choice("sphere", "solid", "the ball's inertia", ("solid", "hollow", "disk"),
-           ("solid sphere, ⅖ m r²", "hollow sphere, ⅔ m r²", "disk, ½ m r² (the seed)")),
+           ("solid sphere, ⅖ m r²", "hollow sphere, ⅔ m r²", "disk, ½ m r² (the worked solution)")),
     Choice("surface", "floor", "what the sphere strikes", ("floor", "wall"),
            ("a floor a depth d below O", "a wall where the rod hangs straight down")),
 )
@@ -64,13 +65,13 @@ ANSWERS = (
 )
 
 ERRATA = (
-    r"The seed takes the sphere's own inertia as $\tfrac12 m_s r^2$, a **disk's** value; a solid "
-    r"sphere has $\tfrac25 m_s r^2$ (choose *sphere* = disk to reproduce the seed).",
-    r"The seed starts the energy integral at $\theta = 90^\circ$ (an equilibrium), giving "
+    r"The worked solution takes the sphere's own inertia as $\tfrac12 m_s r^2$, a **disk's** value; a solid "
+    r"sphere has $\tfrac25 m_s r^2$ (choose *sphere* = disk to reproduce the worked solution).",
+    r"The worked solution starts the energy integral at $\theta = 90^\circ$ (an equilibrium), giving "
     r"$(1-\sin\theta)$; released from $\theta_0$ it is $(\sin\theta_0 - \sin\theta)$.",
-    r"For a floor below the pivot, $\sin\theta_I = (r-d)/(L+r)$ is **negative**; the seed writes "
+    r"For a floor below the pivot, $\sin\theta_I = (r-d)/(L+r)$ is **negative**; the worked solution writes "
     r"$(d-r)/(L+r)$.",
-    r"The seed writes $e = \dot\theta'/\dot\theta$, against its own next line "
+    r"The worked solution writes $e = \dot\theta'/\dot\theta$, against its own next line "
     r"$\dot\theta' = -e\dot\theta$: the rod reverses, so $e = -\dot\theta'/\dot\theta$.",
     r"Whatever the masses, $\sin\theta_f - \sin\theta_I = e^2(\sin\theta_0 - \sin\theta_I)$.",
 )
@@ -120,7 +121,7 @@ def derivation(sphere: str, surface: str) -> Derivation:
 
     steps = [
         Step("Moment of inertia about the pivot O (parallel-axis theorem for rod and "
-             f"{'sphere' if sphere != 'disk' else 'ball, with the seed’s disk value'})",
+             f"{'sphere' if sphere != 'disk' else 'ball, with the worked solution’s disk value'})",
              latex_eq(I_O, inertia)),
         Step("Moment of the weights about O per unit cos θ: the potential energy is V = Q sin θ",
              latex_eq(Q, weight_moment)),
@@ -294,14 +295,44 @@ def _checks(p, a) -> tuple[Check, ...]:
     return tuple(checks)
 
 
-def motion(solution: Solution, frames: int = 60, bounces: int = 3) -> dict:
-    """θ(t) and θ̇(t) through several bounces, integrated, resampled evenly in time."""
-    t, q, w, impacts, _ = simulate(solution.params, solution.answers, bounces=bounces)
-    t_even = np.linspace(t[0], t[-1], frames)
-    order = np.argsort(t, kind="stable")
-    return {"t": t_even, "theta": np.interp(t_even, t[order], q[order]),
-            "omega": np.interp(t_even, t[order], w[order]), "t_dense": t, "theta_dense": q,
-            "impact_times": [ti for ti, _ in impacts]}
+def motion(solution: Solution, frames: int = 60, bounces: int = 3, curve_points: int = 400) -> dict:
+    """θ(t) and θ̇(t) through several bounces, integrated, at frames even in time plus one at each
+    impact (so the animation shows the sphere touching), and θ(t) densely for its plot. Between
+    the integrator's samples each leg is a cubic Hermite curve through (θ, θ̇), which the equation
+    of motion makes smooth; the legs meet at the impacts, where θ̇ jumps (the cusps on θ_I)."""
+    t, q, w, impacts, legs = simulate(solution.params, solution.answers, bounces=bounces)
+    impact_times = [ti for ti, _ in impacts]
+    t_frames = np.union1d(np.linspace(t[0], t[-1], frames), impact_times)
+    t_curve = np.union1d(np.linspace(t[0], t[-1], curve_points), impact_times)
+    theta, omega = _on_legs(legs, t_frames)
+    return {"t": t_frames, "theta": theta, "omega": omega, "t_curve": t_curve, "theta_curve": _on_legs(legs, t_curve)[0],
+            "impact_times": impact_times}
+
+
+def _on_legs(legs, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """θ and θ̇ at ``times`` (sorted), each from the leg it falls in (an impact's time: the leg that
+    ends there, at θ_I with the speed before)."""
+    theta, omega = np.empty_like(times), np.empty_like(times)
+    start = 0
+    for leg in legs:
+        t_leg, keep = np.unique(leg.t, return_index=True)
+        stop = int(np.searchsorted(times, t_leg[-1], side="right"))
+        inside = slice(start, stop)
+        if len(t_leg) > 1:
+            curve = CubicHermiteSpline(t_leg, leg.theta[keep], leg.omega[keep])
+            theta[inside], omega[inside] = curve(times[inside]), curve(times[inside], 1)
+        else:
+            theta[inside], omega[inside] = leg.theta[0], leg.omega[0]
+        start = stop
+    theta[start:], omega[start:] = legs[-1].theta[-1], legs[-1].omega[-1]
+    return theta, omega
+
+
+def method(params) -> tuple[Step, ...]:
+    """The symbolic steps for ``params`` without numbers, shown beside a refusal (a release below
+    the impact angle): they say where the sphere touches."""
+    p = validate_params(PARAMS, params)
+    return derivation(p["sphere"], p["surface"]).steps
 
 
 def derivation_of(solution: Solution) -> Derivation:

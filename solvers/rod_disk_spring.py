@@ -47,7 +47,7 @@ PARAMS = (
            high=2 * math.pi, ui_low=1, ui_high=359, step=1.0),
     Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
     Choice("disk", "welded", "how the disk is attached", ("welded", "pinned"),
-           ("welded: turns with the rod (the seed)", "pinned: free to spin, so it does not rotate")),
+           ("welded: turns with the rod (the worked solution)", "pinned: free to spin, so it does not rotate")),
 )
 
 ANSWERS = (
@@ -59,13 +59,13 @@ ANSWERS = (
 )
 
 ERRATA = (
-    r"The seed's kinetic-energy line has $\tfrac14 m_1 L^2\dot\theta^2$; it should be "
+    r"The worked solution's kinetic-energy line has $\tfrac14 m_1 L^2\dot\theta^2$; it should be "
     r"$\tfrac12 m_1 (L/2)^2\dot\theta^2 = \tfrac18 m_1 L^2\dot\theta^2$.",
-    r"The seed writes the disk's $I_G$ as $\tfrac12 m_2 B^2$ with $B = L + R$; it is "
+    r"The worked solution writes the disk's $I_G$ as $\tfrac12 m_2 B^2$ with $B = L + R$; it is "
     r"$\tfrac12 m_2 R^2$.",
     r"The spring work is evaluated at $\theta_2 = \pi/8$ in one line; it is $\pi/2$ "
-    r"($U_s = -k\pi^2/8$, as the seed's number $-24.67$ J says).",
-    r"The seed's $\mathbf{X}_2$ has a sign flip; its numbers ($T = 1.455\,\dot\theta^2$, "
+    r"($U_s = -k\pi^2/8$, as the worked solution's number $-24.67$ J says).",
+    r"The worked solution's $\mathbf{X}_2$ has a sign flip; its numbers ($T = 1.455\,\dot\theta^2$, "
     r"4.90 rad/s) are right.",
 )
 
@@ -276,24 +276,47 @@ def _checks(p, a) -> tuple[Check, ...]:
     )
 
 
-def motion(solution: Solution, frames: int = 45) -> dict:
-    """The whole swing from release and back, with the energy split per frame: kinetic,
-    gravitational (zero with the assembly hanging straight down) and spring. The fall is
-    integrated once; the system is conservative, so the return is its mirror in time."""
+VISIBLE = math.radians(1.0)  # how far the rod must move from rest before a student can see it move
+MAX_FRAME_TURN = math.radians(10.0)  # the most the rod may turn between two frames
+FRAME_RANGE = (45, 150)
+
+
+def motion(solution: Solution) -> dict:
+    """The swing a student can see, with the energy split per frame: kinetic, gravitational (zero
+    with the assembly hanging straight down) and spring. The fall is integrated once; the system
+    is conservative, so the return is its mirror in time, unless the swing ends at an equilibrium
+    (no spring, released from upright: it arrives upright again and, nudged, goes on over the top).
+
+    A release at upright creeps for seconds on its 1e-6 rad/s nudge; the frames start where the
+    rod has moved VISIBLE from rest (``start``) and end where it is back within VISIBLE of rest,
+    evenly in time, and close enough that the rod turns at most MAX_FRAME_TURN between frames."""
     p, a = solution.params, solution.answers
     half = simulate(p, a)
-    if half.ended_by_event:
-        turn = half.t[-1]
-        t = np.concatenate([half.t, 2 * turn - half.t[-2::-1]])
+    Q = weight_moment(p)
+    # With no spring, T(θ) = Q (1 − cos θ) from upright vanishes again only at 360°, upright: the
+    # swing ends where it began, at an equilibrium, and the nudge carries it over the top.
+    over_the_top = p["k"] == 0 and p["theta1"] == 0
+    if half.ended_by_event and not over_the_top:
+        t_turn = half.t[-1]
+        t = np.concatenate([half.t, 2 * t_turn - half.t[-2::-1]])
         theta = np.concatenate([half.theta, half.theta[-2::-1]])
         omega = np.concatenate([half.omega, -half.omega[-2::-1]])
     else:
         t, theta, omega = half.t, half.theta, half.omega
-    even = np.linspace(t[0], t[-1], frames)
+    moved = np.nonzero((np.abs(theta - theta[0]) >= VISIBLE) & (np.abs(theta - theta[-1]) >= VISIBLE))[0]
+    t_start, t_end = (t[moved[0] - 1], t[min(moved[-1] + 1, len(t) - 1)]) if len(moved) else (t[0], t[-1])
+    frames = int(np.clip(math.ceil((t_end - t_start) * np.abs(omega).max() / MAX_FRAME_TURN), *FRAME_RANGE))
+    even = np.linspace(t_start, t_end, frames)
     theta, omega = np.interp(even, t, theta), np.interp(even, t, omega)
-    Q = weight_moment(p)
     return {"t": even, "theta": theta, "omega": omega, "kinetic": 0.5 * a["I_O"] * omega**2,
-            "gravity": Q * (1 + np.cos(theta)), "spring": 0.5 * p["k"] * theta**2}
+            "gravity": Q * (1 + np.cos(theta)), "spring": 0.5 * p["k"] * theta**2,
+            "start": float(t_start), "over_the_top": bool(over_the_top)}
+
+
+def method(params) -> tuple[Step, ...]:
+    """The symbolic steps for ``params`` without numbers, shown beside a refusal (the spring stops
+    the rod before θ₂): the work–energy balance that says why."""
+    return derivation(validate_params(PARAMS, params)["disk"]).steps
 
 
 def derivation_of(solution: Solution) -> Derivation:

@@ -8,6 +8,7 @@ import math
 import streamlit as st
 
 from practice.variants import variant
+from solvers.core import PhysicalLimitError, Solution
 from ui import results
 from ui.practice import instructor_export, practice_panel, seed_from_url
 from ui.catalog import BY_ID, Problem
@@ -79,6 +80,18 @@ def _on_request(problem: Problem, solution) -> None:
             show_figure(_requested(problem.id, tuple(sorted(solution.params.items()))))
 
 
+def _on_request_flag(problem: Problem) -> dict[str, str]:
+    """The URL flag that keeps a problem's on-request figure open (``ON_REQUEST_FLAG`` in its viz
+    module, e.g. ?rundown=1): the switch starts from the link and the link follows the switch."""
+    flag = getattr(importlib.import_module(f"viz.{problem.id}"), "ON_REQUEST_FLAG", None)
+    if flag is None:
+        return {}
+    key = f"{problem.id}__on_request"
+    if key not in st.session_state:
+        st.session_state[key] = st.query_params.get(flag) == "1"
+    return {flag: "1" if st.session_state[key] else ""}
+
+
 @functools.lru_cache(maxsize=64)
 def _requested(problem_id: str, key: tuple):
     solution = BY_ID[problem_id].solver.solve(**dict(key))
@@ -119,13 +132,16 @@ def problem_page(problem_id: str) -> None:
     params, warnings = parameter_panel(problem, system, base)
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "",
                                             "lecture": "1" if lecture else "", "practice": "1" if practice else "",
-                                            "seed": str(seed) if seed is not None else ""}, base)
+                                            "seed": str(seed) if seed is not None else "",
+                                            **_on_request_flag(problem)}, base)
     notices = [w for w in (seed_warning, *warnings) if w]
     try:
         solution, figures = _solve_and_draw(problem, params, system)
     except ValueError as error:
         _heading(heading, notices)
         results.refused(error, system)
+        if isinstance(error, PhysicalLimitError):
+            _beside_refusal(problem, params)
         return
 
     answers = _answers_for(solver, solution)
@@ -148,6 +164,18 @@ def problem_page(problem_id: str) -> None:
         instructor_export(problem)
 
 
+def _beside_refusal(problem: Problem, params: dict) -> None:
+    """A physical limit is where the lesson is: keep what shows why (the problem's figures for it,
+    and the derivation without numbers), where the problem offers them."""
+    viz = importlib.import_module(f"viz.{problem.id}")
+    for figure in getattr(viz, "at_limit", lambda _: [])(params):
+        show_figure(figure)
+    method = getattr(problem.solver, "method", None)
+    if method is not None:
+        results.derivation(Solution(problem.id, params, {}, method(params)),
+                           caption="The method, without numbers: these parameters are past the model's limit.")
+
+
 def _heading(heading: str, notices: list[str]) -> None:
     st.markdown(heading)
     for notice in notices:
@@ -155,7 +183,7 @@ def _heading(heading: str, notices: list[str]) -> None:
 
 
 def _derivation(solver, solution, numeric: bool) -> None:
-    """The derivation and the seed's slips below it, in one element (tabs would cost a widget's time
+    """The derivation and the worked solution's slips below it, in one element (tabs would cost a widget's time
     on every run)."""
     if numeric:
         caption = "Generated from the sympy derivation; the last steps put in your numbers (SI)."

@@ -27,6 +27,23 @@ def _is_slider(p: Number) -> bool:
     return p.dimension == "angle" or (p.low == 0 and p.high == 1)
 
 
+def display_format(p: Number) -> str:
+    """How the control writes the number (printf style), which the URL copies: a slider to its
+    step's decimals (a whole-degree slider shows 30, not 30.00), a box to six figures."""
+    if not _is_slider(p):
+        return "%.6g"
+    step = float(p.step or 0.01)
+    decimals = 0
+    while decimals < 6 and abs(step * 10**decimals - round(step * 10**decimals)) > 1e-9:
+        decimals += 1
+    return f"%.{decimals}f"
+
+
+def as_shown(p: Number, shown: float) -> float:
+    """``shown`` (display units) rounded to what its control shows."""
+    return shown if math.isinf(shown) else float(display_format(p) % shown)
+
+
 def _parse_url_value(p: Any, raw: str, system: str) -> tuple[Any, str | None]:
     """(display value, None) if ``raw`` is acceptable for ``p``, else (None, why)."""
     if len(raw) > MAX_URL_VALUE:
@@ -39,6 +56,8 @@ def _parse_url_value(p: Any, raw: str, system: str) -> tuple[Any, str | None]:
         return None, "is not a number"
     if math.isinf(shown) and p.allow_inf and shown > 0:
         return shown, None
+    if math.isfinite(shown):
+        shown = as_shown(p, shown)  # the control can show no finer: keep what it shows
     try:
         p.validate(units.to_si(shown, p.dimension, system))
     except ParameterError:
@@ -97,7 +116,7 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
             return math.inf
         if math.isinf(value):
             st.session_state[key] = float(p.ui_high or 1.0) / 2
-        return container.number_input(_label(p, system), key=key, step=p.step, format="%.4g",
+        return container.number_input(_label(p, system), key=key, step=p.step, format=display_format(p),
                                       help=p.help or None)
     if _is_slider(p):
         lo = float(p.ui_low if p.ui_low is not None else p.low)
@@ -105,10 +124,10 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
         current = float(st.session_state[key])
         st.session_state[key] = current
         return container.slider(_label(p, system), min(lo, current), max(hi, current), key=key,
-                                step=float(p.step or 0.01), help=p.help or None)
+                                step=float(p.step or 0.01), format=display_format(p), help=p.help or None)
     factor = units.to_display(1.0, p.dimension, system)
     step = float(f"{(p.step or 0.01) * factor:.1g}")
-    return container.number_input(_label(p, system), key=key, step=step, format="%.6g",
+    return container.number_input(_label(p, system), key=key, step=step, format=display_format(p),
                                   help=p.help or None)
 
 
@@ -178,7 +197,8 @@ def mirror_to_url(problem: Problem, values: dict, system: str, flags: dict[str, 
             wanted[p.name] = v
         else:
             shown = units.to_display(v, p.dimension, system)
-            wanted[p.name] = "inf" if math.isinf(shown) else f"{shown:.10g}"
+            # What the control shows, no more: a link says L=2.29659, not L=2.296587927.
+            wanted[p.name] = "inf" if math.isinf(shown) else f"{as_shown(p, shown):g}"
     wanted.update({k: v for k, v in flags.items() if v})
     current = {k: st.query_params.get(k) for k in st.query_params.keys()}
     if current != wanted:

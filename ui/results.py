@@ -1,5 +1,5 @@
 """How a Solution is shown: answers with units, the derivation step by step, the ledger of checks,
-the seed's slips, and a refused case explained (never a traceback)."""
+the worked solution's slips, and a refused case explained (never a traceback)."""
 from __future__ import annotations
 
 import re

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from solvers.core import plain_number as format_value  # noqa: F401  (one formatting for every page)
+
 SI = {
     "mass": ("kg", 1.0),
     "length": ("m", 1.0),
@@ -38,6 +40,7 @@ US = SI | {
 SYSTEMS = {"si": SI, "us": US}
 
 
+
 def unit(dimension: str, system: str = "si") -> str:
     return SYSTEMS[system][dimension][0]
 
@@ -48,17 +51,6 @@ def to_display(x: float, dimension: str, system: str = "si") -> float:
 
 def to_si(x: float, dimension: str, system: str = "si") -> float:
     return x / SYSTEMS[system][dimension][1]
-
-
-def format_value(x: float, sig: int = 4) -> str:
-    """Plain-text number with ``sig`` significant figures and a true minus sign."""
-    if math.isinf(x):
-        return "∞" if x > 0 else "−∞"
-    text = f"{x:.{sig}g}"
-    if "e" in text:
-        mantissa, exponent = text.split("e")
-        text = f"{mantissa} × 10^{int(exponent)}"
-    return text.replace("-", "−")
 
 
 def format_quantity(x: float, dimension: str, system: str = "si", sig: int = 4) -> str:

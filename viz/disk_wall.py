@@ -6,6 +6,7 @@ import math
 import numpy as np
 
 from solvers import disk_wall as solver
+from solvers.core import plain_number as n
 from viz.common import (COLORS, Figure, animated, arrows, as_one, base_layout, circles, line, moving, padded, r,
                          segments, trails)
 
@@ -41,8 +42,12 @@ def figures(solution, system: str = "si") -> list[Figure]:
                          x_title="x, along the wall (m)", y_title="y, toward the wall (m)")
     spec = animated([wall, hatch], moving_traces, m["t"], layout)
     regime = "sticks (B stops slipping)" if solution.regime == "stick" else "slides along the wall throughout"
-    description = (f"Top view. The disk slides toward the wall at {p['V']:.3g} m/s, spinning at "
-                   f"{p['omega']:.3g} rad/s, strikes it at t = 0 and {regime}; it leaves at "
-                   f"{a['speed1']:.3g} m/s spinning at {a['omega1']:.3g} rad/s. The orange radius "
-                   "shows the spin, the green arrow the velocity, the red arrow the wall's impulse.")
+    if p["e"] == 0:  # no normal velocity after: it stays against the wall
+        after = f"with e = 0 it does not rebound: it runs on along the wall at {n(a['speed1'])} m/s"
+    else:
+        after = f"it rebounds and leaves at {n(a['speed1'])} m/s"
+    description = (f"Top view. The disk slides toward the wall at {n(p['V'])} m/s, spinning at "
+                   f"{n(p['omega'])} rad/s, strikes it at t = 0 and {regime}; {after}, spinning at "
+                   f"{n(a['omega1'])} rad/s. The orange radius shows the spin, the green arrow the velocity, "
+                   "the red arrow the wall's impulse.")
     return [Figure("disk_wall_motion", "The impact, slowed down", spec, description, height=520)]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from solvers import driven_cart as solver
+from solvers.core import plain_number as n
 from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, joined, line, moving,
                          points, r, segments)
 
@@ -24,13 +25,14 @@ def _animation(solution) -> Figure:
     driven = {"front": (b,), "rear": (-b,), "all": (-b, b)}[p["drive"]]
     traction_per_axle = a["F_drive"] / len(driven)
     x_end = m["x"][-1]
-    ground = line(r([-b - 1.5 * wheel, x_end + b + 1.5 * wheel]), [0, 0], "ground", COLORS["ground"], width=4)
+    ground = line(r([min(-b, min(driven) - traction_per_axle * force_scale) - 1.5 * wheel, x_end + b + 1.5 * wheel]),
+                  [0, 0], "ground", COLORS["ground"], width=4)
     x = m["x"]
-    n = len(x)
+    frames = len(x)
     spin = -x / wheel  # rolling: the wheels turn clockwise as the cart moves forward
     corners = np.array([-b - wheel, b + wheel, b + wheel, -b - wheel, -b - wheel])
-    body = (r(x[:, None] + corners), r(np.tile([body_bottom, body_bottom, body_top, body_top, body_bottom], (n, 1))))
-    wheels = joined(*(circles(x + xa, np.full(n, wheel), wheel, 28) for xa in (-b, b)))
+    body = (r(x[:, None] + corners), r(np.tile([body_bottom, body_bottom, body_top, body_top, body_bottom], (frames, 1))))
+    wheels = joined(*(circles(x + xa, np.full(frames, wheel), wheel, 28) for xa in (-b, b)))
     spokes = joined(*(segments(x + xa - wheel * np.cos(spin), wheel - wheel * np.sin(spin),
                                x + xa + wheel * np.cos(spin), wheel + wheel * np.sin(spin)) for xa in (-b, b)))
     normals = joined(*(arrows(x + xa, -2 * N * force_scale, 0.0, 2 * N * force_scale)
@@ -42,23 +44,30 @@ def _animation(solution) -> Figure:
         moving(line(None, None, "wheels", COLORS["ink"], width=3), *wheels),
         moving(line(None, None, "marked spokes", COLORS["accent"], width=3), *spokes),
         moving(points(None, None, "centre of mass", COLORS["marker"], size=12, symbol="circle-x"),
-               column(x), column(np.full(n, h))),
+               column(x), column(np.full(frames, h))),
         moving(line(None, None, "normal force per axle (2N)", COLORS["force"], width=4), *normals),
         moving(line(None, None, "traction at the driven wheels", COLORS["impulse"], width=4), *traction),
     ]
     y_lo = -2 * max(a["N_rear"], a["N_front"]) * force_scale - 0.15 * b
-    layout = base_layout(equal_axes=True, x_range=(-b - 2 * wheel, x_end + b + 2 * wheel),
+    arrow_tail = min(xa for xa in driven) - traction_per_axle * force_scale  # the traction arrow's tail at rest
+    layout = base_layout(equal_axes=True, x_range=(min(-b - 2 * wheel, arrow_tail - wheel), x_end + b + 2 * wheel),
                          y_range=(y_lo, body_top * 1.4), x_title="x (m)", y_title="height (m)")
     spec = animated([ground], moving_traces, m["t"], layout, frame_ms=70)
-    description = (f"Side view, front to the right. From rest the cart accelerates at {a['accel']:.3g} m/s² "
-                   f"({p['drive']}-wheel drive). Purple arrows: the ground's normal force on each axle, "
-                   f"{2 * a['N_rear']:.0f} N at the rear and {2 * a['N_front']:.0f} N at the front, drawn to "
+    description = (f"Side view, front to the right. From rest the cart accelerates at {n(a['accel'])} m/s² "
+                   f"({p['drive']}-wheel drive) for {n(m['t'][-1], 2)} s. Purple arrows: the ground's normal force on "
+                   f"each axle, {n(2 * a['N_rear'])} N at the rear and {n(2 * a['N_front'])} N at the front, drawn to "
                    "scale below the ground line; red: the traction. Acceleration moves load to the rear.")
     return Figure("cart_motion", "Accelerating from rest (forces to scale)", spec, description, height=440)
 
 
 def _versus_mu(solution) -> Figure:
-    p = dict(solution.params)
+    return versus_mu(solution.params, solution.answers["accel"])
+
+
+def versus_mu(params, accel: float | None = None) -> Figure:
+    """ẍ against μ for the three drives, with this cart's point (``accel``, if it has one: a cart
+    past the lift-off has none, and its μ is marked on the axis instead)."""
+    p = dict(params)
     mu_lift = p["b"] / p["a"]
     mu_max = max(1.5 * mu_lift, 1.2 * p["mu"], 1.0)
     mus = np.linspace(0.0, mu_max, 121)
@@ -68,13 +77,22 @@ def _versus_mu(solution) -> Figure:
     dashes = {"front": None, "rear": "dash", "all": "dot"}
     data = [line(r(mus), r(curves[d]), names[d], colors[d], width=3, dash=dashes[d]) for d in curves]
     top = float(np.nanmax([np.nanmax(c) for c in curves.values()]))
-    data.append(line(r([mu_lift, mu_lift]), r([0, top * 1.05]), f"front wheels lift: μ = b/a = {mu_lift:.3g}",
+    data.append(line(r([mu_lift, mu_lift]), r([0, top * 1.05]), f"front wheels lift: μ = b/a = {n(mu_lift, 3)}",
                      COLORS["ink"], width=2, dash="longdash"))
-    data.append(points([p["mu"]], [solution.answers["accel"]], "this cart", COLORS["marker"], size=13))
+    if accel is not None:
+        data.append(points([p["mu"]], [accel], "this cart", COLORS["marker"], size=13))
+    else:
+        data.append(points([p["mu"]], [0.0], f"this cart's μ = {n(p['mu'], 3)}: past the lift-off", COLORS["marker"],
+                           size=13, symbol="x"))
     layout = base_layout(equal_axes=False, x_title="friction coefficient μ", y_title="ẍ_C (m/s²)", height=380)
     layout["margin"]["b"] = 60
     description = (f"Acceleration against μ for the three drives. Rear and all-wheel drive end at "
-                   f"μ = b/a = {mu_lift:.3g}, where the front wheels lift (a wheelie); front drive never lifts "
+                   f"μ = b/a = {n(mu_lift, 3)}, where the front wheels lift (a wheelie); front drive never lifts "
                    "but gains less and less, since it unloads the very wheels that push.")
     return Figure("cart_versus_mu", "ẍ against μ: which drive wins, and where the front lifts",
                   {"data": data, "layout": layout}, description, animated=False, height=380)
+
+
+def at_limit(params) -> list[Figure]:
+    """Beside a refusal (the front wheels lift): the curves that show where, and why."""
+    return [versus_mu(params)]

@@ -7,9 +7,11 @@ import math
 import numpy as np
 
 from solvers import eulers_disk as solver
+from solvers.core import plain_fixed, plain_number as n
 from viz.common import COLORS, Figure, animated, base_layout, line, moving, r
 
 PLAY_SECONDS = 4.0  # one precession lasts this long on screen
+ON_REQUEST_FLAG = "rundown"  # ?rundown=1 keeps "Letting it run down" open in a shared link
 
 
 def figures(solution, system: str = "si") -> list[Figure]:
@@ -62,7 +64,7 @@ def _animation(solution) -> Figure:
     frame_ms = int(1000 * PLAY_SECONDS / len(m["t"]))
     spec = animated([table, G], moving_traces, m["t"], layout, frame_ms=frame_ms, redraw=True)
     turn = math.degrees(solution.extras["turn_per_precession"])
-    description = (f"Slowed down {slow:.0f}×: one precession takes {a['period'] * 1000:.0f} ms in reality and "
+    description = (f"Slowed down {slow:.0f}×: one precession takes {n(a['period'] * 1000, 3)} ms in reality and "
                    f"{PLAY_SECONDS:.0f} s on screen. The contact point (red) runs once round its circle while "
                    f"the marked radius turns only {turn:.1f}° relative to the table: the contact whirls, the disk "
                    "itself barely turns.")
@@ -86,7 +88,8 @@ def _versus_tilt(solution) -> Figure:
          "marker": {"color": COLORS["marker"], "size": 12, "line": {"width": 1, "color": "#222"}}},
     ]
     layout = base_layout(equal_axes=False, x_title="", y_title="rate (rad/s, log)", height=460)
-    layout["yaxis"].update({"type": "log", "domain": [0.42, 1.0]})
+    rates = np.concatenate([curves["omega_p"], curves["omega_total"]])
+    layout["yaxis"].update({"type": "log", "domain": [0.42, 1.0], **_log_ticks(rates.min(), rates.max())})
     layout["xaxis"].update({"matches": "x2", "showticklabels": False})
     layout["xaxis2"] = {"anchor": "y2", "title": {"text": "tilt θ (°)"}}
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.32], "title": {"text": "energy (mJ)"}, "rangemode": "tozero"}
@@ -99,24 +102,35 @@ def _versus_tilt(solution) -> Figure:
                   {"data": data, "layout": layout}, description, animated=False, height=460)
 
 
+def _log_ticks(lo: float, hi: float) -> dict:
+    """Labels on a log axis at 1, 2 and 5 times each power of ten, all written out: plotly's own
+    labels the minor ticks with a bare digit (5, 10, 2, 5, 100, 2), which reads as nonsense."""
+    values = [m * 10.0**k for k in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi)) + 1) for m in (1, 2, 5)]
+    values = [v for v in values if lo <= v <= hi]
+    return {"tickvals": values, "ticktext": [f"{v:g}" for v in values]}
+
+
 def on_request(solution, damping: float = 5e-6) -> Figure:
     """Letting it run down: the full equations with a resisting torque −c ω (costly: on request)."""
     from solvers import eulers_disk_dynamics as dynamics
 
     d = dynamics.decay(dict(solution.params), damping, t_max=120.0)
+    # Stacked over one time axis, not two y-axes overlaid: each gets ticks of its own.
     data = [
         line(r(d["t"]), r(np.degrees(d["tilt"])), "tilt θ (°)", COLORS["body"], width=3),
         line(r(d["t"]), r(d["precession"]), "precession rate ω_p (rad/s)", COLORS["impulse"], width=3,
-             yaxis="y2"),
+             xaxis="x2", yaxis="y2"),
     ]
-    layout = base_layout(equal_axes=False, x_title="t (s)", y_title="tilt θ (°)", height=380)
-    layout["yaxis2"] = {"overlaying": "y", "side": "right", "title": {"text": "ω_p (rad/s)"}, "showgrid": False}
+    layout = base_layout(equal_axes=False, x_title="", y_title="tilt θ (°)", height=420)
+    layout["yaxis"]["domain"] = [0.55, 1.0]
+    layout["xaxis"].update({"matches": "x2", "showticklabels": False})
+    layout["xaxis2"] = {"anchor": "y2", "title": {"text": "t (s)"}}
+    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.45], "title": {"text": "ω_p (rad/s)"}}
     layout["margin"]["b"] = 60
-    layout["margin"]["r"] = 60
-    ending = (f"the tilt reaches 1° after {d['time_to_stop']:.0f} s" if d["reached"] else
-              f"after {d['time_to_stop']:.0f} s the tilt is {math.degrees(d['tilt'][-1]):.1f}°")
-    description = (f"Kane's equations of the rolling disk integrated with a resisting torque −cω (c = {damping:g} "
+    ending = (f"the tilt reaches 1° after {n(d['time_to_stop'], 3)} s" if d["reached"] else
+              f"after {n(d['time_to_stop'], 3)} s the tilt is {plain_fixed(math.degrees(d['tilt'][-1]), 1)}°")
+    description = (f"Kane's equations of the rolling disk integrated with a resisting torque −cω (c = {n(damping)} "
                    f"N·m·s): energy drains, the disk settles and the contact whirls faster; {ending}, with ω_p "
-                   f"grown from {d['precession'][0]:.0f} to {d['precession'][-1]:.0f} rad/s.")
+                   f"grown from {n(d['precession'][0], 3)} to {n(d['precession'][-1], 3)} rad/s.")
     return Figure("eulers_disk_decay", "Letting it run down (full equations, with dissipation)",
-                  {"data": data, "layout": layout}, description, animated=False, height=380)
+                  {"data": data, "layout": layout}, description, animated=False, height=420)

@@ -6,6 +6,7 @@ import math
 import numpy as np
 
 from solvers import pendulum_rebound as solver
+from solvers.core import plain_fixed
 from ui import units
 from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, line, moving, points, r,
                          segments, trails)
@@ -25,7 +26,8 @@ def figures(solution, system: str = "si") -> list[Figure]:
         ground = line([-rad] * 2, [-reach * 1.1, 0.3 * reach], "wall", COLORS["ground"], width=6)
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
     theta_deg = np.degrees(m["theta"])
-    curve = line(r(m["t"]), r(theta_deg), "θ(t)", COLORS["body"], width=2, xaxis="x2", yaxis="y2")
+    curve = line(r(m["t_curve"]), r(np.degrees(m["theta_curve"])), "θ(t)", COLORS["body"], width=2,
+                 xaxis="x2", yaxis="y2")  # dense, with a point at each impact: the cusps land on θ_I
     impact_line = line(r([m["t"][0], m["t"][-1]]), r([math.degrees(a["theta_impact"])] * 2),
                        "impact angle θ_I", COLORS["ground"], width=1, dash="dash", xaxis="x2", yaxis="y2")
     v_scale = 0.35 * reach / max(abs(a["omega_impact"]) * (p["L"] + p["r"]), 1e-12)
@@ -52,9 +54,28 @@ def figures(solution, system: str = "si") -> list[Figure]:
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.24], "title": {"text": "θ (°)"}}
     layout["height"] = 700
     spec = animated([ground, pivot, curve, impact_line], moving_traces, m["t"], layout)
-    peaks = ", ".join(f"{math.degrees(q):.1f}°" for q in solution.extras["bounce_peaks"][:3])
-    description = (f"Side view. Released from rest at θ₀ = {math.degrees(p['theta0']):.1f}°, the pendulum "
+    description = (f"Side view. Released from rest at θ₀ = {deg(p['theta0'])}, the pendulum "
                    f"swings down and the sphere strikes the {p['surface']} at θ_I = "
-                   f"{math.degrees(a['theta_impact']):.1f}°, rebounding to {peaks} on successive bounces. "
-                   "Right: θ against time, with the impact angle dashed.")
+                   f"{deg(a['theta_impact'])}, {_rebounds(p, a, solution.extras['bounce_peaks'])}. "
+                   "Below: θ against time, with the impact angle dashed.")
     return [Figure("pendulum_motion", "Release, bounce, rebound", spec, description, height=700)]
+
+
+def _rebounds(p, a, peaks) -> str:
+    """The rebounds a student can tell apart (to the 0.1° shown): none at e = 0, and the list ends
+    where the peaks no longer rise visibly above the impact angle."""
+    if p["e"] == 0:
+        return "and stays there: with e = 0 it does not rebound"
+    if p["e"] == 1:
+        return f"rebounding to θ₀ = {deg(p['theta0'])} every time: with e = 1 no energy is lost"
+    theta_I = math.degrees(a["theta_impact"])
+    shown = [deg(q) for q in peaks[:3] if math.degrees(q) - theta_I >= 0.05]
+    if not shown:
+        return "and barely lifts off again: the rebounds are below 0.1°"
+    return ("rebounding to " + ", ".join(shown) + (" on successive bounces" if len(shown) > 1 else "")
+            + ("" if len(shown) == len(peaks[:3]) else ", then barely lifting off"))
+
+
+def deg(angle: float) -> str:
+    """An angle in degrees as the caption writes it (0.1°)."""
+    return plain_fixed(math.degrees(angle), 1) + "°"

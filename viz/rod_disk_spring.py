@@ -6,6 +6,7 @@ import math
 import numpy as np
 
 from solvers import rod_disk_spring as solver
+from solvers.core import plain_fixed, plain_number as n
 from viz.common import COLORS, Figure, animated, base_layout, circles, line, moving, points, r, segments, spirals
 
 
@@ -14,6 +15,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
     m = solver.motion(solution)
     L, R = p["L"], p["R"]
     reach = L + 2 * R
+    coil = min(0.16 * reach, 0.8 * L)  # the spring's outer radius: clear of the disk, which starts at L
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
     theta2_mark = line(r([0, reach * 1.05 * math.sin(p["theta2"])]), r([0, reach * 1.05 * math.cos(p["theta2"])]),
                        "θ₂", COLORS["ground"], width=1, dash="dash")
@@ -26,9 +28,10 @@ def figures(solution, system: str = "si") -> list[Figure]:
     bars = {"type": "bar", "x": ["kinetic", "gravity", "spring"],
             "marker": {"color": [COLORS["velocity"], COLORS["body"], COLORS["force"]]},
             "name": "energy (J)", "xaxis": "x2", "yaxis": "y2", "showlegend": False, "hoverinfo": "skip"}
+    spring = [moving(line(None, None, "torsional spring", COLORS["force"], width=2),
+                     *spirals(0.25 * coil, coil, 1.5 + theta / (2 * math.pi), math.pi / 2 - theta))] * (p["k"] > 0)
     moving_traces = [
-        moving(line(None, None, "torsional spring", COLORS["force"], width=2),
-               *spirals(0.04 * reach, 0.16 * reach, 1.5 + theta / (2 * math.pi), math.pi / 2 - theta)),
+        *spring,  # k = 0: there is no spring to draw
         moving(line(None, None, "rod", COLORS["ink"], width=5), *segments(0.0, 0.0, L * s, L * c)),
         moving(line(None, None, "disk", COLORS["body"], width=3, fill="toself"), *circles(cx, cy, R)),
         moving(line(None, None, "marked radius", COLORS["accent"], width=4),
@@ -42,12 +45,29 @@ def figures(solution, system: str = "si") -> list[Figure]:
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.24], "range": [0, top * 1.05],
                         "title": {"text": "energy (J)"}}
     layout["height"] = 700
-    spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout)
-    description = (f"Side view, θ from the upward vertical. Released at θ₁ = {math.degrees(p['theta1']):.0f}°, the "
-                   f"assembly falls, passes θ₂ = {math.degrees(p['theta2']):.0f}° (dashed) at {a['omega2']:.3g} rad/s, "
-                   f"swings on until {'the spring stops it' if p['k'] > 0 else 'it comes to rest'} at about "
-                   f"{math.degrees(m['theta'].max()):.0f}°, and returns. "
+    spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout, frame_ms=50)
+    description = (f"Side view, θ from the upward vertical. {_release(p, m)}, the assembly falls, passes "
+                   f"θ₂ = {deg(p['theta2'])} (dashed) at {n(a['omega2'])} rad/s, {_after(p, m)}. "
                    "Bars: kinetic, gravitational (zero hanging straight down) and spring energy; their sum stays "
                    "constant.")
     return [Figure("rod_disk_spring_motion", "The fall and the swing back, with the energy", spec, description,
                    height=700)]
+
+
+def deg(angle: float) -> str:
+    return f"{plain_fixed(math.degrees(angle), 0)}°"
+
+
+def _release(p, m) -> str:
+    if p["theta1"] == 0:
+        return (f"Released upright, an equilibrium, with a nudge of {n(solver.NUDGE)} rad/s, it creeps for "
+                f"{n(m['start'], 2)} s before the motion is visible; the animation starts there. From there")
+    return f"Released at θ₁ = {deg(p['theta1'])}"
+
+
+def _after(p, m) -> str:
+    if m["over_the_top"]:
+        return ("and with no spring swings right round to upright again (360°), where the nudge carries it "
+                "over the top: it keeps turning")
+    stopper = "the spring stops it" if p["k"] > 0 else "it comes to rest (as high as it started)"
+    return f"swings on until {stopper} at about {deg(m['theta'].max())}, and returns"

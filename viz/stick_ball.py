@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from solvers import stick_ball as solver
+from solvers.core import plain_number as n
 from viz.common import (COLORS, Figure, animated, base_layout, circles, column, line, moving, padded, points, r,
                          segments, trails)
 
@@ -11,8 +12,7 @@ from viz.common import (COLORS, Figure, animated, base_layout, circles, column, 
 def figures(solution, system: str = "si") -> list[Figure]:
     p, a = solution.params, solution.answers
     m = solver.motion(solution)
-    l_ = p["l"]
-    ball_r = 0.04 * l_
+    ball_r = m["ball_radius"]
     xs = np.concatenate([m["top"][0], m["bottom"][0], m["ball"][0]])
     ys = np.concatenate([m["top"][1], m["bottom"][1], m["ball"][1]])
     x_range, y_range = padded(xs.min() - ball_r, xs.max() + ball_r), padded(ys.min() - ball_r, ys.max() + ball_r)
@@ -28,13 +28,26 @@ def figures(solution, system: str = "si") -> list[Figure]:
     ]
     layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range)
     spec = animated([cm_path], moving_traces, m["t"], layout)
-    if p["mode"] == "stick":
-        what = (f"the ball attaches; the pair moves on at {a['v_cm']:.3g} m/s and turns at {a['omega']:.3g} rad/s "
-                f"about the combined centre of mass, which travels {a['distance_per_rev']:.3g} m per turn in a "
-                "straight line")
-    else:
-        what = (f"the ball bounces off at {a['v_ball']:.3g} m/s while the stick moves off at {a['v_stick']:.3g} m/s "
-                f"turning at {a['omega']:.3g} rad/s")
-    description = (f"Top view. The ball slides at {p['v']:.3g} m/s into the resting stick {p['s']:.3g} m from its "
-                   f"midpoint; {what}. Dotted: the trail of the stick's end.")
+    description = (f"Top view. The ball slides at {n(p['v'])} m/s into the resting stick {n(p['s'])} m from its "
+                   f"midpoint; {_after(p, a, m)}. Dotted: the trail of the stick's end.")
     return [Figure("stick_ball_motion", "Impact, then free motion (top view)", spec, description, height=520)]
+
+
+def _after(p, a, m) -> str:
+    """What happens after the impact, in the words the motion bears out."""
+    if p["mode"] == "stick":
+        return (f"the ball attaches; the pair moves on at {n(a['v_cm'])} m/s and turns at {n(a['omega'])} rad/s "
+                f"about the combined centre of mass, which travels {n(a['distance_per_rev'])} m per turn in a "
+                "straight line")
+    v_ball = a["v_ball"]
+    if abs(v_ball) < 1e-9 * p["v"]:
+        ball = "the ball stops dead"
+    elif v_ball < 0:
+        ball = f"the ball bounces back at {n(-v_ball)} m/s"
+    else:
+        ball = f"the ball carries on forward at {n(v_ball)} m/s"
+    what = f"{ball}, while the stick's centre moves off at {n(a['v_stick'])} m/s, turning at {n(a['omega'])} rad/s"
+    if m["second_contact"] is not None:
+        what += (f". At t = {n(m['second_contact'], 3)} s the turning stick reaches the ball again: a second "
+                 "impact, which this page does not model, so the motion stops there")
+    return what
