@@ -299,18 +299,110 @@ def run_page(pid, query):
     return at.run()
 
 
-def test_seed_link_reproduces_the_numbers_and_hides_nothing_it_should_not():
-    a, b = run_page("rod_disk_spring", {"seed": "31"}), run_page("rod_disk_spring", {"seed": "31"})
-    table = lambda at: [m.value for m in at.markdown if "| | quantity | value |" in m.value]  # noqa: E731
-    assert table(a) == table(b) and table(a) != table(run_page("rod_disk_spring", {}))
+KEY = "test-instructor-key-15"
+TABLE = "| | quantity | value |"
+
+
+def answers_table(at) -> list[str]:
+    return [m.value for m in at.markdown if TABLE in m.value]
+
+
+def test_seed_link_reproduces_the_numbers_for_the_instructor(monkeypatch):
+    monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
+    teacher = {"seed": "31", "instructor": KEY}
+    a, b = run_page("rod_disk_spring", teacher), run_page("rod_disk_spring", teacher)
+    assert answers_table(a) == answers_table(b) and answers_table(a) != answers_table(run_page("rod_disk_spring", {}))
     assert not a.exception and not a.warning
+    assert "instructor" not in a.query_params  # the key does not stay in the address bar
     bad = run_page("rod_disk_spring", {"seed": "abc"})
     assert bad.warning and "variant" in bad.warning[0].value and not bad.exception
 
 
+@pytest.mark.parametrize("key", [None, "wrong-key-0000"])
+def test_a_students_variant_link_shows_its_answers_only_through_show_the_solution(monkeypatch, key):
+    if key:
+        monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
+    at = run_page("rod_disk_spring", {"seed": "31"} | ({"instructor": key} if key else {}))
+    assert not answers_table(at) and any("Show the solution" == b.label for b in at.button)
+    at.session_state["rod_disk_spring__view"] = "Study"  # switching the link to Study
+    at.run()
+    assert not answers_table(at) and not at.exception
+    statement = next(m.value for m in at.markdown if m.value.startswith("### The problem"))
+    params = variant(importlib.import_module("solvers.rod_disk_spring"), "rod_disk_spring", 31)
+    assert units.format_quantity(params["m1"], "mass") in statement  # the givens, in the main area
+    at.button(key="rod_disk_spring__reveal").click().run()
+    assert answers_table(at)
+
+
+def test_the_variant_export_needs_the_instructor_key(monkeypatch):
+    monkeypatch.delenv("DL_INSTRUCTOR_KEY", raising=False)
+    at = run_page("driven_cart", {"practice": "1"})
+    assert not any(b.label == "Prepare the CSV" for b in at.button)
+    assert any("has not set an instructor key" in m.value for m in at.markdown)
+    monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
+    at = run_page("driven_cart", {"practice": "1"})
+    assert not any(b.label == "Prepare the CSV" for b in at.button)
+    at.text_input(key="driven_cart__instructor_key").input("guess-guess").run()
+    assert at.error and not any(b.label == "Prepare the CSV" for b in at.button)
+    at.text_input(key="driven_cart__instructor_key").input(KEY).run()
+    assert any(b.label == "Prepare the CSV" for b in at.button)
+
+
+def page_text(at) -> str:
+    """Everything a Practice page writes: Markdown, captions, help, LaTeX, labels and messages."""
+    parts = []
+    for kind in ("markdown", "caption", "latex", "info", "success", "error", "warning", "text_input",
+                 "selectbox", "button", "expander"):
+        for element in getattr(at, kind):
+            for attribute in ("value", "label", "help", "body"):
+                got = getattr(element, attribute, None)
+                if isinstance(got, str):
+                    parts.append(got)
+            if kind == "selectbox":
+                parts += [str(o) for o in element.options]
+    return "\n".join(parts)
+
+
+def leaks(text: str, solution, answers, judge, system: str = "si") -> list[str]:
+    """Any answer's value (as the page formats it, and to 3–4 figures) or closed form in ``text``."""
+    found = []
+    givens = {units.format_value(units.to_display(v, p.dimension, system), 4)
+              for p in importlib.import_module(f"solvers.{solution.problem}").PARAMS
+              if not isinstance(v := solution.params[p.name], str)}
+    unbraced = lambda latex: re.sub(r"[{}\\s]", "", latex)  # noqa: E731
+    flat = unbraced(text)
+    for a in answers:
+        value = solution.answers[a.name]
+        shown = units.to_display(value, a.dimension, system)
+        candidates = {units.format_quantity(value, a.dimension, system)} | {
+            units.format_value(shown, sig) for sig in (3, 4)}
+        for number in candidates:
+            digits = re.sub(r"[^0-9]", "", number).strip("0")
+            if len(digits) >= 2 and number not in givens and re.search(rf"(?<![\d.]){re.escape(number)}(?!\d)", text):
+                found.append(f"{a.name} = {number}")
+        closed = judge.derivation.expression_of(a.name)
+        if len(closed.free_symbols) and unbraced(sp.latex(closed)) in flat:
+            found.append(f"{a.name} as {sp.latex(closed)}")
+        symbol = unbraced(sp.latex(judge.results[a.name]))
+        if re.search(rf"{re.escape(symbol)}=", flat):
+            found.append(f"{a.name} stated as {symbol} = …")
+    return found
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_the_practice_page_gives_no_answer_away(pid):
+    at = run_page(pid, {"practice": "1"})
+    solver, solution, judge, answers = setup(pid)
+    text = page_text(at)
+    assert "### The problem" in text and "### The method" in text and not at.exception
+    assert leaks(text, solution, answers.values(), judge) == []
+    at.button(key=f"{pid}__reveal").click().run()
+    assert leaks(page_text(at), solution, answers.values(), judge)  # the check can find them
+
+
 def test_practice_mode_hides_answers_until_revealed():
     at = run_page("stick_ball", {"practice": "1"})
-    assert not any("| | quantity | value |" in m.value for m in at.markdown)
+    assert not answers_table(at)
     assert any("not a proctored assessment" in i.value for i in at.info)
     at.text_input(key="stick_ball__attempt").input("m_b*v/(m_b + m_s)")
     from solvers.stick_ball import ANSWERS_STICK
@@ -318,7 +410,14 @@ def test_practice_mode_hides_answers_until_revealed():
     at.button[0].click().run()
     assert at.success and not at.exception
     at.button(key="stick_ball__reveal").click().run()
-    assert any("| | quantity | value |" in m.value for m in at.markdown)
+    assert answers_table(at)
+
+
+def test_answer_labels_keep_their_symbols():
+    from ui.practice import answer_label
+    from solvers.core import Answer as A
+    assert answer_label(A("a", "acceleration of the cm", "a", "acceleration")) == "Acceleration of the cm"
+    assert answer_label(A("I", "I_O about the pivot", "I_O", "inertia")) == "I_O about the pivot"
 
 
 def test_worker_is_killed_when_too_slow_and_comes_back():
