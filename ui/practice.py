@@ -45,7 +45,7 @@ def answer_label(answer) -> str:
 
 def statement(problem: Problem, solution: Solution, answers, system: str, judge: Judge) -> str:
     """The problem as an exercise: every given with its value, then what to find."""
-    rows = ["| given | | value |", "|---|---|---|"]
+    rows = ["| given | symbol, typed as | value |", "|---|---|---|"]
     for p in problem.solver.PARAMS:
         value = solution.params[p.name]
         if isinstance(p, Choice):
