@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import importlib
 import json
+import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -432,5 +434,11 @@ def test_worker_is_killed_when_too_slow_and_comes_back():
         assert worker.warm(wait=10.0)
         assert worker.is_zero(sp.sin(x) ** 2 + sp.cos(x) ** 2 - 1, timeout=5.0) is True
         assert worker.is_zero(x - y, timeout=5.0) is False
+        killed = worker._proc.pid
+        os.kill(killed, signal.SIGKILL)  # as the kernel's OOM killer or an admin would
+        worker._proc.wait(5)
+        assert worker.is_zero(x - x, timeout=5.0) is None  # the dead one's answer is lost, not waited for
+        assert worker._proc.pid != killed and worker.warm(wait=10.0)  # already replaced, warm
+        assert worker.is_zero(sp.sin(x) ** 2 + sp.cos(x) ** 2 - 1, timeout=5.0) is True
     finally:
         worker.close()

@@ -98,7 +98,7 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str) -
         tolerance.markdown(f"within {TOLERANCE_TEXT}", help="A number counts as right within this relative "
                            "tolerance, unless it is nearer a known slip's value. An expression must equal "
                            "the answer.")
-        submitted = st.form_submit_button("Check", type="primary")
+        submitted = st.form_submit_button("Check", type="primary", key=f"{problem.id}__check")
     if submitted:
         verdict = judge.check(answer, text or "", system)
         if verdict.understood:
