@@ -289,15 +289,23 @@ class Judge:
         return importlib.import_module(f"solvers.{self.solution.problem}")
 
     def equivalent(self, a: sp.Expr, b: sp.Expr) -> bool:
-        """A time-limited symbolic simplification of a − b settles it when it reaches 0; otherwise
-        (inconclusive, or too slow) numeric evaluation at random points decides."""
-        if shared_worker().is_zero(a - b, timeout=0.8) is True:
-            return True
-        return self._numerically_same(a, b)
+        """Numeric evaluation at the page's values and random points near them decides when it is
+        clear: agreement to 1e-9 everywhere, or a difference beyond 1e-6 somewhere. Only in between
+        (differences at rounding level, or too few points where both are defined) does a
+        time-limited symbolic simplification of a − b in the worker settle it, so most answers never
+        queue for the worker behind someone's slow expression."""
+        clear = self._numeric_verdict(a, b)
+        if clear is not None:
+            return clear
+        return shared_worker().is_zero(a - b, timeout=0.8) is True
 
     def _numerically_same(self, a: sp.Expr, b: sp.Expr, rtol: float = 1e-9) -> bool:
-        """Equal at the student's parameters and at 7 random points near them (8 trials, at least
-        3 of them defined)."""
+        return self._numeric_verdict(a, b, rtol) is True
+
+    def _numeric_verdict(self, a: sp.Expr, b: sp.Expr, rtol: float = 1e-9, differ: float = 1e-6) -> bool | None:
+        """True if equal (within ``rtol``) at the student's parameters and at 7 random points near
+        them, at least 3 of them defined; False if they differ by more than ``differ`` (or by more than
+        ``rtol`` when that is looser) at one; None otherwise."""
         free = sorted((a.free_symbols | b.free_symbols), key=lambda s: s.name)
         by_symbol = self.by_symbol
         if any(s not in by_symbol for s in free):
@@ -306,9 +314,9 @@ class Judge:
             fa = sp.lambdify(free, a, modules="math")
             fb = sp.lambdify(free, b, modules="math")
         except Exception:  # noqa: BLE001
-            return False
+            return None
         rng = np.random.default_rng(20261122)
-        agree = 0
+        agree, unclear = 0, False
         for trial in range(8):
             point = []
             for s in free:
@@ -321,7 +329,11 @@ class Judge:
                 continue
             if not (math.isfinite(va) and math.isfinite(vb)):
                 continue
-            if abs(va - vb) > rtol * max(abs(va), abs(vb), 1e-12):
+            gap = abs(va - vb) / max(abs(va), abs(vb), 1e-12)
+            if gap > max(rtol, differ):
                 return False
-            agree += 1
-        return agree >= 3
+            if gap > rtol:
+                unclear = True
+            else:
+                agree += 1
+        return None if unclear or agree < 3 else True

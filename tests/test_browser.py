@@ -156,6 +156,20 @@ def test_practice_mode_in_the_browser(browser, app_url):
     context.close()
 
 
+def help_texts(page) -> list[str]:
+    """The text of every help tooltip in the main area, shown by hovering over its icon."""
+    icons = page.locator("[data-testid='stMain'] [data-testid='stTooltipIcon']")
+    texts = []
+    for i in range(icons.count()):
+        icons.nth(i).hover()
+        tip = page.locator("[data-testid='stTooltipContent']").last
+        tip.wait_for(timeout=5_000)
+        texts.append(tip.inner_text())
+        page.mouse.move(0, 0)
+    assert texts, "the answer box and the tolerance carry help"
+    return texts
+
+
 @pytest.mark.parametrize("problem", PROBLEMS, ids=lambda p: p.id)
 def test_the_whole_practice_page_gives_no_answer_away(browser, app_url, problem):
     """Everything the Practice view puts in the browser (the text of the main area and the sidebar,
@@ -173,6 +187,7 @@ def test_the_whole_practice_page_gives_no_answer_away(browser, app_url, problem)
         texts += page.eval_on_selector_all("[aria-label], [title]", "els => els.map(e => "
                                            "(e.getAttribute('aria-label') || '') + ' ' + (e.getAttribute('title') || ''))")
         texts += [frame.locator("body").inner_text() for frame in page.frames[1:] if frame.url != "about:blank"]
+        texts += help_texts(page)
         text = "\n".join(texts)
         assert "The problem" in text and "The method" in text and "Show the solution" in text, query
         _, solution, judge, answers = setup(problem.id, **params)
