@@ -1,9 +1,13 @@
 """Judging a typed answer: a number (with a unit, or in the unit the page shows) or an expression in
-the problem's symbols. Numbers are right within 0.5 %; expressions when they equal the derived
-answer as expressions (numeric evaluation at random points decides, and a time-limited symbolic
-simplification confirms). A wrong answer that matches a known slip gets that slip's feedback."""
+the givens. Numbers are right within 0.5 %, unless nearer a known slip's value than the answer's;
+expressions when they equal the derived answer (a time-limited symbolic simplification, else
+numeric evaluation at random points), or, with one line saying so, when they equal it at the
+page's own values (v/2 for equal masses). A wrong answer that matches a known slip gets that
+slip's hint, which never states the right value."""
 from __future__ import annotations
 
+import difflib
+import importlib
 import math
 import re
 from dataclasses import dataclass
@@ -12,30 +16,18 @@ import numpy as np
 import sympy as sp
 
 from practice.mistakes import mistakes_for
-from practice.parser import MAX_LENGTH, _symbol_table, parse_expression
+from practice.parser import FUNCTIONS, GREEK, MAX_LENGTH, UnknownName, _symbol_table, parse_expression
 from practice.worker import shared_worker
 from solvers.core import Answer, Derivation, Solution
+from solvers import units as unit_table
 from ui import units
 
 RELATIVE_TOLERANCE = 5e-3
-_UNITS = {  # normalised spelling -> (dimension, SI per unit)
-    "rad": ("angle", 1.0), "deg": ("angle", math.pi / 180), "°": ("angle", math.pi / 180),
-    "degrees": ("angle", math.pi / 180), "degree": ("angle", math.pi / 180),
-    "m/s": ("speed", 1.0), "ft/s": ("speed", 0.3048), "km/h": ("speed", 1 / 3.6), "cm/s": ("speed", 0.01),
-    "rad/s": ("angular_speed", 1.0), "deg/s": ("angular_speed", math.pi / 180), "rpm": ("angular_speed", math.pi / 30),
-    "1/s": ("angular_speed", 1.0),
-    "m/s^2": ("acceleration", 1.0), "ft/s^2": ("acceleration", 0.3048),
-    "n": ("force", 1.0), "kn": ("force", 1000.0), "lbf": ("force", 4.4482216152605),
-    "ns": ("impulse", 1.0), "kgm/s": ("impulse", 1.0), "lbfs": ("impulse", 4.4482216152605),
-    "j": ("energy", 1.0), "kj": ("energy", 1000.0), "mj": ("energy", 1e-3), "nm": ("energy", 1.0),
-    "ftlbf": ("energy", 0.3048 * 4.4482216152605),
-    "kgm^2": ("inertia", 1.0), "slugft^2": ("inertia", 4.4482216152605 * 0.3048),
-    "m": ("length", 1.0), "cm": ("length", 0.01), "mm": ("length", 0.001), "ft": ("length", 0.3048),
-    "in": ("length", 0.0254),
-    "kg": ("mass", 1.0), "g": ("mass", 0.001), "lb": ("mass", 0.45359237),
-    "s": ("time", 1.0), "ms": ("time", 1e-3),
-}
-_NUMBER_WITH_UNIT = re.compile(r"^\s*([-+−]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\d\s].*)?$")
+TOLERANCE_TEXT = f"±{RELATIVE_TOLERANCE * 100:g} %"
+# a number, then a unit: one that starts with a digit (1/s) only after a space
+_NUMBER_WITH_UNIT = re.compile(r"^\s*([-+−]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*((?<=\s)\S.*|[^\d\s].*)?$")
+_UNIT_LIKE = re.compile(r"[A-Za-zμ°][A-Za-zμ°/^²³·⋅*\s0-9.\-]*")
+LOOKALIKES = {"w": "omega", "W": "Omega", "u": "mu", "t": "theta", "th": "theta", "o": "omega"}
 
 
 @dataclass(frozen=True)
@@ -46,33 +38,46 @@ class Verdict:
     mistake: str = ""
 
 
-def _normalise_unit(text: str) -> str:
-    t = text.strip().lower().replace(" ", "").replace("·", "").replace("*", "").replace("⋅", "")
-    t = t.replace("²", "^2").replace("sec", "s").replace("newtons", "n").replace("joules", "j")
-    return t.rstrip(".")
-
-
 def _number_in_si(text: str, answer: Answer, system: str) -> tuple[float, str] | None:
-    """(value in SI, how it was read) if ``text`` is a number with an optional unit; else None.
-    Raises ValueError for a unit that does not fit the answer."""
+    """(value in SI, how it was read) if ``text`` is a number alone or with a unit of this answer;
+    else None (perhaps an expression such as 2/3*V, or a unit the caller explains)."""
     match = _NUMBER_WITH_UNIT.match(text)
     if not match:
         return None
     value = float(match.group(1).replace("−", "-"))
     if not math.isfinite(value):
-        raise ValueError("That number is not finite.")
+        raise ValueError("That number is too large.")
     unit_text = (match.group(2) or "").strip()
     if not unit_text:
         shown = units.unit(answer.dimension, system)
         return units.to_si(value, answer.dimension, system), (f"read in {shown}" if shown else "")
-    key = _normalise_unit(unit_text)
-    if key not in _UNITS:
-        return None  # not a unit: perhaps an expression such as 2/3*V; the parser decides
-    dimension, factor = _UNITS[key]
-    if dimension != answer.dimension and not (answer.dimension == "torque" and dimension == "energy"):
-        raise ValueError(f"The unit {unit_text[:20]!r} is not a unit of this answer "
-                         f"({units.unit(answer.dimension, 'si') or 'a pure number'}).")
+    factor = unit_table.si_per_unit(unit_text, answer.dimension)
+    if factor is None:
+        return None
     return value * factor, f"read as {unit_text[:20]}"
+
+
+def _unit_message(text: str, answer: Answer, system: str) -> str | None:
+    """What is wrong with the unit after a number, if the text is a number and a unit-like word
+    that is not a unit of this answer (None if it does not look like one)."""
+    match = _NUMBER_WITH_UNIT.match(text)
+    unit_text = (match.group(2) or "").strip() if match else ""
+    if not unit_text or not _UNIT_LIKE.fullmatch(unit_text):
+        return None
+    shown, si = units.unit(answer.dimension, system), units.unit(answer.dimension, "si")
+    example = " or ".join(dict.fromkeys(u for u in (shown, si) if u)) or "no unit (a pure number)"
+    elsewhere = unit_table.dimensions_of(unit_text)
+    if elsewhere:
+        what = elsewhere[0].replace("_", " ")
+        return (f"{unit_text[:20]!r} is a unit of {what}, but this answer is "
+                f"{'a pure number' if answer.dimension == 'dimensionless' else 'a ' + answer.dimension.replace('_', ' ')}: "
+                f"write it in {example}.")
+    same_but_case = unit_table.close_spellings(unit_text)
+    if same_but_case:
+        return (f"Unknown unit {unit_text[:20]!r}: units are case-sensitive (MJ is a megajoule, mJ a "
+                f"millijoule); did you mean {' or '.join(same_but_case)}?")
+    return (f"Unknown unit {unit_text[:20]!r}: write the number alone (read in {shown or 'no unit'}) or "
+            f"with a unit such as {example}.")
 
 
 def _close(a: float, b: float, scale: float) -> bool:
@@ -80,9 +85,13 @@ def _close(a: float, b: float, scale: float) -> bool:
 
 
 class Judge:
-    """Judges answers for one solution (one problem, one set of parameters, one derivation)."""
+    """Judges answers for one solution (one problem, one set of parameters, one derivation).
 
-    def __init__(self, solution: Solution, derivation: Derivation):
+    An answer is written in the givens: the problem's parameters. The unknowns, the other answers
+    and the intermediate results of the derivation are refused by name, so typing the unknown
+    (or v1x/R for ω₁) is never "the answer, as an expression"."""
+
+    def __init__(self, solution: Solution, derivation: Derivation, answers=()):
         self.solution = solution
         self.derivation = derivation
         inputs = dict(solution.params) | dict(solution.extras.get("chain_inputs", {}))
@@ -90,29 +99,71 @@ class Judge:
                        if isinstance(v, (int, float)) and not isinstance(v, bool)}
         self.symbols = derivation.symbols  # name -> sympy symbol, parameters and results
         self.by_symbol = {self.symbols[n]: v for n, v in self.values.items() if n in self.symbols}
+        self.results = {link.name: link.symbol for link in derivation.chain}
+        self.answer_names = {a.name for a in answers} or set(solution.answers)
+        self.givens = {name: sym for name, sym in self.symbols.items()
+                       if name in solution.params and name not in self.results}
 
     # -- what students may type
     def typeable_symbols(self) -> dict[str, sp.Symbol]:
-        """What a student may type, by name: each parameter and earlier result under its own symbol
-        where that can be typed (theta, I_O, v_1x ...), and every result also under its answer name
-        (omega_impact, N_front ...). Values are the chain's symbols or stand-ins for them."""
-        out: dict[str, sp.Symbol] = {}
-        for name, sym in self.symbols.items():
-            ascii_spellings = sorted((k for k in _symbol_table([sym]) if re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", k)),
-                                     key=lambda k: ("_" not in k, len(k)))
-            if ascii_spellings:
-                out[ascii_spellings[0]] = sym
-            if name not in self.solution.params and re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", name):
-                out.setdefault(name, sym if sym.name == name else sp.Symbol(name))
-        return out
+        """The givens, each under the plain name a student types for it (theta_0, m_r, mu)."""
+        return {self.typed_name(sym): sym for sym in self.givens.values()}
 
-    def parse(self, text: str) -> sp.Expr:
-        """Parse typed text into an expression over the chain's own symbols."""
-        table = self.typeable_symbols()
-        expr = parse_expression(text, table.values())
-        stand_ins = {stand_in: self.symbols[name] for name, stand_in in table.items()
-                     if name in self.symbols and stand_in is not self.symbols[name]}
-        return expr.subs(stand_ins)
+    @staticmethod
+    def typed_name(sym: sp.Symbol) -> str:
+        """How a student types ``sym`` on a keyboard: the shortest plain spelling with underscores."""
+        spellings = [k for k in _symbol_table([sym]) if re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", k)]
+        return sorted(spellings, key=lambda k: ("_" not in k, len(k)))[0] if spellings else sym.name
+
+    @classmethod
+    def shown_name(cls, sym: sp.Symbol) -> str:
+        """A given as it reads on the page: θ_0 for theta_0, m_r for m_r."""
+        name = cls.typed_name(sym)
+        word = name.split("_")[0]
+        return GREEK[word] + name[len(word):] if word in GREEK else name
+
+    def givens_text(self) -> str:
+        """The givens as a student types them, Greek letters shown beside their names."""
+        return ", ".join(f"{self.typed_name(s)} ({self.shown_name(s)})" if self.shown_name(s) != self.typed_name(s)
+                         else self.typed_name(s) for s in self.givens.values())
+
+    def _result_named(self, name: str) -> str | None:
+        """The result a typed name stands for (its answer name), if it is one."""
+        for result, sym in self.results.items():
+            if name == result or name in _symbol_table([sym]) or name.replace("_", "") == result.replace("_", ""):
+                return result
+        return None
+
+    def _explain_unknown(self, name: str, asked: str = "") -> str:
+        givens = f"The givens: {self.givens_text()}."
+        result = self._result_named(name)
+        if result is None:  # a run of names such as Romega1
+            table = _symbol_table(list(self.givens.values()) + list(self.results.values()))
+            pieces = [n for n in table if len(n) > 1 and n in name] if len(name) > 2 else []
+            result = next((r for p in pieces if (r := self._result_named(p))), None)
+        if result is not None:
+            what = ("the unknown you are asked for" if result == asked else "another answer of this problem"
+                    if result in self.answer_names else "an intermediate result of the derivation")
+            return f"{name!r} is not a given: it is {what}. Write the answer in the givens only. {givens}"
+        typeable = _symbol_table(list(self.givens.values()))
+        for function in FUNCTIONS:
+            if name.startswith(function) and name[len(function):] in typeable:
+                return f"Write {function}({name[len(function):]}) with brackets. {givens}"
+        if name in LOOKALIKES and any(LOOKALIKES[name] == n.split("_")[0] for n in self.typeable_symbols()):
+            return f"Unknown name {name!r}: did you mean {LOOKALIKES[name]} ({GREEK[LOOKALIKES[name]]})? {givens}"
+        if name == "e":
+            return f"Unknown name 'e': this problem has no restitution coefficient (Euler's number is exp(1)). {givens}"
+        near = difflib.get_close_matches(name, list(typeable), n=1, cutoff=0.6)
+        hint = f": did you mean {near[0]}?" if near else "."
+        return f"Unknown name {name!r}{hint} {givens}"
+
+    def parse(self, text: str, asked: str = "") -> sp.Expr:
+        """Parse typed text into an expression over the givens (ValueError says what is wrong;
+        ``asked`` names the answer being checked, to call it the unknown)."""
+        try:
+            return parse_expression(text, self.givens.values())
+        except UnknownName as error:
+            raise ValueError(self._explain_unknown(error.name, asked)) from None
 
     # -- judging
     def check(self, answer: Answer, text: str, system: str = "si") -> Verdict:
@@ -128,14 +179,9 @@ class Judge:
         if as_number is not None:
             return self._judge_number(answer, as_number[0], as_number[1], correct, system)
         try:
-            expr = self.parse(text)
+            expr = self.parse(text, answer.name)
         except ValueError as error:
-            trailing = _NUMBER_WITH_UNIT.match(text)
-            if trailing and trailing.group(2) and re.fullmatch(r"[A-Za-z°/^²·*\s0-9]+", trailing.group(2)):
-                return Verdict(False, f"Unknown unit {trailing.group(2).strip()[:20]!r}: write the number alone "
-                               f"(read in {units.unit(answer.dimension, system) or 'no unit'}) or with a unit "
-                               f"such as {units.unit(answer.dimension, 'si') or 'none'}.")
-            return Verdict(False, str(error))
+            return Verdict(False, _unit_message(text, answer, system) or str(error))
         if not expr.free_symbols:
             value = complex(sp.N(expr, 15))
             if abs(value.imag) > 1e-12 or not math.isfinite(value.real):
@@ -143,7 +189,7 @@ class Judge:
             shown = units.unit(answer.dimension, system)
             return self._judge_number(answer, units.to_si(value.real, answer.dimension, system),
                                       f"read in {shown}" if shown else "", correct, system, sp.latex(expr))
-        return self._judge_expression(answer, expr)
+        return self._judge_expression(answer, expr, system)
 
     def _judge_number(self, answer, value, how, correct, system, understood="") -> Verdict:
         shown = units.format_quantity(value, answer.dimension, system)
@@ -151,16 +197,13 @@ class Judge:
         known = [(m, self._value_of(m.wrong(dict(self.solution.params))))
                  for m in mistakes_for(self.solution.problem, answer.name, dict(self.solution.params))]
         known = [(m, w) for m, w in known if w is not None and abs(w - correct) > 1e-12 * max(abs(correct), 1)]
-        # A slip whose value lies within the tolerance of the answer is still recognised when the
-        # number matches the slip to four figures and lies nearer to it than to the answer.
+        # A number nearer a known slip's value than the answer's is that slip, even when it lies
+        # within the tolerance of the answer (4.92 for 4.90: the pinned disk).
         for mistake, wrong in known:
-            if abs(value - wrong) <= 5e-4 * abs(wrong) and abs(value - wrong) < abs(value - correct):
+            if _close(value, wrong, scale) and abs(value - wrong) < abs(value - correct):
                 return Verdict(False, f"Not quite. {mistake.feedback}", understood, mistake.feedback)
         if _close(value, correct, scale):
             return Verdict(True, f"Right: {shown}" + (f" ({how})." if how else "."), understood)
-        for mistake, wrong in known:
-            if not _close(wrong, correct, scale) and _close(value, wrong, scale):
-                return Verdict(False, f"Not quite. {mistake.feedback}", understood, mistake.feedback)
         generic = self._generic_number_mistake(answer, value, correct, scale)
         message = f"Not right: you gave {shown}" + (f" ({how})" if how else "") + "."
         if generic:
@@ -199,33 +242,70 @@ class Judge:
             return None
         return value.real if abs(value.imag) < 1e-12 and math.isfinite(value.real) else None
 
-    def _judge_expression(self, answer: Answer, expr: sp.Expr) -> Verdict:
+    def _judge_expression(self, answer: Answer, expr: sp.Expr, system: str = "si") -> Verdict:
         understood = sp.latex(expr)
-        student = self.derivation.in_parameters(expr)
         correct = self.derivation.expression_of(answer.name)
-        if self.equivalent(student, correct):
-            return Verdict(True, "Right: that is the answer, as an expression.", understood)
+        if self.equivalent(expr, correct):
+            return Verdict(True, "Right: that is the answer, as an expression in the givens.", understood)
+        if self._same_here(expr, correct):
+            special = self._what_makes_it_right(expr, correct, system)
+            where = f" (for {special}, as here)" if special else ""
+            return Verdict(True, f"Right for these numbers{where}, but not the general answer.", understood)
         for mistake in mistakes_for(self.solution.problem, answer.name, dict(self.solution.params)):
             wrong = self.derivation.in_parameters(mistake.wrong(dict(self.solution.params)))
-            if not self._numerically_same(wrong, correct) and self._numerically_same(student, wrong):
+            if not self._numerically_same(wrong, correct) and self._numerically_same(expr, wrong):
                 return Verdict(False, f"Not quite. {mistake.feedback}", understood, mistake.feedback)
-        if self._numerically_same(student, -correct):
-            return Verdict(False, "The size is right but the sign is not.", understood, "sign")
-        if self._numerically_same(student, correct, rtol=RELATIVE_TOLERANCE):
+        if self._numerically_same(expr, -correct):
+            return Verdict(False, "The size is right but the sign is not: check the direction you took as "
+                           "positive.", understood, "sign")
+        if self._numerically_same(expr, correct, rtol=RELATIVE_TOLERANCE):
             return Verdict(False, "Nearly: a coefficient seems rounded. Write exact numbers (2/3, not 0.667) "
                            "in an expression, or give the final number instead.", understood, "rounded")
         return Verdict(False, "Not equivalent to the answer. Check each step, then try again.", understood)
 
+    def _same_here(self, a: sp.Expr, b: sp.Expr) -> bool:
+        """Equal at the page's own values (to 1e-9)."""
+        va, vb = self._value_of(a), self._value_of(b)
+        return va is not None and vb is not None and abs(va - vb) <= 1e-9 * max(abs(va), abs(vb), 1e-12)
+
+    def _what_makes_it_right(self, a: sp.Expr, b: sp.Expr, system: str) -> str:
+        """The givens whose values make ``a`` equal ``b`` here: those that, changed alone, break the
+        equality ("e = 1", "ω = 0 rad/s")."""
+        special = []
+        for sym in sorted((a.free_symbols | b.free_symbols) & set(self.givens.values()), key=lambda s: s.name):
+            base = self.by_symbol[sym]
+            moved = {sym: base * 1.1 + (0.1 if base == 0 else 0.0)}
+            va, vb = (self._value_of(e.subs(moved)) for e in (a, b))
+            if va is None or vb is None or abs(va - vb) > 1e-9 * max(abs(va), abs(vb), 1e-12):
+                name = next(n for n, s in self.givens.items() if s is sym)
+                spec = next(p for p in self.solver.PARAMS if p.name == name)
+                dimension = getattr(spec, "dimension", "dimensionless")
+                value = units.format_quantity(base, dimension, system)
+                special.append(f"{self.shown_name(sym)} = {value}")
+        return ", ".join(special)
+
+    @property
+    def solver(self):
+        return importlib.import_module(f"solvers.{self.solution.problem}")
+
     def equivalent(self, a: sp.Expr, b: sp.Expr) -> bool:
-        """A time-limited symbolic simplification of a − b settles it when it reaches 0; otherwise
-        (inconclusive, or too slow) numeric evaluation at random points decides."""
-        if shared_worker().is_zero(a - b, timeout=0.8) is True:
-            return True
-        return self._numerically_same(a, b)
+        """Numeric evaluation at the page's values and random points near them decides when it is
+        clear: agreement to 1e-9 everywhere, or a difference beyond 1e-6 somewhere. Only in between
+        (differences at rounding level, or too few points where both are defined) does a
+        time-limited symbolic simplification of a − b in the worker settle it, so most answers never
+        queue for the worker behind someone's slow expression."""
+        clear = self._numeric_verdict(a, b)
+        if clear is not None:
+            return clear
+        return shared_worker().is_zero(a - b, timeout=0.8) is True
 
     def _numerically_same(self, a: sp.Expr, b: sp.Expr, rtol: float = 1e-9) -> bool:
-        """Equal at the student's parameters and at 7 random points near them (8 trials, at least
-        3 of them defined)."""
+        return self._numeric_verdict(a, b, rtol) is True
+
+    def _numeric_verdict(self, a: sp.Expr, b: sp.Expr, rtol: float = 1e-9, differ: float = 1e-6) -> bool | None:
+        """True if equal (within ``rtol``) at the student's parameters and at 7 random points near
+        them, at least 3 of them defined; False if they differ by more than ``differ`` (or by more than
+        ``rtol`` when that is looser) at one; None otherwise."""
         free = sorted((a.free_symbols | b.free_symbols), key=lambda s: s.name)
         by_symbol = self.by_symbol
         if any(s not in by_symbol for s in free):
@@ -234,9 +314,9 @@ class Judge:
             fa = sp.lambdify(free, a, modules="math")
             fb = sp.lambdify(free, b, modules="math")
         except Exception:  # noqa: BLE001
-            return False
+            return None
         rng = np.random.default_rng(20261122)
-        agree = 0
+        agree, unclear = 0, False
         for trial in range(8):
             point = []
             for s in free:
@@ -249,7 +329,11 @@ class Judge:
                 continue
             if not (math.isfinite(va) and math.isfinite(vb)):
                 continue
-            if abs(va - vb) > rtol * max(abs(va), abs(vb), 1e-12):
+            gap = abs(va - vb) / max(abs(va), abs(vb), 1e-12)
+            if gap > max(rtol, differ):
                 return False
-            agree += 1
-        return agree >= 3
+            if gap > rtol:
+                unclear = True
+            else:
+                agree += 1
+        return None if unclear or agree < 3 else True

@@ -4,7 +4,7 @@
 
 A tokenizer and a recursive-descent grammar build sympy objects directly from a whitelist:
 numbers, the given symbols (by name, by Greek name, or as the Greek letter itself), the constant
-pi, and the functions sin cos tan asin acos atan sqrt exp log abs. Powers are written ^ or **,
+pi, ° after a number or bracket (degrees), and the functions sin cos tan asin acos atan sqrt exp log abs. Powers are written ^ or **,
 a number or a closing bracket times what follows may omit the * (2V, 2(a+b), (a)(b)), and the
 Unicode minus, × and · are understood. The problem's own symbols come first: where a problem has a
 restitution coefficient, e is that coefficient; Euler's number is exp(1).
@@ -47,9 +47,18 @@ _TOKEN = re.compile(
     r"\s*(?:"
     r"(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)"
     rf"|(?P<name>[A-Za-z{_GREEK_LETTERS}][A-Za-z0-9_{_GREEK_LETTERS}]*)"
-    r"|(?P<op>\*\*|[-+*/^(),−×·])"
+    r"|(?P<op>\*\*|[-+*/^(),−×·°])"
     r")"
 )
+
+
+class UnknownName(ValueError):
+    """A name that is not a function, pi or one of the allowed symbols; ``name`` says which, so a
+    caller can explain it in its own terms (an unknown of the problem, a near miss of a given)."""
+
+    def __init__(self, message: str, name: str):
+        super().__init__(message)
+        self.name = name
 
 
 @dataclass(frozen=True)
@@ -141,6 +150,8 @@ class _Parser:
     def expect(self, op: str) -> None:
         if self.token.kind != "op" or self.token.text != op:
             found = self.token.text or "the end"
+            if op == ")" and found == "the end":
+                raise ValueError("A bracket is not closed: a '(' has no matching ')'.")
             raise ValueError(f"Expected {op!r} {_where(self.text, self.token.position)}, found {found!r}.")
         self.advance()
 
@@ -160,6 +171,8 @@ class _Parser:
         if self.token.kind == "end":
             raise ValueError("The answer is empty.")
         expr = self.sum()
+        if self.is_op(")"):
+            raise ValueError(f"The ')' {_where(self.text, self.token.position)} has no matching '('.")
         if self.token.kind != "end":
             raise ValueError(f"Unexpected {self.token.text!r} {_where(self.text, self.token.position)}.")
         return expr
@@ -207,6 +220,9 @@ class _Parser:
 
     def power(self) -> sp.Expr:
         base = self.primary()
+        while self.is_op("°"):  # 30° is 30·π/180: angles in the answer's trig read as degrees
+            self.advance()
+            base = base * sp.pi / 180
         if self.is_op("^", "**"):
             position = self.advance().position
             self.enter()
@@ -288,8 +304,8 @@ class _Parser:
             return sp.pi
         hint = " (Euler's number is written exp(1))" if text == "e" else ""
         known = ", ".join(sorted({s.name for s in self.symbols.values()}))
-        raise ValueError(f"Unknown name {text!r} {_where(self.text, token.position)}{hint}. "
-                         f"This problem's symbols: {known}.")
+        raise UnknownName(f"Unknown name {text!r} {_where(self.text, token.position)}{hint}. "
+                          f"This problem's symbols: {known}.", text)
 
     def split_into_symbols(self, text: str) -> list[sp.Symbol] | None:
         """``text`` as a run of the problem's symbol names (longest names first), if it is one."""

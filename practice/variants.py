@@ -60,8 +60,10 @@ def variant(solver: ModuleType, problem: str, seed: int) -> dict:
             if ANGLE_RANGES.get((problem, p.name), ()) is None:
                 continue
             if problem == "stick_ball" and p.name == "s":
-                continue  # the default, l/2: the end of this variant's stick
+                continue  # set below: the end of this variant's stick
             params[p.name] = _draw(problem, p, rng)
+        if problem == "stick_ball":  # stated, since a page fills a missing s with the textbook's 0.5 m
+            params["s"] = params["l"] / 2
         try:
             solver.solve(**params)
         except ValueError:

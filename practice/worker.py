@@ -73,6 +73,10 @@ class SimplifyWorker:
             self._proc.wait(2)
         self._proc, self._ready = None, False
 
+    def _replace(self) -> None:
+        self._stop()
+        self._start()
+
     def _poll(self, timeout: float) -> bool:
         readable, _, _ = select.select([self._proc.stdout], [], [], max(0.0, timeout))
         return bool(readable)
@@ -104,10 +108,10 @@ class SimplifyWorker:
             _write(self._proc.stdin, expr)
             if self._poll(timeout - (time.monotonic() - started)):
                 return _read(self._proc.stdout)
-            self._stop()  # overran: kill it; the next call starts a fresh one
+            self._replace()  # overran: kill it and start a fresh one, warm for the next answer
             return None
         except (OSError, EOFError, pickle.PickleError, ValueError):
-            self._stop()
+            self._replace()  # it died (killed, out of memory): a fresh one, warm for the next answer
             return None
         finally:
             self._lock.release()

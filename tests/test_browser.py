@@ -154,3 +154,46 @@ def test_practice_mode_in_the_browser(browser, app_url):
     page.get_by_text("is not allowed").wait_for(timeout=30_000)
     assert page.locator("[data-testid='stMain'] img[src*='example.invalid']").count() == 0
     context.close()
+
+
+def help_texts(page) -> list[str]:
+    """The text of every help tooltip in the main area, shown by hovering over its icon."""
+    icons = page.locator("[data-testid='stMain'] [data-testid='stTooltipIcon']")
+    texts = []
+    for i in range(icons.count()):
+        icons.nth(i).hover()
+        tip = page.locator("[data-testid='stTooltipContent']").last
+        tip.wait_for(timeout=5_000)
+        texts.append(tip.inner_text())
+        page.mouse.move(0, 0)
+    assert texts, "the answer box and the tolerance carry help"
+    return texts
+
+
+@pytest.mark.parametrize("problem", PROBLEMS, ids=lambda p: p.id)
+def test_the_whole_practice_page_gives_no_answer_away(browser, app_url, problem):
+    """Everything the Practice view puts in the browser (the text of the main area and the sidebar,
+    the TeX behind every equation, labels, titles, any figure's frame, and the URL) holds no
+    answer's value or closed form, for the textbook's numbers and for a student's variant."""
+    from practice.variants import variant
+    from tests.test_practice import leaks, setup
+
+    for query, params in (("practice=1", {}), ("seed=7", variant(problem.solver, problem.id, 7))):
+        context, page, errors = open_page(browser, f"{app_url}/{problem.id}?{query}")
+        page.get_by_role("button", name="Show the solution").wait_for(timeout=30_000)
+        wait_until_idle(page)
+        texts = [page.locator("body").inner_text(), page.url]
+        texts += page.locator("annotation[encoding='application/x-tex']").all_text_contents()
+        texts += page.eval_on_selector_all("[aria-label], [title]", "els => els.map(e => "
+                                           "(e.getAttribute('aria-label') || '') + ' ' + (e.getAttribute('title') || ''))")
+        texts += [frame.locator("body").inner_text() for frame in page.frames[1:] if frame.url != "about:blank"]
+        texts += help_texts(page)
+        text = "\n".join(texts)
+        assert "The problem" in text and "The method" in text and "Show the solution" in text, query
+        _, solution, judge, answers = setup(problem.id, **params)
+        assert leaks(text, solution, answers.values(), judge) == [], query
+        assert not errors
+        if query.startswith("seed"):
+            SHOTS.mkdir(parents=True, exist_ok=True)
+            page.screenshot(path=str(SHOTS / f"practice-{problem.id}.png"), full_page=True)
+        context.close()

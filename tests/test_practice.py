@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import importlib
 import json
+import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -15,9 +17,13 @@ import pytest
 import sympy as sp
 from streamlit.testing.v1 import AppTest
 
-from practice.judge import Judge
+from hypothesis import given, settings, strategies as hst
+
+from practice.judge import Judge, _number_in_si
 from practice.mistakes import MISTAKES
-from practice.variants import variant, variants_csv
+from practice.variants import MAX_SEED, variant, variants_csv
+from solvers import units as unit_table
+from solvers.core import Answer
 from practice.worker import SimplifyWorker
 from ui import units
 
@@ -32,15 +38,12 @@ def setup(pid, **params):
     solver = importlib.import_module(f"solvers.{pid}")
     solution = solver.solve(**params)
     answers = solver.answers_for(solution.regime) if hasattr(solver, "answers_for") else solver.ANSWERS
-    return solver, solution, Judge(solution, solver.derivation_of(solution)), {a.name: a for a in answers}
+    return solver, solution, Judge(solution, solver.derivation_of(solution), answers), {a.name: a for a in answers}
 
 
 def typed(expr: sp.Expr, judge: Judge) -> str | None:
-    """How a student would type ``expr``: each symbol under a name the judge accepts for it."""
-    names = {}
-    for name, sym in judge.typeable_symbols().items():
-        target = judge.derivation.symbols.get(name, sym)
-        names.setdefault(target if target in expr.free_symbols else sym, name)
+    """How a student would type ``expr`` (in the givens): each symbol under the name the judge lists."""
+    names = {sym: name for name, sym in judge.typeable_symbols().items()}
     if any(s not in names for s in expr.free_symbols):
         return None
     text = sp.sstr(expr.subs({s: sp.Symbol(names[s]) for s in expr.free_symbols}))
@@ -51,35 +54,79 @@ def shown_number(value: float, dimension: str) -> str:
     return f"{units.to_display(value, dimension):.4g}"
 
 
-@pytest.mark.parametrize("pid", IDS)
-def test_correct_answers_as_expressions_rewrites_and_numbers(pid):
-    solver, solution, judge, answers = setup(pid)
-    derivation = solver.derivation_of(solution)
-    links = {link.name: link for link in derivation.chain}
+def honest_forms(expr: sp.Expr) -> list[sp.Expr]:
+    """The answer as different students write it: as derived, expanded, with trig expanded, over a
+    common denominator, and scaled by 2/2."""
+    forms = [expr, sp.expand(expr), sp.expand(sp.expand_trig(expr)), sp.together(expr), 2 * expr / 2]
+    return list(dict.fromkeys(forms))
+
+
+def check_page(pid, params):
+    """Every answer of page ``pid`` at ``params``: its honest forms and its number are right, its
+    own name and the other answers' names are refused as not given."""
+    solver, solution, judge, answers = setup(pid, **params)
     for name, answer in answers.items():
-        expr = links[name].expr  # as a student writes it: in the parameters and earlier results
-        text = typed(expr, judge)
-        assert text and len(text) <= 200, (name, text)
-        verdict = judge.check(answer, text)
-        assert verdict.correct, (name, text, verdict.message)
-        rewritten = typed(sp.expand(sp.expand_trig(expr)) * 2 / 2, judge)
-        if rewritten != text and len(rewritten) <= 200:
-            assert judge.check(answer, rewritten).correct, (name, rewritten)
-        number = shown_number(solution.answers[name], answer.dimension)
-        assert judge.check(answer, number).correct, (name, number)
+        correct = judge.derivation.expression_of(name)
+        for form in honest_forms(correct):
+            text = typed(form, judge)
+            if text is None or len(text) > 200:
+                continue  # a chain input (the slip direction) or too long to type
+            verdict = judge.check(answer, text)
+            assert verdict.correct and "not the general answer" not in verdict.message, (name, text, verdict.message)
+        value = solution.answers[name]
+        assert judge.check(answer, shown_number(value, answer.dimension)).correct, (name, value)
+        si = units.unit(answer.dimension, "si")
+        if si and answer.dimension != "angle":
+            assert judge.check(answer, f"{value:.6g} {si}").correct, (name, value, si)
+        for own in {n for n in (name, judge.typed_name(judge.results[name])) if re.fullmatch(r"\w+", n)}:
+            verdict = judge.check(answer, own)
+            assert not verdict.correct and "the unknown you are asked for" in verdict.message, (own, verdict.message)
+            assert judge.givens_text() in verdict.message
+        for other in answers:
+            if other != name and judge.derivation.expression_of(other) != correct:
+                verdict = judge.check(answer, f"2*{other}")
+                assert not verdict.correct and "not a given" in verdict.message, (other, verdict.message)
 
 
 @pytest.mark.parametrize("pid", IDS)
-def test_each_listed_mistake_gets_its_feedback(pid):
-    solver, solution, judge, answers = setup(pid, **MISTAKE_PARAMS.get(pid, {}))
-    derivation = solver.derivation_of(solution)
+def test_right_answers_in_honest_forms_and_the_unknowns_refused_at_the_textbooks_numbers(pid):
+    check_page(pid, {})
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(max_examples=4, deadline=None)
+@given(seed=hst.integers(0, MAX_SEED))
+def test_right_answers_in_honest_forms_and_the_unknowns_refused_for_any_variant(pid, seed):
+    check_page(pid, variant(importlib.import_module(f"solvers.{pid}"), pid, seed))
+
+
+def test_no_answer_or_intermediate_result_is_typeable():
+    for pid in IDS:
+        _, _, judge, answers = setup(pid)
+        givens = set(judge.typeable_symbols().values())
+        assert givens and not givens & set(judge.results.values()), pid
+        first = next(iter(answers.values()))
+        for symbol in judge.results.values():
+            name = judge.typed_name(symbol)
+            if re.fullmatch(r"\w+", name):
+                verdict = judge.check(first, f"1 + {name}")
+                assert not verdict.correct and "not a given" in verdict.message, (pid, name, verdict.message)
+
+
+def check_slips(pid, params, everywhere: bool = True):
+    """Each listed slip that applies at ``params`` is named, typed as a number or as an expression
+    (with ``everywhere``; else only slips whose value lies beyond the tolerance, which a random
+    variant may not keep apart)."""
+    solver, solution, judge, answers = setup(pid, **params)
     mistakes = [m for m in MISTAKES[pid] if m.answer in answers and m.applies(dict(solution.params))]
     assert mistakes, "every problem lists its common mistakes"
     for mistake in mistakes:
         answer = answers[mistake.answer]
-        wrong = derivation.in_parameters(mistake.wrong(dict(solution.params)))
+        wrong = judge.derivation.in_parameters(mistake.wrong(dict(solution.params)))
         value = judge._value_of(wrong)
         assert value is not None
+        if not everywhere and abs(value - solution.answers[mistake.answer]) <= 0.02 * abs(value):
+            continue
         verdict = judge.check(answer, shown_number(value, answer.dimension))
         assert not verdict.correct and mistake.feedback in verdict.message, (mistake.feedback, verdict.message)
         text = typed(wrong, judge)
@@ -88,16 +135,153 @@ def test_each_listed_mistake_gets_its_feedback(pid):
             assert not verdict.correct and mistake.feedback in verdict.message, (text, verdict.message)
 
 
+@pytest.mark.parametrize("pid", IDS)
+def test_each_listed_mistake_gets_its_feedback(pid):
+    check_slips(pid, MISTAKE_PARAMS.get(pid, {}))
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(max_examples=4, deadline=None)
+@given(seed=hst.integers(0, MAX_SEED))
+def test_each_listed_mistake_is_named_for_any_variant(pid, seed):
+    params = variant(importlib.import_module(f"solvers.{pid}"), pid, seed) | MISTAKE_PARAMS.get(pid, {})
+    if pid == "stick_ball":  # hit short of the end, on this variant's stick
+        params["s"] = 0.4 * params["l"]
+    check_slips(pid, params, everywhere=False)
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_slip_hints_never_state_the_right_value(pid):
+    """A hint names the slip; it never gives the answer's number (to 2–4 figures, in any unit the
+    page shows) or the answer's closed form as sympy writes it."""
+    for params in ({}, MISTAKE_PARAMS.get(pid, {})):
+        solver, solution, judge, answers = setup(pid, **params)
+        for mistake in MISTAKES[pid]:
+            if mistake.answer not in answers:
+                continue
+            value = solution.answers[mistake.answer]
+            dimension = answers[mistake.answer].dimension
+            for system in ("si", "us"):
+                shown = units.to_display(value, dimension, system)
+                for sig in (2, 3, 4):
+                    number = f"{abs(shown):.{sig}g}"
+                    if len(number.replace(".", "").lstrip("0")) >= 2:
+                        assert number not in mistake.feedback, (mistake.feedback, number)
+            closed = sp.sstr(judge.derivation.expression_of(mistake.answer))
+            assert closed not in mistake.feedback
+
+
+def test_the_pinned_disk_slip_is_named_inside_the_tolerance():
+    _, solution, judge, answers = setup("rod_disk_spring")
+    right, slip = solution.answers["omega2"], 4.92  # the pinned disk: 4.92 rad/s, 0.4 % from the answer
+    assert abs(slip - right) < 5e-3 * right
+    assert "pinned" in judge.check(answers["omega2"], "4.92").message
+    assert judge.check(answers["omega2"], "4.90").correct
+
+
+@pytest.mark.parametrize("pid, params, elsewhere, answer, text, special", [
+    ("disk_wall", {"e": 1.0}, {"e": 0.5}, "v1y", "-V*cos(theta)", "e = 1"),
+    ("disk_wall", {"omega": 0.0}, {"omega": 3.0}, "v1x", "2/3*V*sin(theta)", "ω = 0"),
+    ("stick_ball", {"m_ball": 0.5, "m_stick": 0.5}, {"m_ball": 0.5, "m_stick": 1.0}, "v_cm", "v/2", "m_b = 0.5 kg"),
+])
+def test_right_for_these_numbers_is_right_with_one_line_saying_so(pid, params, elsewhere, answer, text, special):
+    _, _, judge, answers = setup(pid, **params)
+    verdict = judge.check(answers[answer], text)
+    assert verdict.correct and "not the general answer" in verdict.message and special in verdict.message
+    _, _, judge, answers = setup(pid, **elsewhere)
+    assert not judge.check(answers[answer], text).correct
+
+
+def test_a_given_put_in_as_its_value_is_not_called_rounded():
+    _, solution, judge, answers = setup("rod_disk_spring", theta1=0.0)
+    correct = judge.derivation.expression_of("omega2").subs(judge.givens["theta1"], 0)
+    verdict = judge.check(answers["omega2"], typed(correct, judge))
+    assert verdict.correct and "rounded" not in verdict.message
+
+
 def test_generic_slips_sign_units_and_angle_mode():
     _, solution, judge, answers = setup("pendulum_rebound")
     rebound = solution.answers["theta_rebound"]
     assert judge.check(answers["theta_rebound"], f"{rebound:.4f} rad").correct
     assert "radians" in judge.check(answers["theta_rebound"], f"{rebound:.4f}").message
     assert judge.check(answers["I_O"], "2.469 kg m^2").correct
-    assert "not a unit of this answer" in judge.check(answers["I_O"], "2.469 m/s").message
+    assert "is a unit of speed" in judge.check(answers["I_O"], "2.469 m/s").message
     assert "sign" in judge.check(answers["omega_impact"], "4.158").message
-    _, solution, judge, answers = setup("disk_wall")
+    _, solution, judge, answers = setup("disk_wall", omega=2.0)
     assert "rounded" in judge.check(answers["v1x"], "0.667*V*sin(theta) + R*omega/3").message
+
+
+@pytest.mark.parametrize("text, says", [
+    ("1/0", "divides by zero"),
+    ("(V + R*omega", "not closed"),
+    ("V)", "no matching '('"),
+    ("2/3*V*sin(theta) + w*R/3", "did you mean omega"),
+    ("2/3*V*sinθ + R*omega/3", "sin(θ) with brackets"),
+    ("2/3*V*sin(thet) + R*omega/3", "did you mean theta"),
+    ("0.8 J", "unit of energy"),
+    ("0.8 M/s", "Unknown unit 'M/s'"),
+    ("0.8 furlongs", "Unknown unit 'furlongs'"),
+    ("v1y/3", "another answer of this problem"),
+    ("P_t + 1", "not a given"),
+])
+def test_messages_say_what_is_actually_wrong(text, says):
+    _, _, judge, answers = setup("disk_wall")
+    verdict = judge.check(answers["v1x"], text)
+    assert not verdict.correct and says in verdict.message, verdict.message
+    assert "v_{1x}" not in verdict.message and "sigma" not in verdict.message
+
+
+def test_degrees_sign_is_read_as_degrees():
+    _, solution, judge, answers = setup("disk_wall")  # θ = 30°
+    assert judge.check(answers["v1x"], "2/3*V*sin(30°) + R*omega/3").correct
+    assert judge.check(answers["v1x"], "2/3*V*sin(30) + R*omega/3").correct is False
+
+
+def test_prefixed_and_us_units_are_read_case_sensitively():
+    _, solution, judge, answers = setup("disk_wall")
+    loss = solution.answers["energy_loss"]  # J
+    assert judge.check(answers["energy_loss"], f"{loss * 1e3:.5g} mJ").correct
+    assert not judge.check(answers["energy_loss"], f"{loss * 1e3:.5g} MJ").correct
+    assert judge.check(answers["v1x"], f"{solution.answers['v1x'] * 1e3:.5g} mm/s").correct
+    _, solution, judge, answers = setup("driven_cart")
+    assert judge.check(answers["accel"], f"{solution.answers['accel'] / 9.80665:.5g} g").correct
+    assert judge.check(answers["N_front"], f"{solution.answers['N_front'] / 1e3:.5g} kN").correct
+    assert "did you mean kN" in judge.check(answers["N_front"], "2.55 kn").message
+    _, solution, judge, answers = setup("pendulum_rebound", **{})
+    inertia = solution.answers["I_O"]
+    assert judge.check(answers["I_O"], f"{inertia / (0.45359237 * 0.3048**2):.5g} lb*ft^2", "us").correct
+    assert judge.check(answers["I_O"], f"{units.to_display(inertia, 'inertia', 'us'):.5g} slug·ft²", "us").correct
+
+
+@settings(max_examples=60, deadline=None)
+@given(value=hst.floats(1e-3, 1e6).map(lambda x: float(f"{x:.6g}")), glued=hst.booleans(),
+       power=hst.sampled_from(["^2", "²", "**2"]), dot=hst.sampled_from(["", "*", "·", " "]))
+def test_every_accepted_unit_spelling_round_trips(value, glued, power, dot):
+    """Every value written with every spelling the judge accepts (glued to the number or not, with
+    any power sign, factors joined by any product sign) reads back as value × that unit's size; the
+    same letters in another case are refused or a unit of another size (MJ ≠ mJ)."""
+    for dimension, table in unit_table.SPELLINGS.items():
+        answer = Answer("x", "x", "x", dimension)
+        for spelling, factor in table.items():
+            written = spelling.replace("^2", power)
+            if dot and written.startswith(("kgm", "slugft", "lbft", "lbin", "gcm")):
+                written = re.sub(r"^(kg|slug|lb|g)", rf"\1{dot}", written)
+            separator = "" if glued and not spelling[0].isdigit() else " "  # 2 1/s, never 21/s
+            read = _number_in_si(f"{value}{separator}{written}", answer, "si")
+            assert read is not None and read[0] == pytest.approx(value * factor, rel=1e-12), (written, read)
+            swapped = spelling.swapcase()
+            if swapped != spelling:
+                other = unit_table.si_per_unit(swapped, dimension)
+                assert other is None or other != factor, (spelling, swapped)
+
+
+def test_every_unit_the_pages_show_is_accepted_with_its_own_size():
+    """The labels the pages print (ft·lbf, slug·ft², m/s², lbf·s …) are read back as exactly the
+    size ui.units converts with, so an answer copied with its unit is right."""
+    for system, table in units.SYSTEMS.items():
+        for dimension, (label, per_si) in table.items():
+            if label and dimension != "angle":
+                assert unit_table.si_per_unit(label, dimension) == pytest.approx(1 / per_si, rel=1e-12), label
 
 
 @pytest.mark.parametrize("text", ["__import__('os')", "9**9**9", "(" * 300, "x" * 10**6, "V.__class__"])
@@ -140,18 +324,110 @@ def run_page(pid, query):
     return at.run()
 
 
-def test_seed_link_reproduces_the_numbers_and_hides_nothing_it_should_not():
-    a, b = run_page("rod_disk_spring", {"seed": "31"}), run_page("rod_disk_spring", {"seed": "31"})
-    table = lambda at: [m.value for m in at.markdown if "| | quantity | value |" in m.value]  # noqa: E731
-    assert table(a) == table(b) and table(a) != table(run_page("rod_disk_spring", {}))
+KEY = "test-instructor-key-15"
+TABLE = "| | quantity | value |"
+
+
+def answers_table(at) -> list[str]:
+    return [m.value for m in at.markdown if TABLE in m.value]
+
+
+def test_seed_link_reproduces_the_numbers_for_the_instructor(monkeypatch):
+    monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
+    teacher = {"seed": "31", "instructor": KEY}
+    a, b = run_page("rod_disk_spring", teacher), run_page("rod_disk_spring", teacher)
+    assert answers_table(a) == answers_table(b) and answers_table(a) != answers_table(run_page("rod_disk_spring", {}))
     assert not a.exception and not a.warning
+    assert "instructor" not in a.query_params  # the key does not stay in the address bar
     bad = run_page("rod_disk_spring", {"seed": "abc"})
     assert bad.warning and "variant" in bad.warning[0].value and not bad.exception
 
 
+@pytest.mark.parametrize("key", [None, "wrong-key-0000"])
+def test_a_students_variant_link_shows_its_answers_only_through_show_the_solution(monkeypatch, key):
+    if key:
+        monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
+    at = run_page("rod_disk_spring", {"seed": "31"} | ({"instructor": key} if key else {}))
+    assert not answers_table(at) and any("Show the solution" == b.label for b in at.button)
+    at.session_state["rod_disk_spring__view"] = "Study"  # switching the link to Study
+    at.run()
+    assert not answers_table(at) and not at.exception
+    statement = next(m.value for m in at.markdown if m.value.startswith("### The problem"))
+    params = variant(importlib.import_module("solvers.rod_disk_spring"), "rod_disk_spring", 31)
+    assert units.format_quantity(params["m1"], "mass") in statement  # the givens, in the main area
+    at.button(key="rod_disk_spring__reveal").click().run()
+    assert answers_table(at)
+
+
+def test_the_variant_export_needs_the_instructor_key(monkeypatch):
+    monkeypatch.delenv("DL_INSTRUCTOR_KEY", raising=False)
+    at = run_page("driven_cart", {"practice": "1"})
+    assert not any(b.label == "Prepare the CSV" for b in at.button)
+    assert any("has not set an instructor key" in m.value for m in at.markdown)
+    monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
+    at = run_page("driven_cart", {"practice": "1"})
+    assert not any(b.label == "Prepare the CSV" for b in at.button)
+    at.text_input(key="driven_cart__instructor_key").input("guess-guess").run()
+    assert at.error and not any(b.label == "Prepare the CSV" for b in at.button)
+    at.text_input(key="driven_cart__instructor_key").input(KEY).run()
+    assert any(b.label == "Prepare the CSV" for b in at.button)
+
+
+def page_text(at) -> str:
+    """Everything a Practice page writes: Markdown, captions, help, LaTeX, labels and messages."""
+    parts = []
+    for kind in ("markdown", "caption", "latex", "info", "success", "error", "warning", "text_input",
+                 "selectbox", "button", "expander"):
+        for element in getattr(at, kind):
+            for attribute in ("value", "label", "help", "body"):
+                got = getattr(element, attribute, None)
+                if isinstance(got, str):
+                    parts.append(got)
+            if kind == "selectbox":
+                parts += [str(o) for o in element.options]
+    return "\n".join(parts)
+
+
+def leaks(text: str, solution, answers, judge, system: str = "si") -> list[str]:
+    """Any answer's value (as the page formats it, and to 3–4 figures) or closed form in ``text``."""
+    found = []
+    givens = {units.format_value(units.to_display(v, p.dimension, system), 4)
+              for p in importlib.import_module(f"solvers.{solution.problem}").PARAMS
+              if not isinstance(v := solution.params[p.name], str)}
+    unbraced = lambda latex: re.sub(r"[{}\\s]", "", latex)  # noqa: E731
+    flat = unbraced(text)
+    for a in answers:
+        value = solution.answers[a.name]
+        shown = units.to_display(value, a.dimension, system)
+        candidates = {units.format_quantity(value, a.dimension, system)} | {
+            units.format_value(shown, sig) for sig in (3, 4)}
+        for number in candidates:
+            digits = re.sub(r"[^0-9]", "", number).strip("0")
+            if len(digits) >= 2 and number not in givens and re.search(rf"(?<![\d.]){re.escape(number)}(?!\d)", text):
+                found.append(f"{a.name} = {number}")
+        closed = judge.derivation.expression_of(a.name)
+        if len(closed.free_symbols) and unbraced(sp.latex(closed)) in flat:
+            found.append(f"{a.name} as {sp.latex(closed)}")
+        symbol = unbraced(sp.latex(judge.results[a.name]))
+        if re.search(rf"{re.escape(symbol)}=", flat):
+            found.append(f"{a.name} stated as {symbol} = …")
+    return found
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_the_practice_page_gives_no_answer_away(pid):
+    at = run_page(pid, {"practice": "1"})
+    solver, solution, judge, answers = setup(pid)
+    text = page_text(at)
+    assert "### The problem" in text and "### The method" in text and not at.exception
+    assert leaks(text, solution, answers.values(), judge) == []
+    at.button(key=f"{pid}__reveal").click().run()
+    assert leaks(page_text(at), solution, answers.values(), judge)  # the check can find them
+
+
 def test_practice_mode_hides_answers_until_revealed():
     at = run_page("stick_ball", {"practice": "1"})
-    assert not any("| | quantity | value |" in m.value for m in at.markdown)
+    assert not answers_table(at)
     assert any("not a proctored assessment" in i.value for i in at.info)
     at.text_input(key="stick_ball__attempt").input("m_b*v/(m_b + m_s)")
     from solvers.stick_ball import ANSWERS_STICK
@@ -159,7 +435,14 @@ def test_practice_mode_hides_answers_until_revealed():
     at.button[0].click().run()
     assert at.success and not at.exception
     at.button(key="stick_ball__reveal").click().run()
-    assert any("| | quantity | value |" in m.value for m in at.markdown)
+    assert answers_table(at)
+
+
+def test_answer_labels_keep_their_symbols():
+    from ui.practice import answer_label
+    from solvers.core import Answer as A
+    assert answer_label(A("a", "acceleration of the cm", "a", "acceleration")) == "Acceleration of the cm"
+    assert answer_label(A("I", "I_O about the pivot", "I_O", "inertia")) == "I_O about the pivot"
 
 
 def test_worker_is_killed_when_too_slow_and_comes_back():
@@ -174,5 +457,33 @@ def test_worker_is_killed_when_too_slow_and_comes_back():
         assert worker.warm(wait=10.0)
         assert worker.is_zero(sp.sin(x) ** 2 + sp.cos(x) ** 2 - 1, timeout=5.0) is True
         assert worker.is_zero(x - y, timeout=5.0) is False
+        killed = worker._proc.pid
+        os.kill(killed, signal.SIGKILL)  # as the kernel's OOM killer or an admin would
+        worker._proc.wait(5)
+        assert worker.is_zero(x - x, timeout=5.0) is None  # the dead one's answer is lost, not waited for
+        assert worker._proc.pid != killed and worker.warm(wait=10.0)  # already replaced, warm
+        assert worker.is_zero(sp.sin(x) ** 2 + sp.cos(x) ** 2 - 1, timeout=5.0) is True
     finally:
         worker.close()
+
+
+def test_clear_answers_never_queue_for_the_simplification_worker(monkeypatch):
+    """Right and plainly wrong expressions are settled by numbers; only an unclear one (too few points
+    where it is defined) goes to the worker, which may be busy with someone's slow expression."""
+    import practice.judge as judge_module
+
+    asked = []
+
+    class Busy:
+        def is_zero(self, expr, timeout=1.0):
+            asked.append(expr)
+            return None
+
+    monkeypatch.setattr(judge_module, "shared_worker", lambda: Busy())
+    _, _, judge, answers = setup("disk_wall", omega=2.0)
+    assert judge.check(answers["v1x"], "(R*omega + 2*V*sin(theta))/3").correct
+    assert not judge.check(answers["v1x"], "V*sin(theta)").correct
+    assert asked == []
+    unclear = "2/3*V*sin(theta) + R*omega/3 + sqrt(-(theta - 1)^2)"  # real at no point near these numbers
+    judge.check(answers["v1x"], unclear)
+    assert asked

@@ -10,7 +10,7 @@ import streamlit as st
 from practice.variants import variant
 from solvers.core import PhysicalLimitError, Solution
 from ui import results
-from ui.practice import instructor_export, practice_panel, seed_from_url
+from ui.practice import instructor_export, is_instructor, practice_panel, seed_from_url
 from ui.catalog import BY_ID, Problem
 from ui.figure import show as show_figure
 from ui.params import mirror_to_url, parameter_panel
@@ -28,12 +28,17 @@ LECTURE_CSS = """
 VIEWS = ("Study", "Lecture", "Practice")
 VIEW_HELP = ("Study: answers, animation and derivation. Lecture: large type and the animation first, for "
              "a projector. Practice: the answers are hidden; type your own and get feedback.")
+VARIANT_HELP = ("A variant link (?seed=N) opens in Practice: its answers appear with “Show the solution”. "
+                "Instructors with the key can switch views.")
 
 
-def _page_flags(problem: Problem) -> tuple[str, str]:
+def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str]:
     """Unit system and view (Study, Lecture or Practice): sidebar controls, initialised from
-    ?units=us, ?lecture=1 and ?practice=1."""
+    ?units=us, ?lecture=1 and ?practice=1. ``practice_only``: a student's variant link, whose
+    answers only "Show the solution" reveals."""
     us_key, view_key = f"{problem.id}__us", f"{problem.id}__view"
+    if practice_only:
+        st.session_state[view_key] = "Practice"
     if view_key not in st.session_state:
         st.session_state[view_key] = ("Practice" if st.query_params.get("practice") == "1" else
                                       "Lecture" if st.query_params.get("lecture") == "1" else "Study")
@@ -44,7 +49,9 @@ def _page_flags(problem: Problem) -> tuple[str, str]:
         us = st.sidebar.toggle("US customary units (lb, ft)", key=us_key,
                                help="The textbook states this problem in lb and ft; off: SI (kg, m).")
         system = "us" if us else "si"
-    view = st.sidebar.segmented_control("View", VIEWS, key=view_key, required=True, help=VIEW_HELP)
+    view = st.sidebar.segmented_control(
+        "View", VIEWS, key=view_key, required=True, disabled=practice_only,
+        help=VARIANT_HELP if practice_only else VIEW_HELP)
     return system, view
 
 
@@ -121,12 +128,12 @@ def problem_page(problem_id: str) -> None:
     _leave_legacy_pages_mode()
     problem = BY_ID[problem_id]
     solver = problem.solver
-    system, view = _page_flags(problem)
+    seed, seed_warning = seed_from_url()
+    system, view = _page_flags(problem, practice_only=seed is not None and not is_instructor())
     lecture, practice = view == "Lecture", view == "Practice"
     if lecture:
         st.html(LECTURE_CSS)
     heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
-    seed, seed_warning = seed_from_url()
     base = variant(solver, problem.id, seed) if seed is not None else {}
     st.sidebar.markdown("### Parameters" + (f" · variant {seed}" if seed is not None else ""))
     params, warnings = parameter_panel(problem, system, base)
@@ -150,8 +157,7 @@ def problem_page(problem_id: str) -> None:
     if not together:
         _heading(heading, notices)
     if practice and not practice_panel(problem, solution, answers, system):
-        _derivation(solver, solution, numeric=False)
-        instructor_export(problem)
+        instructor_export(problem)  # the statement, the method and the answer box, nothing more
         return
     if lecture:
         _figures(figures)
@@ -159,7 +165,7 @@ def problem_page(problem_id: str) -> None:
     if not lecture:
         _figures(figures)
     _on_request(problem, solution)
-    _derivation(solver, solution, numeric=True)
+    _derivation(solver, solution)
     if practice:
         instructor_export(problem)
 
@@ -182,11 +188,8 @@ def _heading(heading: str, notices: list[str]) -> None:
         st.warning(notice, icon=":material/link_off:")
 
 
-def _derivation(solver, solution, numeric: bool) -> None:
+def _derivation(solver, solution) -> None:
     """The derivation and the worked solution's slips below it, in one element (tabs would cost a widget's time
     on every run)."""
-    if numeric:
-        caption = "Generated from the sympy derivation; the last steps put in your numbers (SI)."
-    else:
-        caption = "The method, without the numbers: the final steps appear with the solution."
-    results.derivation(solution, symbolic_only=not numeric, caption=caption, slips=solver.ERRATA)
+    caption = "Generated from the sympy derivation; the last steps put in your numbers (SI)."
+    results.derivation(solution, caption=caption, slips=solver.ERRATA)

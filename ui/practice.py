@@ -1,18 +1,24 @@
-"""“Try it yourself”: answers and final steps hidden, a box for an answer (a number or an
-expression), feedback on the common slips, then the solution on request. Also the instructor's
-export of per-student variants. Nothing a student types is evaluated or rendered as Markdown."""
+"""“Try it yourself”: the problem with every given, the method's first steps without their results,
+a box per answer (a number or an expression in the givens), feedback on the common slips, then the
+solution on request. The instructor's side (the variant export, and Study or Lecture for a variant
+link) needs the instructor key. Nothing a student types is evaluated or rendered as Markdown."""
 from __future__ import annotations
 
 import re
 
+import sympy as sp
 import streamlit as st
 
-from practice.judge import Judge
+from practice import instructor
+from practice.judge import TOLERANCE_TEXT, Judge
 from practice.variants import MAX_SEED, variants_csv
-from solvers.core import Solution
+from solvers.core import Choice, Solution
 from ui import units
 from ui.catalog import Problem
 from ui.results import plain
+
+INSTRUCTOR = "dl_instructor"  # session flag: the key was entered (once per session, for every page)
+
 
 def seed_from_url() -> tuple[int | None, str | None]:
     raw = st.query_params.get("seed")
@@ -24,40 +30,107 @@ def seed_from_url() -> tuple[int | None, str | None]:
                  "showing the textbook's numbers."
 
 
+def is_instructor() -> bool:
+    """True once this session gave the instructor key, in the expander or as ?instructor=KEY (read
+    before the page rewrites its URL, so the key does not stay in the address bar)."""
+    if not st.session_state.get(INSTRUCTOR) and instructor.key_matches(st.query_params.get("instructor")):
+        st.session_state[INSTRUCTOR] = True
+    return bool(st.session_state.get(INSTRUCTOR))
+
+
+def answer_label(answer) -> str:
+    """The label with its first letter capitalised and the rest as written (cm, v_cm, I_O)."""
+    return answer.label[:1].upper() + answer.label[1:]
+
+
+def statement(problem: Problem, solution: Solution, answers, system: str, judge: Judge) -> str:
+    """The problem as an exercise: every given with its value, then what to find."""
+    rows = ["| given | symbol, typed as | value |", "|---|---|---|"]
+    for p in problem.solver.PARAMS:
+        value = solution.params[p.name]
+        if isinstance(p, Choice):
+            rows.append(f"| {plain(p.label)} | | {plain(p.label_of(value))} |")
+        else:
+            sym = judge.givens.get(p.name)
+            typed = f"`{judge.typed_name(sym)}`" if sym is not None else ""
+            rows.append(f"| {plain(p.label)} | ${p.symbol}$ {typed} | {units.format_quantity(value, p.dimension, system)} |")
+    find = "\n".join(f"- {plain(answer_label(a))}, ${a.symbol}$" for a in answers)
+    return "\n\n".join(["### The problem", "\n".join(rows),
+                        "**Find**", find])
+
+
+def method(solution: Solution, judge: Judge) -> str:
+    """The method: every symbolic step's title, and the equation only of the steps that use no
+    result (no unknown, answer or intermediate value), so no step shows what it leads to."""
+    unbraced = lambda latex: re.sub(r"[{}\s]", "", latex)  # noqa: E731 - P_{t} and P_t alike
+    results = [unbraced(sp.latex(sym)) for sym in judge.results.values()]
+    blocks = []
+    for i, step in enumerate(solution.steps[: solution.symbolic_steps], start=1):
+        blocks.append(f"**{i}.** {plain(step.title)}")
+        if not any(r in unbraced(step.latex) for r in results):
+            blocks.append(f"$$\n{step.latex}\n$$")
+    return "\n\n".join(["### The method", ":gray[The steps to take. Equations that lead to a result appear "
+                        "with the solution.]", *blocks])
+
+
 def practice_panel(problem: Problem, solution: Solution, answers, system: str) -> bool:
-    """Draw the answer box; return True once the student asked to see the solution."""
+    """The exercise and its answer box; return True once the student asked to see the solution."""
     signature = repr(sorted(solution.params.items()))
     revealed_key = f"{problem.id}__revealed"
     if st.session_state.get(revealed_key) != signature:
         st.session_state.pop(revealed_key, None)
-    st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
-            "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
-    judge = Judge(solution, problem.solver.derivation_of(solution))
-    names = ", ".join(sorted(judge.typeable_symbols()))
+    judge = Judge(solution, problem.solver.derivation_of(solution), answers)
+    revealed = st.session_state.get(revealed_key) == signature
+    if not revealed:
+        st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
+                "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
+        st.markdown(statement(problem, solution, answers, system, judge))
+        st.markdown(method(solution, judge))
     with st.form(key=f"{problem.id}__practice"):
-        answer = st.selectbox("Answer to check", answers, format_func=lambda a: a.label.capitalize(),
+        answer = st.selectbox("Answer to check", answers, format_func=answer_label,
                               key=f"{problem.id}__attempt_answer")
-        text = st.text_input("Your answer", max_chars=200, key=f"{problem.id}__attempt",
-                             help=f"A number, with a unit or read in the unit the page shows (degrees for "
-                                  f"angles), or an expression in the problem's symbols: {names}. "
-                                  "Write powers as ^ or **, e.g. 2/3*V*sin(theta) + R*omega/3.")
-        submitted = st.form_submit_button("Check", type="primary")
+        box, tolerance = st.columns([5, 1], vertical_alignment="bottom")
+        text = box.text_input("Your answer", max_chars=200, key=f"{problem.id}__attempt",
+                              help="A number, with a unit (mm, kN, ft/s, slug·ft² …; units are case-sensitive) "
+                                   "or read in the unit the page shows, degrees for angles; or an expression in "
+                                   f"the givens: {judge.givens_text()}. Write powers as ^ or **, e.g. "
+                                   "(a + b)^2/3, sqrt(x), sin(θ), or 30° inside sin.")
+        tolerance.markdown(f"within {TOLERANCE_TEXT}", help="A number counts as right within this relative "
+                           "tolerance, unless it is nearer a known slip's value. An expression must equal "
+                           "the answer.")
+        submitted = st.form_submit_button("Check", type="primary", key=f"{problem.id}__check")
     if submitted:
         verdict = judge.check(answer, text or "", system)
         if verdict.understood:
             st.caption("Read as:")
             st.latex(verdict.understood)
         (st.success if verdict.correct else st.error)(plain(verdict.message))
-    if st.button("Reveal the solution", key=f"{problem.id}__reveal"):
+    if not revealed and st.button("Show the solution", key=f"{problem.id}__reveal"):
         st.session_state[revealed_key] = signature
-    return st.session_state.get(revealed_key) == signature
+        st.rerun()
+    return revealed
 
 
 def instructor_export(problem: Problem) -> None:
     with st.expander("For instructors: per-student variants"):
+        if not instructor.configured():
+            st.markdown(f"The course admin has not set an instructor key (`{instructor.KEY_ENV}`, at least "
+                        f"{instructor.MIN_LENGTH} characters), so the answer keys stay closed.")
+            return
+        if not is_instructor():
+            typed = st.text_input("Instructor key", type="password", key=f"{problem.id}__instructor_key",
+                                  help="Set by the course admin. Entered once per browser session; an "
+                                       "instructor link (?instructor=KEY) does the same.")
+            if typed and instructor.key_matches(typed):
+                st.session_state[INSTRUCTOR] = True
+                st.rerun()
+            if typed:
+                st.error("That is not the instructor key.")
+            return
         st.markdown(f"Hand out `?seed=N` links (N from 0 to {MAX_SEED:,}); each gives its own numbers, the "
-                    "same in every session. Export the parameters and answers (SI units, radians) to check "
-                    "students' work. Put no names or student ids in links: they end up in access logs.")
+                    "same in every session, and opens in Practice. Export the parameters and answers (SI units, "
+                    "radians) to check students' work. Put no names or student ids in links: they end up in "
+                    "access logs.")
         c1, c2 = st.columns(2)
         first = c1.number_input("First seed", 0, MAX_SEED, 1, key=f"{problem.id}__seed_first")
         last = c2.number_input("Last seed", 0, MAX_SEED, 30, key=f"{problem.id}__seed_last")
