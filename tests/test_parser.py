@@ -137,12 +137,18 @@ def expressions(depth=3):
     return st.one_of(
         ATOMS,
         st.tuples(inner, st.sampled_from(["+", "-", "*", "/", " * ", "−"]), inner).map(_binary),
-        st.tuples(inner, st.sampled_from(["^", "**"]), st.integers(-3, 4)).map(
-            lambda t: (f"({t[0][0]}){t[1]}{t[2] if t[2] >= 0 else f'({t[2]})'}", t[0][1] ** t[2])),
+        st.tuples(inner, st.sampled_from(["^", "**"]), st.integers(-3, 4)).map(_power),
         st.tuples(FUNCS, inner).map(lambda t: (f"{t[0][0]}({t[1][0]})", t[0][1](t[1][1]))),
         st.tuples(st.sampled_from(["2", "3"]), st.sampled_from(["V", "R", "ω", "(V+R)"])).map(
             lambda t: (t[0] + t[1], sp.Integer(t[0]) * parse_expression(t[1], SYMBOLS))),
     )
+
+
+def _power(t):
+    (a_text, a), op, p = t
+    if a == 0 and p < 0:  # 0^(-1) is undefined, and sympy's (0^(-1))^0 = 1 would hide that from the oracle
+        return a_text, a
+    return f"({a_text}){op}{p if p >= 0 else f'({p})'}", a ** p
 
 
 def _binary(t):
