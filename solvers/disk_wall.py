@@ -172,7 +172,8 @@ def _ledger(p, v) -> tuple[LedgerRow, ...]:
         LedgerRow("momentum along the wall, m v_x", m_ * vx0, m_ * v["v1x"], "impulse",
                   "changed by the friction impulse P_t" if v["impulse_t"] else "no friction impulse"),
         LedgerRow("momentum into the wall, m v_y", m_ * vy0, m_ * v["v1y"], "impulse",
-                  "reversed by the wall's normal impulse"),
+                  "reversed by the wall's normal impulse" if p["e"] > 0 else
+                  "stopped by the wall's normal impulse (e = 0: no rebound)"),
         LedgerRow("angular momentum about B, I ω + m R v_x", _H_B(p, p["omega"], vx0),
                   _H_B(p, v["omega1"], v["v1x"]), "angular_momentum", "the whole impulse acts at B"),
         LedgerRow("kinetic energy", v["T_before"], v["T_after"], "energy", _energy_reason(p, v)),

@@ -184,9 +184,10 @@ def solve(**params) -> Solution:
     I = answers["I_O"]
     ledger = (
         LedgerRow("angular momentum about O, I_O θ̇", I * answers["omega_impact"], I * answers["omega_after"],
-                  "angular_momentum", "the floor's impulse has a moment about O"),
+                  "angular_momentum", f"the {p['surface']}'s impulse has a moment about O"),
         LedgerRow("kinetic energy", 0.5 * I * answers["omega_impact"] ** 2, 0.5 * I * answers["omega_after"] ** 2,
-                  "energy", "a fraction e² is kept" if p["e"] < 1 else "elastic: e = 1"),
+                  "energy", "elastic: e = 1" if p["e"] == 1 else "a fraction e² is kept" if p["e"] > 0 else
+                  f"all lost: e = 0, the sphere stays against the {p['surface']}"),
     )
     return Solution("pendulum_rebound", p, answers, tuple(steps), checks, p["surface"], notes, ledger,
                     extras={"bounce_peaks": bounces})

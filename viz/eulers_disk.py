@@ -126,7 +126,7 @@ def on_request(solution, damping: float = 5e-6) -> Figure:
              xaxis="x2", yaxis="y2"),
     ]
     layout = base_layout(equal_axes=False, x_title="", y_title="tilt θ (°)", height=420)
-    layout["yaxis"]["domain"] = [0.55, 1.0]
+    layout["yaxis"].update({"domain": [0.55, 1.0], "rangemode": "tozero"})
     layout["xaxis"].update({"matches": "x2", "showticklabels": False})
     layout["xaxis2"] = {"anchor": "y2", "title": {"text": "t (s)"}}
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.45], "title": {"text": "ω_p (rad/s)"}}
