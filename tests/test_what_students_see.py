@@ -409,3 +409,17 @@ def test_the_stick_s_energy_check_is_a_second_computation():
     assert energy.closed_form != pytest.approx(solution.answers["T_before"])
     # the worked solution's numbers: equal masses hit at the end lose 1/5 of ½ m v²
     assert energy.second_method == pytest.approx(0.1, rel=1e-12)
+
+
+@pytest.mark.parametrize("pid,query,figures_shown", [
+    ("driven_cart", {"drive": "rear", "mu": "3"}, 1),  # the wheelie: the ẍ–μ plot shows where it starts
+    ("rod_disk_spring", {"k": "100"}, 0),
+])
+def test_a_physical_limit_keeps_the_method_and_what_shows_why(pid, query, figures_shown):
+    """At μ ≥ 2.6 (rear drive) only the error used to remain: the derivation and the plot went."""
+    at = run_page(pid, query)
+    assert_clean(at)
+    assert at.error and at.metric
+    method = next(m.value for m in at.markdown if "### Derivation, step by step" in m.value)
+    assert "without numbers" in method and "$$" in method
+    assert len(at.get("component_instance")) == figures_shown
