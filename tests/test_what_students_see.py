@@ -14,9 +14,7 @@ import re
 import numpy as np
 import pytest
 from hypothesis import assume, given, settings
-from hypothesis import strategies as hs
 
-from solvers import rod_disk_spring as spring_solver
 from solvers.core import Choice, Number, plain_fixed, plain_number
 from tests import strategies
 from tests.test_pages import IDS, assert_clean, run_page
