@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from .core import (
+    plain_number,
     Answer,
     Check,
     Choice,
@@ -220,11 +221,11 @@ def _notes(p, a, regime, slip_before) -> tuple[str, ...]:
         if math.isinf(p["mu"]):
             note = "Rough wall (μ = ∞): B stops slipping; the worked solution's assumption."
         else:
-            note = (f"Sticks: no slip needs |P_t| = {abs(a['impulse_t']):.4g} N·s, within "
-                    f"μ|P_n| = {p['mu'] * abs(a['impulse_n']):.4g} N·s.")
+            note = (f"Sticks: no slip needs |P_t| = {plain_number(abs(a['impulse_t']))} N·s, within "
+                    f"μ|P_n| = {plain_number(p['mu'] * abs(a['impulse_n']))} N·s.")
     else:
         note = (f"Slides: no slip would need more friction than μ|P_n| = "
-                f"{p['mu'] * abs(a['impulse_n']):.4g} N·s, so B slides "
+                f"{plain_number(p['mu'] * abs(a['impulse_n']))} N·s, so B slides "
                 f"{'forward (+x)' if slip_before > 0 else 'backward (−x)'} through the whole impact.")
     return (note,)
 
