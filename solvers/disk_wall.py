@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from .core import (
+    plain_number,
     Answer,
     Check,
     Choice,
@@ -172,7 +173,8 @@ def _ledger(p, v) -> tuple[LedgerRow, ...]:
         LedgerRow("momentum along the wall, m v_x", m_ * vx0, m_ * v["v1x"], "impulse",
                   "changed by the friction impulse P_t" if v["impulse_t"] else "no friction impulse"),
         LedgerRow("momentum into the wall, m v_y", m_ * vy0, m_ * v["v1y"], "impulse",
-                  "reversed by the wall's normal impulse"),
+                  "reversed by the wall's normal impulse" if p["e"] > 0 else
+                  "stopped by the wall's normal impulse (e = 0: no rebound)"),
         LedgerRow("angular momentum about B, I ω + m R v_x", _H_B(p, p["omega"], vx0),
                   _H_B(p, v["omega1"], v["v1x"]), "angular_momentum", "the whole impulse acts at B"),
         LedgerRow("kinetic energy", v["T_before"], v["T_after"], "energy", _energy_reason(p, v)),
@@ -219,11 +221,11 @@ def _notes(p, a, regime, slip_before) -> tuple[str, ...]:
         if math.isinf(p["mu"]):
             note = "Rough wall (μ = ∞): B stops slipping; the worked solution's assumption."
         else:
-            note = (f"Sticks: no slip needs |P_t| = {abs(a['impulse_t']):.4g} N·s, within "
-                    f"μ|P_n| = {p['mu'] * abs(a['impulse_n']):.4g} N·s.")
+            note = (f"Sticks: no slip needs |P_t| = {plain_number(abs(a['impulse_t']))} N·s, within "
+                    f"μ|P_n| = {plain_number(p['mu'] * abs(a['impulse_n']))} N·s.")
     else:
         note = (f"Slides: no slip would need more friction than μ|P_n| = "
-                f"{p['mu'] * abs(a['impulse_n']):.4g} N·s, so B slides "
+                f"{plain_number(p['mu'] * abs(a['impulse_n']))} N·s, so B slides "
                 f"{'forward (+x)' if slip_before > 0 else 'backward (−x)'} through the whole impact.")
     return (note,)
 

@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from .core import (
+    plain_number,
     Answer,
     Check,
     Choice,
@@ -139,7 +140,7 @@ def solve(**params) -> Solution:
         mu_lift = p["b"] / p["a"]
         raise FrontWheelsLiftError(
             f"With {p['drive']}-wheel drive the front wheels lift off once μa ≥ b, that is for "
-            f"μ ≥ b/a = {mu_lift:.4g}; here μ = {p['mu']:.4g}. The cart would pop a wheelie, which "
+            f"μ ≥ b/a = {plain_number(mu_lift)}; here μ = {plain_number(p['mu'])}. The cart would pop a wheelie, which "
             f"this model (all four wheels on the ground) cannot describe.",
             mu_lift=mu_lift)
     d_ = derivation(p["drive"])
@@ -147,7 +148,7 @@ def solve(**params) -> Solution:
     answers = {a_.name: values[a_.name] for a_ in ANSWERS}
     steps = list(d_.steps) + d_.numeric_steps(values)
     notes = ("Acceleration moves load to the rear axle: "
-             f"N_rear − N_front = {answers['N_rear'] - answers['N_front']:.4g} N per wheel.",)
+             f"N_rear − N_front = {plain_number(answers['N_rear'] - answers['N_front'])} N per wheel.",)
     return Solution("driven_cart", p, answers, tuple(steps), _checks(p, answers), p["drive"], notes)
 
 

@@ -17,6 +17,7 @@ from scipy.interpolate import CubicHermiteSpline
 import sympy as sp
 
 from .core import (
+    plain_number,
     Answer,
     Check,
     Choice,
@@ -171,22 +172,23 @@ def solve(**params) -> Solution:
     impact = d_.evaluate(p, upto="theta_impact")["theta_impact"]
     if not p["theta0"] > impact:
         raise PhysicalLimitError(
-            f"The release angle θ₀ = {math.degrees(p['theta0']):.4g}° must be above the angle at which "
-            f"the sphere touches the {p['surface']}, θ_I = {math.degrees(impact):.4g}°.",
+            f"The release angle θ₀ = {plain_number(math.degrees(p['theta0']))}° must be above the angle at which "
+            f"the sphere touches the {p['surface']}, θ_I = {plain_number(math.degrees(impact))}°.",
             theta_impact=impact)
     values = d_.evaluate(p)
     answers = {a.name: values[a.name] for a in ANSWERS}
     bounces = bounce_sequence(p, answers)
     steps = list(d_.steps) + d_.numeric_steps(values)
     checks = _checks(p, answers)
-    notes = (f"Each bounce keeps a fraction e² = {p['e'] ** 2:.3g} of the swing's energy above the "
+    notes = (f"Each bounce keeps a fraction e² = {plain_number(p['e'] ** 2, 3)} of the swing's energy above the "
              "impact height.",)
     I = answers["I_O"]
     ledger = (
         LedgerRow("angular momentum about O, I_O θ̇", I * answers["omega_impact"], I * answers["omega_after"],
-                  "angular_momentum", "the floor's impulse has a moment about O"),
+                  "angular_momentum", f"the {p['surface']}'s impulse has a moment about O"),
         LedgerRow("kinetic energy", 0.5 * I * answers["omega_impact"] ** 2, 0.5 * I * answers["omega_after"] ** 2,
-                  "energy", "a fraction e² is kept" if p["e"] < 1 else "elastic: e = 1"),
+                  "energy", "elastic: e = 1" if p["e"] == 1 else "a fraction e² is kept" if p["e"] > 0 else
+                  f"all lost: e = 0, the sphere stays against the {p['surface']}"),
     )
     return Solution("pendulum_rebound", p, answers, tuple(steps), checks, p["surface"], notes, ledger,
                     extras={"bounce_peaks": bounces})

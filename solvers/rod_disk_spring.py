@@ -17,6 +17,7 @@ import sympy as sp
 from scipy.optimize import brentq
 
 from .core import (
+    plain_number,
     Answer,
     Check,
     Choice,
@@ -171,8 +172,8 @@ def _first_stop(p, start: float, end: float, points: int) -> float | None:
 def _validate(params) -> dict:
     p = validate_params(PARAMS, params)
     require(p["theta1"] < p["theta2"],
-            f"θ₂ must be past the release angle θ₁ (θ₁ < θ₂); got θ₁ = {math.degrees(p['theta1']):.4g}°, "
-            f"θ₂ = {math.degrees(p['theta2']):.4g}°.")
+            f"θ₂ must be past the release angle θ₁ (θ₁ < θ₂); got θ₁ = {plain_number(math.degrees(p['theta1']))}°, "
+            f"θ₂ = {plain_number(math.degrees(p['theta2']))}°.")
     return p
 
 
@@ -182,20 +183,20 @@ def solve(**params) -> Solution:
     if stop is not None:
         if stop == p["theta1"]:
             why = (f"at the release angle the spring's moment kθ already beats the weights' moment "
-                   f"Q sin θ (Q = {weight_moment(p):.4g} N·m), so the assembly does not fall toward θ₂ "
-                   f"at all: the largest angle reached is θ₁ = {math.degrees(stop):.4g}°. Soften the "
+                   f"Q sin θ (Q = {plain_number(weight_moment(p))} N·m), so the assembly does not fall toward θ₂ "
+                   f"at all: the largest angle reached is θ₁ = {plain_number(math.degrees(stop))}°. Soften the "
                    "spring or release it further over")
         else:
-            why = (f"the spring stops it at θ = {math.degrees(stop):.4g}° (the largest angle reached) "
+            why = (f"the spring stops it at θ = {plain_number(math.degrees(stop))}° (the largest angle reached) "
                    "and it swings back; ask for θ₂ below that, or soften the spring")
         raise SpringStopsRodError(
-            f"The rod never reaches θ₂ = {math.degrees(p['theta2']):.4g}°: {why}.", theta_max=stop)
+            f"The rod never reaches θ₂ = {plain_number(math.degrees(p['theta2']))}°: {why}.", theta_max=stop)
     d_ = derivation(p["disk"])
     values = d_.evaluate(p)
     answers = {a.name: values[a.name] for a in ANSWERS}
     steps = list(d_.steps) + d_.numeric_steps(values)
     return Solution("rod_disk_spring", p, answers, tuple(steps), _checks(p, answers), p["disk"],
-                    (f"Released at θ₁ = {math.degrees(p['theta1']):.4g}°"
+                    (f"Released at θ₁ = {plain_number(math.degrees(p['theta1']))}°"
                      + (" (upright: an equilibrium, so read it as released with a tiny nudge)."
                         if p["theta1"] == 0 else "."),))
 
@@ -266,7 +267,7 @@ def _checks(p, a) -> tuple[Check, ...]:
     leg, _ = _legs(tuple(sorted(p.items())) + (("I_O", a["I_O"]),))
     integrated = leg.end[2] if leg.ended_by_event else float("nan")
     return (
-        Check(f"θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ (start nudge {NUDGE:g} rad/s)"
+        Check(f"θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ (start nudge {plain_number(NUDGE)} rad/s)"
               if omega0 else "θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ",
               a["omega2"], integrated, relative_tolerance(a["omega2"], 1e-6) + NUDGE,
               "work–energy is the first integral of the equation of motion"),

@@ -18,6 +18,7 @@ import sympy as sp
 from scipy.optimize import brentq
 
 from .core import (
+    plain_number,
     Answer,
     Check,
     Choice,
@@ -162,7 +163,7 @@ def solve(**params) -> Solution:
     answers = {a.name: values[a.name] for a in answers_for(p["mode"])}
     steps = list(d_.steps) + d_.numeric_steps(values)
     lost = answers["energy_loss"] / answers["T_before"]
-    notes = (f"Energy: {100 * lost:.3g} % of the kinetic energy is lost in the impact"
+    notes = (f"Energy: {plain_number(100 * lost, 3)} % of the kinetic energy is lost in the impact"
              + (" (perfectly plastic: the ball attaches)." if p["mode"] == "stick" else "."),)
     return Solution("stick_ball", p, answers, tuple(steps), _checks(p, answers), p["mode"], notes,
                     _ledger(p, answers))

@@ -179,7 +179,8 @@ def _beside_refusal(problem: Problem, params: dict) -> None:
     method = getattr(problem.solver, "method", None)
     if method is not None:
         results.derivation(Solution(problem.id, params, {}, method(params)),
-                           caption="The method, without numbers: these parameters are past the model's limit.")
+                           caption="The method, without numbers: these parameters are past the model's limit.",
+                           slips=problem.solver.ERRATA)
 
 
 def _heading(heading: str, notices: list[str]) -> None:

@@ -11,6 +11,7 @@ from solvers.core import plain_fixed, plain_number as n
 from viz.common import COLORS, Figure, animated, base_layout, line, moving, r
 
 PLAY_SECONDS = 4.0  # one precession lasts this long on screen
+MM = 1000.0  # the 3-D view is drawn in millimetres
 ON_REQUEST_FLAG = "rundown"  # ?rundown=1 keeps "Letting it run down" open in a shared link
 
 
@@ -32,16 +33,16 @@ def _scatter3d(xyz, name, color, width=6, mode="lines", size=6):
 def _animation(solution) -> Figure:
     p, a = solution.params, solution.answers
     m = solver.motion(solution)
-    rad = p["r"]
+    rad = p["r"] * MM
     slow = PLAY_SECONDS / a["period"]
     circle_angles = np.linspace(0, 2 * np.pi, 60)
     contact_circle = rad * math.cos(p["theta"])
     table = _scatter3d(np.stack([contact_circle * np.cos(circle_angles), contact_circle * np.sin(circle_angles),
                                  np.zeros_like(circle_angles)], axis=1), "path of the contact point",
                        COLORS["trail"], width=4)
-    G = _scatter3d([m["G"]], "centre of mass G (at rest)", COLORS["ink"], mode="markers", size=5)
+    G = _scatter3d([np.asarray(m["G"]) * MM], "centre of mass G (at rest)", COLORS["ink"], mode="markers", size=5)
     def xyz(path):  # (frames, points, 3) -> one (frames, points) array per coordinate
-        path = r(path)
+        path = r(np.asarray(path) * MM)
         return [np.ascontiguousarray(path[..., k]) for k in range(3)]
 
     moving_traces = [
@@ -51,14 +52,17 @@ def _animation(solution) -> Figure:
                *xyz(m["contact"][:, None, :])),
     ]
     span = 1.15 * rad
-    axis = lambda title, lo, hi: {"range": r([lo, hi]), "title": {"text": title}}  # noqa: E731
+    axis = lambda title, lo, hi, ticks: {"range": r([lo, hi]), "title": {"text": title}, "nticks": ticks}  # noqa: E731
     layout = {
         "height": 560, "margin": {"l": 0, "r": 0, "t": 10, "b": 90},
         "legend": {"orientation": "h", "y": 1.0, "x": 0},
-        "scene": {"xaxis": axis("x (m)", -span, span), "yaxis": axis("y (m)", -span, span),
-                  "zaxis": axis("z (m)", 0, span), "aspectmode": "manual",
+        # In mm, with short tick labels ("20", not "0.02"), few ticks, and the camera further off and
+        # aimed a little left of centre: a 360-px phone then shows the z-axis title (labels keep their
+        # pixel size and offset, so only distance makes room for them).
+        "scene": {"xaxis": axis("x (mm)", -span, span, 5), "yaxis": axis("y (mm)", -span, span, 5),
+                  "zaxis": axis("z (mm)", 0, span, 3), "aspectmode": "manual",
                   "aspectratio": {"x": 1, "y": 1, "z": 0.5},
-                  "camera": {"eye": {"x": 1.4, "y": -1.4, "z": 0.9}}},
+                  "camera": {"eye": {"x": 2.05, "y": -2.05, "z": 1.25}, "center": {"x": -0.06, "y": -0.06, "z": 0.0}}},
     }
     # 3-D traces need redraw; the frame duration sets the slow motion.
     frame_ms = int(1000 * PLAY_SECONDS / len(m["t"]))
@@ -122,7 +126,7 @@ def on_request(solution, damping: float = 5e-6) -> Figure:
              xaxis="x2", yaxis="y2"),
     ]
     layout = base_layout(equal_axes=False, x_title="", y_title="tilt θ (°)", height=420)
-    layout["yaxis"]["domain"] = [0.55, 1.0]
+    layout["yaxis"].update({"domain": [0.55, 1.0], "rangemode": "tozero"})
     layout["xaxis"].update({"matches": "x2", "showticklabels": False})
     layout["xaxis2"] = {"anchor": "y2", "title": {"text": "t (s)"}}
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.45], "title": {"text": "ω_p (rad/s)"}}
