@@ -36,13 +36,16 @@ from lecture_load import percentile, rss_mb, start_servers  # noqa: E402
 PAGE, QUERY = "disk_wall", "practice=1"
 EASY = ["2/3*V*sin(theta) + R*omega/3", "0.8333", "833 mm/s", "V*sin(theta)", "v1x", "(R*omega + 2*V*sin(theta))/3",
         "2/3*V*sin(theta) - R*omega/3", "1/0", "0.5"]
-HARD = [  # each keeps the simplification worker busy for up to its time limit
+HARD = [  # heavy for sympy; the last two are unclear to numbers (not real near these values), so the
+    # simplification worker must settle them and is kept busy up to its time limit
     "(V + R*omega + sin(theta))^12/(V + R*omega + sin(theta))^11 - V - R*omega - sin(theta) + 2/3*V*sin(theta) + R*omega/3",
     "sin(theta)^12 + cos(theta)^12 + 2/3*V*sin(theta) + R*omega/3 - (sin(theta)^2+cos(theta)^2)^6"
     " + 3*sin(theta)^2*cos(theta)^2*(sin(theta)^2+cos(theta)^2)^2",
     "(sqrt(V) + sqrt(R*omega))^12/(V + R*omega)^5 + atan(tan(theta)) - theta",
     "(sin(theta)+cos(theta)+tan(theta))^10/(sin(theta)+cos(theta)+tan(theta))^9 - sin(theta) - cos(theta) - tan(theta)"
     " + 2/3*V*sin(theta) + R*omega/3",
+    "(V + R*omega + sin(theta))^12/(V + R*omega + sin(theta))^11 + sqrt(-(theta - 1)^2)",
+    "(sqrt(V) + sqrt(R*omega))^12/(V + R*omega)^5 + sqrt(-(theta - 1)^2) + cos(theta)^12 + sin(theta)^12",
 ]
 TIMEOUT = 60.0
 
@@ -101,7 +104,7 @@ async def connect(url: str):
 
 async def burst(url: str, sessions: int, window: float, server_pid: int, hard_every: int) -> dict:
     rng = random.Random(15)
-    texts = [HARD[i % len(HARD)] if hard_every and i % hard_every == 0 else EASY[i % len(EASY)]
+    texts = [HARD[i // hard_every % len(HARD)] if hard_every and i % hard_every == 0 else EASY[i % len(EASY)]
              for i in range(sessions)]
     sockets, targets = [], []
     for i in range(sessions):  # everyone has the page open before the burst
