@@ -72,7 +72,7 @@ if (window === window.top) {
       const g = this.graphs();
       return g.length >= figures && g.every(d => d._fullLayout && d.querySelector('.main-svg'));
     },
-    // Resolve with ms from the next Enter key to the first figure's plotly_afterplot (figures > 0),
+    // Resolve with ms from the next Enter key to a figure's plotly_afterplot (figures > 0),
     // or (the empty page) to the first frame after the run's last message (none for 300 ms after it).
     // The DOM's script-state attribute cannot time a fast run: React may batch its start and end.
     arm(figures) {
@@ -85,14 +85,14 @@ if (window === window.top) {
           t0 = performance.now(); performance.mark('dl-change');
           window.removeEventListener('keydown', onKey, true);
         }, true);
-        if (figures > 0) {
-          const graph = this.graphs()[0];
+        if (figures > 0) {  // the first figure that redraws (a value may leave another unchanged)
+          const graphs = this.graphs();
           const onPlot = () => {
             if (t0 === null) return;
-            graph.removeListener('plotly_afterplot', onPlot);
+            for (const g of graphs) g.removeListener('plotly_afterplot', onPlot);
             done(performance.now());
           };
-          graph.on('plotly_afterplot', onPlot);
+          for (const g of graphs) g.on('plotly_afterplot', onPlot);
         } else {
           const poll = setInterval(() => {
             if (t0 === null) return;
