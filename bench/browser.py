@@ -7,9 +7,9 @@ Two servers on loopback, both started by ``serve.run`` (the same settings, Nagle
 For every page, alternating with the empty page so drift on the shared machine hits both alike:
 
 - **change → redrawn**: a new value typed into the first number box of the sidebar and Enter, until
-  ``plotly_afterplot`` fires on the page's first figure (the empty page: until its script run is
-  over and the page is idle again). Each change is a value not seen before, so no cache answers.
-  Median and p90; the ratio is the median of the per-pair ratios.
+  ``plotly_afterplot`` fires on a figure (the empty page, or a value no figure depends on: until the
+  first frame after the run's last message). Each change is a value not seen before, so no cache
+  answers. Median and p90; the ratio is the median of the per-pair ratios.
 - **first visit / revisit**: a fresh browser context (empty cache) opens the page, then a second
   tab in the same context opens it again; time from navigation to every figure drawn (the empty
   page: its controls drawn and the script idle), and bytes over the wire (CDP Network
@@ -72,37 +72,35 @@ if (window === window.top) {
       const g = this.graphs();
       return g.length >= figures && g.every(d => d._fullLayout && d.querySelector('.main-svg'));
     },
-    // Resolve with ms from the next Enter key to a figure's plotly_afterplot (figures > 0),
-    // or (the empty page) to the first frame after the run's last message (none for 300 ms after it).
-    // The DOM's script-state attribute cannot time a fast run: React may batch its start and end.
+    // Resolve with ms from the next Enter key to a figure's plotly_afterplot, or, when no figure
+    // redraws (the empty page, or a value the figures do not depend on: their data are unchanged
+    // and the component leaves them), to the first frame after the run's last message (none for
+    // 300 ms after it). The DOM's script-state attribute cannot time a fast run: React may batch
+    // its start and end.
     arm(figures) {
       let t0 = null;
       this.pending = new Promise((resolve, reject) => {
         const timer = setTimeout(() => reject(new Error('no redraw within 10 s')), 10000);
-        const done = (t) => { clearTimeout(timer); performance.mark('dl-drawn'); resolve(t - t0); };
+        const graphs = figures > 0 ? this.graphs() : [];
+        let poll = null;
+        const done = (t, redrawn) => {
+          clearTimeout(timer); clearInterval(poll);
+          for (const g of graphs) g.removeListener('plotly_afterplot', onPlot);
+          performance.mark('dl-drawn'); resolve({ms: t - t0, redrawn: redrawn});
+        };
+        const onPlot = () => { if (t0 !== null) done(performance.now(), true); };
         window.addEventListener('keydown', function onKey(e) {
           if (e.key !== 'Enter') return;
           t0 = performance.now(); performance.mark('dl-change');
           window.removeEventListener('keydown', onKey, true);
         }, true);
-        if (figures > 0) {  // the first figure that redraws (a value may leave another unchanged)
-          const graphs = this.graphs();
-          const onPlot = () => {
-            if (t0 === null) return;
-            for (const g of graphs) g.removeListener('plotly_afterplot', onPlot);
-            done(performance.now());
-          };
-          for (const g of graphs) g.on('plotly_afterplot', onPlot);
-        } else {
-          const poll = setInterval(() => {
-            if (t0 === null) return;
-            const after = window.__dlMessages.filter(m => m[0] > t0);
-            const last = after[after.length - 1];
-            if (last && last[1] !== null && performance.now() - last[0] > 300 && this.idle()) {
-              clearInterval(poll); done(last[1]);
-            }
-          }, 20);
-        }
+        for (const g of graphs) g.on('plotly_afterplot', onPlot);
+        poll = setInterval(() => {
+          if (t0 === null) return;
+          const after = window.__dlMessages.filter(m => m[0] > t0);
+          const last = after[after.length - 1];
+          if (last && last[1] !== null && performance.now() - last[0] > 300 && this.idle()) done(last[1], false);
+        }, 20);
       });
     },
   };
@@ -163,7 +161,7 @@ def first_box(page):
     return boxes.first
 
 
-def change(page, box, value: float, figures: int) -> float:
+def change(page, box, value: float, figures: int) -> dict:
     page.bring_to_front()  # a background tab's frames are throttled
     page.evaluate(f"__dl.arm({figures})")
     box.fill(f"{value:.6g}")
@@ -303,11 +301,13 @@ def main() -> None:
                 tabs[key] = (context, page, box, float(box.input_value()), figures, wire)
             for i in range(args.changes):
                 for key, (_, page, box, start, figures, _) in tabs.items():
-                    r[key]["change_ms"].append(change(page, box, start * (1 + 0.004 * (i + 1)), figures))
+                    result = change(page, box, start * (1 + 0.004 * (i + 1)), figures)
+                    r[key]["change_ms"].append(result["ms"])
+                    r[key]["redrawn"].append(result["redrawn"])
             # One more change of each under a performance trace.
             for key, (_, page, box, start, figures, wire) in tabs.items():
                 browser.start_tracing(page=page, categories=CATEGORIES)
-                ms = change(page, box, start * 0.97, figures)
+                ms = change(page, box, start * 0.97, figures)["ms"]
                 trace = json.loads(browser.stop_tracing())
                 r[key]["breakdown"] = breakdown(trace, wire.ws_frames, ms)
             for context, *_ in tabs.values():
@@ -326,7 +326,8 @@ def report(page_id: str, r: dict) -> None:
     print(f"\n## {page_id}  (empty page in brackets)")
     print(f"change → redrawn: median {med(p['change_ms']):.0f} ms [{med(e['change_ms']):.0f}], "
           f"p90 {percentile(p['change_ms'], 0.9):.0f} ms [{percentile(e['change_ms'], 0.9):.0f}], "
-          f"× empty {med(ratios):.2f} (median of {len(ratios)} pairs)")
+          f"× empty {med(ratios):.2f} (median of {len(ratios)} pairs; "
+          f"{sum(p['redrawn'])} of them redrew a figure, the others left it unchanged)")
     for visit_kind in ("first", "revisit"):
         ms, kb = med(p[f"{visit_kind}_ms"]), med(p[f"{visit_kind}_bytes"]) / 1024
         ems, ekb = med(e[f"{visit_kind}_ms"]), med(e[f"{visit_kind}_bytes"]) / 1024

@@ -154,3 +154,29 @@ def test_practice_mode_in_the_browser(browser, app_url):
     page.get_by_text("is not allowed").wait_for(timeout=30_000)
     assert page.locator("[data-testid='stMain'] img[src*='example.invalid']").count() == 0
     context.close()
+
+
+def test_a_revisit_downloads_no_plotly_again(browser, app_url):
+    """What can be counted of issue 13: a second visit in the same browser moves ≤ 100 KB over
+    HTTP (the figure's plotly.js bundle comes from the cache: serve.py gives it a year's lifetime)."""
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    visits = []
+    for _ in range(2):
+        page = context.new_page()
+        received: dict[str, list] = {}
+        cdp = context.new_cdp_session(page)
+        cdp.on("Network.requestWillBeSent", lambda e: received.setdefault(e["requestId"], [e["request"]["url"], 0]))
+        cdp.on("Network.loadingFinished",
+               lambda e: received.get(e["requestId"], [None, 0]).__setitem__(1, e["encodedDataLength"]))
+        cdp.send("Network.enable")
+        page.goto(f"{app_url}/driven_cart")  # two figures
+        wait_until_idle(page)
+        page.frame_locator("iframe[title*='dynamics_lab_figure']").last.locator(".main-svg").first.wait_for()
+        page.wait_for_timeout(500)
+        visits.append(received)
+    first, again = ({url: size for url, size in v.values()} for v in visits)
+    bundle = [url for url in first if "/plotly-basic." in url]
+    assert bundle and max(first[url] for url in bundle) > 300_000  # the first visit did fetch it
+    assert all(again.get(url, 0) == 0 for url in bundle), "plotly.js downloaded again"
+    assert sum(again.values()) <= 100 * 1024, sorted(again.items(), key=lambda kv: -kv[1])[:5]
+    context.close()
