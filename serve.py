@@ -73,9 +73,31 @@ def accept_without_nagle() -> None:
     starlette_server._bind_socket = bind_tcp
 
 
+def serve_figure_bundles() -> None:
+    """Serve the figure component's plotly bundles gzipped once and cached by browsers for a year
+    (``ui.figure.BundleServer``). Streamlit's own component route would send them with a bare
+    ``Cache-Control: public`` and no validator, so every visit downloaded plotly.js again, and
+    gzip them anew on every request."""
+    from starlette.middleware import Middleware
+    from streamlit.web.server.starlette import starlette_app
+
+    from ui.figure import BundleServer
+
+    streamlit_middleware = starlette_app.create_streamlit_middleware  # fails loudly if renamed
+
+    def with_bundles():
+        stack = streamlit_middleware()
+        stack.insert(1, Middleware(BundleServer))  # after the path-security check, before gzip
+        return stack
+
+    starlette_app.create_streamlit_middleware = with_bundles
+
+
 def run(script: Path, argv: list[str]) -> None:
-    """``streamlit run script *argv`` in this process, with Nagle off and the warmed heap frozen."""
+    """``streamlit run script *argv`` in this process, with Nagle off, the figure bundles cached by
+    browsers and the warmed heap frozen."""
     accept_without_nagle()
+    serve_figure_bundles()
     # The warmed derivations (sympy trees, lambdified code) live as long as the process: move them
     # out of the collector's sight, so a full collection under load scans only what requests make.
     gc.collect()

@@ -28,9 +28,11 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-def start_app(port: int, extra: list[str] | None = None, env: dict | None = None) -> subprocess.Popen:
-    """The production entry point (serve.py: warm, then Streamlit), so tests see what ships."""
-    cmd = [sys.executable, str(ROOT / "serve.py"), "--server.headless", "true",
+def start_app(port: int, extra: list[str] | None = None, env: dict | None = None,
+              entry: list[str] | None = None) -> subprocess.Popen:
+    """The production entry point (serve.py: warm, then Streamlit), so tests see what ships.
+    ``entry`` replaces it, e.g. with a benchmark's baseline served by the same code."""
+    cmd = [sys.executable, *(entry or [str(ROOT / "serve.py")]), "--server.headless", "true",
            "--server.port", str(port), "--server.address", "127.0.0.1",
            "--browser.gatherUsageStats", "false", "--server.fileWatcherType", "none", *(extra or [])]
     return subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
@@ -53,9 +55,9 @@ def wait_healthy(url: str, timeout: float = 120.0, proc: subprocess.Popen | None
 
 
 @contextlib.contextmanager
-def running_app(extra: list[str] | None = None):
+def running_app(extra: list[str] | None = None, entry: list[str] | None = None):
     port = free_port()
-    proc = start_app(port, extra)
+    proc = start_app(port, extra, entry=entry)
     url = f"http://127.0.0.1:{port}"
     try:
         wait_healthy(url, proc=proc)

@@ -197,3 +197,33 @@ def test_the_whole_practice_page_gives_no_answer_away(browser, app_url, problem)
             SHOTS.mkdir(parents=True, exist_ok=True)
             page.screenshot(path=str(SHOTS / f"practice-{problem.id}.png"), full_page=True)
         context.close()
+
+
+def test_a_revisit_downloads_no_plotly_again(browser, app_url):
+    """What can be counted of issue 13: a second visit in the same browser moves ≤ 100 KB over
+    HTTP (the figure's plotly.js bundle comes from the cache: serve.py gives it a year's lifetime)."""
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    visits = []
+    for _ in range(2):
+        page = context.new_page()
+        received: dict[str, list] = {}
+        cdp = context.new_cdp_session(page)
+        cdp.on("Network.requestWillBeSent",
+               lambda e, got=received: got.setdefault(e["requestId"], [e["request"]["url"], 0]))
+        cdp.on("Network.loadingFinished",
+               lambda e, got=received: got.get(e["requestId"], [None, 0]).__setitem__(1, e["encodedDataLength"]))
+        cdp.send("Network.enable")
+        page.goto(f"{app_url}/driven_cart")  # two figures
+        wait_until_idle(page)
+        page.frame_locator("iframe[title*='dynamics_lab_figure']").last.locator(".main-svg").first.wait_for()
+        page.wait_for_timeout(500)
+        visits.append(received)
+    first, again = ({}, {})
+    for visit, sizes in zip(visits, (first, again)):
+        for url, size in visit.values():  # both figures ask for the bundle: one download, one wait
+            sizes[url] = sizes.get(url, 0) + size
+    bundle = [url for url in first if "/plotly-basic." in url]
+    assert bundle and max(first[url] for url in bundle) > 300_000  # the first visit did fetch it
+    assert all(again.get(url, 0) == 0 for url in bundle), "plotly.js downloaded again"
+    assert sum(again.values()) <= 100 * 1024, sorted(again.items(), key=lambda kv: -kv[1])[:5]
+    context.close()

@@ -48,13 +48,16 @@ def plain(text: str) -> str:
 def derivation(solution: Solution, symbolic_only: bool = False, caption: str = "",
                slips: tuple[str, ...] = ()) -> None:
     """The derivation, all steps (display math in $$ … $$) under a grey caption, then the worked
-    solution's common slips: one Markdown element, not two per step."""
-    steps = solution.steps[: solution.symbolic_steps] if symbolic_only else solution.steps
-    blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(steps, start=1)]
-    parts = ["### Derivation, step by step"] + [f":gray[{caption}]"] * bool(caption) + blocks
+    solution's common slips, in two Markdown elements: the symbolic steps, whose text a new value
+    does not change (so the browser keeps their KaTeX instead of typesetting them again), and the
+    steps with the numbers together with the slips."""
+    blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(solution.steps, start=1)]
+    symbolic, numeric = blocks[: solution.symbolic_steps], [] if symbolic_only else blocks[solution.symbolic_steps:]
+    st.markdown("\n\n".join(["### Derivation, step by step"] + [f":gray[{caption}]"] * bool(caption) + symbolic))
     if slips:
-        parts += ["#### Common slips in the worked solution", "\n".join(f"- {note}" for note in slips)]
-    st.markdown("\n\n".join(parts))
+        numeric += ["#### Common slips in the worked solution", "\n".join(f"- {note}" for note in slips)]
+    if numeric:
+        st.markdown("\n\n".join(numeric))
 
 
 def checks(solution: Solution) -> str:

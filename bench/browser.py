@@ -1,0 +1,345 @@
+"""Benchmark 5, what a student feels: the app in Debian's Chromium against an empty page, same run.
+
+    flock /tmp/dl-browser.lock python bench/browser.py [--changes 15] [--visits 3] [--pages ...]
+
+Two servers on loopback, both started by ``serve.run`` (the same settings, Nagle off): the app
+(serve.py, warmed) and an empty page with one number box and one slider (bench/empty_controls.py).
+For every page, alternating with the empty page so drift on the shared machine hits both alike:
+
+- **change → redrawn**: a new value typed into the first number box of the sidebar and Enter, until
+  ``plotly_afterplot`` fires on a figure (the empty page, or a value no figure depends on: until the
+  first frame after the run's last message). Each change is a value not seen before, so no cache
+  answers. Median and p90; the ratio is the median of the per-pair ratios.
+- **first visit / revisit**: a fresh browser context (empty cache) opens the page, then a second
+  tab in the same context opens it again; time from navigation to every figure drawn (the empty
+  page: its controls drawn and the script idle), and bytes over the wire (CDP Network
+  ``encodedDataLength`` of every finished request; the websocket's bytes are listed apart).
+- **where one change goes**: one more change under a Chromium performance trace (CPU samples and
+  the renderer's main thread), split into server run (websocket BackMsg sent → last ForwardMsg of
+  the run received), websocket bytes, JavaScript by source (plotly.js, KaTeX, Streamlit's React
+  bundle, the figure component), style/layout and paint.
+"""
+from __future__ import annotations
+
+import argparse
+import base64
+import json
+import statistics
+import sys
+from collections import defaultdict
+from contextlib import ExitStack
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
+
+PAGES = ["disk_wall", "pendulum_rebound", "driven_cart", "eulers_disk", "stick_ball", "rod_disk_spring"]
+EMPTY = "empty"
+VIEWPORT = {"width": 1400, "height": 1000}
+
+# Installed in every document; only the top one uses it. Graphs are looked for in the page and in
+# every same-origin iframe, so the benchmark does not depend on how the figure is embedded.
+HELPERS = """
+if (window === window.top) {
+  // Every websocket message the page receives, with the start of the first frame after it is handled.
+  const Native = window.WebSocket;
+  window.__dlMessages = [];
+  window.WebSocket = class extends Native {
+    constructor(...args) {
+      super(...args);
+      this.addEventListener('message', () => {
+        const entry = [performance.now(), null];
+        window.__dlMessages.push(entry);
+        setTimeout(() => requestAnimationFrame(() => { entry[1] = performance.now(); }), 0);
+      });
+    }
+  };
+  window.__dl = {
+    graphs() {
+      const out = [...document.querySelectorAll('.js-plotly-plot')];
+      for (const f of document.querySelectorAll('iframe')) {
+        try { out.push(...f.contentDocument.querySelectorAll('.js-plotly-plot')); } catch (e) {}
+      }
+      return out;
+    },
+    idle() {
+      const app = document.querySelector("[data-testid='stApp']");
+      return !!app && app.dataset.testScriptState === 'notRunning';
+    },
+    drawn(figures) {
+      if (figures === 0) return this.idle() && document.querySelectorAll("[data-testid='stMain'] input").length >= 2;
+      const g = this.graphs();
+      return g.length >= figures && g.every(d => d._fullLayout && d.querySelector('.main-svg'));
+    },
+    // Resolve with ms from the next Enter key to a figure's plotly_afterplot, or, when no figure
+    // redraws (the empty page, or a value the figures do not depend on: their data are unchanged
+    // and the component leaves them), to the first frame after the run's last message (none for
+    // 300 ms after it). The DOM's script-state attribute cannot time a fast run: React may batch
+    // its start and end.
+    arm(figures) {
+      let t0 = null;
+      this.pending = new Promise((resolve, reject) => {
+        const timer = setTimeout(() => reject(new Error('no redraw within 10 s')), 10000);
+        const graphs = figures > 0 ? this.graphs() : [];
+        let poll = null;
+        const done = (t, redrawn) => {
+          clearTimeout(timer); clearInterval(poll);
+          for (const g of graphs) g.removeListener('plotly_afterplot', onPlot);
+          performance.mark('dl-drawn'); resolve({ms: t - t0, redrawn: redrawn});
+        };
+        const onPlot = () => { if (t0 !== null) done(performance.now(), true); };
+        window.addEventListener('keydown', function onKey(e) {
+          if (e.key !== 'Enter') return;
+          t0 = performance.now(); performance.mark('dl-change');
+          window.removeEventListener('keydown', onKey, true);
+        }, true);
+        for (const g of graphs) g.on('plotly_afterplot', onPlot);
+        poll = setInterval(() => {
+          if (t0 === null) return;
+          const after = window.__dlMessages.filter(m => m[0] > t0);
+          const last = after[after.length - 1];
+          if (last && last[1] !== null && performance.now() - last[0] > 300 && this.idle()) done(last[1], false);
+        }, 20);
+      });
+    },
+  };
+}
+"""
+
+
+def figure_count(page_id: str) -> int:
+    if page_id == EMPTY:
+        return 0
+    import importlib
+
+    solver = importlib.import_module(f"solvers.{page_id}")
+    return len(importlib.import_module(f"viz.{page_id}").figures(solver.solve()))
+
+
+class Wire:
+    """Bytes over the wire for one tab, from CDP's Network domain."""
+
+    def __init__(self, page):
+        self.http = 0
+        self.ws_frames: list[tuple[str, float, int]] = []  # (direction, timestamp s, bytes)
+        cdp = page.context.new_cdp_session(page)
+        cdp.on("Network.loadingFinished", self._finished)
+        cdp.on("Network.webSocketFrameReceived", lambda e: self._frame("in", e))
+        cdp.on("Network.webSocketFrameSent", lambda e: self._frame("out", e))
+        cdp.send("Network.enable")
+
+    def _finished(self, event):
+        self.http += int(event.get("encodedDataLength", 0))
+
+    def _frame(self, direction, event):
+        r = event["response"]
+        size = len(base64.b64decode(r["payloadData"])) if r.get("opcode") == 2 else len(r["payloadData"])
+        self.ws_frames.append((direction, event["timestamp"], size))
+
+    @property
+    def ws_in(self) -> int:
+        return sum(n for d, _, n in self.ws_frames if d == "in")
+
+
+def visit(page, url: str, figures: int) -> tuple[float, Wire]:
+    wire = Wire(page)
+    page.goto(url, wait_until="commit")
+    drawn_at = page.wait_for_function(f"() => __dl.drawn({figures}) ? performance.now() : false",
+                                      polling="raf", timeout=60_000).json_value()
+    page.wait_for_timeout(500)  # late requests (fonts, the second figure's assets) still count
+    return drawn_at, wire
+
+
+def first_box(page):
+    boxes = page.locator("[data-testid='stSidebar'] [data-testid='stNumberInput'] input, "
+                         "[data-testid='stMain'] [data-testid='stNumberInput'] input")
+    if boxes.count() == 0:
+        page.locator("[data-testid='stSidebar']").get_by_text("More parameters", exact=True).click()
+        boxes.first.wait_for(timeout=30_000)
+        wait_until_idle(page)
+    return boxes.first
+
+
+def change(page, box, value: float, figures: int) -> dict:
+    page.bring_to_front()  # a background tab's frames are throttled
+    page.evaluate(f"__dl.arm({figures})")
+    box.fill(f"{value:.6g}")
+    page.wait_for_timeout(50)
+    box.press("Enter")
+    try:
+        ms = page.evaluate("__dl.pending")
+    except Exception:
+        print(f"no redraw on {page.url} for {value:.6g}", flush=True)
+        raise
+    wait_until_quiet(page)
+    return ms
+
+
+def wait_until_quiet(page):
+    page.wait_for_function("() => __dl.idle()", timeout=30_000)
+    page.wait_for_timeout(150)
+
+
+def percentile(values, q):
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, round(q * (len(ordered) - 1)))]
+
+
+# ---------------------------------------------------------------- where one change goes (a trace)
+CATEGORIES = ["devtools.timeline", "disabled-by-default-devtools.timeline", "blink.user_timing",
+              "v8.execute", "disabled-by-default-v8.cpu_profiler"]
+
+
+def js_source(frame: dict) -> str:
+    url, name = frame.get("url", ""), frame.get("functionName", "")
+    if name == "(garbage collector)":
+        return "garbage collection"
+    if name in ("(idle)", "(root)"):
+        return ""
+    if name == "(program)":
+        return "browser internals"
+    if "plotly" in url:
+        return "plotly.js"
+    if "katex" in url:
+        return "KaTeX"
+    if "/component/" in url or "/bidi-components/" in url or "dynamics_lab" in url:
+        return "figure component"
+    if "/static/js/" in url:
+        return "Streamlit (React)"
+    return "other script"
+
+
+def breakdown(trace: dict, frames: list[tuple[str, float, int]], ms: float) -> dict:
+    events = trace["traceEvents"] if isinstance(trace, dict) else trace
+    t0 = next(e["ts"] for e in events if e.get("name") == "dl-change")
+    t1 = t0 + ms * 1000
+    out: dict[str, float] = defaultdict(float)
+    out["total"] = (t1 - t0) / 1000
+    # CPU samples, attributed by the script they are in.
+    nodes: dict[tuple, dict] = {}
+    clock: dict[tuple, float] = {}
+    for e in events:
+        if e.get("name") == "Profile":
+            clock[(e["pid"], e.get("id"))] = e["args"]["data"]["startTime"]
+        if e.get("name") != "ProfileChunk":
+            continue
+        key = (e["pid"], e.get("id"))
+        data = e["args"]["data"]
+        profile = data.get("cpuProfile", {})
+        for node in profile.get("nodes", []):
+            nodes[(key, node["id"])] = node["callFrame"]
+        ts = clock.get(key, 0.0)
+        for sample, delta in zip(profile.get("samples", []), data.get("timeDeltas", [])):
+            ts += delta
+            if t0 <= ts <= t1:
+                source = js_source(nodes.get((key, sample), {}))
+                if source:
+                    out["js: " + source] += delta / 1000
+        clock[key] = ts
+    # The renderer's own work outside script.
+    for e in events:
+        if e.get("ph") == "X" and t0 <= e["ts"] <= t1 and e.get("name") in (
+                "UpdateLayoutTree", "Layout", "Paint", "PrePaint", "Layerize", "UpdateLayer"):
+            group = "style and layout" if e["name"] in ("UpdateLayoutTree", "Layout") else "paint"
+            out[group] += e.get("dur", 0) / 1000
+    # The server's run, seen from the browser: the BackMsg out to the last message of the run.
+    sent = [t for d, t, _ in frames if d == "out"]
+    if sent:
+        start = sent[-1]
+        received = [(t, n) for d, t, n in frames if d == "in" and t >= start]
+        if received:
+            out["server run (BackMsg → last message)"] = (received[-1][0] - start) * 1000
+            out["websocket KB received"] = sum(n for _, n in received) / 1024
+    return dict(out)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--changes", type=int, default=15)
+    parser.add_argument("--visits", type=int, default=3)
+    parser.add_argument("--pages", nargs="*", default=PAGES)
+    parser.add_argument("--json", type=Path, help="write the raw numbers here")
+    args = parser.parse_args()
+    from playwright.sync_api import sync_playwright
+
+    results: dict = {}
+    with ExitStack() as stack:
+        app = stack.enter_context(running_app())
+        empty = stack.enter_context(running_app(entry=[str(ROOT / "bench" / "serve_empty.py"),
+                                                       "--script", "empty_controls.py"]))
+        pw = stack.enter_context(sync_playwright())
+        browser = launch_browser(pw)
+        for page_id in args.pages:
+            pair = {EMPTY: (f"{empty}/", 0), page_id: (f"{app}/{page_id}", figure_count(page_id))}
+            r = {k: defaultdict(list) for k in pair}
+            # First visits and revisits, alternating.
+            for _ in range(args.visits):
+                for key, (url, figures) in pair.items():
+                    context = browser.new_context(viewport=VIEWPORT)
+                    context.add_init_script(HELPERS)
+                    ms, wire = visit(context.new_page(), url, figures)
+                    r[key]["first_ms"].append(ms)
+                    r[key]["first_bytes"].append(wire.http)
+                    r[key]["first_ws"].append(wire.ws_in)
+                    ms, wire = visit(context.new_page(), url, figures)
+                    r[key]["revisit_ms"].append(ms)
+                    r[key]["revisit_bytes"].append(wire.http)
+                    r[key]["revisit_ws"].append(wire.ws_in)
+                    context.close()
+            # Changes, alternating between the two tabs.
+            tabs = {}
+            for key, (url, figures) in pair.items():
+                context = browser.new_context(viewport=VIEWPORT)
+                context.add_init_script(HELPERS)
+                page = context.new_page()
+                wire = Wire(page)
+                page.goto(url)
+                page.wait_for_function(f"() => __dl.drawn({figures})", timeout=60_000)
+                wait_until_idle(page)
+                box = first_box(page)
+                tabs[key] = (context, page, box, float(box.input_value()), figures, wire)
+            for i in range(args.changes):
+                for key, (_, page, box, start, figures, _) in tabs.items():
+                    result = change(page, box, start * (1 + 0.004 * (i + 1)), figures)
+                    r[key]["change_ms"].append(result["ms"])
+                    r[key]["redrawn"].append(result["redrawn"])
+            # One more change of each under a performance trace.
+            for key, (_, page, box, start, figures, wire) in tabs.items():
+                browser.start_tracing(page=page, categories=CATEGORIES)
+                ms = change(page, box, start * 0.97, figures)["ms"]
+                trace = json.loads(browser.stop_tracing())
+                r[key]["breakdown"] = breakdown(trace, wire.ws_frames, ms)
+            for context, *_ in tabs.values():
+                context.close()
+            results[page_id] = {k: dict(v) for k, v in r.items()}
+            report(page_id, results[page_id])
+        browser.close()
+    if args.json:
+        args.json.write_text(json.dumps(results, indent=1))
+
+
+def report(page_id: str, r: dict) -> None:
+    e, p = r[EMPTY], r[page_id]
+    med = statistics.median
+    ratios = [a / b for a, b in zip(p["change_ms"], e["change_ms"])]
+    print(f"\n## {page_id}  (empty page in brackets)")
+    print(f"change → redrawn: median {med(p['change_ms']):.0f} ms [{med(e['change_ms']):.0f}], "
+          f"p90 {percentile(p['change_ms'], 0.9):.0f} ms [{percentile(e['change_ms'], 0.9):.0f}], "
+          f"× empty {med(ratios):.2f} (median of {len(ratios)} pairs; "
+          f"{sum(p['redrawn'])} of them redrew a figure, the others left it unchanged)")
+    for visit_kind in ("first", "revisit"):
+        ms, kb = med(p[f"{visit_kind}_ms"]), med(p[f"{visit_kind}_bytes"]) / 1024
+        ems, ekb = med(e[f"{visit_kind}_ms"]), med(e[f"{visit_kind}_bytes"]) / 1024
+        print(f"{visit_kind:8s}: drawn {ms:.0f} ms [{ems:.0f}] × {ms / ems:.2f}; "
+              f"{kb:.0f} KB over HTTP [{ekb:.0f}], +{kb - ekb:.0f} KB; websocket "
+              f"{med(p[f'{visit_kind}_ws']) / 1024:.0f} KB [{med(e[f'{visit_kind}_ws']) / 1024:.0f}]")
+    for key in (page_id, EMPTY):
+        parts = r[key]["breakdown"]
+        print(f"one change, {key}: " + ", ".join(f"{k} {v:.1f}" for k, v in
+                                                   sorted(parts.items(), key=lambda kv: -kv[1])))
+    sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
