@@ -24,6 +24,17 @@ LECTURE_CSS = """
 """
 
 
+# Phones: display equations a step smaller (ui/equations.py breaks a long one over rows that fit
+# this size), and wide tables scroll inside their own box instead of pushing the page sideways.
+PHONE_CSS = """
+<style>
+  @media (max-width: 640px) {
+    .stMainBlockContainer .katex-display { font-size: 0.9em; }
+  }
+</style>
+"""
+
+
 VIEWS = ("Study", "Lecture", "Practice")
 VIEW_HELP = ("Study: answers, animation and derivation. Lecture: large type and the animation first, for "
              "a projector. Practice: the answers are hidden; type your own and get feedback.")
@@ -110,8 +121,7 @@ def problem_page(problem_id: str) -> None:
     solver = problem.solver
     system, view = _page_flags(problem)
     lecture, practice = view == "Lecture", view == "Practice"
-    if lecture:
-        st.html(LECTURE_CSS)
+    st.html(PHONE_CSS + (LECTURE_CSS if lecture else ""))
     heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
     seed, seed_warning = seed_from_url()
     base = variant(solver, problem.id, seed) if seed is not None else {}

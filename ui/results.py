@@ -8,6 +8,7 @@ import streamlit as st
 
 from solvers.core import Answer, PhysicalLimitError, Solution
 from ui import units
+from ui.equations import broken
 
 LIMIT_LABELS = {  # attribute carried by a PhysicalLimitError -> (what it is, dimension)
     "mu_lift": ("μ at which the front wheels lift (μ = b/a)", "dimensionless"),
@@ -50,7 +51,7 @@ def derivation(solution: Solution, symbolic_only: bool = False, caption: str = "
     """The derivation, all steps (display math in $$ … $$) under a grey caption, then the worked
     solution's common slips: one Markdown element, not two per step."""
     steps = solution.steps[: solution.symbolic_steps] if symbolic_only else solution.steps
-    blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(steps, start=1)]
+    blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{broken(step.latex)}\n$$" for i, step in enumerate(steps, start=1)]
     parts = ["### Derivation, step by step"] + [f":gray[{caption}]"] * bool(caption) + blocks
     if slips:
         parts += ["#### Common slips in the worked solution", "\n".join(f"- {note}" for note in slips)]
