@@ -16,8 +16,8 @@ from ui.params import mirror_to_url, parameter_panel
 
 LECTURE_CSS = """
 <style>
-  .stMainBlockContainer { font-size: 1.3rem; }
-  .stMainBlockContainer h1 { font-size: 2.8rem; }
+  .stMainBlockContainer { font-size: 1.3rem; padding-top: 3.5rem; }
+  .stMainBlockContainer h1 { font-size: 2.4rem; padding-top: 0; }
   .stMainBlockContainer .katex { font-size: 1.45em; }
   .stMainBlockContainer table { font-size: 1.25rem; }
 </style>
@@ -96,10 +96,11 @@ def _requested(problem_id: str, key: tuple):
     return importlib.import_module(f"viz.{problem_id}").on_request(solution)
 
 
-def _figures(figures) -> None:
-    """The motion and its companion plots, each with the text a screen reader gets."""
-    for figure in figures:
-        show_figure(figure)  # title and text description are drawn with it
+def _figures(figures, lecture: bool = False) -> None:
+    """The motion and its companion plots, each with the text a screen reader gets. In the lecture
+    view the first (the motion) fills the first screen, in projector type."""
+    for n, figure in enumerate(figures):
+        show_figure(figure, lecture=lecture, fit_screen=lecture and n == 0)  # title and description drawn with it
 
 
 def _leave_legacy_pages_mode() -> None:
@@ -121,6 +122,8 @@ def problem_page(problem_id: str) -> None:
     solver = problem.solver
     system, view = _page_flags(problem)
     lecture, practice = view == "Lecture", view == "Practice"
+    if lecture:  # the projector: the figure gets the screen, one click brings the controls back
+        st.set_page_config(initial_sidebar_state="collapsed")
     st.html(PHONE_CSS + (LECTURE_CSS if lecture else ""))
     heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
     seed, seed_warning = seed_from_url()
@@ -148,7 +151,7 @@ def problem_page(problem_id: str) -> None:
         instructor_export(problem)
         return
     if lecture:
-        _figures(figures)
+        _figures(figures, lecture=True)
     results.answer_section(solution, answers, system, heading=heading if together else "")
     if not lecture:
         _figures(figures)

@@ -55,3 +55,9 @@ THUMBNAILS = {
         f'<circle cx="42" cy="86" r="4" fill="{RED}"/>',
         "Euler's disk spinning on a table"),
 }
+
+# The pictures are inlined into one page (so a screen reader gets their labels), where an id must
+# be unique: each picture's arrowheads get ids of their own.
+THUMBNAILS = {pid: svg.replace('id="g"', f'id="{pid}-g"').replace('id="r"', f'id="{pid}-r"')
+              .replace("url(#g)", f"url(#{pid}-g)").replace("url(#r)", f"url(#{pid}-r)")
+              for pid, svg in THUMBNAILS.items()}

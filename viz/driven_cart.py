@@ -75,6 +75,7 @@ def _versus_mu(solution) -> Figure:
     layout["margin"]["b"] = 60
     description = (f"Acceleration against μ for the three drives. Rear and all-wheel drive end at "
                    f"μ = b/a = {mu_lift:.3g}, where the front wheels lift (a wheelie); front drive never lifts "
-                   "but gains less and less, since it unloads the very wheels that push.")
+                   "but gains less and less, since it unloads the very wheels that push. Marked: this cart, "
+                   f"{names[p['drive']]} at μ = {p['mu']:.3g}, accelerating at {solution.answers['accel']:.3g} m/s².")
     return Figure("cart_versus_mu", "ẍ against μ: which drive wins, and where the front lifts",
                   {"data": data, "layout": layout}, description, animated=False, height=380)
