@@ -25,11 +25,14 @@ LECTURE_CSS = """
 
 
 # Phones: display equations a step smaller (ui/equations.py breaks a long one over rows that fit
-# this size), and wide tables scroll inside their own box instead of pushing the page sideways.
+# this size), and tables (the ledger has four columns) in smaller type whose cells may wrap
+# anywhere, so that nothing pushes the page sideways.
 PHONE_CSS = """
 <style>
   @media (max-width: 640px) {
     .stMainBlockContainer .katex-display { font-size: 0.9em; }
+    .stMainBlockContainer table { font-size: 0.85rem; }
+    .stMainBlockContainer th, .stMainBlockContainer td { padding: 0.3rem 0.35rem; overflow-wrap: anywhere; }
   }
 </style>
 """
