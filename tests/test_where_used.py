@@ -237,7 +237,7 @@ def test_no_serious_accessibility_violations_in_study_and_practice_and_home(brow
 
 def test_the_view_and_the_animation_answer_the_keyboard(browser, app_url):
     context, page, errors = open_at(browser, f"{app_url}/pendulum_rebound", (1400, 1000))
-    lecture = page.locator("[data-testid='stSidebar']").get_by_role("button", name="Lecture")
+    lecture = page.locator("[data-testid='stSidebar']").get_by_role("radio", name="Lecture")
     lecture.focus()
     page.keyboard.press("Enter")
     page.wait_for_url("**lecture=1**", timeout=30_000)
