@@ -231,6 +231,9 @@ def test_no_serious_accessibility_violations_in_study_and_practice_and_home(brow
         if page.locator(FIGURE).count():
             graph_of(page)  # audit the figure's frame drawn
         found[name] = serious_violations(page)
+        if not path:  # the gallery's pictures are there, each with its text alternative
+            alts = page.locator("[data-testid='stMain'] img").evaluate_all("imgs => imgs.map(i => i.alt)")
+            assert len(alts) == len(PROBLEMS) and all(alts), alts
     assert {k: v for k, v in found.items() if v} == {}
     context.close()
 

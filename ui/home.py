@@ -5,7 +5,7 @@ import streamlit as st
 
 from ui.catalog import GROUPS, PROBLEMS
 from ui.results import plain
-from ui.thumbnails import THUMBNAILS
+from ui.thumbnails import thumbnail_markdown
 
 
 def home() -> None:
@@ -21,7 +21,7 @@ def home() -> None:
         cols = st.columns(2)
         for col, problem in zip(cols, [p for p in PROBLEMS if p.group == group]):
             with col.container(border=True):
-                # Inline SVG with role="img" and a label: st.image would give an <img> without alt text.
-                st.html(THUMBNAILS[problem.id])
+                # A Markdown image carries its text alternative (st.image gives an <img> without alt).
+                st.markdown(thumbnail_markdown(problem.id))
                 st.page_link(problem.page_path, label=f"**{problem.title}**", icon=problem.icon)
                 st.markdown(f":gray[{plain(problem.blurb)}]")  # st.caption's grey fails contrast
