@@ -24,7 +24,7 @@ test: $(BIN)/.dev
 	$(BIN)/python -m pytest
 
 screenshots: $(BIN)/.dev
-	$(BIN)/python scripts/screenshots.py --themes light dark --sizes wide narrow
+	$(BIN)/python scripts/screenshots.py --themes light dark --sizes laptop projector phone
 
 clean:
 	rm -rf $(VENV) .pytest_cache .hypothesis

@@ -1,6 +1,10 @@
-"""Screenshots of every page in headless Chromium: light and dark theme, wide and narrow.
+"""Screenshots of every page in headless Chromium, light and dark theme, at the three sizes the app
+is used at: a laptop (1400x1000), a projector (1280x720, the lecture view) and a phone (390x844,
+touch, 2x pixels). Each page is shot whole (the window grown to the page's height) into
+NAME-THEME-SIZE.png, and its first screen, what a person sees before scrolling, into
+NAME-THEME-SIZE-first.png.
 
-    python scripts/screenshots.py [--out screenshots] [--query "lecture=1"]
+    python scripts/screenshots.py [--out screenshots] [--query "seed=3"] [--sizes laptop phone]
 """
 from __future__ import annotations
 
@@ -14,7 +18,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
 from ui.catalog import PROBLEMS  # noqa: E402
 
-SIZES = {"wide": (1400, 1000), "narrow": (800, 1000)}
+SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844)}
+VIEW = {"projector": "lecture=1"}  # the projector shows the lecture view
+PHONE = {"is_mobile": True, "has_touch": True, "device_scale_factor": 2}
 
 
 def main() -> None:
@@ -23,7 +29,7 @@ def main() -> None:
     parser.add_argument("--query", default="")
     parser.add_argument("--pages", nargs="*", default=None)
     parser.add_argument("--themes", nargs="*", default=["light"])
-    parser.add_argument("--sizes", nargs="*", default=["wide"])
+    parser.add_argument("--sizes", nargs="*", default=["laptop"], choices=list(SIZES))
     args = parser.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -35,13 +41,16 @@ def main() -> None:
         for theme in args.themes:
             for size in args.sizes:
                 w, h = SIZES[size]
-                context = browser.new_context(viewport={"width": w, "height": h}, color_scheme=theme)
+                context = browser.new_context(viewport={"width": w, "height": h}, color_scheme=theme,
+                                              **(PHONE if size == "phone" else {}))
                 page = context.new_page()
                 for path in paths:
-                    page.goto(f"{url}/{path}" + (f"?{args.query}" if args.query else ""))
+                    query = "&".join(q for q in (VIEW.get(size, "") if path else "", args.query) if q)
+                    page.goto(f"{url}/{path}" + (f"?{query}" if query else ""))
                     wait_until_idle(page)
                     page.wait_for_timeout(1200)
                     name = out / f"{path or 'home'}-{theme}-{size}.png"
+                    page.screenshot(path=str(name.with_name(name.stem + "-first.png")))
                     # Streamlit scrolls its main block, not the document: grow the window to fit it.
                     tall = page.evaluate("document.querySelector('[data-testid=\"stMain\"]').scrollHeight")
                     page.set_viewport_size({"width": w, "height": max(h, int(tall))})

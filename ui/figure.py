@@ -95,8 +95,17 @@ def _declared():
         return _component
 
 
-def show(figure: Figure) -> None:
+# The lecture view on a projector (issue 14): the component raises every text of the figure to at
+# least ``min_font`` px, multiplies line widths and marker sizes, and (``fit_screen``, the first
+# figure) sizes the graph to what is left of the first screen, so Play and the whole figure show.
+# The legend stands in a column at the right: a projector is wide, and a row of legend above a
+# figure of equal axes would take the height the drawing needs.
+LECTURE = {"min_font": 18, "title_font": 22, "line_scale": 1.8, "marker_scale": 1.6, "legend_right": True}
+
+
+def show(figure: Figure, lecture: bool = False, fit_screen: bool = False) -> None:
+    style = {**LECTURE, "fit_screen": fit_screen} if lecture else None
     # Bytes travel as a binary argument: no second JSON encoding of the figure by Streamlit.
     _declared()(spec=figure.json_bytes(), height=figure.height, title=figure.title,
-                description=figure.description, bundle=bundles()[kind_of(figure)][0],
+                description=figure.description, bundle=bundles()[kind_of(figure)][0], style=style,
                 key=figure.key, default=None)

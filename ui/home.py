@@ -4,7 +4,8 @@ from __future__ import annotations
 import streamlit as st
 
 from ui.catalog import GROUPS, PROBLEMS
-from ui.thumbnails import THUMBNAILS
+from ui.results import plain
+from ui.thumbnails import thumbnail_markdown
 
 
 def home() -> None:
@@ -20,6 +21,7 @@ def home() -> None:
         cols = st.columns(2)
         for col, problem in zip(cols, [p for p in PROBLEMS if p.group == group]):
             with col.container(border=True):
-                st.image(THUMBNAILS[problem.id], width=200)
+                # A Markdown image carries its text alternative (st.image gives an <img> without alt).
+                st.markdown(thumbnail_markdown(problem.id))
                 st.page_link(problem.page_path, label=f"**{problem.title}**", icon=problem.icon)
-                st.caption(problem.blurb)
+                st.markdown(f":gray[{plain(problem.blurb)}]")  # st.caption's grey fails contrast

@@ -17,10 +17,24 @@ from ui.params import mirror_to_url, parameter_panel
 
 LECTURE_CSS = """
 <style>
-  .stMainBlockContainer { font-size: 1.3rem; }
-  .stMainBlockContainer h1 { font-size: 2.8rem; }
+  .stMainBlockContainer { font-size: 1.3rem; padding-top: 3.5rem; }
+  .stMainBlockContainer h1 { font-size: 2.4rem; padding-top: 0; }
   .stMainBlockContainer .katex { font-size: 1.45em; }
   .stMainBlockContainer table { font-size: 1.25rem; }
+</style>
+"""
+
+
+# Phones: display equations a step smaller (ui/equations.py breaks a long one over rows that fit
+# this size), and tables (the ledger has four columns) in smaller type whose cells may wrap
+# anywhere, so that nothing pushes the page sideways.
+PHONE_CSS = """
+<style>
+  @media (max-width: 640px) {
+    .stMainBlockContainer .katex-display { font-size: 0.9em; }
+    .stMainBlockContainer table { font-size: 0.85rem; }
+    .stMainBlockContainer th, .stMainBlockContainer td { padding: 0.3rem 0.35rem; overflow-wrap: anywhere; }
+  }
 </style>
 """
 
@@ -105,10 +119,11 @@ def _requested(problem_id: str, key: tuple):
     return importlib.import_module(f"viz.{problem_id}").on_request(solution)
 
 
-def _figures(figures) -> None:
-    """The motion and its companion plots, each with the text a screen reader gets."""
-    for figure in figures:
-        show_figure(figure)  # title and text description are drawn with it
+def _figures(figures, lecture: bool = False) -> None:
+    """The motion and its companion plots, each with the text a screen reader gets. In the lecture
+    view the first (the motion) fills the first screen, in projector type."""
+    for n, figure in enumerate(figures):
+        show_figure(figure, lecture=lecture, fit_screen=lecture and n == 0)  # title and description drawn with it
 
 
 def _leave_legacy_pages_mode() -> None:
@@ -131,8 +146,9 @@ def problem_page(problem_id: str) -> None:
     seed, seed_warning = seed_from_url()
     system, view = _page_flags(problem, practice_only=seed is not None and not is_instructor())
     lecture, practice = view == "Lecture", view == "Practice"
-    if lecture:
-        st.html(LECTURE_CSS)
+    if lecture:  # the projector: the figure gets the screen, one click brings the controls back
+        st.set_page_config(initial_sidebar_state="collapsed")
+    st.html(PHONE_CSS + (LECTURE_CSS if lecture else ""))
     heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
     base = variant(solver, problem.id, seed) if seed is not None else {}
     st.sidebar.markdown("### Parameters" + (f" · variant {seed}" if seed is not None else ""))
@@ -160,7 +176,7 @@ def problem_page(problem_id: str) -> None:
         instructor_export(problem)  # the statement, the method and the answer box, nothing more
         return
     if lecture:
-        _figures(figures)
+        _figures(figures, lecture=True)
     results.answer_section(solution, answers, system, heading=heading if together else "")
     if not lecture:
         _figures(figures)

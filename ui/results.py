@@ -8,6 +8,7 @@ import streamlit as st
 
 from solvers.core import Answer, PhysicalLimitError, Solution
 from ui import units
+from ui.equations import broken
 
 LIMIT_LABELS = {  # attribute carried by a PhysicalLimitError -> (what it is, dimension)
     "mu_lift": ("μ at which the front wheels lift (μ = b/a)", "dimensionless"),
@@ -50,8 +51,10 @@ def derivation(solution: Solution, symbolic_only: bool = False, caption: str = "
     """The derivation, all steps (display math in $$ … $$) under a grey caption, then the worked
     solution's common slips, in two Markdown elements: the symbolic steps, whose text a new value
     does not change (so the browser keeps their KaTeX instead of typesetting them again), and the
-    steps with the numbers together with the slips."""
-    blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(solution.steps, start=1)]
+    steps with the numbers together with the slips. A display equation too wide for a phone is
+    broken over aligned rows (``broken``)."""
+    blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{broken(step.latex)}\n$$"
+              for i, step in enumerate(solution.steps, start=1)]
     symbolic, numeric = blocks[: solution.symbolic_steps], [] if symbolic_only else blocks[solution.symbolic_steps:]
     st.markdown("\n\n".join(["### Derivation, step by step"] + [f":gray[{caption}]"] * bool(caption) + symbolic))
     if slips:

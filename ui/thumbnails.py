@@ -1,6 +1,10 @@
 """Small static pictures for the home page's gallery: one SVG sketch per problem (no physics)."""
 from __future__ import annotations
 
+import base64
+import functools
+import re
+
 BLUE, ORANGE, GREEN, RED, PINK, GREY = "#0072B2", "#E69F00", "#009E73", "#D55E00", "#CC79A7", "#8a8a8a"
 
 
@@ -55,3 +59,11 @@ THUMBNAILS = {
         f'<circle cx="42" cy="86" r="4" fill="{RED}"/>',
         "Euler's disk spinning on a table"),
 }
+
+
+@functools.cache
+def thumbnail_markdown(problem_id: str) -> str:
+    """The picture as a Markdown image (a data URI) whose alt text is the picture's label."""
+    svg = THUMBNAILS[problem_id]
+    label = re.search(r'aria-label="([^"]*)"', svg).group(1)
+    return f"![{label}](data:image/svg+xml;base64,{base64.b64encode(svg.encode()).decode()})"

@@ -88,7 +88,9 @@ def versus_mu(params, accel: float | None = None) -> Figure:
     layout["margin"]["b"] = 60
     description = (f"Acceleration against μ for the three drives. Rear and all-wheel drive end at "
                    f"μ = b/a = {n(mu_lift, 3)}, where the front wheels lift (a wheelie); front drive never lifts "
-                   "but gains less and less, since it unloads the very wheels that push.")
+                   "but gains less and less, since it unloads the very wheels that push. Marked: this cart, "
+                   f"{names[p['drive']]} at μ = {n(p['mu'], 3)}, "
+                   + (f"accelerating at {n(accel, 3)} m/s²." if accel is not None else "past the lift-off."))
     return Figure("cart_versus_mu", "ẍ against μ: which drive wins, and where the front lifts",
                   {"data": data, "layout": layout}, description, animated=False, height=380)
 

@@ -101,7 +101,8 @@ def _versus_tilt(solution) -> Figure:
     layout["margin"]["r"] = 60
     description = ("As the tilt θ falls toward 0, the precession rate ω_p grows without bound while the disk's "
                    "own angular velocity and the energy (3/2 m g r sin θ) shrink to zero: Moffatt's "
-                   "finite-time singularity.")
+                   f"finite-time singularity. Marked: this disk at θ = {math.degrees(p['theta']):.3g}°, "
+                   f"where ω_p = {solution.answers['omega_p']:.3g} rad/s.")
     return Figure("eulers_disk_versus_tilt", "As θ → 0: the contact whirls faster, the disk turns slower",
                   {"data": data, "layout": layout}, description, animated=False, height=460)
 

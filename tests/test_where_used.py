@@ -1,0 +1,270 @@
+"""Where the app is used (issue 14): a projector, a phone, a keyboard and a screen reader.
+
+Measured in Debian's Chromium as a person meets the page: element boxes against the viewport,
+computed font sizes inside the figure's frame, and axe-core's WCAG 2.1 A/AA rules (serious and
+critical findings) on the project's own content, figure frames included. One server and one
+browser serve the whole module.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from scripts.live_app import CHROMIUM, launch_browser, running_app, wait_until_idle
+from ui.catalog import PROBLEMS
+from ui.figure import LECTURE
+
+pytestmark = pytest.mark.browser
+
+if not Path(CHROMIUM).exists():
+    if os.environ.get("CI"):
+        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
+    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
+
+playwright = pytest.importorskip("playwright.sync_api")
+axe_playwright = pytest.importorskip("axe_playwright_python.sync_playwright")
+
+IDS = [p.id for p in PROBLEMS]
+PROJECTORS = [(1280, 720), (1024, 768)]
+PHONES = [(390, 844), (360, 740)]
+FIGURE = "iframe[title*='dynamics_lab_figure']"
+WCAG = {"runOnly": {"type": "tag", "values": ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"]},
+        "resultTypes": ["violations"]}
+# Streamlit's own page navigation fails two list rules even in an empty app: not the project's.
+STREAMLIT_OWN = {"exclude": [["[data-testid='stSidebarNav']"]]}
+# A moving trace's first coordinates: they change when the animation moves.
+# A slider's thumb: Streamlit 1.67 gives it no role="slider", only focus and aria-valuetext.
+SLIDER = "[data-testid='stSidebar'] [data-testid='stSlider'] [aria-valuetext]"
+SNAPSHOT = ("(el) => JSON.stringify(el._fullData.map(t => [t.x && Array.from(t.x).slice(0, 4), "
+            "t.y && Array.from(t.y).slice(0, 4)]))")
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with playwright.sync_playwright() as pw:
+        b = launch_browser(pw)
+        yield b
+        b.close()
+
+
+@pytest.fixture(scope="module")
+def app_url():
+    if os.environ.get("APP_URL"):
+        yield os.environ["APP_URL"].rstrip("/")
+        return
+    with running_app() as url:
+        yield url
+
+
+def open_at(browser, url: str, size: tuple[int, int], phone: bool = False):
+    width, height = size
+    extra = {"is_mobile": True, "has_touch": True, "device_scale_factor": 2} if phone else {}
+    context = browser.new_context(viewport={"width": width, "height": height}, **extra)
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    page.goto(url)
+    wait_until_idle(page)
+    return context, page, errors
+
+
+def graph_of(page):
+    """The first figure's frame, once its graph is drawn."""
+    frame = page.frame_locator(FIGURE).first
+    frame.locator("#graph .main-svg").first.wait_for()
+    page.wait_for_timeout(300)
+    return frame
+
+
+def serious_violations(page) -> list[str]:
+    """axe-core's serious and critical WCAG 2.1 A/AA findings, in the page and in every frame."""
+    axe = axe_playwright.Axe()
+    found = []
+    for frame in page.frames:
+        context = STREAMLIT_OWN if frame == page.main_frame else None
+        for v in axe.run(frame, context=context, options=WCAG).response["violations"]:
+            if v["impact"] in ("serious", "critical"):
+                targets = [n["target"] for n in v["nodes"][:3]]
+                found.append(f"{frame.url.rsplit('/', 1)[-1][:40]}: {v['id']} ({v['impact']}) {targets}")
+    return found
+
+
+def sidebar_collapsed(page) -> bool:
+    return page.locator("[data-testid='stSidebar']").get_attribute("data-collapsed") == "true"
+
+
+def answers_table(page):
+    return page.locator("[data-testid='stMain'] table").first
+
+
+# --- the projector ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("size", PROJECTORS, ids=[f"{w}x{h}" for w, h in PROJECTORS])
+def test_lecture_view_on_a_projector(browser, app_url, size):
+    width, height = size
+    for problem in PROBLEMS:
+        context, page, errors = open_at(browser, f"{app_url}/{problem.id}?lecture=1", size)
+        where = f"{problem.id} at {width}x{height}"
+        assert sidebar_collapsed(page), where
+        frame = graph_of(page)
+        frame_top = page.locator(FIGURE).first.bounding_box()["y"]
+        graph = frame.locator("#graph").bounding_box()
+        play = frame.get_by_role("button", name="Play the animation").bounding_box()
+        # The whole figure and its Play control within the first screen, with no scrolling (boxes
+        # inside the frame are in the page's coordinates).
+        assert 0 <= frame_top <= play["y"] and graph["y"] + graph["height"] <= height, where
+        assert play["y"] + play["height"] <= height, where
+        # Every text the figure draws (ticks, axis titles, legend, labels) at least 18 px.
+        fonts = frame.locator("#graph").evaluate(
+            "g => [...g.querySelectorAll('text')].filter(t => t.textContent.trim())"
+            ".map(t => parseFloat(getComputedStyle(t).fontSize))")
+        assert fonts and min(fonts) >= LECTURE["min_font"], (where, sorted(fonts)[:5])
+        # Lines and markers as drawn: thicker than the study view's thinnest (1 px lines, 9 px markers).
+        widths = frame.locator("#graph").evaluate(
+            "g => g._fullData.flatMap(t => [t.line && t.mode !== 'markers' ? t.line.width : null,"
+            " t.marker && /markers/.test(t.mode || '') ? t.marker.size : null]).filter(v => v != null)")
+        assert min(widths) >= 1.8, (where, widths)
+        # The answers follow the figure, in large type.
+        table = answers_table(page)
+        assert table.bounding_box()["y"] > graph["y"] + graph["height"], where
+        assert float(table.evaluate("t => getComputedStyle(t).fontSize").rstrip("px")) >= 20, where
+        assert serious_violations(page) == [], where
+        if problem.id == "pendulum_rebound":  # its lesson parameters are sliders
+            _controls_come_back_and_the_figure_stays(page, where)
+        assert not errors, (where, errors)
+        context.close()
+
+
+def _controls_come_back_and_the_figure_stays(page, where: str) -> None:
+    """One click brings the controls back; changing a parameter does not move the figure."""
+    page.locator("[data-testid='stExpandSidebarButton']").click()
+    slider = page.locator(SLIDER).first
+    slider.wait_for()
+    assert not sidebar_collapsed(page), where
+    page.wait_for_timeout(500)  # the main column narrows beside the sidebar: the figure moves once
+    frame_top = page.locator(FIGURE).first.bounding_box()["y"]
+    before = answers_table(page).inner_text()
+    slider.focus()
+    slider.press("ArrowLeft")
+    page.wait_for_function("(before) => document.querySelector(\"[data-testid='stMain'] table\").innerText"
+                           " !== before", arg=before, timeout=30_000)
+    wait_until_idle(page)
+    assert page.locator(FIGURE).first.bounding_box()["y"] == pytest.approx(frame_top, abs=2), where
+    assert page.evaluate("document.querySelector(\"[data-testid='stMain']\").scrollTop") == 0, where
+
+
+# --- the phone -------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("size", PHONES, ids=[f"{w}x{h}" for w, h in PHONES])
+def test_on_a_phone(browser, app_url, size):
+    width, _ = size
+    for n, problem in enumerate(PROBLEMS):
+        context, page, errors = open_at(browser, f"{app_url}/{problem.id}", size, phone=True)
+        where = f"{problem.id} at {width} px"
+        # The page never scrolls sideways.
+        assert page.evaluate("document.documentElement.scrollWidth") <= width, where
+        main = page.locator("[data-testid='stMain']")
+        assert main.evaluate("m => m.scrollWidth <= m.clientWidth"), where
+        # No display equation is wider than its box (KaTeX draws each row as .base boxes).
+        wide = page.evaluate(
+            "() => [...document.querySelectorAll(\"[data-testid='stMain'] .katex-display\")].filter(d => {"
+            " const box = d.getBoundingClientRect();"
+            " return [...d.querySelectorAll('.katex-html .base')].some(b => b.getBoundingClientRect().right > box.right + 0.5);"
+            "}).map(d => d.querySelector('annotation').textContent.slice(0, 80))")
+        assert wide == [], (where, wide)
+        assert page.locator("[data-testid='stMain'] .katex-error").count() == 0, where
+        # The figure fits the width, and Play works by touch.
+        frame = graph_of(page)
+        iframe = page.locator(FIGURE).first.bounding_box()
+        assert iframe["x"] >= 0 and iframe["x"] + iframe["width"] <= width, where
+        svg_width = frame.locator("#graph .main-svg").first.bounding_box()["width"]
+        assert svg_width <= iframe["width"] + 0.5, where
+        graph = frame.locator("#graph")
+        start = graph.evaluate(SNAPSHOT)
+        frame.get_by_role("button", name="Play the animation").tap()
+        page.wait_for_timeout(1200)
+        assert graph.evaluate(SNAPSHOT) != start, f"{where}: a tap on Play did not move the animation"
+        frame.get_by_role("button", name="Pause the animation").tap()
+        if width == 360:
+            assert serious_violations(page) == [], where
+        if n == 0:
+            _controls_reachable_and_results_kept(page, where)
+        assert not errors, (where, errors)
+        context.close()
+
+
+def _controls_reachable_and_results_kept(page, where: str) -> None:
+    """The controls open over the page, a change follows, and closing them shows the new results."""
+    before = answers_table(page).inner_text()
+    page.locator("[data-testid='stExpandSidebarButton']").tap()
+    box = page.locator("[data-testid='stSidebar'] [data-testid='stNumberInput'] input").first
+    if not box.is_visible():
+        page.locator("[data-testid='stSidebar']").get_by_text("More parameters", exact=True).tap()
+    box.wait_for()
+    box.tap()
+    box.fill(f"{float(box.input_value()) * 1.1:.6g}")
+    box.press("Enter")
+    page.wait_for_function("(before) => { const t = document.querySelector(\"[data-testid='stMain'] table\");"
+                           " return t && t.innerText !== before; }", arg=before, timeout=30_000)
+    wait_until_idle(page)
+    page.locator("[data-testid='stSidebar'] [data-testid='stSidebarCollapseButton'] button").tap()
+    page.wait_for_timeout(500)
+    assert answers_table(page).is_visible(), where
+    assert answers_table(page).inner_text() != before, where
+
+
+# --- the screen reader and the keyboard ------------------------------------------------------
+
+VIEWS = [("", "home")] + [(f"{p.id}{q}", f"{p.id}{q or '-study'}") for p in PROBLEMS for q in ("", "?practice=1")]
+
+
+def test_no_serious_accessibility_violations_in_study_and_practice_and_home(browser, app_url):
+    """The lecture view is audited in the projector test, the study view again on a phone."""
+    context = browser.new_context(viewport={"width": 1280, "height": 720})
+    page = context.new_page()
+    found = {}
+    for path, name in VIEWS:
+        page.goto(f"{app_url}/{path}")
+        wait_until_idle(page)
+        if page.locator(FIGURE).count():
+            graph_of(page)  # audit the figure's frame drawn
+        found[name] = serious_violations(page)
+        if not path:  # the gallery's pictures are there, each with its text alternative
+            alts = page.locator("[data-testid='stMain'] img").evaluate_all("imgs => imgs.map(i => i.alt)")
+            assert len(alts) == len(PROBLEMS) and all(alts), alts
+    assert {k: v for k, v in found.items() if v} == {}
+    context.close()
+
+
+def test_the_view_and_the_animation_answer_the_keyboard(browser, app_url):
+    context, page, errors = open_at(browser, f"{app_url}/pendulum_rebound", (1400, 1000))
+    lecture = page.locator("[data-testid='stSidebar']").get_by_role("radio", name="Lecture")
+    lecture.focus()
+    page.keyboard.press("Enter")
+    page.wait_for_url("**lecture=1**", timeout=30_000)
+    wait_until_idle(page)
+    frame = graph_of(page)
+    graph = frame.locator("#graph")
+    start = graph.evaluate(SNAPSHOT)
+    frame.get_by_role("button", name="Play the animation").focus()
+    page.keyboard.press("Enter")
+    page.wait_for_timeout(1200)
+    moved = graph.evaluate(SNAPSHOT)
+    assert moved != start, "Enter on Play did not start the animation"
+    page.keyboard.press(" ")  # Space pauses
+    page.wait_for_timeout(300)
+    paused = graph.evaluate(SNAPSHOT)
+    page.wait_for_timeout(500)
+    assert graph.evaluate(SNAPSHOT) == paused, "Space did not pause"
+    frame.get_by_role("button", name="Step forward one frame").focus()
+    page.keyboard.press("Enter")
+    page.wait_for_timeout(300)
+    assert graph.evaluate(SNAPSHOT) != paused, "the step button did not step"
+    stepped = graph.evaluate(SNAPSHOT)
+    page.keyboard.press("ArrowLeft")
+    page.wait_for_timeout(300)
+    assert graph.evaluate(SNAPSHOT) != stepped, "← did not step back"
+    assert not errors, errors
+    context.close()
