@@ -66,7 +66,9 @@ def test_a_deep_link_on_a_fresh_server_gets_the_app(browser):
         context, page, errors = open_page(browser, f"{url}/driven_cart?mu=0.5")
         nav = page.locator("[data-testid='stSidebarNav']").inner_text()
         assert "Euler's disk" in nav and "Home" in nav  # the app's navigation, not the pages folder
-        assert "Cart with driven wheels" in main_text(page)
+        # The page reruns once to leave Streamlit's legacy pages mode: its heading may come a moment
+        # after the first idle state on a busy machine.
+        page.locator("[data-testid='stMain'] h1", has_text="Cart with driven wheels").wait_for(timeout=30_000)
         assert page.locator("[data-testid='stException']").count() == 0
         assert not errors
         context.close()
