@@ -16,9 +16,10 @@ from ui.catalog import PROBLEMS
 
 
 def shown_forms(value: float) -> set[str]:
-    """How a description may write an answer: 2 or 3 significant figures, in degrees for an angle,
+    """How a description may write an answer: 2 to 4 significant figures, in degrees for an angle,
     in ms for a short time."""
-    forms = {f"{value:.2g}", f"{value:.3g}", f"{math.degrees(value):.1f}", f"{value * 1000:.0f}"}
+    forms = {f"{value:.2g}", f"{value:.3g}", f"{value:.4g}", f"{math.degrees(value):.1f}", f"{value * 1000:.0f}",
+             f"{value * 1000:.3g}"}
     # A lone digit would match almost any text; a state whose answers are all zero (a disk that
     # stops dead) is the exception, and says "0".
     return {f for f in forms if len(f.lstrip("-")) > 1 or value == 0}
@@ -26,6 +27,7 @@ def shown_forms(value: float) -> set[str]:
 
 def states(description: str, value: float) -> bool:
     """The value stands in the text as a number of its own (not inside a longer one)."""
+    description = description.replace("\u2212", "-")  # the pages write a typographic minus
     return any(re.search(rf"(?<![\d.]){re.escape(form)}(?![\d])", description) for form in shown_forms(value))
 
 
