@@ -263,7 +263,9 @@ def test_with_no_spring_the_caption_says_it_goes_over_the_top():
 # ----------------------------------------------------------------------------------------------
 # Numbers: never −0, powers typeset, the URL carries what the control shows
 
-MINUS_ZERO = re.compile(r"(?<![\d.])[−-]0(?:\.0*)?(?![\d.])")
+# A minus after a digit, or after TeX's ``{}`` that opens a broken row, is a subtraction, not a sign;
+# one before ``0^{2}`` negates the square of a substituted zero (−θ̇⁺² at e = 0), not a number −0.
+MINUS_ZERO = re.compile(r"(?<![\d.}])[−-]0(?:\.0*)?(?![\d.^])")
 EDGES = [("disk_wall", {"e": "0"}), ("disk_wall", {"mu": "0"}), ("rod_disk_spring", {"k": "0"}),
          ("pendulum_rebound", {"e": "0"}), ("stick_ball", {"mode": "bounce", "e": "1"}),
          ("driven_cart", {"mu": "0"}), ("driven_cart", {"m": "10000"})]

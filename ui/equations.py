@@ -202,7 +202,9 @@ def _packed(side: list[str], limit: float, at: set[str] = frozenset({"+", "-"}))
     for term in terms:
         if current and current != lead and width(current + term) > limit - 1.0:
             rows.append(current)
-            current = [r"\quad"] + term
+            # A row that opens with a sign or a dot: ``{}`` before it keeps TeX's binary spacing
+            # (the idiom for a broken line), and it is read as an operator, never as a sign.
+            current = [r"\quad"] + (["{}"] if term[0] in ("+", "-", r"\cdot") else []) + term
         else:
             current = current + term
     rows.append(current)
