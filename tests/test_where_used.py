@@ -163,6 +163,7 @@ def test_on_a_phone(browser, app_url, size):
     for n, problem in enumerate(PROBLEMS):
         context, page, errors = open_at(browser, f"{app_url}/{problem.id}", size, phone=True)
         where = f"{problem.id} at {width} px"
+        frame = graph_of(page)  # measure the settled page, its figure drawn
         # The page never scrolls sideways.
         assert page.evaluate("document.documentElement.scrollWidth") <= width, where
         main = page.locator("[data-testid='stMain']")
@@ -176,7 +177,6 @@ def test_on_a_phone(browser, app_url, size):
         assert wide == [], (where, wide)
         assert page.locator("[data-testid='stMain'] .katex-error").count() == 0, where
         # The figure fits the width, and Play works by touch.
-        frame = graph_of(page)
         iframe = page.locator(FIGURE).first.bounding_box()
         assert iframe["x"] >= 0 and iframe["x"] + iframe["width"] <= width, where
         svg_width = frame.locator("#graph .main-svg").first.bounding_box()["width"]
