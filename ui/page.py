@@ -77,14 +77,15 @@ def _solve_and_draw(problem: Problem, params: dict, system: str):
     return _computed(problem.id, tuple(sorted(params.items())), system)
 
 
-def _on_request(problem: Problem, solution) -> None:
+def _on_request(problem: Problem, solution, figures) -> None:
     """A costly extra figure some problems offer (e.g. Euler's disk running down), drawn only when
-    asked for and cached by parameters across sessions."""
+    asked for and cached by parameters across sessions; drawn with the plotly.js of the page's
+    ``figures``."""
     viz = importlib.import_module(f"viz.{problem.id}")
     if hasattr(viz, "on_request") and st.toggle(viz.on_request.__doc__.split(":")[0],
                                                 key=f"{problem.id}__on_request"):
         with st.spinner("Integrating the equations of motion…"):
-            show_figure(_requested(problem.id, tuple(sorted(solution.params.items()))))
+            show_figure(_requested(problem.id, tuple(sorted(solution.params.items()))), page=figures)
 
 
 def _on_request_flag(problem: Problem) -> dict[str, str]:
@@ -108,7 +109,7 @@ def _requested(problem_id: str, key: tuple):
 def _figures(figures) -> None:
     """The motion and its companion plots, each with the text a screen reader gets."""
     for figure in figures:
-        show_figure(figure)  # title and text description are drawn with it
+        show_figure(figure, page=figures)  # title and text description are drawn with it
 
 
 def _leave_legacy_pages_mode() -> None:
@@ -164,7 +165,7 @@ def problem_page(problem_id: str) -> None:
     results.answer_section(solution, answers, system, heading=heading if together else "")
     if not lecture:
         _figures(figures)
-    _on_request(problem, solution)
+    _on_request(problem, solution, figures)
     _derivation(solver, solution)
     if practice:
         instructor_export(problem)
@@ -174,8 +175,9 @@ def _beside_refusal(problem: Problem, params: dict) -> None:
     """A physical limit is where the lesson is: keep what shows why (the problem's figures for it,
     and the derivation without numbers), where the problem offers them."""
     viz = importlib.import_module(f"viz.{problem.id}")
-    for figure in getattr(viz, "at_limit", lambda _: [])(params):
-        show_figure(figure)
+    figures = getattr(viz, "at_limit", lambda _: [])(params)
+    for figure in figures:
+        show_figure(figure, page=figures)
     method = getattr(problem.solver, "method", None)
     if method is not None:
         results.derivation(Solution(problem.id, params, {}, method(params)),
