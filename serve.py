@@ -9,7 +9,9 @@ connection (see ``accept_without_nagle``). Arguments after the script name go to
 """
 from __future__ import annotations
 
+import asyncio
 import gc
+import gzip
 import itertools
 import logging
 import socket
@@ -73,11 +75,97 @@ def accept_without_nagle() -> None:
     starlette_server._bind_socket = bind_tcp
 
 
-def serve_figure_bundles() -> None:
-    """Serve the figure component's plotly bundles gzipped once and cached by browsers for a year
-    (``ui.figure.BundleServer``). Streamlit's own component route would send them with a bare
-    ``Cache-Control: public`` and no validator, so every visit downloaded plotly.js again, and
-    gzip them anew on every request."""
+# What Streamlit sends uncompressed that compresses well: its JS bundles (KaTeX among them) and CSS.
+# Not HTML: every unknown path gets index.html (2 KB), and caching per path would let any URL grow
+# the cache; a JS or CSS response is always a real file, so the cache is bounded by the package.
+COMPRESSIBLE = (b"text/javascript", b"application/javascript", b"text/css", b"image/svg+xml")
+
+
+def accepts_gzip(scope) -> bool:
+    """The request's Accept-Encoding names gzip (or *) without ``q=0``."""
+    header = dict(scope["headers"]).get(b"accept-encoding", b"").decode("latin-1")
+    for item in header.split(","):
+        name, _, params = item.partition(";")
+        quality = params.replace(" ", "").removeprefix("q=")
+        if name.strip() in ("gzip", "*") and not (params and _is_zero(quality)):
+            return True
+    return False
+
+
+def _is_zero(quality: str) -> bool:
+    try:
+        return float(quality) == 0
+    except ValueError:
+        return False
+
+
+class StaticGzip:
+    """ASGI middleware (installed by serve.py): Streamlit's own static files gzipped, each once.
+
+    Streamlit keeps ``/static/`` and the root document out of its gzip middleware, because that
+    middleware would compress them again on every request; so a first visit downloaded its JS
+    bundles and KaTeX's 265 KB script uncompressed (BENCHMARKS.md section 6). Here a compressible
+    file's answer to a GET (a 200 with an ETag, not already encoded, no Range) is gzipped once per
+    (path, ETag) and kept in memory. Streamlit's own headers stay (Cache-Control, Last-Modified);
+    the ETag becomes weak, as nginx makes it (other bytes, same file: revalidation still gets its
+    304); Content-Length, Content-Encoding and Vary are set for the gzipped body. HEAD, Range and
+    clients that do not take gzip get Streamlit's answer as it is."""
+
+    def __init__(self, app):
+        self.app = app
+        self.packed: dict[tuple[str, bytes], bytes | asyncio.Task] = {}
+
+    async def __call__(self, scope, receive, send):
+        if (scope["type"] != "http" or scope["method"] != "GET" or not accepts_gzip(scope)
+                or any(name == b"range" for name, _ in scope["headers"])):
+            return await self.app(scope, receive, send)
+        # Streamlit's FileResponse may stream the file by path (ASGI pathsend) where the server
+        # offers it; the body is needed here, so it is not offered.
+        scope = {**scope, "extensions": {k: v for k, v in scope.get("extensions", {}).items()
+                                         if k != "http.response.pathsend"}}
+        start, chunks = None, []
+
+        async def capture(message):
+            nonlocal start
+            if start is None and message["type"] == "http.response.start":
+                headers = dict(message["headers"])
+                if (message["status"] == 200 and b"etag" in headers and b"content-encoding" not in headers
+                        and headers.get(b"content-type", b"").startswith(COMPRESSIBLE)):
+                    start = message
+                    return
+                start = False  # not this one's: pass everything through untouched
+            if not start or message["type"] != "http.response.body":
+                return await send(message)
+            chunks.append(message.get("body", b""))
+            if not message.get("more_body", False):
+                await self._send_packed(scope, send, start, b"".join(chunks))
+
+        await self.app(scope, receive, capture)
+
+    async def _send_packed(self, scope, send, start, raw: bytes):
+        headers = dict(start["headers"])
+        key = (scope["path"], headers[b"etag"])
+        packed = self.packed.get(key)
+        if packed is None:
+            # Compressed off the event loop, once even when many first visits ask at the same time.
+            packed = self.packed[key] = asyncio.ensure_future(asyncio.to_thread(gzip.compress, raw, 9))
+        if isinstance(packed, asyncio.Task):
+            packed = self.packed[key] = await packed
+        etag = headers[b"etag"]
+        kept = [(k, v) for k, v in start["headers"] if k not in (b"etag", b"content-length", b"vary")]
+        vary = b", ".join(v for v in (headers.get(b"vary"), b"Accept-Encoding") if v)
+        kept += [(b"etag", etag if etag.startswith(b"W/") else b"W/" + etag), (b"vary", vary),
+                 (b"content-encoding", b"gzip"), (b"content-length", str(len(packed)).encode())]
+        await send({**start, "headers": kept})
+        await send({"type": "http.response.body", "body": packed})
+
+
+def serve_static_compressed() -> None:
+    """Put two middlewares in front of Streamlit, after its path-security check and before its gzip:
+    ``StaticGzip`` (Streamlit's static files gzipped once) and ``ui.figure.BundleServer`` (the
+    figure component's plotly bundles gzipped once and cached by browsers for a year; Streamlit's
+    own component route would send them with a bare ``Cache-Control: public`` and no validator, so
+    every visit downloaded plotly.js again, gzipped anew on every request)."""
     from starlette.middleware import Middleware
     from streamlit.web.server.starlette import starlette_app
 
@@ -85,19 +173,19 @@ def serve_figure_bundles() -> None:
 
     streamlit_middleware = starlette_app.create_streamlit_middleware  # fails loudly if renamed
 
-    def with_bundles():
+    def with_compression():
         stack = streamlit_middleware()
-        stack.insert(1, Middleware(BundleServer))  # after the path-security check, before gzip
+        stack[1:1] = [Middleware(StaticGzip), Middleware(BundleServer)]
         return stack
 
-    starlette_app.create_streamlit_middleware = with_bundles
+    starlette_app.create_streamlit_middleware = with_compression
 
 
 def run(script: Path, argv: list[str]) -> None:
-    """``streamlit run script *argv`` in this process, with Nagle off, the figure bundles cached by
-    browsers and the warmed heap frozen."""
+    """``streamlit run script *argv`` in this process, with Nagle off, static files gzipped once, the
+    figure bundles cached by browsers and the warmed heap frozen."""
     accept_without_nagle()
-    serve_figure_bundles()
+    serve_static_compressed()
     # The warmed derivations (sympy trees, lambdified code) live as long as the process: move them
     # out of the collector's sight, so a full collection under load scans only what requests make.
     gc.collect()

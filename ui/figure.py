@@ -6,9 +6,9 @@ JSON as it is and draws it with a partial plotly.js bundle served by this app (n
 keeps an animation running across reruns when the figure is unchanged, and adds real Play/Pause
 buttons that work from the keyboard (Space, ← →).
 
-The bundles (ui/plotly_bundles: 2-D "basic", and "gl3d" for figures with a 3-D scene) are served
-under names that carry their content's hash, so ``serve.py`` can let browsers keep them for a
-year (``BundleServer``): a revisit downloads none of plotly.js again.
+The bundles (ui/plotly_bundles: 2-D "basic", and "gl3d" for every figure of a page with a 3-D
+scene) are served under names that carry their content's hash, so ``serve.py`` can let browsers
+keep them for a year (``BundleServer``): a revisit downloads none of plotly.js again.
 """
 from __future__ import annotations
 
@@ -44,9 +44,10 @@ def bundles() -> dict[str, tuple[str, bytes]]:
     return out
 
 
-def kind_of(figure: Figure) -> str:
-    """The smallest bundle that draws this figure: gl3d only for a 3-D scene."""
-    return "gl3d" if "scene" in figure.spec.get("layout", {}) else "basic"
+def kind_of(figure: Figure, page=()) -> str:
+    """The bundle that draws this figure: gl3d for a 3-D scene, and for every figure on a page that
+    has one (gl3d draws 2-D scatter too), so a page downloads one plotly.js, not two."""
+    return "gl3d" if any("scene" in f.spec.get("layout", {}) for f in (figure, *page)) else "basic"
 
 
 class BundleServer:
@@ -103,9 +104,10 @@ def _declared():
 LECTURE = {"min_font": 18, "title_font": 22, "line_scale": 1.8, "marker_scale": 1.6, "legend_right": True}
 
 
-def show(figure: Figure, lecture: bool = False, fit_screen: bool = False) -> None:
+def show(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False) -> None:
+    """``page``: every figure of the page, so that all of them share one plotly.js bundle."""
     style = {**LECTURE, "fit_screen": fit_screen} if lecture else None
     # Bytes travel as a binary argument: no second JSON encoding of the figure by Streamlit.
     _declared()(spec=figure.json_bytes(), height=figure.height, title=figure.title,
-                description=figure.description, bundle=bundles()[kind_of(figure)][0], style=style,
+                description=figure.description, bundle=bundles()[kind_of(figure, page)][0], style=style,
                 key=figure.key, default=None)

@@ -91,14 +91,15 @@ def _solve_and_draw(problem: Problem, params: dict, system: str):
     return _computed(problem.id, tuple(sorted(params.items())), system)
 
 
-def _on_request(problem: Problem, solution) -> None:
+def _on_request(problem: Problem, solution, figures) -> None:
     """A costly extra figure some problems offer (e.g. Euler's disk running down), drawn only when
-    asked for and cached by parameters across sessions."""
+    asked for and cached by parameters across sessions; drawn with the plotly.js of the page's
+    ``figures``."""
     viz = importlib.import_module(f"viz.{problem.id}")
     if hasattr(viz, "on_request") and st.toggle(viz.on_request.__doc__.split(":")[0],
                                                 key=f"{problem.id}__on_request"):
         with st.spinner("Integrating the equations of motion…"):
-            show_figure(_requested(problem.id, tuple(sorted(solution.params.items()))))
+            show_figure(_requested(problem.id, tuple(sorted(solution.params.items()))), page=figures)
 
 
 def _on_request_flag(problem: Problem) -> dict[str, str]:
@@ -123,7 +124,8 @@ def _figures(figures, lecture: bool = False) -> None:
     """The motion and its companion plots, each with the text a screen reader gets. In the lecture
     view the first (the motion) fills the first screen, in projector type."""
     for n, figure in enumerate(figures):
-        show_figure(figure, lecture=lecture, fit_screen=lecture and n == 0)  # title and description drawn with it
+        # title and description are drawn with it; the page's figures share one plotly.js bundle
+        show_figure(figure, page=figures, lecture=lecture, fit_screen=lecture and n == 0)
 
 
 def _leave_legacy_pages_mode() -> None:
@@ -180,7 +182,7 @@ def problem_page(problem_id: str) -> None:
     results.answer_section(solution, answers, system, heading=heading if together else "")
     if not lecture:
         _figures(figures)
-    _on_request(problem, solution)
+    _on_request(problem, solution, figures)
     _derivation(solver, solution)
     if practice:
         instructor_export(problem)
@@ -190,8 +192,9 @@ def _beside_refusal(problem: Problem, params: dict) -> None:
     """A physical limit is where the lesson is: keep what shows why (the problem's figures for it,
     and the derivation without numbers), where the problem offers them."""
     viz = importlib.import_module(f"viz.{problem.id}")
-    for figure in getattr(viz, "at_limit", lambda _: [])(params):
-        show_figure(figure)
+    figures = getattr(viz, "at_limit", lambda _: [])(params)
+    for figure in figures:
+        show_figure(figure, page=figures)
     method = getattr(problem.solver, "method", None)
     if method is not None:
         results.derivation(Solution(problem.id, params, {}, method(params)),
