@@ -26,6 +26,7 @@ from solvers import units as unit_table
 from solvers.core import Answer
 from practice.worker import SimplifyWorker
 from ui import units
+from ui.practice import flat_latex
 
 ROOT = Path(__file__).resolve().parent.parent
 IDS = ["disk_wall", "pendulum_rebound", "driven_cart", "eulers_disk", "stick_ball", "rod_disk_spring"]
@@ -371,6 +372,10 @@ def test_the_variant_export_needs_the_instructor_key(monkeypatch):
     assert at.error and not any(b.label == "Prepare the CSV" for b in at.button)
     at.text_input(key="driven_cart__instructor_key").input(KEY).run()
     assert any(b.label == "Prepare the CSV" for b in at.button)
+    for link in ({"practice": "1", "instructor": KEY}, {"seed": "7", "practice": "1", "instructor": KEY}):
+        at = run_page("driven_cart", link)  # an instructor link, with or without a variant
+        assert any(b.label == "Prepare the CSV" for b in at.button), link
+        assert "instructor" not in at.query_params, link  # and the key leaves the address bar
 
 
 def page_text(at) -> str:
@@ -394,8 +399,7 @@ def leaks(text: str, solution, answers, judge, system: str = "si") -> list[str]:
     givens = {units.format_value(units.to_display(v, p.dimension, system), 4)
               for p in importlib.import_module(f"solvers.{solution.problem}").PARAMS
               if not isinstance(v := solution.params[p.name], str)}
-    unbraced = lambda latex: re.sub(r"[{}\\s]", "", latex)  # noqa: E731
-    flat = unbraced(text)
+    flat = flat_latex(text)
     for a in answers:
         value = solution.answers[a.name]
         shown = units.to_display(value, a.dimension, system)
@@ -406,23 +410,65 @@ def leaks(text: str, solution, answers, judge, system: str = "si") -> list[str]:
             if len(digits) >= 2 and number not in givens and re.search(rf"(?<![\d.]){re.escape(number)}(?!\d)", text):
                 found.append(f"{a.name} = {number}")
         closed = judge.derivation.expression_of(a.name)
-        if len(closed.free_symbols) and unbraced(sp.latex(closed)) in flat:
+        if len(closed.free_symbols) and flat_latex(sp.latex(closed)) in flat:
             found.append(f"{a.name} as {sp.latex(closed)}")
-        symbol = unbraced(sp.latex(judge.results[a.name]))
+        symbol = flat_latex(sp.latex(judge.results[a.name]))
         if re.search(rf"{re.escape(symbol)}=", flat):
             found.append(f"{a.name} stated as {symbol} = …")
     return found
 
 
-@pytest.mark.parametrize("pid", IDS)
-def test_the_practice_page_gives_no_answer_away(pid):
-    at = run_page(pid, {"practice": "1"})
-    solver, solution, judge, answers = setup(pid)
+# Every page, and every option that changes the derivation (the cart's rear and all-wheel drives
+# once wrote N_front's closed form into the lift-off step without naming it).
+OPTIONS = [(pid, {}) for pid in IDS] + [
+    ("driven_cart", {"drive": "rear"}), ("driven_cart", {"drive": "all"}),
+    ("pendulum_rebound", {"sphere": "hollow"}), ("pendulum_rebound", {"sphere": "disk", "surface": "wall"}),
+    ("stick_ball", {"mode": "bounce"}), ("rod_disk_spring", {"disk": "pinned"})]
+
+
+def test_the_leak_check_catches_a_result_stated_by_symbol_or_by_closed_form():
+    """Positive controls: the check the page tests rely on finds what it must."""
+    for pid, options in OPTIONS:
+        _, solution, judge, answers = setup(pid, **options)
+        for a in answers.values():
+            closed = judge.derivation.expression_of(a.name)
+            stated = sp.latex(sp.Eq(judge.results[a.name], closed, evaluate=False))
+            assert f"{a.name} stated as" in " ".join(leaks(f"$${stated}$$", solution, [a], judge)), (pid, a.name)
+            if closed.free_symbols:
+                inequality = rf"$$\\left({sp.latex(closed)}\\right) > 0$$"
+                assert f"{a.name} as" in " ".join(leaks(inequality, solution, [a], judge)), (pid, a.name)
+
+
+@pytest.mark.parametrize("pid, options", OPTIONS, ids=lambda x: str(x))
+def test_the_practice_page_gives_no_answer_away(pid, options):
+    at = run_page(pid, {"practice": "1", **options})
+    solver, solution, judge, answers = setup(pid, **options)
     text = page_text(at)
     assert "### The problem" in text and "### The method" in text and not at.exception
     assert leaks(text, solution, answers.values(), judge) == []
     at.button(key=f"{pid}__reveal").click().run()
     assert leaks(page_text(at), solution, answers.values(), judge)  # the check can find them
+
+
+@pytest.mark.parametrize("pid, options, past_limit", [
+    ("driven_cart", {"drive": "rear"}, {"mu": "20"}),
+    ("driven_cart", {"drive": "all"}, {"mu": "6"}),
+    ("rod_disk_spring", {}, {"k": "100"}),
+    ("rod_disk_spring", {"disk": "pinned"}, {"k": "100"}),
+    ("pendulum_rebound", {}, {"theta0": "-60"}),
+], ids=str)
+def test_past_a_physical_limit_practice_shows_the_method_not_the_derivation(pid, options, past_limit):
+    """The refusal keeps the method (titles, and equations that show no result), never the closed
+    forms the Study view's derivation gives beside it."""
+    at = run_page(pid, {"practice": "1", **options, **past_limit})
+    assert at.error and not at.exception
+    text = page_text(at)
+    assert "### The method" in text
+    _, solution, judge, answers = setup(pid, **options)  # the same derivation, inside the limit
+    found = leaks(text, solution, answers.values(), judge)
+    assert not [f for f in found if " as " in f or "stated" in f], found
+    study = page_text(run_page(pid, {**options, **past_limit}))
+    assert [f for f in leaks(study, solution, answers.values(), judge) if " as " in f or "stated" in f]
 
 
 def test_practice_mode_hides_answers_until_revealed():
