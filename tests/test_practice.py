@@ -533,3 +533,41 @@ def test_clear_answers_never_queue_for_the_simplification_worker(monkeypatch):
     unclear = "2/3*V*sin(theta) + R*omega/3 + sqrt(-(theta - 1)^2)"  # real at no point near these numbers
     judge.check(answers["v1x"], unclear)
     assert asked
+
+
+@pytest.mark.parametrize("worker_says, correct, says", [
+    (None, True, "could not be checked in general in time"),  # busy or out of time: not "wrong"
+    (True, True, "Right: that is the answer"),
+    (False, True, "but not the general answer"),
+])
+def test_an_answer_the_numbers_cannot_settle_gets_the_workers_verdict_or_says_it_has_none(
+        monkeypatch, worker_says, correct, says):
+    """When the numbers are unclear (forced here: rounding-level differences are rare and
+    platform-dependent) the worker decides; a busy worker's silence is reported as such, never as
+    "not the general answer"."""
+    import practice.judge as judge_module
+
+    class Worker:
+        def is_zero(self, expr, timeout=1.0):
+            return worker_says
+
+    monkeypatch.setattr(judge_module, "shared_worker", lambda: Worker())
+    _, _, judge, answers = setup("disk_wall", omega=2.0)
+    real = judge._numeric_verdict
+    monkeypatch.setattr(judge, "_numeric_verdict", lambda a, b, rtol=1e-9, differ=1e-6:
+                        None if rtol == 1e-9 and differ == 1e-6 else real(a, b, rtol, differ))
+    verdict = judge.check(answers["v1x"], "(R*omega + 2*V*sin(theta))/3")
+    assert verdict.correct is correct and says in verdict.message, verdict.message
+
+
+@pytest.mark.parametrize("extra", ["1/mu", "V/mu", "exp(-mu)"])
+def test_with_mu_infinite_a_term_that_vanishes_there_is_not_the_general_answer(extra):
+    """disk_wall's default μ = ∞ (no slip): ∞ times any sampling factor stays ∞, so a term that
+    vanishes at ∞ must be caught at finite μ; the answer is then right only for μ = ∞."""
+    _, solution, judge, answers = setup("disk_wall")
+    assert solution.params["mu"] == float("inf")
+    right = "(R*omega + 2*V*sin(theta))/3"
+    assert "that is the answer" in judge.check(answers["v1x"], right).message
+    verdict = judge.check(answers["v1x"], f"{right} + {extra}")
+    assert verdict.correct and "not the general answer" in verdict.message, verdict.message
+    assert "μ = ∞" in verdict.message, verdict.message
