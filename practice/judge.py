@@ -245,9 +245,13 @@ class Judge:
     def _judge_expression(self, answer: Answer, expr: sp.Expr, system: str = "si") -> Verdict:
         understood = sp.latex(expr)
         correct = self.derivation.expression_of(answer.name)
-        if self.equivalent(expr, correct):
+        same = self.equivalent(expr, correct)
+        if same:
             return Verdict(True, "Right: that is the answer, as an expression in the givens.", understood)
         if self._same_here(expr, correct):
+            if same is None:  # the numbers were unclear and the worker busy or out of time: say so
+                return Verdict(True, "Right for these numbers; it could not be checked in general in time. "
+                               "Try again in a moment, or write it more simply.", understood)
             special = self._what_makes_it_right(expr, correct, system)
             where = f" (for {special}, as here)" if special else ""
             return Verdict(True, f"Right for these numbers{where}, but not the general answer.", understood)
@@ -274,7 +278,7 @@ class Judge:
         special = []
         for sym in sorted((a.free_symbols | b.free_symbols) & set(self.givens.values()), key=lambda s: s.name):
             base = self.by_symbol[sym]
-            moved = {sym: base * 1.1 + (0.1 if base == 0 else 0.0)}
+            moved = {sym: base * 1.1 + (0.1 if base == 0 else 0.0) if math.isfinite(base) else 1.0}
             va, vb = (self._value_of(e.subs(moved)) for e in (a, b))
             if va is None or vb is None or abs(va - vb) > 1e-9 * max(abs(va), abs(vb), 1e-12):
                 name = next(n for n, s in self.givens.items() if s is sym)
@@ -288,16 +292,17 @@ class Judge:
     def solver(self):
         return importlib.import_module(f"solvers.{self.solution.problem}")
 
-    def equivalent(self, a: sp.Expr, b: sp.Expr) -> bool:
+    def equivalent(self, a: sp.Expr, b: sp.Expr) -> bool | None:
         """Numeric evaluation at the page's values and random points near them decides when it is
         clear: agreement to 1e-9 everywhere, or a difference beyond 1e-6 somewhere. Only in between
         (differences at rounding level, or too few points where both are defined) does a
         time-limited symbolic simplification of a − b in the worker settle it, so most answers never
-        queue for the worker behind someone's slow expression."""
+        queue for the worker behind someone's slow expression. None: not settled (the worker was busy
+        or ran out of time), which is not the same as "different"."""
         clear = self._numeric_verdict(a, b)
         if clear is not None:
             return clear
-        return shared_worker().is_zero(a - b, timeout=0.8) is True
+        return shared_worker().is_zero(a - b, timeout=0.8)
 
     def _numerically_same(self, a: sp.Expr, b: sp.Expr, rtol: float = 1e-9) -> bool:
         return self._numeric_verdict(a, b, rtol) is True
@@ -322,7 +327,10 @@ class Judge:
             for s in free:
                 base = by_symbol[s]
                 factor = 1.0 if trial == 0 else rng.uniform(0.8, 1.2)
-                point.append(base * factor if base != 0 else rng.uniform(-0.1, 0.1) * (trial > 0))
+                if not math.isfinite(base):  # μ = ∞: any factor keeps ∞, which would hide + 1/μ or exp(−μ)
+                    point.append(base if trial == 0 else rng.uniform(1.0, 10.0))
+                else:
+                    point.append(base * factor if base != 0 else rng.uniform(-0.1, 0.1) * (trial > 0))
             try:
                 va, vb = float(fa(*point)), float(fb(*point))
             except (ValueError, ZeroDivisionError, OverflowError, TypeError):

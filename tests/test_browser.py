@@ -176,11 +176,15 @@ def help_texts(page) -> list[str]:
 def test_the_whole_practice_page_gives_no_answer_away(browser, app_url, problem):
     """Everything the Practice view puts in the browser (the text of the main area and the sidebar,
     the TeX behind every equation, labels, titles, any figure's frame, and the URL) holds no
-    answer's value or closed form, for the textbook's numbers and for a student's variant."""
+    answer's value or closed form, for the textbook's numbers, a student's variant and every option
+    that changes the derivation (e.g. the cart's rear and all-wheel drives)."""
     from practice.variants import variant
-    from tests.test_practice import leaks, setup
+    from urllib.parse import urlencode
 
-    for query, params in (("practice=1", {}), ("seed=7", variant(problem.solver, problem.id, 7))):
+    from tests.test_practice import OPTIONS, leaks, setup
+
+    options = [(f"practice=1&{urlencode(o)}", o) for pid, o in OPTIONS if pid == problem.id and o]
+    for query, params in (("practice=1", {}), ("seed=7", variant(problem.solver, problem.id, 7)), *options):
         context, page, errors = open_page(browser, f"{app_url}/{problem.id}?{query}")
         page.get_by_role("button", name="Show the solution").wait_for(timeout=30_000)
         wait_until_idle(page)

@@ -26,6 +26,7 @@ from solvers import units as unit_table
 from solvers.core import Answer
 from practice.worker import SimplifyWorker
 from ui import units
+from ui.practice import flat_latex
 
 ROOT = Path(__file__).resolve().parent.parent
 IDS = ["disk_wall", "pendulum_rebound", "driven_cart", "eulers_disk", "stick_ball", "rod_disk_spring"]
@@ -377,6 +378,10 @@ def test_the_variant_export_needs_the_instructor_key(monkeypatch):
     assert at.error and not any(b.label == "Prepare the CSV" for b in at.button)
     at.text_input(key="driven_cart__instructor_key").input(KEY).run()
     assert any(b.label == "Prepare the CSV" for b in at.button)
+    for link in ({"practice": "1", "instructor": KEY}, {"seed": "7", "practice": "1", "instructor": KEY}):
+        at = run_page("driven_cart", link)  # an instructor link, with or without a variant
+        assert any(b.label == "Prepare the CSV" for b in at.button), link
+        assert "instructor" not in at.query_params, link  # and the key leaves the address bar
 
 
 def page_text(at) -> str:
@@ -400,8 +405,7 @@ def leaks(text: str, solution, answers, judge, system: str = "si") -> list[str]:
     givens = {units.format_value(units.to_display(v, p.dimension, system), 4)
               for p in importlib.import_module(f"solvers.{solution.problem}").PARAMS
               if not isinstance(v := solution.params[p.name], str)}
-    unbraced = lambda latex: re.sub(r"[{}\\s]", "", latex)  # noqa: E731
-    flat = unbraced(text)
+    flat = flat_latex(text)
     for a in answers:
         value = solution.answers[a.name]
         shown = units.to_display(value, a.dimension, system)
@@ -412,23 +416,65 @@ def leaks(text: str, solution, answers, judge, system: str = "si") -> list[str]:
             if len(digits) >= 2 and number not in givens and re.search(rf"(?<![\d.]){re.escape(number)}(?!\d)", text):
                 found.append(f"{a.name} = {number}")
         closed = judge.derivation.expression_of(a.name)
-        if len(closed.free_symbols) and unbraced(sp.latex(closed)) in flat:
+        if len(closed.free_symbols) and flat_latex(sp.latex(closed)) in flat:
             found.append(f"{a.name} as {sp.latex(closed)}")
-        symbol = unbraced(sp.latex(judge.results[a.name]))
+        symbol = flat_latex(sp.latex(judge.results[a.name]))
         if re.search(rf"{re.escape(symbol)}=", flat):
             found.append(f"{a.name} stated as {symbol} = …")
     return found
 
 
-@pytest.mark.parametrize("pid", IDS)
-def test_the_practice_page_gives_no_answer_away(pid):
-    at = run_page(pid, {"practice": "1"})
-    solver, solution, judge, answers = setup(pid)
+# Every page, and every option that changes the derivation (the cart's rear and all-wheel drives
+# once wrote N_front's closed form into the lift-off step without naming it).
+OPTIONS = [(pid, {}) for pid in IDS] + [
+    ("driven_cart", {"drive": "rear"}), ("driven_cart", {"drive": "all"}),
+    ("pendulum_rebound", {"sphere": "hollow"}), ("pendulum_rebound", {"sphere": "disk", "surface": "wall"}),
+    ("stick_ball", {"mode": "bounce"}), ("rod_disk_spring", {"disk": "pinned"})]
+
+
+def test_the_leak_check_catches_a_result_stated_by_symbol_or_by_closed_form():
+    """Positive controls: the check the page tests rely on finds what it must."""
+    for pid, options in OPTIONS:
+        _, solution, judge, answers = setup(pid, **options)
+        for a in answers.values():
+            closed = judge.derivation.expression_of(a.name)
+            stated = sp.latex(sp.Eq(judge.results[a.name], closed, evaluate=False))
+            assert f"{a.name} stated as" in " ".join(leaks(f"$${stated}$$", solution, [a], judge)), (pid, a.name)
+            if closed.free_symbols:
+                inequality = rf"$$\\left({sp.latex(closed)}\\right) > 0$$"
+                assert f"{a.name} as" in " ".join(leaks(inequality, solution, [a], judge)), (pid, a.name)
+
+
+@pytest.mark.parametrize("pid, options", OPTIONS, ids=lambda x: str(x))
+def test_the_practice_page_gives_no_answer_away(pid, options):
+    at = run_page(pid, {"practice": "1", **options})
+    solver, solution, judge, answers = setup(pid, **options)
     text = page_text(at)
     assert "### The problem" in text and "### The method" in text and not at.exception
     assert leaks(text, solution, answers.values(), judge) == []
     at.button(key=f"{pid}__reveal").click().run()
     assert leaks(page_text(at), solution, answers.values(), judge)  # the check can find them
+
+
+@pytest.mark.parametrize("pid, options, past_limit", [
+    ("driven_cart", {"drive": "rear"}, {"mu": "20"}),
+    ("driven_cart", {"drive": "all"}, {"mu": "6"}),
+    ("rod_disk_spring", {}, {"k": "100"}),
+    ("rod_disk_spring", {"disk": "pinned"}, {"k": "100"}),
+    ("pendulum_rebound", {}, {"theta0": "-60"}),
+], ids=str)
+def test_past_a_physical_limit_practice_shows_the_method_not_the_derivation(pid, options, past_limit):
+    """The refusal keeps the method (titles, and equations that show no result), never the closed
+    forms the Study view's derivation gives beside it."""
+    at = run_page(pid, {"practice": "1", **options, **past_limit})
+    assert at.error and not at.exception
+    text = page_text(at)
+    assert "### The method" in text
+    _, solution, judge, answers = setup(pid, **options)  # the same derivation, inside the limit
+    found = leaks(text, solution, answers.values(), judge)
+    assert not [f for f in found if " as " in f or "stated" in f], found
+    study = page_text(run_page(pid, {**options, **past_limit}))
+    assert [f for f in leaks(study, solution, answers.values(), judge) if " as " in f or "stated" in f]
 
 
 def test_practice_mode_hides_answers_until_revealed():
@@ -493,3 +539,41 @@ def test_clear_answers_never_queue_for_the_simplification_worker(monkeypatch):
     unclear = "2/3*V*sin(theta) + R*omega/3 + sqrt(-(theta - 1)^2)"  # real at no point near these numbers
     judge.check(answers["v1x"], unclear)
     assert asked
+
+
+@pytest.mark.parametrize("worker_says, correct, says", [
+    (None, True, "could not be checked in general in time"),  # busy or out of time: not "wrong"
+    (True, True, "Right: that is the answer"),
+    (False, True, "but not the general answer"),
+])
+def test_an_answer_the_numbers_cannot_settle_gets_the_workers_verdict_or_says_it_has_none(
+        monkeypatch, worker_says, correct, says):
+    """When the numbers are unclear (forced here: rounding-level differences are rare and
+    platform-dependent) the worker decides; a busy worker's silence is reported as such, never as
+    "not the general answer"."""
+    import practice.judge as judge_module
+
+    class Worker:
+        def is_zero(self, expr, timeout=1.0):
+            return worker_says
+
+    monkeypatch.setattr(judge_module, "shared_worker", lambda: Worker())
+    _, _, judge, answers = setup("disk_wall", omega=2.0)
+    real = judge._numeric_verdict
+    monkeypatch.setattr(judge, "_numeric_verdict", lambda a, b, rtol=1e-9, differ=1e-6:
+                        None if rtol == 1e-9 and differ == 1e-6 else real(a, b, rtol, differ))
+    verdict = judge.check(answers["v1x"], "(R*omega + 2*V*sin(theta))/3")
+    assert verdict.correct is correct and says in verdict.message, verdict.message
+
+
+@pytest.mark.parametrize("extra", ["1/mu", "V/mu", "exp(-mu)"])
+def test_with_mu_infinite_a_term_that_vanishes_there_is_not_the_general_answer(extra):
+    """disk_wall's default μ = ∞ (no slip): ∞ times any sampling factor stays ∞, so a term that
+    vanishes at ∞ must be caught at finite μ; the answer is then right only for μ = ∞."""
+    _, solution, judge, answers = setup("disk_wall")
+    assert solution.params["mu"] == float("inf")
+    right = "(R*omega + 2*V*sin(theta))/3"
+    assert "that is the answer" in judge.check(answers["v1x"], right).message
+    verdict = judge.check(answers["v1x"], f"{right} + {extra}")
+    assert verdict.correct and "not the general answer" in verdict.message, verdict.message
+    assert "μ = ∞" in verdict.message, verdict.message

@@ -11,6 +11,7 @@ from practice.variants import variant
 from solvers.core import PhysicalLimitError, Solution
 from ui import results
 from ui.practice import instructor_export, is_instructor, practice_panel, seed_from_url
+from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
 from ui.figure import show as show_figure
 from ui.params import mirror_to_url, parameter_panel
@@ -146,7 +147,8 @@ def problem_page(problem_id: str) -> None:
     problem = BY_ID[problem_id]
     solver = problem.solver
     seed, seed_warning = seed_from_url()
-    system, view = _page_flags(problem, practice_only=seed is not None and not is_instructor())
+    instructor = is_instructor()  # before mirror_to_url drops ?instructor=KEY from the address
+    system, view = _page_flags(problem, practice_only=seed is not None and not instructor)
     lecture, practice = view == "Lecture", view == "Practice"
     if lecture:  # the projector: the figure gets the screen, one click brings the controls back
         st.set_page_config(initial_sidebar_state="collapsed")
@@ -166,7 +168,7 @@ def problem_page(problem_id: str) -> None:
         _heading(heading, notices)
         results.refused(error, system)
         if isinstance(error, PhysicalLimitError):
-            _beside_refusal(problem, params)
+            _beside_refusal(problem, params, practice)
         return
 
     answers = _answers_for(solver, solution)
@@ -188,17 +190,23 @@ def problem_page(problem_id: str) -> None:
         instructor_export(problem)
 
 
-def _beside_refusal(problem: Problem, params: dict) -> None:
+def _beside_refusal(problem: Problem, params: dict, practice: bool = False) -> None:
     """A physical limit is where the lesson is: keep what shows why (the problem's figures for it,
-    and the derivation without numbers), where the problem offers them."""
+    and the derivation without numbers), where the problem offers them. In Practice the derivation
+    would give the answers' closed forms away, so it shows the method as the exercise does: titles,
+    and only the equations that show no result."""
     viz = importlib.import_module(f"viz.{problem.id}")
     figures = getattr(viz, "at_limit", lambda _: [])(params)
     for figure in figures:
         show_figure(figure, page=figures)
     method = getattr(problem.solver, "method", None)
-    if method is not None:
-        results.derivation(Solution(problem.id, params, {}, method(params)),
-                           caption="The method, without numbers: these parameters are past the model's limit.",
+    if method is None:
+        return
+    steps = Solution(problem.id, params, {}, method(params))
+    if practice:
+        st.markdown(practice_method(steps.steps, problem.solver.derivation_of(steps)))
+    else:
+        results.derivation(steps, caption="The method, without numbers: these parameters are past the model's limit.",
                            slips=problem.solver.ERRATA)
 
 

@@ -12,7 +12,7 @@ import streamlit as st
 from practice import instructor
 from practice.judge import TOLERANCE_TEXT, Judge
 from practice.variants import MAX_SEED, variants_csv
-from solvers.core import Choice, Solution
+from solvers.core import Choice, Derivation, Solution
 from ui import units
 from ui.catalog import Problem
 from ui.results import plain
@@ -59,15 +59,36 @@ def statement(problem: Problem, solution: Solution, answers, system: str, judge:
                         "**Find**", find])
 
 
-def method(solution: Solution, judge: Judge) -> str:
-    """The method: every symbolic step's title, and the equation only of the steps that use no
-    result (no unknown, answer or intermediate value), so no step shows what it leads to."""
-    unbraced = lambda latex: re.sub(r"[{}\s]", "", latex)  # noqa: E731 - P_{t} and P_t alike
-    results = [unbraced(sp.latex(sym)) for sym in judge.results.values()]
+def flat_latex(latex: str) -> str:
+    """LaTeX with its braces, spaces and \\left/\\right sizing taken out, so that P_{t} and P_t, or
+    sympy's and a step's spacing of the same formula, compare alike. The page's method filter and
+    the tests' leak check share it, so they cannot disagree about what counts as showing a result."""
+    return re.sub(r"\\(?:left|right)(?![A-Za-z])|[{}\s]", "", latex)
+
+
+def result_forms(derivation: Derivation) -> list[str]:
+    """Every way a step can show a result (flattened): its symbol, and its closed form in the givens
+    (a step may state N_front's expression without naming N_front). A closed form without givens
+    (a bare number) is left to the value check: it would match any step with that number."""
+    forms = []
+    for link in derivation.chain:
+        forms.append(flat_latex(sp.latex(link.symbol)))
+        closed = derivation.expression_of(link.name)
+        if closed.free_symbols:
+            forms.append(flat_latex(sp.latex(closed)))
+    return forms
+
+
+def method(steps, derivation: Derivation) -> str:
+    """The method: every symbolic step's title, and the equation only of the steps that show no
+    result (no unknown, answer or intermediate value, by symbol or by closed form), so no step shows
+    what it leads to."""
+    forms = result_forms(derivation)
     blocks = []
-    for i, step in enumerate(solution.steps[: solution.symbolic_steps], start=1):
+    for i, step in enumerate(steps, start=1):
         blocks.append(f"**{i}.** {plain(step.title)}")
-        if not any(r in unbraced(step.latex) for r in results):
+        flat = flat_latex(step.latex)
+        if not any(form in flat for form in forms):
             blocks.append(f"$$\n{step.latex}\n$$")
     return "\n\n".join(["### The method", ":gray[The steps to take. Equations that lead to a result appear "
                         "with the solution.]", *blocks])
@@ -85,7 +106,7 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str) -
         st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
                 "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
         st.markdown(statement(problem, solution, answers, system, judge))
-        st.markdown(method(solution, judge))
+        st.markdown(method(solution.steps[: solution.symbolic_steps], judge.derivation))
     with st.form(key=f"{problem.id}__practice"):
         answer = st.selectbox("Answer to check", answers, format_func=answer_label,
                               key=f"{problem.id}__attempt_answer")
