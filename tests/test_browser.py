@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from scripts.live_app import CHROMIUM, launch_browser, running_app, wait_until_idle
+from scripts.live_app import CHROMIUM, running_app, wait_until_idle
 from ui.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
@@ -26,25 +26,11 @@ if not Path(CHROMIUM).exists():
 playwright = pytest.importorskip("playwright.sync_api")
 
 
-@pytest.fixture(scope="module")
-def browser():
-    with playwright.sync_playwright() as pw:
-        b = launch_browser(pw)
-        yield b
-        b.close()
-
-
-@pytest.fixture(scope="module")
-def app_url():
-    if os.environ.get("APP_URL"):  # an app served elsewhere: the container, the balancer
-        yield os.environ["APP_URL"].rstrip("/")
-        return
-    with running_app() as url:
-        yield url
-
-
-def open_page(browser, url: str, width: int = 1400):
-    context = browser.new_context(viewport={"width": width, "height": 1000})
+def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: bool = False):
+    """A fresh context at this viewport (a phone: mobile, touch, 2× pixels), the page opened and idle,
+    and the list its script errors go to."""
+    extra = {"is_mobile": True, "has_touch": True, "device_scale_factor": 2} if phone else {}
+    context = browser.new_context(viewport={"width": width, "height": height}, **extra)
     page = context.new_page()
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))

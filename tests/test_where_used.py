@@ -12,7 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from scripts.live_app import CHROMIUM, launch_browser, running_app, wait_until_idle
+from scripts.live_app import CHROMIUM, wait_until_idle
+from tests.test_browser import open_page
 from ui.catalog import PROBLEMS
 from ui.figure import LECTURE
 
@@ -41,33 +42,8 @@ SNAPSHOT = ("(el) => JSON.stringify(el._fullData.map(t => [t.x && Array.from(t.x
             "t.y && Array.from(t.y).slice(0, 4)]))")
 
 
-@pytest.fixture(scope="module")
-def browser():
-    with playwright.sync_playwright() as pw:
-        b = launch_browser(pw)
-        yield b
-        b.close()
-
-
-@pytest.fixture(scope="module")
-def app_url():
-    if os.environ.get("APP_URL"):
-        yield os.environ["APP_URL"].rstrip("/")
-        return
-    with running_app() as url:
-        yield url
-
-
 def open_at(browser, url: str, size: tuple[int, int], phone: bool = False):
-    width, height = size
-    extra = {"is_mobile": True, "has_touch": True, "device_scale_factor": 2} if phone else {}
-    context = browser.new_context(viewport={"width": width, "height": height}, **extra)
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(url)
-    wait_until_idle(page)
-    return context, page, errors
+    return open_page(browser, url, *size, phone=phone)
 
 
 def graph_of(page):
