@@ -164,6 +164,29 @@ def require(condition: bool, message: str) -> None:
         raise ParameterError(message)
 
 
+class OutOfModelRangeError(ParameterError):
+    """Each value is allowed, but together they overflow floating point (a length of 1e300 m
+    squared, a mass ratio of 1e-300): no physics limit, just past what the numbers can carry."""
+
+
+ARITHMETIC_FAILURES = (OverflowError, ZeroDivisionError, FloatingPointError)
+
+
+def within_model_range(compute: Callable[..., Any]) -> Callable[..., Any]:
+    """Wrap a solver's ``solve`` (or anything computed from its parameters) so that floating-point
+    overflow or a division by an underflowed zero becomes a plain refusal, never a traceback."""
+    @functools.wraps(compute)
+    def guarded(*args, **kwargs):
+        try:
+            return compute(*args, **kwargs)
+        except ARITHMETIC_FAILURES as error:
+            raise OutOfModelRangeError(
+                "These values are too large (or too small) for the model: the arithmetic "
+                f"overflows ({type(error).__name__}). Use magnitudes closer to a real "
+                "laboratory set-up, e.g. within a factor of a million of the defaults.") from None
+    return guarded
+
+
 # --------------------------------------------------------------------------------------------
 # The Solution record
 

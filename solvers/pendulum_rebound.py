@@ -17,6 +17,7 @@ from scipy.interpolate import CubicHermiteSpline
 import sympy as sp
 
 from .core import (
+    within_model_range,
     plain_number,
     Answer,
     Check,
@@ -166,6 +167,7 @@ def _validate(params) -> dict:
     return p
 
 
+@within_model_range
 def solve(**params) -> Solution:
     p = _validate(params)
     d_ = derivation(p["sphere"], p["surface"])

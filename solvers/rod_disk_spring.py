@@ -17,6 +17,7 @@ import sympy as sp
 from scipy.optimize import brentq
 
 from .core import (
+    within_model_range,
     plain_number,
     Answer,
     Check,
@@ -177,6 +178,7 @@ def _validate(params) -> dict:
     return p
 
 
+@within_model_range
 def solve(**params) -> Solution:
     p = _validate(params)
     stop = largest_angle(p)
