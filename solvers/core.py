@@ -457,12 +457,15 @@ class Derivation:
                 func(*(kw[n] for n in arg_names)), np.broadcast(*(np.asarray(v) for v in kw.values())).shape)
         return self._vectorized[name]
 
-    def evaluate(self, values: Mapping[str, float], upto: str | None = None) -> dict[str, float]:
+    def evaluate(self, values: Mapping[str, float], upto: str | None = None,
+                 overrides: Mapping[str, float] | None = None) -> dict[str, float]:
         """Run the chain numerically; returns the parameters plus every result (or those up to
-        and including ``upto``, to test a condition before the rest is meaningful)."""
-        out = dict(values)
+        and including ``upto``, to test a condition before the rest is meaningful). A result in
+        ``overrides`` takes that value instead and the later links use it (a slip in one step, for
+        tests that the shown checks catch it)."""
+        out, overrides = dict(values), overrides or {}
         for name, func, arg_names in self._compiled:
-            out[name] = float(func(*(out[a] for a in arg_names)))
+            out[name] = float(overrides[name] if name in overrides else func(*(out[a] for a in arg_names)))
             if name == upto:
                 break
         return out
