@@ -164,6 +164,29 @@ def require(condition: bool, message: str) -> None:
         raise ParameterError(message)
 
 
+class OutOfModelRangeError(ParameterError):
+    """Each value is allowed, but together they overflow floating point (a length of 1e300 m
+    squared, a mass ratio of 1e-300): no physics limit, just past what the numbers can carry."""
+
+
+ARITHMETIC_FAILURES = (OverflowError, ZeroDivisionError, FloatingPointError)
+
+
+def within_model_range(compute: Callable[..., Any]) -> Callable[..., Any]:
+    """Wrap a solver's ``solve`` (or anything computed from its parameters) so that floating-point
+    overflow or a division by an underflowed zero becomes a plain refusal, never a traceback."""
+    @functools.wraps(compute)
+    def guarded(*args, **kwargs):
+        try:
+            return compute(*args, **kwargs)
+        except ARITHMETIC_FAILURES as error:
+            raise OutOfModelRangeError(
+                "These values are too large (or too small) for the model: the arithmetic "
+                f"overflows ({type(error).__name__}). Use magnitudes closer to a real "
+                "laboratory set-up, e.g. within a factor of a million of the defaults.") from None
+    return guarded
+
+
 # --------------------------------------------------------------------------------------------
 # The Solution record
 
@@ -434,12 +457,15 @@ class Derivation:
                 func(*(kw[n] for n in arg_names)), np.broadcast(*(np.asarray(v) for v in kw.values())).shape)
         return self._vectorized[name]
 
-    def evaluate(self, values: Mapping[str, float], upto: str | None = None) -> dict[str, float]:
+    def evaluate(self, values: Mapping[str, float], upto: str | None = None,
+                 overrides: Mapping[str, float] | None = None) -> dict[str, float]:
         """Run the chain numerically; returns the parameters plus every result (or those up to
-        and including ``upto``, to test a condition before the rest is meaningful)."""
-        out = dict(values)
+        and including ``upto``, to test a condition before the rest is meaningful). A result in
+        ``overrides`` takes that value instead and the later links use it (a slip in one step, for
+        tests that the shown checks catch it)."""
+        out, overrides = dict(values), overrides or {}
         for name, func, arg_names in self._compiled:
-            out[name] = float(func(*(out[a] for a in arg_names)))
+            out[name] = float(overrides[name] if name in overrides else func(*(out[a] for a in arg_names)))
             if name == upto:
                 break
         return out

@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from .core import (
+    within_model_range,
     plain_number,
     Answer,
     Check,
@@ -145,6 +146,7 @@ def derivation(regime: str) -> Derivation:
     return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
 
+@within_model_range
 def solve(**params) -> Solution:
     p = validate_params(PARAMS, params)
     values = dict(p, slip_direction=0.0)

@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from .core import (
+    within_model_range,
     plain_number,
     Answer,
     Check,
@@ -134,6 +135,7 @@ class FrontWheelsLiftError(PhysicalLimitError):
     """Rear or all-wheel drive with μa ≥ b: the front wheels leave the ground (a wheelie)."""
 
 
+@within_model_range
 def solve(**params) -> Solution:
     p = validate_params(PARAMS, params)
     if p["drive"] != "front" and not p["mu"] * p["a"] < p["b"]:

@@ -18,6 +18,7 @@ import sympy as sp
 
 from . import eulers_disk_dynamics as dynamics  # the full equations (Kane's method)
 from .core import (
+    within_model_range,
     Answer,
     Check,
     Derivation,
@@ -126,6 +127,7 @@ def derivation() -> Derivation:
     return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
 
+@within_model_range
 def solve(**params) -> Solution:
     p = validate_params(PARAMS, params)
     d_ = derivation()

@@ -18,6 +18,7 @@ import sympy as sp
 from scipy.optimize import brentq
 
 from .core import (
+    within_model_range,
     plain_number,
     Answer,
     Check,
@@ -149,6 +150,7 @@ def derivation(mode: str) -> Derivation:
     return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS_STICK + ANSWERS_BOUNCE})
 
 
+@within_model_range
 def solve(**params) -> Solution:
     if "s" not in params:
         length = params.get("l", 1.0)

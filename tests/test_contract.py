@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
 
 from solvers.core import Choice, Number, PhysicalLimitError
 from tests import strategies
@@ -167,3 +168,41 @@ def test_every_check_passes_over_random_valid_parameters(pid, data):
     for check in solution.checks:
         assert check.ok, (check, params)
     assert all(math.isfinite(v) for v in solution.answers.values())
+
+
+# ----------------------------------------------------------------------------------------------
+# Extreme magnitudes: a result or a plain refusal, never an overflow's traceback
+
+
+def _extreme_values(pid):
+    """Some of the problem's numeric parameters, each put at ±10^k for k in −300 … 300 (a URL
+    like ?V=1e200 is one click away); the others keep their defaults."""
+    numeric = [p.name for p in module(pid).PARAMS if isinstance(p, Number)]
+    magnitude = st.integers(-300, 300).map(lambda k: 10.0 ** k)
+    value = st.tuples(st.sampled_from([1.0, -1.0]), magnitude).map(lambda t: t[0] * t[1])
+    return st.dictionaries(st.sampled_from(numeric), value, min_size=1)
+
+
+@pytest.mark.parametrize("pid", PROBLEMS)
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_extreme_magnitudes_give_a_result_or_a_plain_refusal(pid, data):
+    params = data.draw(_extreme_values(pid))
+    try:
+        solution = module(pid).solve(**params)
+    except ValueError as error:
+        assert str(error) and "Traceback" not in str(error)
+        return
+    assert all(math.isfinite(v) or v == math.inf for v in solution.answers.values()), solution.answers
+
+
+@pytest.mark.parametrize("pid,params", [
+    ("disk_wall", {"V": 1e200}), ("disk_wall", {"omega": 1e200}), ("pendulum_rebound", {"L": 1e300}),
+    ("stick_ball", {"l": 1e300}), ("stick_ball", {"v": 1e300}), ("stick_ball", {"m_ball": 1e300}),
+    ("eulers_disk", dict(m=1e300, r=1e300, theta=1e300, g=1e300)),
+    ("rod_disk_spring", dict(m1=1e300, m2=1e300, k=1e300, L=1e300, R=1e300, g=1e300)),
+])
+def test_the_reviewed_huge_values_are_refused_in_plain_words(pid, params):
+    """The review's examples (each raised OverflowError or ZeroDivisionError)."""
+    with pytest.raises(ValueError, match="too large|out of range|must be"):
+        module(pid).solve(**params)

@@ -131,6 +131,26 @@ def test_bad_url_values_fall_back_to_the_default_with_a_warning(pid, bad):
 
 
 @pytest.mark.parametrize("pid", IDS)
+@pytest.mark.parametrize("magnitude", ["1e300", "1e-300"])
+def test_every_parameter_at_an_extreme_magnitude_gives_answers_or_a_plain_message(pid, magnitude):
+    """?L=1e300 and the like used to end in an OverflowError's traceback."""
+    numeric = [p.name for p in BY_ID[pid].solver.PARAMS if hasattr(p, "dimension")]
+    at = run_page(pid, {name: magnitude for name in numeric})
+    assert_clean(at)
+    assert answers_text(at) or (at.error and "Traceback" not in at.error[0].value)
+
+
+@pytest.mark.parametrize("pid,query", [
+    ("disk_wall", {"V": "1e200"}), ("disk_wall", {"omega": "1e200"}), ("pendulum_rebound", {"L": "1e300"}),
+    ("stick_ball", {"l": "1e300"}), ("stick_ball", {"v": "1e300"}), ("stick_ball", {"m_ball": "1e300"}),
+])
+def test_the_reviewed_huge_url_values_show_a_plain_message(pid, query):
+    at = run_page(pid, query)
+    assert_clean(at)
+    assert at.error and "Traceback" not in at.error[0].value, answers_text(at)
+
+
+@pytest.mark.parametrize("pid", IDS)
 def test_bad_option_in_url_is_named(pid):
     choice = next((p for p in BY_ID[pid].solver.PARAMS if hasattr(p, "options")), None)
     if choice is None:

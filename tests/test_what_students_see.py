@@ -385,21 +385,36 @@ CHECK_CASES = [("disk_wall", {}), ("disk_wall", {"mu": 0.2, "e": 0.5}), ("stick_
 
 
 @pytest.mark.parametrize("pid,params", CHECK_CASES)
-def test_every_check_fails_when_some_answer_is_wrong(pid, params):
-    """A check that cannot fail (a value against itself, or against a max that contains it) is
-    caught: each check must flag at least one answer put 0.1 % wrong."""
+def test_every_check_fails_when_an_earlier_step_is_wrong(pid, params):
+    """A check that cannot fail (a value against its own definition, or against a max that
+    contains it) is caught. One given misread, or one step of the derivation's chain, at a time is
+    put 0.1 % wrong and every later step is recomputed from it, as a slip would propagate (the
+    checks' second methods still get the true givens); each check must flag some such slip other
+    than in the very value it shows. A check of T₂ against
+    U_g + U_s, with T₂ defined as that sum, never does: a wrong U_g carries into T₂."""
     solver = importlib.import_module(f"solvers.{pid}")
     solution = solver.solve(**params)
     p, answers = dict(solution.params), dict(solution.answers)
+    chain = solver.derivation_of(solution)
+    inputs = {**p, **solution.extras.get("chain_inputs", {})}
+    values = chain.evaluate(inputs)
     assert all(c.ok for c in solver._checks(p, answers))
-    caught = set()
-    for name, value in answers.items():
-        wrong = {**answers, name: value * 1.001 + 1e-3 * (value == 0)}
-        caught |= {i for i, c in enumerate(solver._checks(p, wrong)) if not c.ok}
-    missed = [c.name for i, c in enumerate(solution.checks) if i not in caught]
-    assert not missed, f"checks that no wrong answer fails: {missed}"
-    for check in solution.checks:  # and none compares a number with itself
-        assert check.closed_form is not check.second_method
+    caught: dict[int, set[str]] = {i: set() for i in range(len(solution.checks))}
+    def nudged(x):
+        return x * 1.001 + 1e-3 * (x == 0)
+    numeric = [name for name, x in p.items() if isinstance(x, float) and math.isfinite(x)]
+    slips = [(name, chain.evaluate({**inputs, name: nudged(p[name])})) for name in numeric]  # a misread given
+    slips += [(link.name, chain.evaluate(inputs, overrides={link.name: nudged(values[link.name])}))
+              for link in chain.chain]
+    for slipped_name, slipped in slips:
+        wrong = {name: slipped.get(name, value) for name, value in answers.items()}
+        for i, check in enumerate(solver._checks(p, wrong)):
+            if not check.ok:
+                caught[i].add(slipped_name)
+    for i, check in enumerate(solution.checks):
+        shown = {name for name, value in answers.items() if value == check.closed_form}
+        assert caught[i] - shown, f"{check.name!r} is failed by no slip but one in the value it shows"
+        assert check.closed_form is not check.second_method  # and none compares a number with itself
 
 
 def test_the_stick_s_energy_check_is_a_second_computation():
@@ -423,3 +438,21 @@ def test_a_physical_limit_keeps_the_method_and_what_shows_why(pid, query, figure
     method = next(m.value for m in at.markdown if "### Derivation, step by step" in m.value)
     assert "without numbers" in method and "$$" in method
     assert len(at.get("component_instance")) == figures_shown
+
+
+def test_the_pendulum_s_energy_loss_check_rests_on_the_integrated_motion(monkeypatch):
+    """It used to show ½ I (θ̇⁻² − θ̇⁺²) against (1 − e²) ½ I θ̇⁻² with θ̇⁺ = −e θ̇⁻: the same
+    number rearranged. Its second side must now move when the integration does."""
+    solver = importlib.import_module("solvers.pendulum_rebound")
+    solution = solver.solve()
+    p, answers = dict(solution.params), dict(solution.answers)
+    honest = solver.simulate
+
+    def integration_off(*args, **kwargs):  # θ̇ just before impact 0.1 % off
+        t, q, w, impacts, legs = honest(*args, **kwargs)
+        return t, q, w, [(impacts[0][0], impacts[0][1] * 1.001), *impacts[1:]], legs
+
+    monkeypatch.setattr(solver, "simulate", integration_off)
+    energy = next(c for c in solver._checks(p, answers) if c.name.startswith("energy lost"))
+    assert not energy.ok
+    assert energy.closed_form == pytest.approx(answers["energy_loss"])

@@ -8,7 +8,7 @@ import math
 import streamlit as st
 
 from practice.variants import variant
-from solvers.core import PhysicalLimitError, Solution
+from solvers.core import PhysicalLimitError, Solution, within_model_range
 from ui import results
 from ui.practice import instructor_export, is_instructor, practice_panel, seed_from_url
 from ui.practice import method as practice_method
@@ -76,6 +76,7 @@ def _answers_for(solver, solution):
 
 
 @functools.lru_cache(maxsize=256)
+@within_model_range  # the drawing too: scales like b / (m g) overflow where the answers did not
 def _computed(problem_id: str, key: tuple, system: str):
     """Solution and figures for one state, shared by every session of this process: in a lecture
     many students ask for the same numbers. Refusals (ValueError) are not cached."""
