@@ -11,7 +11,7 @@ import pytest
 import sympy as sp
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from practice.parser import parse_expression
+from practice.parser import MAX_EXP_ARGUMENT, parse_expression
 
 V, theta, R, omega, e, m_s, L = sp.symbols("V theta R omega e m_s L")
 SYMBOLS = [V, theta, R, omega, e, m_s, L]
@@ -174,7 +174,12 @@ def test_well_formed_expressions_are_read_exactly(pair):
         except ValueError as error:
             assert "undefined" in str(error) or "zero" in str(error)
         return
-    assert parse_expression(text, SYMBOLS) == expected
+    try:
+        assert parse_expression(text, SYMBOLS) == expected
+    except ValueError as error:  # the parser's bound on exp's argument, e.g. exp(((2)^2)^4) = exp(256)
+        assert "out of range" in str(error), error
+        assert any(arg.is_number and abs(complex(sp.N(arg))) > MAX_EXP_ARGUMENT
+                   for arg in (node.args[0] for node in sp.preorder_traversal(expected) if isinstance(node, sp.exp))), text
 
 
 def test_the_problems_symbols_come_first_and_greek_is_understood():
