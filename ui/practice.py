@@ -123,7 +123,7 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str) -
     if submitted:
         verdict = judge.check(answer, text or "", system)
         if verdict.understood:
-            st.caption("Read as:")
+            st.markdown("Read as:")  # not st.caption: its grey fails AA contrast
             st.latex(verdict.understood)
         (st.success if verdict.correct else st.error)(plain(verdict.message))
     if not revealed and st.button("Show the solution", key=f"{problem.id}__reveal"):
