@@ -121,17 +121,15 @@ def check_slips(pid, params, everywhere: bool = True):
     solver, solution, judge, answers = setup(pid, **params)
     mistakes = [m for m in MISTAKES[pid] if m.answer in answers and m.applies(dict(solution.params))]
     assert mistakes, "every problem lists its common mistakes"
-    def value_of(mistake):
-        return judge._value_of(judge.derivation.in_parameters(mistake.wrong(dict(solution.params))))
-
+    wrongs = {id(m): judge.derivation.in_parameters(m.wrong(dict(solution.params))) for m in mistakes}
+    values = {key: judge._value_of(wrong) for key, wrong in wrongs.items()}
     for mistake in mistakes:
         answer = answers[mistake.answer]
-        wrong = judge.derivation.in_parameters(mistake.wrong(dict(solution.params)))
-        value = judge._value_of(wrong)
+        wrong, value = wrongs[id(mistake)], values[id(mistake)]
         assert value is not None
         if not everywhere and abs(value - solution.answers[mistake.answer]) <= 0.02 * abs(value):
             continue
-        if not everywhere and any(abs(value_of(other) - value) <= 0.02 * abs(value) for other in mistakes
+        if not everywhere and any(abs(values[id(other)] - value) <= 0.02 * abs(value) for other in mistakes
                                   if other is not mistake and other.answer == mistake.answer):
             continue  # two slips that give the same number here: either name is fair
         verdict = judge.check(answer, shown_number(value, answer.dimension))

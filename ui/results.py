@@ -46,8 +46,7 @@ def plain(text: str) -> str:
     return _MARKDOWN_SPECIAL.sub(r"\\\1", text)
 
 
-def derivation(solution: Solution, symbolic_only: bool = False, caption: str = "",
-               slips: tuple[str, ...] = ()) -> None:
+def derivation(solution: Solution, caption: str = "", slips: tuple[str, ...] = ()) -> None:
     """The derivation, all steps (display math in $$ … $$) under a grey caption, then the worked
     solution's common slips, in two Markdown elements: the symbolic steps, whose text a new value
     does not change (so the browser keeps their KaTeX instead of typesetting them again), and the
@@ -55,7 +54,7 @@ def derivation(solution: Solution, symbolic_only: bool = False, caption: str = "
     broken over aligned rows (``broken``)."""
     blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{broken(step.latex)}\n$$"
               for i, step in enumerate(solution.steps, start=1)]
-    symbolic, numeric = blocks[: solution.symbolic_steps], [] if symbolic_only else blocks[solution.symbolic_steps:]
+    symbolic, numeric = blocks[: solution.symbolic_steps], blocks[solution.symbolic_steps:]
     st.markdown("\n\n".join(["### Derivation, step by step"] + [f":gray[{caption}]"] * bool(caption) + symbolic))
     if slips:
         numeric += ["#### Common slips in the worked solution", "\n".join(f"- {note}" for note in slips)]
