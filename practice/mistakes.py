@@ -3,9 +3,6 @@ the feedback a tutor would give. One definition serves typed numbers (evaluated 
 parameters) and typed expressions (compared as expressions)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Callable
-
 import sympy as sp
 
 from solvers import disk_wall as dw
@@ -14,15 +11,7 @@ from solvers import eulers_disk as ed
 from solvers import pendulum_rebound as pr
 from solvers import rod_disk_spring as rd
 from solvers import stick_ball as sb
-
-
-@dataclass(frozen=True)
-class Mistake:
-    answer: str
-    feedback: str
-    wrong: Callable[[dict], sp.Expr]  # options (the solution's params) -> wrong expression
-    applies: Callable[[dict], bool] = lambda p: True
-
+from solvers.protocol import Mistake
 
 S, C = sp.sin, sp.cos
 

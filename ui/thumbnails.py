@@ -5,17 +5,9 @@ import base64
 import functools
 import re
 
-BLUE, ORANGE, GREEN, RED, PINK, GREY = "#0072B2", "#E69F00", "#009E73", "#D55E00", "#CC79A7", "#8a8a8a"
+from viz.common import COLORS, thumbnail as _svg
 
-
-def _svg(body: str, label: str) -> str:
-    return (f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 200 110" width="200" height="110" '
-            f'role="img" aria-label="{label}"><defs>{_head("g", GREEN)}{_head("r", RED)}</defs>{body}</svg>')
-
-
-def _head(name: str, color: str) -> str:
-    return (f'<marker id="{name}" markerWidth="6" markerHeight="6" refX="5" refY="3" orient="auto">'
-            f'<path d="M0,0 L6,3 L0,6" fill="none" stroke="{color}" stroke-width="1.2"/></marker>')
+BLUE, ORANGE, GREEN, RED, PINK, GREY = (COLORS[k] for k in ("body", "accent", "velocity", "impulse", "force", "ink"))
 
 
 THUMBNAILS = {
