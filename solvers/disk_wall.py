@@ -33,6 +33,16 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
+from .protocol import About
+
+ABOUT = About(
+    title="Spinning disk hits a rough wall",
+    group="Impacts",
+    blurb="A spinning disk strikes a wall: does it stick or slide, and where does it go?",
+    icon=":material/sports_hockey:",
+    source="ME 230 final-exam review, problem 1",
+    primary=("V", "omega", "theta", "e", "mu"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m", 1.0, "mass", "mass", "m", low=0, ui_low=0.1, ui_high=10.0, step=0.1),

@@ -33,6 +33,16 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
+from .protocol import About
+
+ABOUT = About(
+    title="Cart with driven wheels",
+    group="Newton–Euler",
+    blurb="Front, rear or all-wheel drive: how hard can it accelerate before the front lifts?",
+    icon=":material/directions_car:",
+    source="O'Reilly 9.3",
+    primary=("mu", "drive", "a", "b"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m", 1200.0, "mass", "mass", "m", low=0, ui_low=100.0, ui_high=5000.0, step=50.0),

@@ -32,6 +32,16 @@ from .core import (
     root_with_sign,
     validate_params,
 )
+from .protocol import About
+
+ABOUT = About(
+    title="Euler's disk",
+    group="Newton–Euler",
+    blurb="A coin-like disk whirls ever faster as it settles: steady precession and its singularity.",
+    icon=":material/album:",
+    source="ME 230 final-exam review; Moffatt, Nature 404 (2000)",
+    primary=("theta", "r"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m", 0.4, "mass", "mass", "m", low=0, ui_low=0.05, ui_high=5.0, step=0.05),

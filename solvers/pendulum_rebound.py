@@ -36,7 +36,18 @@ from .core import (
     require,
     validate_params,
 )
+from .protocol import About
 from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, integrate_leg
+
+ABOUT = About(
+    title="Rod-and-sphere pendulum bounces off the floor",
+    group="Work–energy",
+    blurb="Release, swing, bounce: each bounce keeps a fraction e² of the swing.",
+    icon=":material/height:",
+    source="Hibbeler 19-56",
+    us_units=True,  # the textbook's data are in lb and ft: the page offers US units
+    primary=("theta0", "e"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m_s", 4.536, "sphere mass", "mass", "m_s", low=0, ui_low=0.1, ui_high=20.0, step=0.1),

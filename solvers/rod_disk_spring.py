@@ -33,7 +33,17 @@ from .core import (
     require,
     validate_params,
 )
+from .protocol import About
 from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
+
+ABOUT = About(
+    title="Rod and disk on a torsional spring",
+    group="Work–energy",
+    blurb="Gravity pulls, the spring resists: how fast is it turning at θ₂?",
+    icon=":material/rotate_right:",
+    source="Hibbeler 18-9",
+    primary=("k", "theta2", "disk"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m1", 6.0, "rod mass", "mass", "m_1", low=0, ui_low=0.1, ui_high=30.0, step=0.1),

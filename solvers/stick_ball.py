@@ -34,6 +34,16 @@ from .core import (
     require,
     validate_params,
 )
+from .protocol import About
+
+ABOUT = About(
+    title="Ball slides into a free stick",
+    group="Impacts",
+    blurb="A ball hits a stick on ice and sticks (or bounces): momentum and angular momentum at work.",
+    icon=":material/sports_cricket:",
+    source="ME 230 final-exam review, problem 3",
+    primary=("v", "s", "mode", "e"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m_ball", 1.0, "ball mass", "mass", r"m_b", low=0, ui_low=0.05, ui_high=10.0, step=0.05),

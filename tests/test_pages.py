@@ -253,6 +253,20 @@ def test_home_lists_every_problem_by_group():
     assert len(at.get("page_link")) == len(PROBLEMS)
 
 
+def test_home_shows_every_problem_of_a_group_however_many(monkeypatch):
+    """A group of more than two problems takes more than one row of cards (it once dropped the third)."""
+    import dataclasses
+
+    import ui.home
+    one_group = tuple(dataclasses.replace(p, group="Impacts") for p in PROBLEMS)
+    monkeypatch.setattr(ui.home, "PROBLEMS", one_group)
+    monkeypatch.setattr(ui.home, "GROUPS", ("Impacts",))
+    at = AppTest.from_file(str(ROOT / "app.py"), default_timeout=TIMEOUT).run()
+    assert_clean(at)
+    labels = [link.proto.label for link in at.get("page_link")]
+    assert labels == [f"**{p.title}**" for p in PROBLEMS]
+
+
 def test_answers_use_degrees_for_angles():
     at = run_page("pendulum_rebound")
     answers = answers_text(at)
