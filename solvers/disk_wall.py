@@ -33,7 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
-from .protocol import About
+from .protocol import About, Mistake
 
 ABOUT = About(
     title="Spinning disk hits a rough wall",
@@ -265,3 +265,25 @@ def motion(solution: Solution, frames: int = 40) -> dict:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.regime)
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("v1y", "A sign: the normal component of the velocity reverses at the wall "
+            "(the worked solution's slip).", lambda p: e * V * sp.cos(theta)),
+    Mistake("v1y", "The restitution coefficient is missing from the normal component.",
+            lambda p: -V * sp.cos(theta), lambda p: p["e"] != 1),
+    Mistake("v1x", "That is the velocity of a ring (I = m R²); a uniform disk has I_G = ½ m R².",
+            lambda p: (V * sp.sin(theta) + R * omega) / 2, lambda p: p["mu"] == float("inf")),
+    Mistake("v1x", "The spin term's sign: with ω counter-clockwise, B moves at v_x − Rω.",
+            lambda p: sp.Rational(2, 3) * V * sp.sin(theta) - R * omega / 3,
+            lambda p: p["mu"] == float("inf")),
+    Mistake("v1x", "That is a smooth wall (μ = 0): here friction acts at B.",
+            lambda p: V * sp.sin(theta), lambda p: p["mu"] > 0),
+    Mistake("omega1", "That is the spin of a ring (I = m R²); a uniform disk has I_G = ½ m R².",
+            lambda p: (V * sp.sin(theta) + R * omega) / (2 * R), lambda p: p["mu"] == float("inf")),
+    Mistake("omega1", "The spin term's sign: with ω counter-clockwise, B moves at v_x − Rω.",
+            lambda p: (sp.Rational(2, 3) * V * sp.sin(theta) - R * omega / 3) / R,
+            lambda p: p["mu"] == float("inf")),
+)

@@ -33,7 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
-from .protocol import About
+from .protocol import About, Mistake
 
 ABOUT = About(
     title="Cart with driven wheels",
@@ -224,3 +224,18 @@ def method(params) -> tuple[Step, ...]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["drive"])
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("N_front", "Swapped axles: accelerating moves load to the rear, so the front wheels carry "
+            "less (the worked solution's naming slip).", lambda p: derivation(p["drive"]).expression_of("N_rear"),
+            lambda p: p["mu"] > 0),
+    Mistake("N_rear", "Swapped axles: accelerating moves load to the rear, so the rear wheels carry more.",
+            lambda p: derivation(p["drive"]).expression_of("N_front"), lambda p: p["mu"] > 0),
+    Mistake("accel", "Only the driven wheels push: μg would need all four wheels driving.",
+            lambda p: mu * g, lambda p: p["drive"] != "all"),
+    Mistake("accel", "Without the load transfer (N = mg/4 each) you get μg/2; the moment balance "
+            "shifts load between the axles.", lambda p: mu * g / 2, lambda p: p["drive"] != "all"),
+)

@@ -32,7 +32,7 @@ from .core import (
     root_with_sign,
     validate_params,
 )
-from .protocol import About
+from .protocol import About, Mistake
 
 ABOUT = About(
     title="Euler's disk",
@@ -242,3 +242,15 @@ def versus_tilt(params: dict, tilts: np.ndarray) -> dict[str, np.ndarray]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation()
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("omega_p", "ω lies along a diameter, so the inertia is ¼ m r², not the axial ½ m r².",
+            lambda p: sp.sqrt(2 * g / (r * sp.sin(theta)))),
+    Mistake("omega_s", "The spin is not the precession rate: rolling with G at rest ties them "
+            "through the tilt θ.", lambda p: w_p),
+    Mistake("energy", "The kinetic energy is missing: the disk also turns, with kinetic energy ½ ω·H_G.",
+            lambda p: m * g * r * sp.sin(theta)),
+)

@@ -33,7 +33,7 @@ from .core import (
     require,
     validate_params,
 )
-from .protocol import About
+from .protocol import About, Mistake
 from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
 
 ABOUT = About(
@@ -340,3 +340,23 @@ def method(params) -> tuple[Step, ...]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["disk"])
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("I_O", "I_G where I_O belongs: about the pivot each body adds its mass times the square of "
+            "its centre's distance from O.",
+            lambda p: m1 * L**2 / 12 + m2 * R**2 / 2),
+    Mistake("I_O", "The welded disk also turns about its own centre: its spin inertia belongs in I_O.",
+            lambda p: m1 * L**2 / 3 + m2 * (L + R) ** 2, lambda p: p["disk"] == "welded"),
+    Mistake("U_spring", "A sign: the spring resists the fall, so its work is negative.",
+            lambda p: k * (theta2**2 - theta1**2) / 2),
+    Mistake("omega2", "A pinned disk does not turn with the rod; this one is welded, so its own spin "
+            "inertia belongs in I_O.", lambda p: sp.sqrt(2 * T2 / (m1 * L**2 / 3 + m2 * (L + R) ** 2)),
+            lambda p: p["disk"] == "welded"),
+    Mistake("omega2", "I_G where I_O belongs: about the pivot each body adds its mass times the square of "
+            "its centre's distance from O.", lambda p: sp.sqrt(2 * T2 / (m1 * L**2 / 12 + m2 * R**2 / 2))),
+    Mistake("omega2", "A sign: the spring resists the fall, so its work is negative.",
+            lambda p: sp.sqrt(2 * (U_g - U_s) / I_O)),
+)

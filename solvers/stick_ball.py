@@ -34,7 +34,7 @@ from .core import (
     require,
     validate_params,
 )
-from .protocol import About
+from .protocol import About, Mistake
 
 ABOUT = About(
     title="Ball slides into a free stick",
@@ -310,3 +310,21 @@ def _second_contact(p, a, rho: float, t_end: float) -> float | None:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["mode"])
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("v_cm", "After the impact the momentum is shared by the ball and the stick.",
+            lambda p: v, lambda p: p["mode"] == "stick"),
+    Mistake("I_cm", "Missing parallel-axis terms: about the combined CM the stick and the ball each add "
+            "their mass times the square of their distance from it.", lambda p: m_s * l**2 / 12, lambda p: p["mode"] == "stick"),
+    Mistake("omega", "Angular momentum about one point but inertia about another: take both about "
+            "the combined CM (arm s − d_cm).",
+            lambda p: m_b * v * s / derivation("stick").expression_of("I_cm"),
+            lambda p: p["mode"] == "stick"),
+    Mistake("omega", "Missing parallel-axis terms: the stick's own ¹⁄₁₂ m l² is not its inertia "
+            "about the combined CM.",
+            lambda p: derivation("stick").in_parameters(m_b * v * (s - d_cm) / (m_s * l**2 / 12)),
+            lambda p: p["mode"] == "stick"),
+)

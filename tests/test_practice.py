@@ -20,7 +20,7 @@ from streamlit.testing.v1 import AppTest
 from hypothesis import given, settings, strategies as hst
 
 from practice.judge import Judge, _number_in_si
-from practice.mistakes import MISTAKES
+from solvers import registry
 from practice.variants import MAX_SEED, variant, variants_csv
 from solvers import units as unit_table
 from solvers.core import Answer
@@ -119,7 +119,7 @@ def check_slips(pid, params, everywhere: bool = True):
     (with ``everywhere``; else only slips whose value lies beyond the tolerance, which a random
     variant may not keep apart)."""
     solver, solution, judge, answers = setup(pid, **params)
-    mistakes = [m for m in MISTAKES[pid] if m.answer in answers and m.applies(dict(solution.params))]
+    mistakes = [m for m in registry.solver(pid).MISTAKES if m.answer in answers and m.applies(dict(solution.params))]
     assert mistakes, "every problem lists its common mistakes"
     wrongs = {id(m): judge.derivation.in_parameters(m.wrong(dict(solution.params))) for m in mistakes}
     values = {key: judge._value_of(wrong) for key, wrong in wrongs.items()}
@@ -161,7 +161,7 @@ def test_slip_hints_never_state_the_right_value(pid):
     page shows) or the answer's closed form as sympy writes it."""
     for params in ({}, MISTAKE_PARAMS.get(pid, {})):
         solver, solution, judge, answers = setup(pid, **params)
-        for mistake in MISTAKES[pid]:
+        for mistake in registry.solver(pid).MISTAKES:
             if mistake.answer not in answers:
                 continue
             value = solution.answers[mistake.answer]
