@@ -33,7 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
-from .protocol import About, Mistake
+from .protocol import About, Mistake, Variants
 
 ABOUT = About(
     title="Spinning disk hits a rough wall",
@@ -265,6 +265,10 @@ def motion(solution: Solution, frames: int = 40) -> dict:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.regime)
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(angles_deg={"theta": (10, 70)})
 
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each

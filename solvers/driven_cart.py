@@ -33,7 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
-from .protocol import About, Mistake
+from .protocol import About, Mistake, Variants
 
 ABOUT = About(
     title="Cart with driven wheels",
@@ -224,6 +224,10 @@ def method(params) -> tuple[Step, ...]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["drive"])
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(fixed=("g", "c"))  # the track c drops out of the answers
 
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each

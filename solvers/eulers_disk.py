@@ -32,7 +32,7 @@ from .core import (
     root_with_sign,
     validate_params,
 )
-from .protocol import About, Mistake
+from .protocol import About, Mistake, Variants
 
 ABOUT = About(
     title="Euler's disk",
@@ -242,6 +242,10 @@ def versus_tilt(params: dict, tilts: np.ndarray) -> dict[str, np.ndarray]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation()
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(angles_deg={"theta": (5, 40)})
 
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each

@@ -36,7 +36,7 @@ from .core import (
     require,
     validate_params,
 )
-from .protocol import About, Mistake
+from .protocol import About, Mistake, Variants
 from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, integrate_leg
 
 ABOUT = About(
@@ -358,6 +358,10 @@ def method(params) -> tuple[Step, ...]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["sphere"], solution.params["surface"])
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(angles_deg={"theta0": (-20, 60)})
 
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each

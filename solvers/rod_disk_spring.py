@@ -33,7 +33,7 @@ from .core import (
     require,
     validate_params,
 )
-from .protocol import About, Mistake
+from .protocol import About, Mistake, Variants
 from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
 
 ABOUT = About(
@@ -340,6 +340,10 @@ def method(params) -> tuple[Step, ...]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["disk"])
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(angles_deg={"theta1": None, "theta2": (30, 150)})  # θ₁ stays the textbook's
 
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each

@@ -34,7 +34,7 @@ from .core import (
     require,
     validate_params,
 )
-from .protocol import About, Mistake
+from .protocol import About, Mistake, Variants
 
 ABOUT = About(
     title="Ball slides into a free stick",
@@ -310,6 +310,11 @@ def _second_contact(p, a, rho: float, t_end: float) -> float | None:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["mode"])
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+# s is stated (a page fills a missing s with the textbook's 0.5 m): the end of this variant's stick
+VARIANTS = Variants(derived={"s": lambda p: p["l"] / 2})
 
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each
