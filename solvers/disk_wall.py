@@ -74,6 +74,8 @@ ERRATA = (
     r"the normal component **reverses**: $v_{1y} = -eV\cos\theta$, pointing away from the wall.",
 )
 
+LIMIT_LABELS: dict[str, tuple[str, str]] = {}  # no physical limit to show
+
 m, R, V, theta, omega, e, mu = sp.symbols(r"m R V theta omega e mu", positive=True)
 omega = sp.Symbol(r"omega", real=True)
 sigma = sp.Symbol(r"sigma", real=True)  # direction of slip of B before impact, ±1

@@ -145,6 +145,10 @@ class FrontWheelsLiftError(PhysicalLimitError):
     """Rear or all-wheel drive with μa ≥ b: the front wheels leave the ground (a wheelie)."""
 
 
+# What a PhysicalLimitError's attribute is, for the page that shows it: (label, dimension).
+LIMIT_LABELS = {"mu_lift": ("μ at which the front wheels lift (μ = b/a)", "dimensionless")}
+
+
 @within_model_range
 def solve(**params) -> Solution:
     p = validate_params(PARAMS, params)

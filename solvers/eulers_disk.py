@@ -68,6 +68,8 @@ ERRATA = (
     r"$\tfrac32 mgr\sin\theta$ runs out: Moffatt's finite-time singularity.",
 )
 
+LIMIT_LABELS: dict[str, tuple[str, str]] = {}  # no physical limit to show
+
 m, r, theta, g = sp.symbols(r"m r theta g", positive=True)
 w_p, w_s, w_tot, E, v_A, tau = sp.symbols(r"omega_p omega_s |\boldsymbol{\omega}| E v_A tau", real=True)
 psidot, N_ = sp.symbols(r"\dot{\psi} N", real=True)

@@ -89,6 +89,9 @@ ERRATA = (
     r"Whatever the masses, $\sin\theta_f - \sin\theta_I = e^2(\sin\theta_0 - \sin\theta_I)$.",
 )
 
+# What a PhysicalLimitError's attribute is, for the page that shows it: (label, dimension).
+LIMIT_LABELS = {"theta_impact": ("angle at which the sphere touches", "angle")}
+
 SPHERE_INERTIA = {"solid": sp.Rational(2, 5), "hollow": sp.Rational(2, 3), "disk": sp.Rational(1, 2)}
 
 m_s, m_r, L, r, d, e, g = sp.symbols("m_s m_r L r d e g", positive=True)

@@ -101,6 +101,10 @@ class SpringStopsRodError(PhysicalLimitError):
     """The spring stops the assembly before θ2; ``theta_max`` is the largest angle reached."""
 
 
+# What a PhysicalLimitError's attribute is, for the page that shows it: (label, dimension).
+LIMIT_LABELS = {"theta_max": ("largest angle the rod reaches", "angle")}
+
+
 @functools.cache
 def derivation(disk: str) -> Derivation:
     up = lambda q, arm: arm * sp.Matrix([sp.sin(q), sp.cos(q)])  # noqa: E731  position from O

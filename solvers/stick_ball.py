@@ -89,6 +89,8 @@ ERRATA = (
     r"parallel-axis terms $m_s d_{cm}^2$ and $m_b (s - d_{cm})^2$).",
 )
 
+LIMIT_LABELS: dict[str, tuple[str, str]] = {}  # no physical limit to show
+
 m_b, m_s, l, v, s, e = sp.symbols("m_b m_s l v s e", positive=True)
 d_cm, v_cm, w, I_cm, T_i, T_f, loss, x_rev = sp.symbols(
     r"d_{cm} v_{cm} omega I_{cm} T_i T_f \Delta{T} x_{rev}", real=True)
