@@ -272,6 +272,10 @@ def derivation_of(solution: Solution) -> Derivation:
 # How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
 VARIANTS = Variants(angles_deg={"theta": (10, 70)})
 
+# Solved at server start besides every option combination: the sliding regime's derivation, which
+# no option reaches (the default μ = ∞ never slides).
+WARM = ({"mu": 0.01, "omega": -40.0},)
+
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each
 # with the feedback a tutor would give (the hint never states the right value).

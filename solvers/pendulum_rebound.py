@@ -366,6 +366,8 @@ def derivation_of(solution: Solution) -> Derivation:
 # How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
 VARIANTS = Variants(angles_deg={"theta0": (-20, 60)})
 
+WARM: tuple[dict, ...] = ()  # every option combination is warmed already
+
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each
 # with the feedback a tutor would give (the hint never states the right value).

@@ -349,6 +349,8 @@ def derivation_of(solution: Solution) -> Derivation:
 # How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
 VARIANTS = Variants(angles_deg={"theta1": None, "theta2": (30, 150)})  # θ₁ stays the textbook's
 
+WARM: tuple[dict, ...] = ()  # every option combination is warmed already
+
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each
 # with the feedback a tutor would give (the hint never states the right value).

@@ -318,6 +318,8 @@ def derivation_of(solution: Solution) -> Derivation:
 # s is stated (a page fills a missing s with the textbook's 0.5 m): the end of this variant's stick
 VARIANTS = Variants(derived={"s": lambda p: p["l"] / 2})
 
+WARM: tuple[dict, ...] = ()  # every option combination is warmed already
+
 
 # The typical slips practice mode names: wrong expressions in this module's symbols, each
 # with the feedback a tutor would give (the hint never states the right value).
