@@ -3,10 +3,28 @@ step by step in the normal impulse, with Coulomb friction deciding stick or slip
 import math
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import given, settings, strategies as st
 
 from solvers import disk_wall
-from tests import strategies
+from tests.strategies import pos
+
+# The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
+# checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
+# and values the solver must refuse in plain words.
+CONTRACT = {
+    "defaults": dict(m=1.0, R=0.1, V=2.0, theta=math.radians(30), omega=5.0, e=1.0, mu=math.inf),
+    "answers": {"energy_loss", "impulse_n", "impulse_t", "omega1", "speed1", "v1x", "v1y"},
+    "out_of_range": (("m", -1.0), ("theta", math.pi / 2), ("e", 1.5), ("mu", -0.1), ("V", 0.0), ("R", 0.0)),
+    "too_large": ({"V": 1e200}, {"omega": 1e200}),
+}
+
+
+# random valid parameters (SI, radians) for property tests
+VALID = st.fixed_dictionaries({
+    "m": pos(0.01, 100), "R": pos(0.005, 5), "V": pos(0.01, 50),
+    "theta": pos(0, math.radians(89.5)), "omega": pos(-200, 200), "e": pos(0, 1),
+    "mu": st.one_of(st.just(math.inf), pos(0, 5)),
+})
 
 
 def routh(m, R, V, theta, omega, e, mu, steps=20000):
@@ -40,7 +58,7 @@ def test_seed_closed_form_no_slip():
 
 
 @settings(max_examples=60, deadline=None)
-@given(strategies.disk_wall)
+@given(VALID)
 def test_agrees_with_routh_integration(p):
     mu = p["mu"] if math.isfinite(p["mu"]) else 1e9
     vx, vy, w, Pt, Pn = routh(**{**p, "mu": mu}, steps=4000)
@@ -53,7 +71,7 @@ def test_agrees_with_routh_integration(p):
 
 
 @settings(max_examples=100, deadline=None)
-@given(strategies.disk_wall)
+@given(VALID)
 def test_momentum_bookkeeping_and_energy_never_increases(p):
     a = disk_wall.solve(**p).answers
     m, R = p["m"], p["R"]

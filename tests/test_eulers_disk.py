@@ -4,11 +4,28 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import given, settings, strategies as st
 from scipy.spatial.transform import Rotation
 
 from solvers import eulers_disk
-from tests import strategies
+from tests.strategies import pos
+
+# The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
+# checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
+# and values the solver must refuse in plain words.
+CONTRACT = {
+    "defaults": dict(m=0.4, r=0.0375, theta=math.radians(10), g=9.81),
+    "answers": {"contact_speed", "energy", "omega_p", "omega_s", "omega_total", "period"},
+    "out_of_range": (("theta", 0.0), ("theta", math.pi / 2), ("r", -0.1)),
+    "too_large": (dict(m=1e300, r=1e300, theta=1e300, g=1e300),),
+}
+
+
+# random valid parameters (SI, radians) for property tests
+VALID = st.fixed_dictionaries({
+    "m": pos(0.01, 10), "r": pos(0.005, 1), "theta": pos(math.radians(0.5), math.radians(89.5)),
+    "g": pos(1, 25),
+})
 
 
 def orientation(t, theta, precession, spin):
@@ -46,7 +63,7 @@ def test_seed_formula_and_teaching_identities():
 
 
 @settings(max_examples=40, deadline=None)
-@given(strategies.eulers_disk)
+@given(VALID)
 def test_rolling_and_balance_of_angular_momentum_in_a_fixed_frame(p):
     a = eulers_disk.solve(**p).answers
     m, r, th, g = p["m"], p["r"], p["theta"], p["g"]
@@ -104,3 +121,12 @@ def test_dissipation_drains_energy_and_the_contact_whirls_faster():
     assert run["precession"][-1] > run["precession"][0]
     undamped = dynamics.decay(params, damping=0.0, t_max=1.0)
     assert undamped["energy"][-1] == pytest.approx(undamped["energy"][0], rel=1e-6)  # conserved without it
+
+
+def test_the_animation_reports_its_slow_motion():
+    from viz import eulers_disk as viz
+    solution = eulers_disk.solve()
+    fig = viz.figures(solution)[0]
+    period = solution.answers["period"]
+    assert fig.extra["slow_motion"] == pytest.approx(4.0 / period)
+    assert f"{4.0 / period:.0f}×" in fig.title

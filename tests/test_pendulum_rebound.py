@@ -3,11 +3,38 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import given, settings, strategies as st
 from scipy.integrate import solve_ivp
 
 from solvers import pendulum_rebound
-from tests import strategies
+from tests.strategies import pos
+
+# The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
+# checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
+# and values the solver must refuse in plain words.
+CONTRACT = {
+    "defaults": dict(m_s=4.536, m_r=1.814, L=0.6096, r=0.09144, d=0.5, e=0.6, theta0=0.0, g=9.81, sphere="solid", surface="floor"),
+    "answers": {"I_O", "energy_loss", "omega_after", "omega_impact", "theta_impact", "theta_rebound"},
+    "out_of_range": (("d", 0.05), ("d", 2.0), ("e", -0.1), ("theta0", math.pi / 2), ("theta0", -0.7)),
+    "too_large": ({"L": 1e300},),
+}
+
+
+@st.composite
+def valid_params(draw):
+    L = draw(pos(0.05, 3))
+    r = draw(pos(0.01, 1))
+    surface = draw(st.sampled_from(["floor", "wall"]))
+    d = draw(pos(r * 1.01, (L + 2 * r) * 0.99))
+    sin_I = (r - d) / (L + r) if surface == "floor" else -1.0
+    theta_I = math.asin(sin_I)
+    theta0 = draw(pos(theta_I + 0.02, math.radians(89)))
+    return {"m_s": draw(pos(0.05, 50)), "m_r": draw(pos(0.05, 50)), "L": L, "r": r, "d": d,
+            "e": draw(pos(0, 1)), "theta0": theta0, "g": draw(pos(1, 25)),
+            "sphere": draw(st.sampled_from(["solid", "hollow", "disk"])), "surface": surface}
+
+
+VALID = valid_params()  # random valid parameters (SI, radians) for property tests
 
 SPHERE_K = {"solid": 2 / 5, "hollow": 2 / 3, "disk": 1 / 2}
 
@@ -43,7 +70,7 @@ def test_the_seeds_disk_inertia_is_an_option():
 
 
 @settings(max_examples=50, deadline=None)
-@given(strategies.pendulum_rebound())
+@given(VALID)
 def test_impact_speed_agrees_with_integration_and_rebound_obeys_e_squared(p):
     a = pendulum_rebound.solve(**p).answers
     assert a["omega_impact"] == pytest.approx(fall(p, a["theta_impact"]), rel=1e-6)
@@ -95,3 +122,11 @@ def test_a_rebound_too_small_to_multiply_still_turns_back(d):
                                sphere="solid", surface="floor")
     assert all(c.ok for c in s.checks), s.checks
     assert s.answers["theta_rebound"] == pytest.approx(s.answers["theta_impact"], abs=1e-9)
+
+
+def test_the_drawn_motion_bounces_with_decaying_peaks():
+    s = pendulum_rebound.solve()
+    m = pendulum_rebound.motion(s)
+    assert len(m["impact_times"]) == 4
+    assert min(m["theta"]) >= s.answers["theta_impact"] - 1e-6  # never through the floor
+    assert math.isclose(m["theta"][0], s.params["theta0"])

@@ -66,7 +66,7 @@ def distance_to_segment(px, py, ax, ay, bx, by) -> float:
 
 
 @EXAMPLES
-@given(strategies.stick_ball())
+@given(strategies.valid("stick_ball"))
 def test_the_stick_never_passes_through_the_ball(p):
     _, (figure,) = figures("stick_ball", **p)
     for (bx, by), (sx, sy) in zip(drawn(figure, "ball"), drawn(figure, "stick")):
@@ -86,7 +86,7 @@ def test_the_trial_s_bounce_stops_at_the_second_contact_and_says_so():
 
 
 @EXAMPLES
-@given(strategies.pendulum_rebound())
+@given(strategies.valid("pendulum_rebound"))
 def test_the_sphere_never_enters_the_floor_or_the_wall(p):
     _, (figure,) = figures("pendulum_rebound", **p)
     surface_x, surface_y = static(figure, p["surface"])
@@ -108,7 +108,7 @@ def test_the_theta_curve_reaches_the_impact_line_at_each_bounce():
 
 
 @EXAMPLES
-@given(strategies.disk_wall)
+@given(strategies.valid("disk_wall"))
 def test_the_disk_never_enters_the_wall(p):
     _, (figure,) = figures("disk_wall", **p)
     _, wall_y = static(figure, "wall")
@@ -118,9 +118,9 @@ def test_the_disk_never_enters_the_wall(p):
 
 
 @EXAMPLES
-@given(strategies.rod_disk_spring())
+@given(strategies.valid("rod_disk_spring"))
 def test_the_disk_never_covers_the_spring(p):
-    assume(strategies.reaches(p) and p["k"] > 0)
+    assume(p["k"] > 0)  # valid("rod_disk_spring") reaches θ2 already
     _, (figure,) = figures("rod_disk_spring", **p)
     for (xs, ys), (sx, sy) in zip(drawn(figure, "disk"), drawn(figure, "torsional spring")):
         cx, cy, radius = circle(xs, ys)
@@ -128,7 +128,7 @@ def test_the_disk_never_covers_the_spring(p):
 
 
 @EXAMPLES
-@given(strategies.driven_cart())
+@given(strategies.valid("driven_cart"))
 def test_the_cart_stands_on_the_ground(p):
     _, figs = figures("driven_cart", **p)
     for xs, ys in drawn(figs[0], "wheels"):
@@ -140,7 +140,7 @@ def test_the_cart_stands_on_the_ground(p):
 
 
 @EXAMPLES
-@given(strategies.eulers_disk)
+@given(strategies.valid("eulers_disk"))
 def test_euler_s_disk_stays_on_the_table(p):
     _, figs = figures("eulers_disk", **p)
     rim = figs[0].spec["animation"]["coords"][0]["z"]
@@ -186,7 +186,7 @@ def test_a_cart_near_a_wheelie_keeps_a_readable_scale():
 
 
 @EXAMPLES
-@given(strategies.stick_ball())
+@given(strategies.valid("stick_ball"))
 def test_the_bounce_caption_agrees_with_the_ball_s_direction(p):
     p = {**p, "mode": "bounce"}
     solution, (figure,) = figures("stick_ball", **p)
@@ -229,7 +229,7 @@ def test_the_pendulum_caption_at_e_0_lists_no_rebounds_and_points_below():
 
 
 @EXAMPLES
-@given(strategies.pendulum_rebound())
+@given(strategies.valid("pendulum_rebound"))
 def test_the_pendulum_caption_never_repeats_a_rebound_angle(p):
     assume(0 < p["e"] < 1)
     _, (figure,) = figures("pendulum_rebound", **p)
