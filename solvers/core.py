@@ -17,6 +17,11 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
+# Re-exported: problems and pages import these from solvers.core.
+from .formatting import latex_number, plain_fixed, plain_number  # noqa: F401
+from . import units
+from .units import latex_quantity  # noqa: F401
+
 # --------------------------------------------------------------------------------------------
 # Errors
 
@@ -48,13 +53,15 @@ class Number:
     """A real-valued parameter, SI units, radians for angles.
 
     ``low``/``high`` bound the physically valid range (``None`` = unbounded) and the flags say
-    whether each bound is allowed. ``ui_low``/``ui_high``/``step`` only suggest a control's range.
+    whether each bound is allowed; they are in SI units and radians, as the value. ``ui_low``/
+    ``ui_high``/``step`` only suggest a control's range, in ``ui_unit``: the dimension's display
+    unit in SI (degrees for angles, the SI unit otherwise).
     """
 
     name: str
     default: float
     label: str
-    dimension: str  # key into ui.units: mass, length, angle, speed, ...
+    dimension: str  # key into solvers.units.DIMENSIONS: mass, length, angle, speed, ...
     symbol: str  # LaTeX
     low: float | None = None
     high: float | None = None
@@ -65,6 +72,11 @@ class Number:
     ui_high: float | None = None
     step: float | None = None
     help: str = ""
+
+    @property
+    def ui_unit(self) -> str:
+        """The unit ``ui_low``, ``ui_high`` and ``step`` are in ("°" for angles)."""
+        return units.unit(self.dimension, "si")
 
     def range_text(self) -> str:
         """The allowed range in words, in the API's units (angles also in degrees)."""
@@ -259,87 +271,6 @@ class Solution:
 def relative_tolerance(value: float, rel: float = 1e-9, floor: float = 1e-12) -> float:
     """An absolute tolerance scaled to ``value``, never zero."""
     return max(abs(value) * rel, floor)
-
-
-# --------------------------------------------------------------------------------------------
-# Number formatting for the substituted steps
-
-UNIT_LATEX = {
-    "mass": r"\mathrm{kg}",
-    "length": r"\mathrm{m}",
-    "angle": r"\mathrm{rad}",
-    "speed": r"\mathrm{m/s}",
-    "angular_speed": r"\mathrm{rad/s}",
-    "acceleration": r"\mathrm{m/s^2}",
-    "force": r"\mathrm{N}",
-    "impulse": r"\mathrm{N\,s}",
-    "angular_momentum": r"\mathrm{kg\,m^2/s}",
-    "energy": r"\mathrm{J}",
-    "inertia": r"\mathrm{kg\,m^2}",
-    "stiffness": r"\mathrm{N\,m/rad}",
-    "torque": r"\mathrm{N\,m}",
-    "time": r"\mathrm{s}",
-    "dimensionless": "",
-}
-
-
-_SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
-GROUPED_BELOW = 1e6  # up to here a number is written out in full, in groups of three digits
-
-
-def plain_number(x: float, sig: int = 4) -> str:
-    """Plain-text number with ``sig`` significant figures and a true minus sign: digits grouped by
-    thin spaces from ten thousand (30 490), a typeset power of ten from a million (3.049 × 10⁷) and
-    below 10⁻⁴, and a value that rounds to zero written 0, never −0."""
-    if math.isinf(x):
-        return "∞" if x > 0 else "−∞"
-    rounded = float(f"{x:.{sig}g}")
-    if rounded == 0:
-        return "0"
-    size = abs(rounded)
-    if size >= GROUPED_BELOW or size < 1e-4:
-        mantissa, exponent = f"{rounded:.{sig - 1}e}".split("e")
-        mantissa = mantissa.rstrip("0").rstrip(".") if "." in mantissa else mantissa
-        text = f"{mantissa} × 10{str(int(exponent)).translate(_SUPERSCRIPT)}"
-    elif size >= 1e4:
-        text = f"{rounded:,.{max(0, sig - len(str(int(size))))}f}"
-        text = (text.rstrip("0").rstrip(".") if "." in text else text).replace(",", "\u2009")
-    else:
-        text = f"{rounded:.{sig}g}"
-    return text.replace("-", "−")
-
-
-def plain_fixed(x: float, decimals: int = 1) -> str:
-    """``x`` with a fixed number of decimals and a true minus sign; −0.0 is written 0.0."""
-    text = f"{x:.{decimals}f}"
-    return text.lstrip("-") if float(text) == 0 else text.replace("-", "−")
-
-
-def latex_number(x: float, sig: int = 4, keep_zeros: bool = True) -> str:
-    """A number as compact LaTeX with ``sig`` significant figures (scientific when far from 1).
-
-    ``keep_zeros`` shows trailing zeros (a computed 41.00); without it a given 0.5 stays 0.5.
-    """
-    if math.isinf(x):
-        return r"\infty" if x > 0 else r"-\infty"
-    if x == 0:
-        return "0"
-    mantissa_text, exponent_text = f"{x:.{sig - 1}e}".split("e")
-    exponent = int(exponent_text)
-    if -3 <= exponent < 5:
-        text = f"{x:#.{sig}g}" if keep_zeros else f"{x:.{sig}g}"
-        if "e" not in text:
-            return text.rstrip(".")
-    text = mantissa_text if keep_zeros else mantissa_text.rstrip("0").rstrip(".")
-    return rf"{text} \times 10^{{{exponent}}}"
-
-
-def latex_quantity(x: float, dimension: str, sig: int = 4) -> str:
-    unit = UNIT_LATEX.get(dimension, "")
-    text = latex_number(x, sig) + (rf"\;{unit}" if unit else "")
-    if dimension == "angle" and math.isfinite(x):
-        text += rf"\;\left({latex_number(math.degrees(x), sig)}^{{\circ}}\right)"
-    return text
 
 
 # --------------------------------------------------------------------------------------------

@@ -22,10 +22,9 @@ from hypothesis import given, settings, strategies as hst
 from practice.judge import Judge, _number_in_si
 from solvers import registry
 from practice.variants import MAX_SEED, variant, variants_csv
-from solvers import units as unit_table
+from solvers import units
 from solvers.core import Answer
 from practice.worker import SimplifyWorker
-from ui import units
 from ui.practice import flat_latex
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -265,7 +264,7 @@ def test_every_accepted_unit_spelling_round_trips(value, glued, power, dot):
     """Every value written with every spelling the judge accepts (glued to the number or not, with
     any power sign, factors joined by any product sign) reads back as value × that unit's size; the
     same letters in another case are refused or a unit of another size (MJ ≠ mJ)."""
-    for dimension, table in unit_table.SPELLINGS.items():
+    for dimension, table in units.SPELLINGS.items():
         answer = Answer("x", "x", "x", dimension)
         for spelling, factor in table.items():
             written = spelling.replace("^2", power)
@@ -276,7 +275,7 @@ def test_every_accepted_unit_spelling_round_trips(value, glued, power, dot):
             assert read is not None and read[0] == pytest.approx(value * factor, rel=1e-12), (written, read)
             swapped = spelling.swapcase()
             if swapped != spelling:
-                other = unit_table.si_per_unit(swapped, dimension)
+                other = units.si_per_unit(swapped, dimension)
                 assert other is None or other != factor, (spelling, swapped)
 
 
@@ -286,7 +285,7 @@ def test_every_unit_the_pages_show_is_accepted_with_its_own_size():
     for system, table in units.SYSTEMS.items():
         for dimension, (label, per_si) in table.items():
             if label and dimension != "angle":
-                assert unit_table.si_per_unit(label, dimension) == pytest.approx(1 / per_si, rel=1e-12), label
+                assert units.si_per_unit(label, dimension) == pytest.approx(1 / per_si, rel=1e-12), label
 
 
 @pytest.mark.parametrize("text", ["__import__('os')", "9**9**9", "(" * 300, "x" * 10**6, "V.__class__"])

@@ -13,7 +13,7 @@ from typing import Any
 import streamlit as st
 
 from solvers.core import Choice, Number, ParameterError
-from ui import units
+from solvers import units
 from ui.catalog import Problem
 
 MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed

@@ -7,7 +7,7 @@ import re
 import streamlit as st
 
 from solvers.core import Answer, PhysicalLimitError, Solution
-from ui import units
+from solvers import units
 from ui.equations import broken
 
 def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str, heading: str = "") -> None:

@@ -7,7 +7,7 @@ import numpy as np
 
 from solvers import pendulum_rebound as solver
 from solvers.core import plain_fixed
-from ui import units
+from solvers import units
 from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, line, moving, points,
                          r, segments, thumbnail, trails)
 
