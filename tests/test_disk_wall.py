@@ -27,6 +27,12 @@ VALID = st.fixed_dictionaries({
 })
 
 
+def mistake_params(params: dict) -> dict:
+    """Where every listed slip of practice mode applies and differs from the answer: the restitution
+    slip needs e ≠ 1."""
+    return {"e": 0.5}
+
+
 def routh(m, R, V, theta, omega, e, mu, steps=20000):
     """Integrate the impact in the normal impulse p from 0 to (1 + e) m V cos θ (a uniform disk's
     normal and tangential directions are uncoupled, so Poisson's and Newton's e agree)."""

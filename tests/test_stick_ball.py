@@ -29,6 +29,12 @@ def valid_params(draw):
 VALID = valid_params()  # random valid parameters (SI, radians) for property tests
 
 
+def mistake_params(params: dict) -> dict:
+    """Where every listed slip of practice mode applies and differs from the answer: the ball hits
+    short of the stick's end."""
+    return {"s": 0.4 * params.get("l", 1.0)}
+
+
 def test_seed_numbers_equal_masses_end_hit():
     m, l, v = 1.0, 1.0, 1.0
     a = stick_ball.solve().answers
