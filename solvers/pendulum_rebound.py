@@ -46,7 +46,7 @@ ABOUT = About(
     icon=":material/height:",
     source="Hibbeler 19-56",
     us_units=True,  # the textbook's data are in lb and ft: the page offers US units
-    primary=("theta0", "e"),  # always shown; the rest sit behind "More parameters"
+    primary=("e", "theta0"),  # always shown; the rest sit behind "More parameters"
 )
 
 PARAMS = (

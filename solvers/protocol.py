@@ -27,7 +27,8 @@ class About:
     source: str  # where the problem comes from
     us_units: bool = False  # the textbook's data are in US customary units
     # The parameters the lesson turns on, always shown; the rest (masses, lengths, g) sit behind
-    # "More parameters", which opens by itself when a link changes one of them.
+    # "More parameters", which opens by itself when a link changes one of them. Most important
+    # first: the first number is the control the benchmarks move. Empty: every parameter shown.
     primary: tuple[str, ...] = ()
 
 
