@@ -220,3 +220,45 @@ def test_the_shared_thumbnail_helper_gives_an_image_with_its_text_alternative():
     assert svg.get("role") == "img" and svg.get("aria-label") == "A disk"
     with pytest.raises(ValueError, match="label"):
         thumbnail("<g/>", "  ")
+
+
+# ----------------------------------------------------------------------------------------------
+# One place: the app's code names a problem only in the problem's own files and the registry
+
+
+APP_CODE = ("app.py", "serve.py", "ui", "practice", "solvers", "viz", "pages")
+
+
+def own_files(pid: str) -> set[str]:
+    return {f"solvers/{pid}.py", f"viz/{pid}.py", f"pages/{pid}.py", f"tests/test_{pid}.py"}
+
+
+def ids_outside_own_files(sources: dict[str, str], ids) -> list[str]:
+    """``path: id`` for each problem id written in a source outside that problem's own files (and
+    the registry, which lists them all)."""
+    found = []
+    for path, text in sources.items():
+        if path == "solvers/registry.py":
+            continue
+        for pid in ids:
+            if path not in own_files(pid) and re.search(rf"\b{re.escape(pid)}\b", text):
+                found.append(f"{path}: {pid}")
+    return found
+
+
+def app_sources() -> dict[str, str]:
+    paths = [ROOT / p for p in APP_CODE if (ROOT / p).is_file()]
+    paths += [f for d in APP_CODE if (ROOT / d).is_dir() for f in sorted((ROOT / d).rglob("*.py"))]
+    return {p.relative_to(ROOT).as_posix(): p.read_text() for p in paths}
+
+
+def test_the_app_names_no_problem_outside_its_own_files():
+    """Tests, benchmarks and scripts may still pick one problem for a scenario (the cart near a
+    wheelie, the pendulum behind the balancer); the app itself iterates over the registry."""
+    assert ids_outside_own_files(app_sources(), registry.PROBLEM_IDS) == []
+
+
+def test_an_id_outside_its_own_files_is_found():
+    sources = {"ui/home.py": 'if problem.id == "sliding_ladder":', "solvers/sliding_ladder.py": "sliding_ladder",
+               "viz/common.py": "ladder = 1  # sliding_ladders is another word", "solvers/registry.py": '"sliding_ladder",'}
+    assert ids_outside_own_files(sources, ["sliding_ladder"]) == ["ui/home.py: sliding_ladder"]
