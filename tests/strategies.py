@@ -11,10 +11,10 @@ def pos(lo, hi):
     return st.floats(lo, hi, allow_nan=False, allow_infinity=False)
 
 
-def test_module(pid: str):
+def problem_tests(pid: str):
     """The problem's own test module, tests/test_<pid>.py (its CONTRACT and VALID)."""
     return importlib.import_module(f"tests.test_{pid}")
 
 
 def valid(pid: str) -> st.SearchStrategy[dict]:
-    return test_module(pid).VALID
+    return problem_tests(pid).VALID

@@ -21,7 +21,7 @@ PROBLEMS = registry.PROBLEM_IDS
 
 def contract(pid):
     """The problem's spec as its own tests/test_<pid>.py types it from PROBLEMS.md."""
-    return strategies.test_module(pid).CONTRACT
+    return strategies.problem_tests(pid).CONTRACT
 
 
 def module(pid):

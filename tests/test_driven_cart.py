@@ -7,6 +7,7 @@ from hypothesis import given, settings, strategies as st
 
 from solvers import driven_cart
 from tests.strategies import pos
+from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures
 
 # The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
 # checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
@@ -28,6 +29,12 @@ def valid_params(draw):
 
 
 VALID = valid_params()  # random valid parameters (SI, radians) for property tests
+
+# Cases of the shared tests in test_what_students_see.py beyond the defaults.
+IN_VIEW = ({}, {"drive": "rear", "mu": 2.59}, {"drive": "all", "mu": 2.5})  # near a wheelie too: still in view
+EDGE_LINKS = ({"mu": "0"}, {"m": "10000"})  # links whose numbers could read −0 or need a power of ten
+CHECK_CASES = ({"drive": "rear"},)  # beyond the defaults: every shown check can fail here too
+LIMIT_LINKS = (({"drive": "rear", "mu": "3"}, 1),)  # the wheelie: the method and the ẍ–μ plot stay
 
 
 def six_equations(m, a, b, c, mu, g, drive):
@@ -102,3 +109,26 @@ def test_the_wheelie_is_a_physical_limit_the_page_can_show():
     with pytest.raises(PhysicalLimitError) as err:
         driven_cart.solve(drive="rear", mu=2.6)  # μa = b exactly: lifts
     assert err.value.mu_lift == pytest.approx(1.3 / 0.5)
+
+
+# ----------------------------------------------------------------------------------------------
+# What a student sees: the drawing agrees with the physics, the captions with the motion
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_cart_stands_on_the_ground(p):
+    _, figs = figures("driven_cart", **p)
+    for xs, ys in drawn(figs[0], "wheels"):
+        for wheel in (slice(0, len(xs) // 2), slice(len(xs) // 2, None)):  # rear, front
+            _, cy, radius = circle(xs[wheel], ys[wheel])
+            assert cy - radius == pytest.approx(0.0, abs=DRAWN)  # on the ground, not in it
+    for xs, ys in drawn(figs[0], "cart body"):
+        assert ys.min() > 0
+
+
+def test_a_cart_near_a_wheelie_keeps_a_readable_scale():
+    """Rear drive at μ = 2.59 used to zoom out to 30 m, the cart tiny."""
+    _, figs = figures("driven_cart", drive="rear", mu=2.59)
+    x_lo, x_hi = figs[0].spec["layout"]["xaxis"]["range"]
+    assert x_hi - x_lo < 8 * 2 * 1.3  # within eight wheelbases

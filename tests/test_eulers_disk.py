@@ -1,5 +1,6 @@
 """eulers_disk against an independent kinematic model: the disk's orientation as Euler angles
 (scipy Rotation), angular velocity and angular momentum by finite differences in the fixed frame."""
+import importlib
 import math
 
 import numpy as np
@@ -9,6 +10,8 @@ from scipy.spatial.transform import Rotation
 
 from solvers import eulers_disk
 from tests.strategies import pos
+from tests.drawing import DRAWN, EXAMPLES, figures
+from tests.test_pages import assert_clean, run_page
 
 # The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
 # checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
@@ -130,3 +133,34 @@ def test_the_animation_reports_its_slow_motion():
     period = solution.answers["period"]
     assert fig.extra["slow_motion"] == pytest.approx(4.0 / period)
     assert f"{4.0 / period:.0f}×" in fig.title
+
+
+# ----------------------------------------------------------------------------------------------
+# What a student sees: the drawing agrees with the physics, the captions with the motion
+
+
+@EXAMPLES
+@given(VALID)
+def test_euler_s_disk_stays_on_the_table(p):
+    _, figs = figures("eulers_disk", **p)
+    rim = figs[0].spec["animation"]["coords"][0]["z"]
+    assert min(min(row) for row in rim) >= -DRAWN * (1 + p["r"])
+
+
+def test_the_run_down_switch_is_kept_in_the_url():
+    at = run_page("eulers_disk")
+    at.toggle(key="eulers_disk__on_request").set_value(True).run()
+    assert_clean(at)
+    assert at.query_params.get("rundown") == "1"
+    again = run_page("eulers_disk", dict(at.query_params))
+    assert again.toggle(key="eulers_disk__on_request").value is True
+
+
+def test_log_and_run_down_axes_label_their_ticks_in_full():
+    solution, figs = figures("eulers_disk")
+    log_axis = figs[1].spec["layout"]["yaxis"]
+    assert log_axis["type"] == "log"
+    assert [float(t) for t in log_axis["ticktext"]] == log_axis["tickvals"]
+    assert all(str(v)[0] in "125" for v in log_axis["tickvals"])
+    decay = importlib.import_module("viz.eulers_disk").on_request(solution)
+    assert not any("overlaying" in v for v in decay.spec["layout"].values() if isinstance(v, dict))

@@ -35,7 +35,7 @@ IDS = registry.PROBLEM_IDS
 def mistake_params(pid: str, params: dict) -> dict:
     """``params`` changed so that every listed mistake of the problem applies and differs from the
     answer, as the problem's own test module says (its optional ``mistake_params``)."""
-    return params | getattr(strategies.test_module(pid), "mistake_params", lambda p: {})(params)
+    return params | getattr(strategies.problem_tests(pid), "mistake_params", lambda p: {})(params)
 
 
 def setup(pid, **params):

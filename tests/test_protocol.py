@@ -83,7 +83,7 @@ def solver_lacks(pid: str, solver) -> list[str]:
     for name in ("SYMBOLS", "DIMENSIONS"):
         if not isinstance(getattr(solver, name, None), dict):
             missing.append(f"{pid}: no {name} (a dict)")
-    for name in ("solve", "derivation_of", "motion"):
+    for name in ("solve", "derivation_of", "motion", "_checks"):
         if not callable(getattr(solver, name, None)):
             missing.append(f"{pid}: no {name}()")
     return missing
@@ -164,7 +164,7 @@ def test_what_a_problem_lacks_is_named():
     assert solver_lacks("sliding_ladder", copied(solver, without=("MISTAKES",))) == ["sliding_ladder: no MISTAKES (a non-empty tuple of Mistake)"]
     assert solver_lacks("sliding_ladder", copied(solver, MISTAKES=())) == ["sliding_ladder: no MISTAKES (a non-empty tuple of Mistake)"]
     for name in ("ABOUT", "PARAMS", "ANSWERS", "ERRATA", "VARIANTS", "LIMIT_LABELS", "WARM", "SYMBOLS",
-                 "DIMENSIONS", "solve", "derivation_of", "motion"):
+                 "DIMENSIONS", "solve", "derivation_of", "motion", "_checks"):
         found = solver_lacks("sliding_ladder", copied(solver, without=(name,)))
         assert any(m.startswith(f"sliding_ladder: no {name}") for m in found), (name, found)
     wrong = Mistake("no_such_answer", "feedback", lambda p: 0)

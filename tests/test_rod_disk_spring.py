@@ -1,12 +1,14 @@
 """rod_disk_spring against the seed's numbers and an independent integration of the motion."""
 import math
 
+import numpy as np
 import pytest
 from hypothesis import assume, given, settings, strategies as st
 from scipy.integrate import solve_ivp
 
 from solvers import rod_disk_spring
 from tests.strategies import pos
+from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures
 
 # The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
 # checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
@@ -47,6 +49,12 @@ def valid_params(draw):
 
 
 VALID = valid_params().filter(reaches)  # random valid parameters (SI, radians) that reach θ2
+
+# Cases of the shared tests in test_what_students_see.py beyond the defaults.
+IN_VIEW = ({"k": 0.0},)  # no spring: over the top, still in view
+EDGE_LINKS = ({"k": "0"},)  # links whose numbers could read −0
+CHECK_CASES = ({"theta1": 0.4, "theta2": 2.0},)  # released off upright: every shown check can fail here too
+LIMIT_LINKS = (({"k": "100"}, 0),)  # the spring holds it upright: the method stays
 
 
 def test_seed_numbers():
@@ -123,3 +131,38 @@ def test_the_stop_is_a_physical_limit_the_page_can_show():
         rod_disk_spring.solve(theta2=6.0)
     assert 0 < err.value.theta_max < 6.0
     assert "largest angle" in str(err.value)
+
+
+# ----------------------------------------------------------------------------------------------
+# What a student sees: the drawing agrees with the physics, the captions with the motion
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_disk_never_covers_the_spring(p):
+    assume(p["k"] > 0)  # valid("rod_disk_spring") reaches θ2 already
+    _, (figure,) = figures("rod_disk_spring", **p)
+    for (xs, ys), (sx, sy) in zip(drawn(figure, "disk"), drawn(figure, "torsional spring")):
+        cx, cy, radius = circle(xs, ys)
+        assert np.hypot(sx - cx, sy - cy).min() >= radius - DRAWN
+
+
+def test_the_spring_animation_starts_where_the_motion_is_visible_and_says_it_was_nudged():
+    solution, (figure,) = figures("rod_disk_spring")
+    anim = figure.spec["animation"]
+    theta = np.array([math.atan2(x[1], y[1]) for x, y in drawn(figure, "rod")])  # rod tip angle from up
+    assert math.degrees(abs(theta[0])) < 2  # no long wait at upright before the fall
+    assert "nudge" in figure.description and "animation starts there" in figure.description
+    turn = np.degrees(np.abs(np.diff(np.unwrap(theta))))
+    assert turn.max() <= 10.5  # dense through the fast part
+    assert anim["times"][0] > 1.0  # the creep it skipped (the nudge is 1e-6 rad/s)
+    moved = np.abs(np.degrees(theta)) > 3
+    assert moved.mean() > 0.8  # most frames show motion, not an upright rod
+
+
+def test_with_no_spring_the_caption_says_it_goes_over_the_top():
+    _, (figure,) = figures("rod_disk_spring", k=0.0)
+    assert not any(t["name"] == "torsional spring" for t in figure.spec["data"])  # and none is drawn
+    assert "keeps turning" in figure.description and "comes to rest at about 360" not in figure.description
+    _, (pendulum,) = figures("rod_disk_spring", k=0.0, theta1=0.3)
+    assert "returns" in pendulum.description  # released off upright, it swings back like a pendulum
