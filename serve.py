@@ -27,25 +27,22 @@ def warm() -> float:
     import importlib
 
     from practice.worker import shared_worker
+    from solvers import registry
     from solvers.core import Choice
-    from ui.catalog import PROBLEMS
+    from ui.page import _requested
 
     started = time.perf_counter()
     shared_worker().warm()
-    for problem in PROBLEMS:
-        solver = importlib.import_module(f"solvers.{problem.id}")
-        viz = importlib.import_module(f"viz.{problem.id}")
+    for pid, solver in zip(registry.PROBLEM_IDS, registry.solvers()):
+        viz = importlib.import_module(f"viz.{pid}")
         choices = [p for p in solver.PARAMS if isinstance(p, Choice)]
         for combination in itertools.product(*(c.options for c in choices)):
             solution = solver.solve(**dict(zip((c.name for c in choices), combination)))
             viz.figures(solution)
-        if problem.id == "disk_wall":
-            solver.solve(mu=0.01, omega=-40.0)  # the sliding regime's derivation
-    # The one costly on-request figure, for the textbook's numbers (shared by every session).
-    from ui.page import _requested
-
-    default = importlib.import_module("solvers.eulers_disk").solve()
-    _requested("eulers_disk", tuple(sorted(default.params.items())))
+        for params in solver.WARM:  # the states no option combination reaches
+            solver.solve(**params)
+        if hasattr(viz, "on_request"):  # a costly figure on request, for the textbook's numbers
+            _requested(pid, tuple(sorted(solver.solve().params.items())))  # (shared by every session)
     return time.perf_counter() - started
 
 

@@ -33,8 +33,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
+from solvers import registry  # noqa: E402
 
-PAGES = ["disk_wall", "pendulum_rebound", "driven_cart", "eulers_disk", "stick_ball", "rod_disk_spring"]
+PAGES = list(registry.PROBLEM_IDS)
 EMPTY = "empty"
 VIEWPORT = {"width": 1400, "height": 1000}
 

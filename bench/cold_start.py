@@ -11,7 +11,10 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-PAGES = ["disk_wall", "pendulum_rebound", "driven_cart", "eulers_disk", "stick_ball", "rod_disk_spring"]
+sys.path.insert(0, str(ROOT))
+from solvers import registry  # noqa: E402
+
+PAGES = list(registry.PROBLEM_IDS)
 CODE = """
 import json, time
 t0 = time.perf_counter()

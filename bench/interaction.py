@@ -20,14 +20,10 @@ sys.path.insert(0, str(ROOT))
 
 from streamlit.testing.v1 import AppTest  # noqa: E402
 
-CONTROLS = {  # page -> (widget key, default value, kind)
-    "disk_wall": ("disk_wall__si__V", 2.0, "number"),
-    "pendulum_rebound": ("pendulum_rebound__si__e", 0.6, "slider"),
-    "driven_cart": ("driven_cart__si__mu", 0.8, "number"),
-    "eulers_disk": ("eulers_disk__si__theta", 10.0, "slider"),
-    "stick_ball": ("stick_ball__si__v", 1.0, "number"),
-    "rod_disk_spring": ("rod_disk_spring__si__k", 20.0, "number"),
-}
+from bench.controls import lesson_control  # noqa: E402
+from solvers import registry  # noqa: E402
+
+CONTROLS = {pid: lesson_control(pid)[:3] for pid in registry.PROBLEM_IDS}  # page -> (widget key, start, kind)
 
 
 def widget(at, key, kind):

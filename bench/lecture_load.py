@@ -1,7 +1,7 @@
 """Benchmark 4, the lecture: hundreds of students open the same link, then each moves a control.
 
     python bench/lecture_load.py [--sessions 200] [--join 20] [--changes 5] [--processes 1]
-                                 [--pages disk_wall ...]
+                                 [--pages PAGE ...]
 
 A load generator that speaks Streamlit's own websocket protocol (the protobuf messages in
 streamlit.proto): each session connects to /_stcore/stream, sends BackMsg.rerun_script for its
@@ -36,15 +36,12 @@ sys.path.insert(0, str(ROOT))
 from scripts.balancer_check import start_nginx  # noqa: E402
 from scripts.live_app import free_port, wait_healthy  # noqa: E402
 
+from bench.controls import lesson_control  # noqa: E402
+from solvers import registry  # noqa: E402
+
 CONTROLS = {  # page -> (widget key suffix, start value, step per change)
     "": ("x", 0.5, 0.01),  # the empty app's slider
-    "disk_wall": ("disk_wall__si__V", 2.0, 0.05),
-    "pendulum_rebound": ("pendulum_rebound__si__e", 0.6, -0.05),
-    "driven_cart": ("driven_cart__si__mu", 0.8, 0.02),
-    "eulers_disk": ("eulers_disk__si__theta", 10.0, 1.0),
-    "stick_ball": ("stick_ball__si__v", 1.0, 0.05),
-    "rod_disk_spring": ("rod_disk_spring__si__k", 20.0, 0.5),
-}
+} | {pid: (key, start, step) for pid in registry.PROBLEM_IDS for key, start, _, step in [lesson_control(pid)]}
 SESSION_TIMEOUT = 120.0
 
 

@@ -19,8 +19,7 @@ from practice.mistakes import mistakes_for
 from practice.parser import FUNCTIONS, GREEK, MAX_LENGTH, UnknownName, _symbol_table, parse_expression
 from practice.worker import shared_worker
 from solvers.core import Answer, Derivation, Solution
-from solvers import units as unit_table
-from ui import units
+from solvers import units
 
 RELATIVE_TOLERANCE = 5e-3
 TOLERANCE_TEXT = f"±{RELATIVE_TOLERANCE * 100:g} %"
@@ -51,7 +50,7 @@ def _number_in_si(text: str, answer: Answer, system: str) -> tuple[float, str] |
     if not unit_text:
         shown = units.unit(answer.dimension, system)
         return units.to_si(value, answer.dimension, system), (f"read in {shown}" if shown else "")
-    factor = unit_table.si_per_unit(unit_text, answer.dimension)
+    factor = units.si_per_unit(unit_text, answer.dimension)
     if factor is None:
         return None
     return value * factor, f"read as {unit_text[:20]}"
@@ -66,13 +65,13 @@ def _unit_message(text: str, answer: Answer, system: str) -> str | None:
         return None
     shown, si = units.unit(answer.dimension, system), units.unit(answer.dimension, "si")
     example = " or ".join(dict.fromkeys(u for u in (shown, si) if u)) or "no unit (a pure number)"
-    elsewhere = unit_table.dimensions_of(unit_text)
+    elsewhere = units.dimensions_of(unit_text)
     if elsewhere:
         what = elsewhere[0].replace("_", " ")
         return (f"{unit_text[:20]!r} is a unit of {what}, but this answer is "
                 f"{'a pure number' if answer.dimension == 'dimensionless' else 'a ' + answer.dimension.replace('_', ' ')}: "
                 f"write it in {example}.")
-    same_but_case = unit_table.close_spellings(unit_text)
+    same_but_case = units.close_spellings(unit_text)
     if same_but_case:
         return (f"Unknown unit {unit_text[:20]!r}: units are case-sensitive (MJ is a megajoule, mJ a "
                 f"millijoule); did you mean {' or '.join(same_but_case)}?")

@@ -4,7 +4,9 @@ The seed is hashed with SHA-256 (never Python's salted ``hash()``) into numpy's 
 so a link gives the same numbers in every session, process and machine. Numbers are drawn around
 the textbook's defaults (×0.6 … ×1.4, angles within the control's range), rounded to three
 significant figures, and redrawn until the solver accepts the combination. Options, gravity and
-μ = ∞ keep their defaults, so each variant stays the worked problem with other numbers.
+μ = ∞ keep their defaults, so each variant stays the worked problem with other numbers. What a
+problem varies differently (an angle's range, a parameter never varied, one set from the others) its
+solver module declares as ``VARIANTS`` (``solvers.protocol.Variants``).
 """
 from __future__ import annotations
 
@@ -17,14 +19,9 @@ from types import ModuleType
 import numpy as np
 
 from solvers.core import Choice, Number
+from solvers.protocol import Variants
 
 MAX_SEED = 10**9
-FIXED = {"g", "c"}  # gravity, and the cart's track (it drops out of the answer)
-ANGLE_RANGES = {  # degrees; None keeps the textbook's value
-    ("disk_wall", "theta"): (10, 70), ("pendulum_rebound", "theta0"): (-20, 60),
-    ("eulers_disk", "theta"): (5, 40), ("rod_disk_spring", "theta1"): None,
-    ("rod_disk_spring", "theta2"): (30, 150),
-}
 
 
 def _generator(problem: str, seed: int, attempt: int) -> np.random.Generator:
@@ -36,9 +33,9 @@ def _three_figures(x: float) -> float:
     return float(f"{x:.3g}")
 
 
-def _draw(problem: str, p: Number, rng: np.random.Generator) -> float:
-    if p.dimension == "angle":
-        lo, hi = ANGLE_RANGES.get((problem, p.name), (p.ui_low or 0.0, p.ui_high or 89.0))
+def _draw(rules: Variants, p: Number, rng: np.random.Generator) -> float:
+    if p.dimension == "angle":  # degrees: a control's range is in its display unit
+        lo, hi = rules.angles_deg.get(p.name) or (p.ui_low or 0.0, p.ui_high or 89.0)
         return math.radians(round(float(rng.uniform(lo, hi))))
     if p.low == 0 and p.high == 1:  # a coefficient of restitution
         return round(float(rng.uniform(0.3, 0.9)), 2)
@@ -51,19 +48,19 @@ def variant(solver: ModuleType, problem: str, seed: int) -> dict:
     """The parameters (SI, radians) of variant ``seed``; raises ValueError for a bad seed."""
     if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed <= MAX_SEED:
         raise ValueError(f"A variant number is a whole number from 0 to {MAX_SEED}.")
+    rules = solver.VARIANTS
+    kept = {name for name, degrees in rules.angles_deg.items() if degrees is None}  # the textbook's value
     for attempt in range(200):
         rng = _generator(problem, seed, attempt)
         params = {}
         for p in solver.PARAMS:
-            if isinstance(p, Choice) or p.name in FIXED or (p.allow_inf and math.isinf(p.default)):
+            if isinstance(p, Choice) or p.name in rules.fixed or p.name in kept or p.name in rules.derived:
                 continue
-            if ANGLE_RANGES.get((problem, p.name), ()) is None:
+            if p.allow_inf and math.isinf(p.default):
                 continue
-            if problem == "stick_ball" and p.name == "s":
-                continue  # set below: the end of this variant's stick
-            params[p.name] = _draw(problem, p, rng)
-        if problem == "stick_ball":  # stated, since a page fills a missing s with the textbook's 0.5 m
-            params["s"] = params["l"] / 2
+            params[p.name] = _draw(rules, p, rng)
+        for name, rule in rules.derived.items():
+            params[name] = rule(params)
         try:
             solver.solve(**params)
         except ValueError:

@@ -33,6 +33,16 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
+from .protocol import About, Mistake, Variants
+
+ABOUT = About(
+    title="Spinning disk hits a rough wall",
+    group="Impacts",
+    blurb="A spinning disk strikes a wall: does it stick or slide, and where does it go?",
+    icon=":material/sports_hockey:",
+    source="ME 230 final-exam review, problem 1",
+    primary=("V", "omega", "theta", "e", "mu"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m", 1.0, "mass", "mass", "m", low=0, ui_low=0.1, ui_high=10.0, step=0.1),
@@ -63,6 +73,8 @@ ERRATA = (
     r"The worked solution writes $v_{1y} = +V\cos\theta$ (“magnitude conserved”). After an elastic impact "
     r"the normal component **reverses**: $v_{1y} = -eV\cos\theta$, pointing away from the wall.",
 )
+
+LIMIT_LABELS: dict[str, tuple[str, str]] = {}  # no physical limit to show
 
 m, R, V, theta, omega, e, mu = sp.symbols(r"m R V theta omega e mu", positive=True)
 omega = sp.Symbol(r"omega", real=True)
@@ -255,3 +267,33 @@ def motion(solution: Solution, frames: int = 40) -> dict:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.regime)
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(angles_deg={"theta": (10, 70)})
+
+# Solved at server start besides every option combination: the sliding regime's derivation, which
+# no option reaches (the default μ = ∞ never slides).
+WARM = ({"mu": 0.01, "omega": -40.0},)
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("v1y", "A sign: the normal component of the velocity reverses at the wall "
+            "(the worked solution's slip).", lambda p: e * V * sp.cos(theta)),
+    Mistake("v1y", "The restitution coefficient is missing from the normal component.",
+            lambda p: -V * sp.cos(theta), lambda p: p["e"] != 1),
+    Mistake("v1x", "That is the velocity of a ring (I = m R²); a uniform disk has I_G = ½ m R².",
+            lambda p: (V * sp.sin(theta) + R * omega) / 2, lambda p: p["mu"] == float("inf")),
+    Mistake("v1x", "The spin term's sign: with ω counter-clockwise, B moves at v_x − Rω.",
+            lambda p: sp.Rational(2, 3) * V * sp.sin(theta) - R * omega / 3,
+            lambda p: p["mu"] == float("inf")),
+    Mistake("v1x", "That is a smooth wall (μ = 0): here friction acts at B.",
+            lambda p: V * sp.sin(theta), lambda p: p["mu"] > 0),
+    Mistake("omega1", "That is the spin of a ring (I = m R²); a uniform disk has I_G = ½ m R².",
+            lambda p: (V * sp.sin(theta) + R * omega) / (2 * R), lambda p: p["mu"] == float("inf")),
+    Mistake("omega1", "The spin term's sign: with ω counter-clockwise, B moves at v_x − Rω.",
+            lambda p: (sp.Rational(2, 3) * V * sp.sin(theta) - R * omega / 3) / R,
+            lambda p: p["mu"] == float("inf")),
+)

@@ -33,6 +33,16 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
+from .protocol import About, Mistake, Variants
+
+ABOUT = About(
+    title="Cart with driven wheels",
+    group="Newton–Euler",
+    blurb="Front, rear or all-wheel drive: how hard can it accelerate before the front lifts?",
+    icon=":material/directions_car:",
+    source="O'Reilly 9.3",
+    primary=("mu", "drive", "a", "b"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m", 1200.0, "mass", "mass", "m", low=0, ui_low=100.0, ui_high=5000.0, step=50.0),
@@ -135,6 +145,10 @@ class FrontWheelsLiftError(PhysicalLimitError):
     """Rear or all-wheel drive with μa ≥ b: the front wheels leave the ground (a wheelie)."""
 
 
+# What a PhysicalLimitError's attribute is, for the page that shows it: (label, dimension).
+LIMIT_LABELS = {"mu_lift": ("μ at which the front wheels lift (μ = b/a)", "dimensionless")}
+
+
 @within_model_range
 def solve(**params) -> Solution:
     p = validate_params(PARAMS, params)
@@ -214,3 +228,24 @@ def method(params) -> tuple[Step, ...]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["drive"])
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(fixed=("g", "c"))  # the track c drops out of the answers
+
+WARM: tuple[dict, ...] = ()  # every option combination is warmed already
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("N_front", "Swapped axles: accelerating moves load to the rear, so the front wheels carry "
+            "less (the worked solution's naming slip).", lambda p: derivation(p["drive"]).expression_of("N_rear"),
+            lambda p: p["mu"] > 0),
+    Mistake("N_rear", "Swapped axles: accelerating moves load to the rear, so the rear wheels carry more.",
+            lambda p: derivation(p["drive"]).expression_of("N_front"), lambda p: p["mu"] > 0),
+    Mistake("accel", "Only the driven wheels push: μg would need all four wheels driving.",
+            lambda p: mu * g, lambda p: p["drive"] != "all"),
+    Mistake("accel", "Without the load transfer (N = mg/4 each) you get μg/2; the moment balance "
+            "shifts load between the axles.", lambda p: mu * g / 2, lambda p: p["drive"] != "all"),
+)

@@ -32,6 +32,16 @@ from .core import (
     root_with_sign,
     validate_params,
 )
+from .protocol import About, Mistake, Variants
+
+ABOUT = About(
+    title="Euler's disk",
+    group="Newton–Euler",
+    blurb="A coin-like disk whirls ever faster as it settles: steady precession and its singularity.",
+    icon=":material/album:",
+    source="ME 230 final-exam review; Moffatt, Nature 404 (2000)",
+    primary=("theta", "r"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m", 0.4, "mass", "mass", "m", low=0, ui_low=0.05, ui_high=5.0, step=0.05),
@@ -57,6 +67,8 @@ ERRATA = (
     r"itself turns slower ($|\boldsymbol\omega| = \omega_p\sin\theta \to 0$) and the energy "
     r"$\tfrac32 mgr\sin\theta$ runs out: Moffatt's finite-time singularity.",
 )
+
+LIMIT_LABELS: dict[str, tuple[str, str]] = {}  # no physical limit to show
 
 m, r, theta, g = sp.symbols(r"m r theta g", positive=True)
 w_p, w_s, w_tot, E, v_A, tau = sp.symbols(r"omega_p omega_s |\boldsymbol{\omega}| E v_A tau", real=True)
@@ -232,3 +244,21 @@ def versus_tilt(params: dict, tilts: np.ndarray) -> dict[str, np.ndarray]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation()
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(angles_deg={"theta": (5, 40)})
+
+WARM: tuple[dict, ...] = ()  # every option combination is warmed already
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("omega_p", "ω lies along a diameter, so the inertia is ¼ m r², not the axial ½ m r².",
+            lambda p: sp.sqrt(2 * g / (r * sp.sin(theta)))),
+    Mistake("omega_s", "The spin is not the precession rate: rolling with G at rest ties them "
+            "through the tilt θ.", lambda p: w_p),
+    Mistake("energy", "The kinetic energy is missing: the disk also turns, with kinetic energy ½ ω·H_G.",
+            lambda p: m * g * r * sp.sin(theta)),
+)

@@ -36,7 +36,18 @@ from .core import (
     require,
     validate_params,
 )
+from .protocol import About, Mistake, Variants
 from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, integrate_leg
+
+ABOUT = About(
+    title="Rod-and-sphere pendulum bounces off the floor",
+    group="Work–energy",
+    blurb="Release, swing, bounce: each bounce keeps a fraction e² of the swing.",
+    icon=":material/height:",
+    source="Hibbeler 19-56",
+    us_units=True,  # the textbook's data are in lb and ft: the page offers US units
+    primary=("e", "theta0"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m_s", 4.536, "sphere mass", "mass", "m_s", low=0, ui_low=0.1, ui_high=20.0, step=0.1),
@@ -77,6 +88,9 @@ ERRATA = (
     r"$\dot\theta' = -e\dot\theta$: the rod reverses, so $e = -\dot\theta'/\dot\theta$.",
     r"Whatever the masses, $\sin\theta_f - \sin\theta_I = e^2(\sin\theta_0 - \sin\theta_I)$.",
 )
+
+# What a PhysicalLimitError's attribute is, for the page that shows it: (label, dimension).
+LIMIT_LABELS = {"theta_impact": ("angle at which the sphere touches", "angle")}
 
 SPHERE_INERTIA = {"solid": sp.Rational(2, 5), "hollow": sp.Rational(2, 3), "disk": sp.Rational(1, 2)}
 
@@ -347,3 +361,31 @@ def method(params) -> tuple[Step, ...]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["sphere"], solution.params["surface"])
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(angles_deg={"theta0": (-20, 60)})
+
+WARM: tuple[dict, ...] = ()  # every option combination is warmed already
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("I_O", "½ m r² is a disk's moment of inertia; a solid sphere has ⅖ m r² (the worked "
+            "solution's slip).", lambda p: m_r * L**2 / 3 + m_s * r**2 / 2 + m_s * (L + r) ** 2,
+            lambda p: p["sphere"] == "solid"),
+    Mistake("I_O", "Missing parallel-axis terms: about O each body adds its mass times the square "
+            "of its centre's distance from O.", lambda p: m_r * L**2 / 12 + SPHERE_INERTIA[p["sphere"]] * m_s * r**2),
+    Mistake("I_O", "The rod turns about its end, not its middle: ¹⁄₁₂ m_r L² is its inertia about its centre.",
+            lambda p: m_r * L**2 / 12 + SPHERE_INERTIA[p["sphere"]] * m_s * r**2
+            + m_s * (L + r) ** 2),
+    Mistake("theta_rebound", "e where e² belongs: energy scales with θ̇², so the swing keeps e² of it.",
+            lambda p: sp.asin(sp.sin(theta_I) + e * (sp.sin(theta0) - sp.sin(theta_I))),
+            lambda p: p["e"] not in (0, 1)),
+    Mistake("theta_impact", "A sign: the floor is below the pivot, so sin θ_I is negative "
+            "(the worked solution's slip).", lambda p: sp.asin((d - r) / (L + r)),
+            lambda p: p["surface"] == "floor"),
+    Mistake("omega_after", "A sign: the rod reverses its direction of rotation at the bounce.",
+            lambda p: e * w_minus),
+)

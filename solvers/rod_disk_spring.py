@@ -33,7 +33,17 @@ from .core import (
     require,
     validate_params,
 )
+from .protocol import About, Mistake, Variants
 from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
+
+ABOUT = About(
+    title="Rod and disk on a torsional spring",
+    group="Work–energy",
+    blurb="Gravity pulls, the spring resists: how fast is it turning at θ₂?",
+    icon=":material/rotate_right:",
+    source="Hibbeler 18-9",
+    primary=("k", "theta2", "disk"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m1", 6.0, "rod mass", "mass", "m_1", low=0, ui_low=0.1, ui_high=30.0, step=0.1),
@@ -89,6 +99,10 @@ def _start_rate(theta1: float) -> float:
 
 class SpringStopsRodError(PhysicalLimitError):
     """The spring stops the assembly before θ2; ``theta_max`` is the largest angle reached."""
+
+
+# What a PhysicalLimitError's attribute is, for the page that shows it: (label, dimension).
+LIMIT_LABELS = {"theta_max": ("largest angle the rod reaches", "angle")}
 
 
 @functools.cache
@@ -330,3 +344,29 @@ def method(params) -> tuple[Step, ...]:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["disk"])
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+VARIANTS = Variants(angles_deg={"theta1": None, "theta2": (30, 150)})  # θ₁ stays the textbook's
+
+WARM: tuple[dict, ...] = ()  # every option combination is warmed already
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("I_O", "I_G where I_O belongs: about the pivot each body adds its mass times the square of "
+            "its centre's distance from O.",
+            lambda p: m1 * L**2 / 12 + m2 * R**2 / 2),
+    Mistake("I_O", "The welded disk also turns about its own centre: its spin inertia belongs in I_O.",
+            lambda p: m1 * L**2 / 3 + m2 * (L + R) ** 2, lambda p: p["disk"] == "welded"),
+    Mistake("U_spring", "A sign: the spring resists the fall, so its work is negative.",
+            lambda p: k * (theta2**2 - theta1**2) / 2),
+    Mistake("omega2", "A pinned disk does not turn with the rod; this one is welded, so its own spin "
+            "inertia belongs in I_O.", lambda p: sp.sqrt(2 * T2 / (m1 * L**2 / 3 + m2 * (L + R) ** 2)),
+            lambda p: p["disk"] == "welded"),
+    Mistake("omega2", "I_G where I_O belongs: about the pivot each body adds its mass times the square of "
+            "its centre's distance from O.", lambda p: sp.sqrt(2 * T2 / (m1 * L**2 / 12 + m2 * R**2 / 2))),
+    Mistake("omega2", "A sign: the spring resists the fall, so its work is negative.",
+            lambda p: sp.sqrt(2 * (U_g - U_s) / I_O)),
+)

@@ -34,6 +34,16 @@ from .core import (
     require,
     validate_params,
 )
+from .protocol import About, Mistake, Variants
+
+ABOUT = About(
+    title="Ball slides into a free stick",
+    group="Impacts",
+    blurb="A ball hits a stick on ice and sticks (or bounces): momentum and angular momentum at work.",
+    icon=":material/sports_cricket:",
+    source="ME 230 final-exam review, problem 3",
+    primary=("v", "s", "mode", "e"),  # always shown; the rest sit behind "More parameters"
+)
 
 PARAMS = (
     Number("m_ball", 1.0, "ball mass", "mass", r"m_b", low=0, ui_low=0.05, ui_high=10.0, step=0.05),
@@ -78,6 +88,8 @@ ERRATA = (
     r"inertia about the combined CM. Use one point for both (here the combined CM, with the "
     r"parallel-axis terms $m_s d_{cm}^2$ and $m_b (s - d_{cm})^2$).",
 )
+
+LIMIT_LABELS: dict[str, tuple[str, str]] = {}  # no physical limit to show
 
 m_b, m_s, l, v, s, e = sp.symbols("m_b m_s l v s e", positive=True)
 d_cm, v_cm, w, I_cm, T_i, T_f, loss, x_rev = sp.symbols(
@@ -300,3 +312,28 @@ def _second_contact(p, a, rho: float, t_end: float) -> float | None:
 def derivation_of(solution: Solution) -> Derivation:
     """The derivation behind ``solution`` (its option and regime)."""
     return derivation(solution.params["mode"])
+
+
+# How ?seed=N varies the parameters beyond the general rule (solvers.protocol.Variants).
+# s is stated (a page fills a missing s with the textbook's 0.5 m): the end of this variant's stick
+VARIANTS = Variants(derived={"s": lambda p: p["l"] / 2})
+
+WARM: tuple[dict, ...] = ()  # every option combination is warmed already
+
+
+# The typical slips practice mode names: wrong expressions in this module's symbols, each
+# with the feedback a tutor would give (the hint never states the right value).
+MISTAKES = (
+    Mistake("v_cm", "After the impact the momentum is shared by the ball and the stick.",
+            lambda p: v, lambda p: p["mode"] == "stick"),
+    Mistake("I_cm", "Missing parallel-axis terms: about the combined CM the stick and the ball each add "
+            "their mass times the square of their distance from it.", lambda p: m_s * l**2 / 12, lambda p: p["mode"] == "stick"),
+    Mistake("omega", "Angular momentum about one point but inertia about another: take both about "
+            "the combined CM (arm s − d_cm).",
+            lambda p: m_b * v * s / derivation("stick").expression_of("I_cm"),
+            lambda p: p["mode"] == "stick"),
+    Mistake("omega", "Missing parallel-axis terms: the stick's own ¹⁄₁₂ m l² is not its inertia "
+            "about the combined CM.",
+            lambda p: derivation("stick").in_parameters(m_b * v * (s - d_cm) / (m_s * l**2 / 12)),
+            lambda p: p["mode"] == "stick"),
+)

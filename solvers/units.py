@@ -1,49 +1,145 @@
-"""Units a student may write after a number, by dimension: every accepted spelling with its size in
-SI units. Spellings are case-sensitive, as in print: MJ is a megajoule and mJ a millijoule, mN a
-millinewton and Nm a newton metre. A spelling may mean different things in different dimensions
-(g: a gram for a mass, standard gravity for an acceleration; lb: a pound of mass or of force), so
-a unit is looked up together with the dimension of the answer it goes with.
+"""The one units module: for each dimension, the unit pages show in SI and in US customary units
+(label and factor), the SI unit in LaTeX as the derivation's numbers carry it, and every spelling a
+student may type after a number with its size in SI units.
 
-Written as data below ``solvers/`` so that it can grow into the one units module of the project
-(labels, LaTeX and display factors, now in ``ui/units.py``)."""
+The solvers work in SI and radians. Pages show degrees for angles and, where the textbook did, US
+customary units: shown = SI value × factor. ``Number.ui_low``/``ui_high``/``step`` are in the SI
+display unit (``unit(dimension)``: degrees for angles, SI otherwise).
+
+Spellings are case-sensitive, as in print: MJ is a megajoule and mJ a millijoule, mN a millinewton
+and Nm a newton metre. A spelling may mean different things in different dimensions (g: a gram for
+a mass, standard gravity for an acceleration; lb: a pound of mass or of force), so a unit is looked
+up together with the dimension of the answer it goes with.
+"""
 from __future__ import annotations
 
 import math
 import re
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Mapping
+
+from .formatting import latex_number, plain_number
 
 LB = 0.45359237  # kg
 FT = 0.3048  # m
 INCH = 0.0254  # m
-LBF = LB * 9.80665  # N
-SLUG = LBF / FT  # kg
 G0 = 9.80665  # m/s², standard gravity
+LBF = LB * G0  # N
+SLUG = LBF / FT  # kg
 DEG = math.pi / 180
+FT_LBF = FT * LBF  # J (or N·m)
 
-# dimension -> {spelling (normalised: no spaces, no multiplication signs, powers as ^2): SI per unit}
-SPELLINGS: dict[str, dict[str, float]] = {
-    "angle": {"rad": 1.0, "deg": DEG, "°": DEG, "degree": DEG, "degrees": DEG},
-    "angular_speed": {"rad/s": 1.0, "rad/sec": 1.0, "1/s": 1.0, "/s": 1.0, "deg/s": DEG, "°/s": DEG, "rpm": math.pi / 30,
-                      "rev/min": math.pi / 30, "rev/s": 2 * math.pi},
-    "speed": {"m/s": 1.0, "cm/s": 0.01, "mm/s": 1e-3, "km/s": 1e3, "km/h": 1 / 3.6, "ft/s": FT, "ft/sec": FT,
-              "in/s": INCH, "mph": 1609.344 / 3600},
-    "acceleration": {"m/s^2": 1.0, "cm/s^2": 0.01, "mm/s^2": 1e-3, "ft/s^2": FT, "in/s^2": INCH, "g": G0},
-    "force": {"N": 1.0, "kN": 1e3, "mN": 1e-3, "MN": 1e6, "lbf": LBF, "lb": LBF, "kip": 1000 * LBF},
-    "impulse": {"Ns": 1.0, "kNs": 1e3, "mNs": 1e-3, "kgm/s": 1.0, "lbfs": LBF, "lbs": LBF,
-                "slugft/s": SLUG * FT},
-    "angular_momentum": {"kgm^2/s": 1.0, "Nms": 1.0, "Js": 1.0, "ftlbfs": FT * LBF,
-                         "lbffts": FT * LBF, "slugft^2/s": SLUG * FT**2},
-    "energy": {"J": 1.0, "kJ": 1e3, "mJ": 1e-3, "MJ": 1e6, "Nm": 1.0, "kNm": 1e3, "ftlbf": FT * LBF,
-               "ftlb": FT * LBF, "lbft": FT * LBF, "lbfft": FT * LBF},
-    "torque": {"Nm": 1.0, "kNm": 1e3, "mNm": 1e-3, "J": 1.0, "ftlbf": FT * LBF, "ftlb": FT * LBF,
-               "lbft": FT * LBF, "lbfft": FT * LBF},
-    "stiffness": {"Nm/rad": 1.0, "Nm": 1.0, "ftlbf/rad": FT * LBF, "ftlb/rad": FT * LBF, "lbft/rad": FT * LBF},
-    "inertia": {"kgm^2": 1.0, "gcm^2": 1e-7, "slugft^2": SLUG * FT**2, "lbft^2": LB * FT**2,
-                "lbin^2": LB * INCH**2},
-    "length": {"m": 1.0, "cm": 0.01, "mm": 1e-3, "km": 1e3, "ft": FT, "in": INCH},
-    "mass": {"kg": 1.0, "g": 1e-3, "mg": 1e-6, "lb": LB, "slug": SLUG},
-    "time": {"s": 1.0, "ms": 1e-3, "sec": 1.0, "min": 60.0},
-    "dimensionless": {},
-}
+
+@dataclass(frozen=True)
+class Dimension:
+    label: str  # the unit pages show in SI ("°" for angles: pages show degrees)
+    factor: float  # shown = SI value × factor
+    latex: str  # the SI unit in LaTeX, as the derivation's substituted numbers carry it (rad for angles)
+    # What a student may type after a number -> SI units per one of it (normalised: no spaces, no
+    # multiplication signs, powers as ^2).
+    spellings: Mapping[str, float]
+    us_label: str | None = None  # the US customary unit pages show; None: as in SI
+    us_factor: float | None = None
+
+
+DIMENSIONS: Mapping[str, Dimension] = MappingProxyType({
+    "mass": Dimension("kg", 1.0, r"\mathrm{kg}", {"kg": 1.0, "g": 1e-3, "mg": 1e-6, "lb": LB, "slug": SLUG},
+                      "lb", 1 / LB),
+    "length": Dimension("m", 1.0, r"\mathrm{m}", {"m": 1.0, "cm": 0.01, "mm": 1e-3, "km": 1e3, "ft": FT, "in": INCH},
+                        "ft", 1 / FT),
+    "angle": Dimension("°", 180 / math.pi, r"\mathrm{rad}",
+                       {"rad": 1.0, "deg": DEG, "°": DEG, "degree": DEG, "degrees": DEG}),
+    "speed": Dimension("m/s", 1.0, r"\mathrm{m/s}",
+                       {"m/s": 1.0, "cm/s": 0.01, "mm/s": 1e-3, "km/s": 1e3, "km/h": 1 / 3.6, "ft/s": FT,
+                        "ft/sec": FT, "in/s": INCH, "mph": 1609.344 / 3600},
+                       "ft/s", 1 / FT),
+    "angular_speed": Dimension("rad/s", 1.0, r"\mathrm{rad/s}",
+                               {"rad/s": 1.0, "rad/sec": 1.0, "1/s": 1.0, "/s": 1.0, "deg/s": DEG, "°/s": DEG,
+                                "rpm": math.pi / 30, "rev/min": math.pi / 30, "rev/s": 2 * math.pi}),
+    "acceleration": Dimension("m/s²", 1.0, r"\mathrm{m/s^2}",
+                              {"m/s^2": 1.0, "cm/s^2": 0.01, "mm/s^2": 1e-3, "ft/s^2": FT, "in/s^2": INCH, "g": G0},
+                              "ft/s²", 1 / FT),
+    "force": Dimension("N", 1.0, r"\mathrm{N}",
+                       {"N": 1.0, "kN": 1e3, "mN": 1e-3, "MN": 1e6, "lbf": LBF, "lb": LBF, "kip": 1000 * LBF},
+                       "lbf", 1 / LBF),
+    "impulse": Dimension("N·s", 1.0, r"\mathrm{N\,s}",
+                         {"Ns": 1.0, "kNs": 1e3, "mNs": 1e-3, "kgm/s": 1.0, "lbfs": LBF, "lbs": LBF,
+                          "slugft/s": SLUG * FT},
+                         "lbf·s", 1 / LBF),
+    "angular_momentum": Dimension("kg·m²/s", 1.0, r"\mathrm{kg\,m^2/s}",
+                                  {"kgm^2/s": 1.0, "Nms": 1.0, "Js": 1.0, "ftlbfs": FT_LBF, "lbffts": FT_LBF,
+                                   "slugft^2/s": SLUG * FT**2},
+                                  "ft·lbf·s", 1 / FT_LBF),
+    "energy": Dimension("J", 1.0, r"\mathrm{J}",
+                        {"J": 1.0, "kJ": 1e3, "mJ": 1e-3, "MJ": 1e6, "Nm": 1.0, "kNm": 1e3, "ftlbf": FT_LBF,
+                         "ftlb": FT_LBF, "lbft": FT_LBF, "lbfft": FT_LBF},
+                        "ft·lbf", 1 / FT_LBF),
+    "inertia": Dimension("kg·m²", 1.0, r"\mathrm{kg\,m^2}",
+                         {"kgm^2": 1.0, "gcm^2": 1e-7, "slugft^2": SLUG * FT**2, "lbft^2": LB * FT**2,
+                          "lbin^2": LB * INCH**2},
+                         "slug·ft²", 1 / (SLUG * FT**2)),
+    "stiffness": Dimension("N·m/rad", 1.0, r"\mathrm{N\,m/rad}",
+                           {"Nm/rad": 1.0, "Nm": 1.0, "ftlbf/rad": FT_LBF, "ftlb/rad": FT_LBF, "lbft/rad": FT_LBF},
+                           "ft·lbf/rad", 1 / FT_LBF),
+    "torque": Dimension("N·m", 1.0, r"\mathrm{N\,m}",
+                        {"Nm": 1.0, "kNm": 1e3, "mNm": 1e-3, "J": 1.0, "ftlbf": FT_LBF, "ftlb": FT_LBF,
+                         "lbft": FT_LBF, "lbfft": FT_LBF},
+                        "ft·lbf", 1 / FT_LBF),
+    "time": Dimension("s", 1.0, r"\mathrm{s}", {"s": 1.0, "ms": 1e-3, "sec": 1.0, "min": 60.0}),
+    "dimensionless": Dimension("", 1.0, "", {}),
+})
+
+# Views of the table by unit system and by dimension (for code that walks them).
+SYSTEMS = MappingProxyType({
+    "si": MappingProxyType({name: (d.label, d.factor) for name, d in DIMENSIONS.items()}),
+    "us": MappingProxyType({name: (d.us_label, d.us_factor) if d.us_label is not None else (d.label, d.factor)
+                            for name, d in DIMENSIONS.items()}),
+})
+SPELLINGS = MappingProxyType({name: d.spellings for name, d in DIMENSIONS.items()})
+
+
+# --------------------------------------------------------------------------------------------
+# Showing a quantity
+
+
+def unit(dimension: str, system: str = "si") -> str:
+    """The unit a page shows for ``dimension`` in ``system`` ("si" or "us")."""
+    return SYSTEMS[system][dimension][0]
+
+
+def to_display(x: float, dimension: str, system: str = "si") -> float:
+    return x * SYSTEMS[system][dimension][1]
+
+
+def to_si(x: float, dimension: str, system: str = "si") -> float:
+    return x / SYSTEMS[system][dimension][1]
+
+
+format_value = plain_number  # one formatting of numbers for every page
+
+
+def format_quantity(x: float, dimension: str, system: str = "si", sig: int = 4) -> str:
+    """``x`` (SI) as a page shows it: in the system's unit, ``sig`` figures, degrees glued (30°)."""
+    label = unit(dimension, system)
+    value = format_value(to_display(x, dimension, system), sig)
+    if not label:
+        return value
+    return f"{value}{label}" if label == "°" else f"{value} {label}"
+
+
+def latex_quantity(x: float, dimension: str, sig: int = 4) -> str:
+    """``x`` (SI) in LaTeX with its SI unit, as a derivation's substituted step ends (an angle also
+    in degrees)."""
+    dim = DIMENSIONS.get(dimension)
+    text = latex_number(x, sig) + (rf"\;{dim.latex}" if dim and dim.latex else "")
+    if dimension == "angle" and math.isfinite(x):
+        text += rf"\;\left({latex_number(math.degrees(x), sig)}^{{\circ}}\right)"
+    return text
+
+
+# --------------------------------------------------------------------------------------------
+# Reading a unit a student typed
 
 
 def normalise(text: str) -> str:

@@ -3,10 +3,40 @@ step by step in the normal impulse, with Coulomb friction deciding stick or slip
 import math
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import given, settings, strategies as st
 
 from solvers import disk_wall
-from tests import strategies
+from tests.strategies import pos
+from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures, static
+
+# The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
+# checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
+# and values the solver must refuse in plain words.
+CONTRACT = {
+    "defaults": dict(m=1.0, R=0.1, V=2.0, theta=math.radians(30), omega=5.0, e=1.0, mu=math.inf),
+    "answers": {"energy_loss", "impulse_n", "impulse_t", "omega1", "speed1", "v1x", "v1y"},
+    "out_of_range": (("m", -1.0), ("theta", math.pi / 2), ("e", 1.5), ("mu", -0.1), ("V", 0.0), ("R", 0.0)),
+    "too_large": ({"V": 1e200}, {"omega": 1e200}),
+}
+
+
+# random valid parameters (SI, radians) for property tests
+VALID = st.fixed_dictionaries({
+    "m": pos(0.01, 100), "R": pos(0.005, 5), "V": pos(0.01, 50),
+    "theta": pos(0, math.radians(89.5)), "omega": pos(-200, 200), "e": pos(0, 1),
+    "mu": st.one_of(st.just(math.inf), pos(0, 5)),
+})
+
+# Cases of the shared tests in test_what_students_see.py beyond the defaults.
+IN_VIEW = ({"e": 0.0},)  # no rebound: still in view
+EDGE_LINKS = ({"e": "0"}, {"mu": "0"})  # links whose numbers could read −0
+CHECK_CASES = ({"mu": 0.2, "e": 0.5},)  # sliding: every shown check can fail here too
+
+
+def mistake_params(params: dict) -> dict:
+    """Where every listed slip of practice mode applies and differs from the answer: the restitution
+    slip needs e ≠ 1."""
+    return {"e": 0.5}
 
 
 def routh(m, R, V, theta, omega, e, mu, steps=20000):
@@ -40,7 +70,7 @@ def test_seed_closed_form_no_slip():
 
 
 @settings(max_examples=60, deadline=None)
-@given(strategies.disk_wall)
+@given(VALID)
 def test_agrees_with_routh_integration(p):
     mu = p["mu"] if math.isfinite(p["mu"]) else 1e9
     vx, vy, w, Pt, Pn = routh(**{**p, "mu": mu}, steps=4000)
@@ -53,7 +83,7 @@ def test_agrees_with_routh_integration(p):
 
 
 @settings(max_examples=100, deadline=None)
-@given(strategies.disk_wall)
+@given(VALID)
 def test_momentum_bookkeeping_and_energy_never_increases(p):
     a = disk_wall.solve(**p).answers
     m, R = p["m"], p["R"]
@@ -92,3 +122,30 @@ def test_slip_regime_is_reported_and_limited():
     assert s.regime == "slip"
     assert abs(s.answers["impulse_t"]) == pytest.approx(0.02 * abs(s.answers["impulse_n"]))
     assert disk_wall.solve().regime == "stick"
+
+
+# ----------------------------------------------------------------------------------------------
+# What a student sees: the drawing agrees with the physics, the captions with the motion
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_disk_never_enters_the_wall(p):
+    _, (figure,) = figures("disk_wall", **p)
+    _, wall_y = static(figure, "wall")
+    for xs, ys in drawn(figure, "disk"):
+        cx, cy, radius = circle(xs, ys)
+        assert wall_y[0] - cy >= radius - DRAWN * (1 + p["R"])
+
+
+@pytest.mark.parametrize("e", [0.0, 0.3, 1.0])
+def test_the_disk_leaves_the_wall_only_when_the_caption_says_so(e):
+    solution, (figure,) = figures("disk_wall", e=e)
+    ys = [circle(*frame)[1] for frame in drawn(figure, "disk")]
+    after = ys[figure.spec["animation"]["times"].tolist().index(0.0):]
+    if e == 0:
+        assert "does not rebound" in figure.description and "leaves" not in figure.description
+        assert max(after) - min(after) < DRAWN
+    else:
+        assert "leaves at" in figure.description
+        assert after[-1] < after[0] - 0.5 * solution.params["R"]

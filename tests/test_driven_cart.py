@@ -3,10 +3,38 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import given, settings, strategies as st
 
 from solvers import driven_cart
-from tests import strategies
+from tests.strategies import pos
+from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures
+
+# The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
+# checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
+# and values the solver must refuse in plain words.
+CONTRACT = {
+    "defaults": dict(m=1200.0, a=0.5, b=1.3, c=0.75, mu=0.8, g=9.81, drive="front"),
+    "answers": {"F_drive", "N_front", "N_rear", "accel"},
+    "out_of_range": (("mu", -0.5), ("a", 0.0)),
+}
+
+
+@st.composite
+def valid_params(draw):
+    a, b = draw(pos(0.05, 3)), draw(pos(0.1, 3))
+    drive = draw(st.sampled_from(["front", "rear", "all"]))
+    mu_max = 5 if drive == "front" else 0.999 * b / a
+    return {"m": draw(pos(10, 1e4)), "a": a, "b": b, "c": draw(pos(0.1, 2)),
+            "mu": draw(pos(0, mu_max)), "g": draw(pos(1, 25)), "drive": drive}
+
+
+VALID = valid_params()  # random valid parameters (SI, radians) for property tests
+
+# Cases of the shared tests in test_what_students_see.py beyond the defaults.
+IN_VIEW = ({}, {"drive": "rear", "mu": 2.59}, {"drive": "all", "mu": 2.5})  # near a wheelie too: still in view
+EDGE_LINKS = ({"mu": "0"}, {"m": "10000"})  # links whose numbers could read −0 or need a power of ten
+CHECK_CASES = ({"drive": "rear"},)  # beyond the defaults: every shown check can fail here too
+LIMIT_LINKS = (({"drive": "rear", "mu": "3"}, 1),)  # the wheelie: the method and the ẍ–μ plot stay
 
 
 def six_equations(m, a, b, c, mu, g, drive):
@@ -44,7 +72,7 @@ def test_seed_front_drive_result():
 
 
 @settings(max_examples=80, deadline=None)
-@given(strategies.driven_cart())
+@given(VALID)
 def test_agrees_with_a_linear_solve_of_all_six_equations(p):
     x, residual = six_equations(**p)
     weight = p["m"] * p["g"]
@@ -74,3 +102,33 @@ def test_front_drive_never_lifts():
 
 def test_all_wheel_drive_gives_mu_g():
     assert driven_cart.solve(drive="all").answers["accel"] == pytest.approx(0.8 * 9.81)
+
+
+def test_the_wheelie_is_a_physical_limit_the_page_can_show():
+    from solvers.core import PhysicalLimitError
+    with pytest.raises(PhysicalLimitError) as err:
+        driven_cart.solve(drive="rear", mu=2.6)  # μa = b exactly: lifts
+    assert err.value.mu_lift == pytest.approx(1.3 / 0.5)
+
+
+# ----------------------------------------------------------------------------------------------
+# What a student sees: the drawing agrees with the physics, the captions with the motion
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_cart_stands_on_the_ground(p):
+    _, figs = figures("driven_cart", **p)
+    for xs, ys in drawn(figs[0], "wheels"):
+        for wheel in (slice(0, len(xs) // 2), slice(len(xs) // 2, None)):  # rear, front
+            _, cy, radius = circle(xs[wheel], ys[wheel])
+            assert cy - radius == pytest.approx(0.0, abs=DRAWN)  # on the ground, not in it
+    for xs, ys in drawn(figs[0], "cart body"):
+        assert ys.min() > 0
+
+
+def test_a_cart_near_a_wheelie_keeps_a_readable_scale():
+    """Rear drive at μ = 2.59 used to zoom out to 30 m, the cart tiny."""
+    _, figs = figures("driven_cart", drive="rear", mu=2.59)
+    x_lo, x_hi = figs[0].spec["layout"]["xaxis"]["range"]
+    assert x_hi - x_lo < 8 * 2 * 1.3  # within eight wheelbases

@@ -1,14 +1,34 @@
 """eulers_disk against an independent kinematic model: the disk's orientation as Euler angles
 (scipy Rotation), angular velocity and angular momentum by finite differences in the fixed frame."""
+import importlib
 import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import given, settings, strategies as st
 from scipy.spatial.transform import Rotation
 
 from solvers import eulers_disk
-from tests import strategies
+from tests.strategies import pos
+from tests.drawing import DRAWN, EXAMPLES, figures
+from tests.test_pages import assert_clean, run_page
+
+# The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
+# checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
+# and values the solver must refuse in plain words.
+CONTRACT = {
+    "defaults": dict(m=0.4, r=0.0375, theta=math.radians(10), g=9.81),
+    "answers": {"contact_speed", "energy", "omega_p", "omega_s", "omega_total", "period"},
+    "out_of_range": (("theta", 0.0), ("theta", math.pi / 2), ("r", -0.1)),
+    "too_large": (dict(m=1e300, r=1e300, theta=1e300, g=1e300),),
+}
+
+
+# random valid parameters (SI, radians) for property tests
+VALID = st.fixed_dictionaries({
+    "m": pos(0.01, 10), "r": pos(0.005, 1), "theta": pos(math.radians(0.5), math.radians(89.5)),
+    "g": pos(1, 25),
+})
 
 
 def orientation(t, theta, precession, spin):
@@ -46,7 +66,7 @@ def test_seed_formula_and_teaching_identities():
 
 
 @settings(max_examples=40, deadline=None)
-@given(strategies.eulers_disk)
+@given(VALID)
 def test_rolling_and_balance_of_angular_momentum_in_a_fixed_frame(p):
     a = eulers_disk.solve(**p).answers
     m, r, th, g = p["m"], p["r"], p["theta"], p["g"]
@@ -104,3 +124,43 @@ def test_dissipation_drains_energy_and_the_contact_whirls_faster():
     assert run["precession"][-1] > run["precession"][0]
     undamped = dynamics.decay(params, damping=0.0, t_max=1.0)
     assert undamped["energy"][-1] == pytest.approx(undamped["energy"][0], rel=1e-6)  # conserved without it
+
+
+def test_the_animation_reports_its_slow_motion():
+    from viz import eulers_disk as viz
+    solution = eulers_disk.solve()
+    fig = viz.figures(solution)[0]
+    period = solution.answers["period"]
+    assert fig.extra["slow_motion"] == pytest.approx(4.0 / period)
+    assert f"{4.0 / period:.0f}×" in fig.title
+
+
+# ----------------------------------------------------------------------------------------------
+# What a student sees: the drawing agrees with the physics, the captions with the motion
+
+
+@EXAMPLES
+@given(VALID)
+def test_euler_s_disk_stays_on_the_table(p):
+    _, figs = figures("eulers_disk", **p)
+    rim = figs[0].spec["animation"]["coords"][0]["z"]
+    assert min(min(row) for row in rim) >= -DRAWN * (1 + p["r"])
+
+
+def test_the_run_down_switch_is_kept_in_the_url():
+    at = run_page("eulers_disk")
+    at.toggle(key="eulers_disk__on_request").set_value(True).run()
+    assert_clean(at)
+    assert at.query_params.get("rundown") == "1"
+    again = run_page("eulers_disk", dict(at.query_params))
+    assert again.toggle(key="eulers_disk__on_request").value is True
+
+
+def test_log_and_run_down_axes_label_their_ticks_in_full():
+    solution, figs = figures("eulers_disk")
+    log_axis = figs[1].spec["layout"]["yaxis"]
+    assert log_axis["type"] == "log"
+    assert [float(t) for t in log_axis["ticktext"]] == log_axis["tickvals"]
+    assert all(str(v)[0] in "125" for v in log_axis["tickvals"])
+    decay = importlib.import_module("viz.eulers_disk").on_request(solution)
+    assert not any("overlaying" in v for v in decay.spec["layout"].values() if isinstance(v, dict))

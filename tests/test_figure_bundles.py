@@ -12,9 +12,10 @@ from pathlib import Path
 import plotly
 import pytest
 
+from solvers import registry
 from ui import figure as component
 
-IDS = ["disk_wall", "pendulum_rebound", "driven_cart", "eulers_disk", "stick_ball", "rod_disk_spring"]
+IDS = registry.PROBLEM_IDS
 
 
 def registered(kind: str, module_type: str) -> set[str]:

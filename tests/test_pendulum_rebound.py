@@ -1,15 +1,50 @@
 """pendulum_rebound against an independent integration of the swing and the e² identity."""
+import importlib
 import math
+import re
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings, strategies as st
 from scipy.integrate import solve_ivp
 
 from solvers import pendulum_rebound
-from tests import strategies
+from tests.strategies import pos
+from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures, static
+from tests.test_pages import run_page
+
+# The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
+# checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
+# and values the solver must refuse in plain words.
+CONTRACT = {
+    "defaults": dict(m_s=4.536, m_r=1.814, L=0.6096, r=0.09144, d=0.5, e=0.6, theta0=0.0, g=9.81, sphere="solid", surface="floor"),
+    "answers": {"I_O", "energy_loss", "omega_after", "omega_impact", "theta_impact", "theta_rebound"},
+    "out_of_range": (("d", 0.05), ("d", 2.0), ("e", -0.1), ("theta0", math.pi / 2), ("theta0", -0.7)),
+    "too_large": ({"L": 1e300},),
+}
+
+
+@st.composite
+def valid_params(draw):
+    L = draw(pos(0.05, 3))
+    r = draw(pos(0.01, 1))
+    surface = draw(st.sampled_from(["floor", "wall"]))
+    d = draw(pos(r * 1.01, (L + 2 * r) * 0.99))
+    sin_I = (r - d) / (L + r) if surface == "floor" else -1.0
+    theta_I = math.asin(sin_I)
+    theta0 = draw(pos(theta_I + 0.02, math.radians(89)))
+    return {"m_s": draw(pos(0.05, 50)), "m_r": draw(pos(0.05, 50)), "L": L, "r": r, "d": d,
+            "e": draw(pos(0, 1)), "theta0": theta0, "g": draw(pos(1, 25)),
+            "sphere": draw(st.sampled_from(["solid", "hollow", "disk"])), "surface": surface}
+
+
+VALID = valid_params()  # random valid parameters (SI, radians) for property tests
 
 SPHERE_K = {"solid": 2 / 5, "hollow": 2 / 3, "disk": 1 / 2}
+
+# Cases of the shared tests in test_what_students_see.py beyond the defaults.
+IN_VIEW = ({"e": 0.0},)  # no rebound: still in view
+EDGE_LINKS = ({"e": "0"},)  # links whose numbers could read −0
 
 
 def inertia(p):
@@ -43,7 +78,7 @@ def test_the_seeds_disk_inertia_is_an_option():
 
 
 @settings(max_examples=50, deadline=None)
-@given(strategies.pendulum_rebound())
+@given(VALID)
 def test_impact_speed_agrees_with_integration_and_rebound_obeys_e_squared(p):
     a = pendulum_rebound.solve(**p).answers
     assert a["omega_impact"] == pytest.approx(fall(p, a["theta_impact"]), rel=1e-6)
@@ -95,3 +130,85 @@ def test_a_rebound_too_small_to_multiply_still_turns_back(d):
                                sphere="solid", surface="floor")
     assert all(c.ok for c in s.checks), s.checks
     assert s.answers["theta_rebound"] == pytest.approx(s.answers["theta_impact"], abs=1e-9)
+
+
+def test_the_drawn_motion_bounces_with_decaying_peaks():
+    s = pendulum_rebound.solve()
+    m = pendulum_rebound.motion(s)
+    assert len(m["impact_times"]) == 4
+    assert min(m["theta"]) >= s.answers["theta_impact"] - 1e-6  # never through the floor
+    assert math.isclose(m["theta"][0], s.params["theta0"])
+
+
+# ----------------------------------------------------------------------------------------------
+# What a student sees: the drawing agrees with the physics, the captions with the motion
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_sphere_never_enters_the_floor_or_the_wall(p):
+    _, (figure,) = figures("pendulum_rebound", **p)
+    surface_x, surface_y = static(figure, p["surface"])
+    touched = False
+    for xs, ys in drawn(figure, "sphere"):
+        cx, cy, radius = circle(xs, ys)
+        gap = cy - surface_y[0] if p["surface"] == "floor" else cx - surface_x[0]
+        assert gap >= radius - DRAWN * (1 + p["L"])
+        touched |= gap <= radius + DRAWN * (1 + p["L"])
+    assert touched, "a frame shows the sphere touching at the impact"
+
+
+def test_the_theta_curve_reaches_the_impact_line_at_each_bounce():
+    """The cusps of θ(t) used to sit a degree or two above the dashed θ_I line (resampled frames)."""
+    solution, (figure,) = figures("pendulum_rebound", e=0.6)
+    curve = next(t for t in figure.spec["data"] if t["name"] == "θ(t)")
+    impact = math.degrees(solution.answers["theta_impact"])
+    assert min(curve["y"]) == pytest.approx(impact, abs=1e-3)
+
+
+def test_the_pendulum_caption_at_e_0_lists_no_rebounds_and_points_below():
+    _, (figure,) = figures("pendulum_rebound", e=0.0)
+    assert "does not rebound" in figure.description and "rebounding to" not in figure.description
+    assert "Below: θ against time" in figure.description and "Right:" not in figure.description
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_pendulum_caption_never_repeats_a_rebound_angle(p):
+    assume(0 < p["e"] < 1)
+    _, (figure,) = figures("pendulum_rebound", **p)
+    match = re.search(r"rebounding to ([^a-z]*?)(?: on successive| then|\.)", figure.description)
+    if match:
+        angles = [a.strip() for a in match.group(1).rstrip(", ").split(",")]
+        assert len(angles) == len(set(angles)), figure.description
+
+
+def test_whole_degree_sliders_show_whole_degrees():
+    at = run_page("pendulum_rebound")
+    theta0 = next(s for s in at.slider if s.key.endswith("__theta0"))
+    assert theta0.proto.format == "%.0f"
+    e = next(s for s in at.slider if s.key.endswith("__e"))
+    assert e.proto.format == "%.2f"
+
+
+def test_a_link_value_finer_than_the_control_is_rounded_to_what_it_shows():
+    at = run_page("pendulum_rebound", {"theta0": "30.4"})
+    assert next(s for s in at.slider if s.key.endswith("__theta0")).value == 30.0
+
+
+def test_the_pendulum_s_energy_loss_check_rests_on_the_integrated_motion(monkeypatch):
+    """It used to show ½ I (θ̇⁻² − θ̇⁺²) against (1 − e²) ½ I θ̇⁻² with θ̇⁺ = −e θ̇⁻: the same
+    number rearranged. Its second side must now move when the integration does."""
+    solver = importlib.import_module("solvers.pendulum_rebound")
+    solution = solver.solve()
+    p, answers = dict(solution.params), dict(solution.answers)
+    honest = solver.simulate
+
+    def integration_off(*args, **kwargs):  # θ̇ just before impact 0.1 % off
+        t, q, w, impacts, legs = honest(*args, **kwargs)
+        return t, q, w, [(impacts[0][0], impacts[0][1] * 1.001), *impacts[1:]], legs
+
+    monkeypatch.setattr(solver, "simulate", integration_off)
+    energy = next(c for c in solver._checks(p, answers) if c.name.startswith("energy lost"))
+    assert not energy.ok
+    assert energy.closed_form == pytest.approx(answers["energy_loss"])

@@ -20,19 +20,22 @@ from streamlit.testing.v1 import AppTest
 from hypothesis import given, settings, strategies as hst
 
 from practice.judge import Judge, _number_in_si
-from practice.mistakes import MISTAKES
+from solvers import registry
 from practice.variants import MAX_SEED, variant, variants_csv
-from solvers import units as unit_table
+from solvers import units
+from tests import strategies
 from solvers.core import Answer
 from practice.worker import SimplifyWorker
-from ui import units
 from ui.practice import flat_latex
 
 ROOT = Path(__file__).resolve().parent.parent
-IDS = ["disk_wall", "pendulum_rebound", "driven_cart", "eulers_disk", "stick_ball", "rod_disk_spring"]
-# Parameters under which every listed mistake of the problem applies and differs from the answer.
-MISTAKE_PARAMS = {"disk_wall": {"e": 0.5}, "stick_ball": {"s": 0.4}}
-NEAR_MISS = {"pendulum_rebound": {"r": 0.2}}  # slips that, at the textbook's numbers, lie within 0.5 %
+IDS = registry.PROBLEM_IDS
+
+
+def mistake_params(pid: str, params: dict) -> dict:
+    """``params`` changed so that every listed mistake of the problem applies and differs from the
+    answer, as the problem's own test module says (its optional ``mistake_params``)."""
+    return params | getattr(strategies.problem_tests(pid), "mistake_params", lambda p: {})(params)
 
 
 def setup(pid, **params):
@@ -119,7 +122,7 @@ def check_slips(pid, params, everywhere: bool = True):
     (with ``everywhere``; else only slips whose value lies beyond the tolerance, which a random
     variant may not keep apart)."""
     solver, solution, judge, answers = setup(pid, **params)
-    mistakes = [m for m in MISTAKES[pid] if m.answer in answers and m.applies(dict(solution.params))]
+    mistakes = [m for m in registry.solver(pid).MISTAKES if m.answer in answers and m.applies(dict(solution.params))]
     assert mistakes, "every problem lists its common mistakes"
     wrongs = {id(m): judge.derivation.in_parameters(m.wrong(dict(solution.params))) for m in mistakes}
     values = {key: judge._value_of(wrong) for key, wrong in wrongs.items()}
@@ -142,16 +145,14 @@ def check_slips(pid, params, everywhere: bool = True):
 
 @pytest.mark.parametrize("pid", IDS)
 def test_each_listed_mistake_gets_its_feedback(pid):
-    check_slips(pid, MISTAKE_PARAMS.get(pid, {}))
+    check_slips(pid, mistake_params(pid, {}))
 
 
 @pytest.mark.parametrize("pid", IDS)
 @settings(max_examples=4, deadline=None)
 @given(seed=hst.integers(0, MAX_SEED))
 def test_each_listed_mistake_is_named_for_any_variant(pid, seed):
-    params = variant(importlib.import_module(f"solvers.{pid}"), pid, seed) | MISTAKE_PARAMS.get(pid, {})
-    if pid == "stick_ball":  # hit short of the end, on this variant's stick
-        params["s"] = 0.4 * params["l"]
+    params = mistake_params(pid, variant(importlib.import_module(f"solvers.{pid}"), pid, seed))
     check_slips(pid, params, everywhere=False)
 
 
@@ -159,9 +160,9 @@ def test_each_listed_mistake_is_named_for_any_variant(pid, seed):
 def test_slip_hints_never_state_the_right_value(pid):
     """A hint names the slip; it never gives the answer's number (to 2–4 figures, in any unit the
     page shows) or the answer's closed form as sympy writes it."""
-    for params in ({}, MISTAKE_PARAMS.get(pid, {})):
+    for params in ({}, mistake_params(pid, {})):
         solver, solution, judge, answers = setup(pid, **params)
-        for mistake in MISTAKES[pid]:
+        for mistake in registry.solver(pid).MISTAKES:
             if mistake.answer not in answers:
                 continue
             value = solution.answers[mistake.answer]
@@ -265,7 +266,7 @@ def test_every_accepted_unit_spelling_round_trips(value, glued, power, dot):
     """Every value written with every spelling the judge accepts (glued to the number or not, with
     any power sign, factors joined by any product sign) reads back as value × that unit's size; the
     same letters in another case are refused or a unit of another size (MJ ≠ mJ)."""
-    for dimension, table in unit_table.SPELLINGS.items():
+    for dimension, table in units.SPELLINGS.items():
         answer = Answer("x", "x", "x", dimension)
         for spelling, factor in table.items():
             written = spelling.replace("^2", power)
@@ -276,17 +277,17 @@ def test_every_accepted_unit_spelling_round_trips(value, glued, power, dot):
             assert read is not None and read[0] == pytest.approx(value * factor, rel=1e-12), (written, read)
             swapped = spelling.swapcase()
             if swapped != spelling:
-                other = unit_table.si_per_unit(swapped, dimension)
+                other = units.si_per_unit(swapped, dimension)
                 assert other is None or other != factor, (spelling, swapped)
 
 
 def test_every_unit_the_pages_show_is_accepted_with_its_own_size():
     """The labels the pages print (ft·lbf, slug·ft², m/s², lbf·s …) are read back as exactly the
-    size ui.units converts with, so an answer copied with its unit is right."""
+    size solvers.units converts with, so an answer copied with its unit is right."""
     for system, table in units.SYSTEMS.items():
         for dimension, (label, per_si) in table.items():
             if label and dimension != "angle":
-                assert unit_table.si_per_unit(label, dimension) == pytest.approx(1 / per_si, rel=1e-12), label
+                assert units.si_per_unit(label, dimension) == pytest.approx(1 / per_si, rel=1e-12), label
 
 
 @pytest.mark.parametrize("text", ["__import__('os')", "9**9**9", "(" * 300, "x" * 10**6, "V.__class__"])
@@ -301,11 +302,12 @@ def test_hostile_answers_get_a_plain_refusal(text):
 def test_seed_gives_the_same_numbers_in_another_process():
     here = {pid: variant(importlib.import_module(f"solvers.{pid}"), pid, 4242) for pid in IDS}
     code = ("import importlib, json; from practice.variants import variant; print(json.dumps({p: variant("
-            "importlib.import_module('solvers.' + p), p, 4242) for p in %r}))" % IDS)
+            "importlib.import_module('solvers.' + p), p, 4242) for p in %r}))" % (list(IDS),))
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True,
                          env={"PYTHONHASHSEED": "12345", "PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
     assert json.loads(out.stdout) == here
-    assert here["disk_wall"] != variant(importlib.import_module("solvers.disk_wall"), "disk_wall", 4243)
+    first = IDS[0]
+    assert here[first] != variant(importlib.import_module(f"solvers.{first}"), first, 4243)
 
 
 def test_bad_seeds_are_refused():

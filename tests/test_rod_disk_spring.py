@@ -1,12 +1,60 @@
 """rod_disk_spring against the seed's numbers and an independent integration of the motion."""
 import math
 
+import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, given, settings, strategies as st
 from scipy.integrate import solve_ivp
 
 from solvers import rod_disk_spring
-from tests import strategies
+from tests.strategies import pos
+from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures
+
+# The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
+# checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
+# and values the solver must refuse in plain words.
+CONTRACT = {
+    "defaults": dict(m1=6.0, m2=9.0, k=20.0, L=0.45, R=0.075, theta1=0.0, theta2=math.pi / 2, g=9.81, disk="welded"),
+    "answers": {"I_O", "T2", "U_gravity", "U_spring", "omega2"},
+    "out_of_range": (("theta2", 0.0), ("theta2", 2 * math.pi), ("k", -1.0)),
+    "too_large": (dict(m1=1e300, m2=1e300, k=1e300, L=1e300, R=1e300, g=1e300),),
+}
+
+
+def reaches(p) -> bool:
+    """Does the released assembly get to θ2? (kinetic energy stays positive on the way)"""
+    Q = (p["m1"] * p["L"] / 2 + p["m2"] * (p["L"] + p["R"])) * p["g"]
+    th1 = p["theta1"]
+    if Q * math.sin(th1) - p["k"] * th1 <= 0 and th1 > 0:
+        return False
+    n = 2000
+    for i in range(1, n + 1):
+        q = th1 + (p["theta2"] - th1) * i / n
+        if Q * (math.cos(th1) - math.cos(q)) - p["k"] / 2 * (q * q - th1 * th1) <= 0:
+            return False
+    return True
+
+
+@st.composite
+def valid_params(draw):
+    """Parameters for which the assembly does reach θ2 (checked here from the energy, independently)."""
+    p = {"m1": draw(pos(0.1, 30)), "m2": draw(pos(0.1, 30)), "L": draw(pos(0.05, 2)),
+         "R": draw(pos(0.01, 0.5)), "g": draw(pos(1, 25)),
+         "disk": draw(st.sampled_from(["welded", "pinned"]))}
+    Q = (p["m1"] * p["L"] / 2 + p["m2"] * (p["L"] + p["R"])) * p["g"]
+    p["k"] = draw(pos(0, 0.9)) * Q  # softer than gravity at the top, so an upright release falls
+    p["theta1"] = draw(st.one_of(st.just(0.0), pos(0, 1.0)))
+    p["theta2"] = p["theta1"] + draw(pos(0.05, 3.0))
+    return p
+
+
+VALID = valid_params().filter(reaches)  # random valid parameters (SI, radians) that reach θ2
+
+# Cases of the shared tests in test_what_students_see.py beyond the defaults.
+IN_VIEW = ({"k": 0.0},)  # no spring: over the top, still in view
+EDGE_LINKS = ({"k": "0"},)  # links whose numbers could read −0
+CHECK_CASES = ({"theta1": 0.4, "theta2": 2.0},)  # released off upright: every shown check can fail here too
+LIMIT_LINKS = (({"k": "100"}, 0),)  # the spring holds it upright: the method stays
 
 
 def test_seed_numbers():
@@ -29,9 +77,9 @@ def integrate(p, I):
 
 
 @settings(max_examples=40, deadline=None)
-@given(strategies.rod_disk_spring())
+@given(VALID)
 def test_speed_agrees_with_integration(p):
-    assume(strategies.reaches(p))
+    assume(reaches(p))
     a = rod_disk_spring.solve(**p).answers
     I = p["m1"] * p["L"] ** 2 / 3 + p["m2"] * (p["L"] + p["R"]) ** 2 + (
         p["m2"] * p["R"] ** 2 / 2 if p["disk"] == "welded" else 0.0)
@@ -75,3 +123,46 @@ def test_the_linearised_escape_from_upright_matches_integrating_all_the_way(thet
     assert leg.t[0] == 0.0 and leg.theta[0] == theta1
     assert leg.end[2] == pytest.approx(whole.end[2], rel=1e-9)
     assert leg.end[0] == pytest.approx(whole.end[0], rel=1e-6)
+
+
+def test_the_stop_is_a_physical_limit_the_page_can_show():
+    from solvers.core import PhysicalLimitError
+    with pytest.raises(PhysicalLimitError) as err:
+        rod_disk_spring.solve(theta2=6.0)
+    assert 0 < err.value.theta_max < 6.0
+    assert "largest angle" in str(err.value)
+
+
+# ----------------------------------------------------------------------------------------------
+# What a student sees: the drawing agrees with the physics, the captions with the motion
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_disk_never_covers_the_spring(p):
+    assume(p["k"] > 0)  # valid("rod_disk_spring") reaches θ2 already
+    _, (figure,) = figures("rod_disk_spring", **p)
+    for (xs, ys), (sx, sy) in zip(drawn(figure, "disk"), drawn(figure, "torsional spring")):
+        cx, cy, radius = circle(xs, ys)
+        assert np.hypot(sx - cx, sy - cy).min() >= radius - DRAWN
+
+
+def test_the_spring_animation_starts_where_the_motion_is_visible_and_says_it_was_nudged():
+    solution, (figure,) = figures("rod_disk_spring")
+    anim = figure.spec["animation"]
+    theta = np.array([math.atan2(x[1], y[1]) for x, y in drawn(figure, "rod")])  # rod tip angle from up
+    assert math.degrees(abs(theta[0])) < 2  # no long wait at upright before the fall
+    assert "nudge" in figure.description and "animation starts there" in figure.description
+    turn = np.degrees(np.abs(np.diff(np.unwrap(theta))))
+    assert turn.max() <= 10.5  # dense through the fast part
+    assert anim["times"][0] > 1.0  # the creep it skipped (the nudge is 1e-6 rad/s)
+    moved = np.abs(np.degrees(theta)) > 3
+    assert moved.mean() > 0.8  # most frames show motion, not an upright rod
+
+
+def test_with_no_spring_the_caption_says_it_goes_over_the_top():
+    _, (figure,) = figures("rod_disk_spring", k=0.0)
+    assert not any(t["name"] == "torsional spring" for t in figure.spec["data"])  # and none is drawn
+    assert "keeps turning" in figure.description and "comes to rest at about 360" not in figure.description
+    _, (pendulum,) = figures("rod_disk_spring", k=0.0, theta1=0.3)
+    assert "returns" in pendulum.description  # released off upright, it swings back like a pendulum

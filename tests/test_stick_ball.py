@@ -1,11 +1,46 @@
 """stick_ball against the seed's numbers and the conservation laws about an arbitrary fixed point."""
+import importlib
 import math
 
+import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import assume, given, settings, strategies as st
 
 from solvers import stick_ball
-from tests import strategies
+from tests.strategies import pos
+from tests.drawing import DRAWN, EXAMPLES, circle, distance_to_segment, drawn, figures
+
+# The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
+# checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
+# and values the solver must refuse in plain words.
+CONTRACT = {
+    "defaults": dict(m_ball=1.0, m_stick=1.0, l=1.0, v=1.0, s=0.5, mode="stick", e=0.5),
+    "answers": {"I_cm", "T_after", "T_before", "d_cm", "distance_per_rev", "energy_loss", "omega", "v_cm"},
+    "out_of_range": (("s", 0.6), ("s", 0.0), ("e", 2.0)),
+    "too_large": ({"l": 1e300}, {"v": 1e300}, {"m_ball": 1e300}),
+}
+
+
+@st.composite
+def valid_params(draw):
+    l = draw(pos(0.05, 5))
+    return {"m_ball": draw(pos(0.01, 20)), "m_stick": draw(pos(0.01, 20)), "l": l,
+            "v": draw(pos(0.01, 20)), "s": draw(pos(0.01, 0.5)) * l,
+            "mode": draw(st.sampled_from(["stick", "bounce"])), "e": draw(pos(0, 1))}
+
+
+VALID = valid_params()  # random valid parameters (SI, radians) for property tests
+
+# Cases of the shared tests in test_what_students_see.py beyond the defaults.
+IN_VIEW = ({"mode": "bounce", "s": 0.25},)  # the bounce that swings round into the ball
+EDGE_LINKS = ({"mode": "bounce", "e": "1"},)  # links whose numbers could read −0
+CHECK_CASES = ({"mode": "bounce", "s": 0.25},)  # beyond the defaults: every shown check can fail here too
+
+
+def mistake_params(params: dict) -> dict:
+    """Where every listed slip of practice mode applies and differs from the answer: the ball hits
+    short of the stick's end."""
+    return {"s": 0.4 * params.get("l", 1.0)}
 
 
 def test_seed_numbers_equal_masses_end_hit():
@@ -33,7 +68,7 @@ def velocities_after(p, a):
 
 
 @settings(max_examples=100, deadline=None)
-@given(strategies.stick_ball(), st.floats(-3, 3))
+@given(VALID, st.floats(-3, 3))
 def test_momentum_and_angular_momentum_about_any_fixed_point(p, y0):
     a = stick_ball.solve(**p).answers
     mb, ms, l, v, s = p["m_ball"], p["m_stick"], p["l"], p["v"], p["s"]
@@ -51,7 +86,7 @@ def test_momentum_and_angular_momentum_about_any_fixed_point(p, y0):
 
 
 @settings(max_examples=50, deadline=None)
-@given(strategies.stick_ball())
+@given(VALID)
 def test_bounce_limits(p):
     plastic = stick_ball.solve(**{**p, "mode": "bounce", "e": 0.0}).answers
     stuck = stick_ball.solve(**{**p, "mode": "stick"}).answers
@@ -63,3 +98,60 @@ def test_bounce_limits(p):
     e = p["e"]
     b = stick_ball.solve(**{**p, "mode": "bounce"}).answers
     assert b["v_stick"] + b["omega"] * p["s"] - b["v_ball"] == pytest.approx(e * p["v"], abs=1e-9 * p["v"])
+
+
+# ----------------------------------------------------------------------------------------------
+# What a student sees: the drawing agrees with the physics, the captions with the motion
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_stick_never_passes_through_the_ball(p):
+    _, (figure,) = figures("stick_ball", **p)
+    for (bx, by), (sx, sy) in zip(drawn(figure, "ball"), drawn(figure, "stick")):
+        cx, cy, radius = circle(bx, by)
+        assert distance_to_segment(cx, cy, sx[0], sy[0], sx[1], sy[1]) >= radius - DRAWN * (1 + p["l"])
+
+
+def test_the_trial_s_bounce_stops_at_the_second_contact_and_says_so():
+    """/stick_ball?mode=bounce&s=0.25: the stick's other half used to sweep through the ball."""
+    _, (figure,) = figures("stick_ball", mode="bounce", s=0.25)
+    assert "second impact" in figure.description and "stops there" in figure.description
+    times = figure.spec["animation"]["times"]
+    assert 1.4 < times[-1] < 1.55  # it ends at the contact, about 1.47 s after the impact
+    (bx, by), (sx, sy) = drawn(figure, "ball")[-1], drawn(figure, "stick")[-1]
+    cx, cy, radius = circle(bx, by)
+    assert distance_to_segment(cx, cy, sx[0], sy[0], sx[1], sy[1]) == pytest.approx(radius, abs=5 * DRAWN)
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_bounce_caption_agrees_with_the_ball_s_direction(p):
+    p = {**p, "mode": "bounce"}
+    solution, (figure,) = figures("stick_ball", **p)
+    anim = figure.spec["animation"]
+    impact = int(np.argmin(np.abs(np.asarray(anim["times"]))))
+    start = circle(*drawn(figure, "ball")[impact])[0]
+    moved = np.array([circle(xs, ys)[0] - start for xs, ys in drawn(figure, "ball")[impact + 1:]])
+    text = figure.description
+    assume(len(moved) and np.abs(moved).max() > 10 * DRAWN)  # it moves far enough to tell
+    if "bounces back" in text:
+        assert moved.max() <= DRAWN
+    elif "carries on forward" in text:
+        assert moved.min() >= -DRAWN
+    else:
+        assert "stops dead" in text
+    (bx, by), (sx, sy) = drawn(figure, "ball")[-1], drawn(figure, "stick")[-1]
+    cx, cy, radius = circle(bx, by)
+    touching_at_the_end = distance_to_segment(cx, cy, sx[0], sy[0], sx[1], sy[1]) - radius < 5 * DRAWN * (1 + p["l"])
+    if "second impact" in text:
+        assert touching_at_the_end  # the motion ends where the caption says: at the second contact
+
+
+def test_the_stick_s_energy_check_is_a_second_computation():
+    """It used to show T_before against max(T_before, T_after): "0.5 vs 0.5" whatever happened."""
+    solution = importlib.import_module("solvers.stick_ball").solve()
+    energy = next(c for c in solution.checks if "energy" in c.name)
+    assert energy.closed_form != pytest.approx(solution.answers["T_before"])
+    # the worked solution's numbers: equal masses hit at the end lose 1/5 of ½ m v²
+    assert energy.second_method == pytest.approx(0.1, rel=1e-12)

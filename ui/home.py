@@ -1,4 +1,4 @@
-"""The home page: what the app is, and the six problems grouped by method."""
+"""The home page: what the app is, and every registered problem, grouped by method."""
 from __future__ import annotations
 
 import streamlit as st
@@ -7,21 +7,27 @@ from ui.catalog import GROUPS, PROBLEMS
 from ui.results import plain
 from ui.thumbnails import thumbnail_markdown
 
+CARDS_PER_ROW = 2  # on a phone Streamlit stacks the columns: one card per row
+COUNT_WORDS = {5: "Five", 6: "Six", 7: "Seven", 8: "Eight", 9: "Nine", 10: "Ten", 11: "Eleven", 12: "Twelve"}
+
 
 def home() -> None:
     st.title("Dynamics Lab")
+    count = COUNT_WORDS.get(len(PROBLEMS), str(len(PROBLEMS)))
     st.markdown(
-        "Six worked problems of undergraduate rigid-body dynamics, alive: change a parameter and "
+        f"{count} worked problems of undergraduate rigid-body dynamics, alive: change a parameter and "
         "the derivation, the numbers and the motion follow. Every answer is checked a second way "
         "(a conservation law, a time integration, a linear solve), and where the original worked "
         "solutions slipped, the page says so."
     )
     for group in GROUPS:
         st.subheader(group)
-        cols = st.columns(2)
-        for col, problem in zip(cols, [p for p in PROBLEMS if p.group == group]):
-            with col.container(border=True):
-                # A Markdown image carries its text alternative (st.image gives an <img> without alt).
-                st.markdown(thumbnail_markdown(problem.id))
-                st.page_link(problem.page_path, label=f"**{problem.title}**", icon=problem.icon)
-                st.markdown(f":gray[{plain(problem.blurb)}]")  # st.caption's grey fails contrast
+        members = [p for p in PROBLEMS if p.group == group]
+        for first in range(0, len(members), CARDS_PER_ROW):  # a row of cards at a time: none is dropped
+            row = members[first:first + CARDS_PER_ROW]
+            for col, problem in zip(st.columns(CARDS_PER_ROW), row):
+                with col.container(border=True):
+                    # A Markdown image carries its text alternative (st.image gives an <img> without alt).
+                    st.markdown(thumbnail_markdown(problem.id))
+                    st.page_link(problem.page_path, label=f"**{problem.title}**", icon=problem.icon)
+                    st.markdown(f":gray[{plain(problem.blurb)}]")  # st.caption's grey fails contrast

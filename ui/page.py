@@ -167,7 +167,7 @@ def problem_page(problem_id: str) -> None:
         solution, figures = _solve_and_draw(problem, params, system)
     except ValueError as error:
         _heading(heading, notices)
-        results.refused(error, system)
+        results.refused(error, system, solver.LIMIT_LABELS)
         if isinstance(error, PhysicalLimitError):
             _beside_refusal(problem, params, practice)
         return

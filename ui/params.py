@@ -13,7 +13,7 @@ from typing import Any
 import streamlit as st
 
 from solvers.core import Choice, Number, ParameterError
-from ui import units
+from solvers import units
 from ui.catalog import Problem
 
 MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed
@@ -23,14 +23,14 @@ def _key(problem: Problem, system: str, name: str) -> str:
     return f"{problem.id}__{system}__{name}"
 
 
-def _is_slider(p: Number) -> bool:
+def is_slider(p: Number) -> bool:
     return p.dimension == "angle" or (p.low == 0 and p.high == 1)
 
 
 def display_format(p: Number) -> str:
     """How the control writes the number (printf style), which the URL copies: a slider to its
     step's decimals (a whole-degree slider shows 30, not 30.00), a box to six figures."""
-    if not _is_slider(p):
+    if not is_slider(p):
         return "%.6g"
     step = float(p.step or 0.01)
     decimals = 0
@@ -118,7 +118,7 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
             st.session_state[key] = float(p.ui_high or 1.0) / 2
         return container.number_input(_label(p, system), key=key, step=p.step, format=display_format(p),
                                       help=p.help or None)
-    if _is_slider(p):
+    if is_slider(p):
         lo = float(p.ui_low if p.ui_low is not None else p.low)
         hi = float(p.ui_high if p.ui_high is not None else p.high)
         current = float(st.session_state[key])

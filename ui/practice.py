@@ -13,7 +13,7 @@ from practice import instructor
 from practice.judge import TOLERANCE_TEXT, Judge
 from practice.variants import MAX_SEED, variants_csv
 from solvers.core import Choice, Derivation, Solution
-from ui import units
+from solvers import units
 from ui.catalog import Problem
 from ui.results import plain
 

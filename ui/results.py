@@ -7,15 +7,8 @@ import re
 import streamlit as st
 
 from solvers.core import Answer, PhysicalLimitError, Solution
-from ui import units
+from solvers import units
 from ui.equations import broken
-
-LIMIT_LABELS = {  # attribute carried by a PhysicalLimitError -> (what it is, dimension)
-    "mu_lift": ("μ at which the front wheels lift (μ = b/a)", "dimensionless"),
-    "theta_max": ("largest angle the rod reaches", "angle"),
-    "theta_impact": ("angle at which the sphere touches", "angle"),
-}
-
 
 def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str, heading: str = "") -> None:
     """Answers, notes, the ledger across an impact and the checks (under ``heading``, if given): one
@@ -82,11 +75,12 @@ def ledger(solution: Solution, system: str) -> str:
     return "\n".join(rows)
 
 
-def refused(error: ValueError, system: str) -> None:
-    """A case the model cannot describe, or a value out of range: the reason, and the limit."""
+def refused(error: ValueError, system: str, limit_labels: dict[str, tuple[str, str]] | None = None) -> None:
+    """A case the model cannot describe, or a value out of range: the reason, and the limit, named
+    by the problem's ``LIMIT_LABELS`` (attribute -> (label, dimension))."""
     st.error(str(error), icon=":material/block:")
     if isinstance(error, PhysicalLimitError):
         cols = st.columns(max(1, len(error.limits)))
         for col, (name, value) in zip(cols, error.limits.items()):
-            label, dimension = LIMIT_LABELS.get(name, (name, "dimensionless"))
+            label, dimension = (limit_labels or {}).get(name, (name, "dimensionless"))
             col.metric(label, units.format_quantity(value, dimension, system))

@@ -250,3 +250,27 @@ def base_layout(title: str = "", equal_axes: bool = True, x_range=None, y_range=
 def padded(lo: float, hi: float, pad: float = 0.08) -> tuple[float, float]:
     span = hi - lo or 1.0
     return lo - pad * span, hi + pad * span
+
+
+# --------------------------------------------------------------------------------------------
+# The home page's thumbnails: a small static SVG sketch per problem (no physics), declared by each
+# viz module as THUMBNAIL. Drawn on a 200 × 110 canvas in the palette above; two arrowheads are
+# defined for ``marker-end``: url(#g) (velocity green) and url(#r) (impulse red).
+
+THUMBNAIL_SIZE = (200, 110)
+
+
+def _arrowhead(name: str, color: str) -> str:
+    return (f'<marker id="{name}" markerWidth="6" markerHeight="6" refX="5" refY="3" orient="auto">'
+            f'<path d="M0,0 L6,3 L0,6" fill="none" stroke="{color}" stroke-width="1.2"/></marker>')
+
+
+def thumbnail(body: str, label: str) -> str:
+    """A home-page sketch: ``body`` (SVG elements on the 200 × 110 canvas) in an ``<svg>`` with
+    role="img" and ``label`` as its aria-label, the text a screen reader reads for the picture."""
+    if not label.strip() or '"' in label:
+        raise ValueError("a thumbnail needs a label in words, without double quotes")
+    width, height = THUMBNAIL_SIZE
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {width} {height}" width="{width}" '
+            f'height="{height}" role="img" aria-label="{label}"><defs>'
+            f'{_arrowhead("g", COLORS["velocity"])}{_arrowhead("r", COLORS["impulse"])}</defs>{body}</svg>')

@@ -7,8 +7,16 @@ import numpy as np
 
 from solvers import disk_wall as solver
 from solvers.core import plain_number as n
-from viz.common import (COLORS, Figure, animated, arrows, as_one, base_layout, circles, line, moving, padded, r,
-                         segments, trails)
+from viz.common import (COLORS, Figure, animated, arrows, as_one, base_layout, circles, line, moving, padded,
+                         r, segments, thumbnail, trails)
+
+THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
+    f'<line x1="10" y1="14" x2="190" y2="14" stroke="{COLORS["ink"]}" stroke-width="5"/>'
+    f'<circle cx="80" cy="68" r="26" fill="{COLORS["body"]}33" stroke="{COLORS["body"]}" stroke-width="3"/>'
+    f'<line x1="80" y1="68" x2="100" y2="84" stroke="{COLORS["accent"]}" stroke-width="3"/>'
+    f'<line x1="80" y1="68" x2="110" y2="34" stroke="{COLORS["velocity"]}" stroke-width="3" marker-end="url(#g)"/>'
+    f'<path d="M120,96 a36,36 0 0 0 14,-30" fill="none" stroke="{COLORS["accent"]}" stroke-width="2" stroke-dasharray="4 3"/>',
+    "A spinning disk moving toward a wall")
 
 
 def figures(solution, system: str = "si") -> list[Figure]:

@@ -7,7 +7,15 @@ import numpy as np
 from solvers import driven_cart as solver
 from solvers.core import plain_number as n
 from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, joined, line, moving,
-                         points, r, segments)
+                         points, r, segments, thumbnail)
+
+THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
+    f'<line x1="5" y1="96" x2="195" y2="96" stroke="{COLORS["ink"]}" stroke-width="4"/>'
+    f'<rect x="35" y="44" width="130" height="34" rx="4" fill="{COLORS["body"]}33" stroke="{COLORS["body"]}" stroke-width="3"/>'
+    f'<circle cx="60" cy="82" r="13" fill="white" stroke="#555" stroke-width="3"/>'
+    f'<circle cx="140" cy="82" r="13" fill="white" stroke="#555" stroke-width="3"/>'
+    f'<line x1="150" y1="60" x2="190" y2="60" stroke="{COLORS["impulse"]}" stroke-width="3" marker-end="url(#r)"/>',
+    "A four-wheeled cart accelerating")
 
 
 def figures(solution, system: str = "si") -> list[Figure]:

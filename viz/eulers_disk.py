@@ -8,11 +8,18 @@ import numpy as np
 
 from solvers import eulers_disk as solver
 from solvers.core import plain_fixed, plain_number as n
-from viz.common import COLORS, Figure, animated, base_layout, line, moving, r
+from viz.common import COLORS, Figure, animated, base_layout, line, moving, r, thumbnail
 
 PLAY_SECONDS = 4.0  # one precession lasts this long on screen
 MM = 1000.0  # the 3-D view is drawn in millimetres
 ON_REQUEST_FLAG = "rundown"  # ?rundown=1 keeps "Letting it run down" open in a shared link
+
+THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
+    f'<ellipse cx="100" cy="88" rx="70" ry="14" fill="none" stroke="{COLORS["velocity"]}" stroke-width="2" stroke-dasharray="5 4"/>'
+    f'<ellipse cx="100" cy="70" rx="62" ry="22" fill="{COLORS["body"]}33" stroke="{COLORS["body"]}" stroke-width="3" transform="rotate(-12 100 70)"/>'
+    f'<line x1="100" y1="70" x2="150" y2="64" stroke="{COLORS["accent"]}" stroke-width="3"/>'
+    f'<circle cx="42" cy="86" r="4" fill="{COLORS["impulse"]}"/>',
+    "Euler's disk spinning on a table")
 
 
 def figures(solution, system: str = "si") -> list[Figure]:

@@ -7,9 +7,17 @@ import numpy as np
 
 from solvers import pendulum_rebound as solver
 from solvers.core import plain_fixed
-from ui import units
-from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, line, moving, points, r,
-                         segments, trails)
+from solvers import units
+from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, line, moving, points,
+                         r, segments, thumbnail, trails)
+
+THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
+    f'<line x1="10" y1="100" x2="190" y2="100" stroke="{COLORS["ink"]}" stroke-width="5"/>'
+    f'<line x1="60" y1="18" x2="120" y2="72" stroke="#555" stroke-width="4"/>'
+    f'<circle cx="132" cy="82" r="15" fill="{COLORS["body"]}33" stroke="{COLORS["body"]}" stroke-width="3"/>'
+    f'<path d="M170,20 a90,90 0 0 1 -20,46" fill="none" stroke="{COLORS["accent"]}" stroke-width="2" stroke-dasharray="4 3"/>'
+    f'<text x="58" y="14" font-size="12" fill="{COLORS["ink"]}">O</text>',
+    "A pendulum with a sphere about to strike the floor")
 
 
 def figures(solution, system: str = "si") -> list[Figure]:

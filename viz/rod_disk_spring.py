@@ -7,7 +7,15 @@ import numpy as np
 
 from solvers import rod_disk_spring as solver
 from solvers.core import plain_fixed, plain_number as n
-from viz.common import COLORS, Figure, animated, base_layout, circles, line, moving, points, r, segments, spirals
+from viz.common import (COLORS, Figure, animated, base_layout, circles, line, moving, points, r, segments,
+                         spirals, thumbnail)
+
+THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
+    f'<path d="M70,60 m-10,0 a10,10 0 1 0 20,0 a14,14 0 1 0 -28,0 a18,18 0 1 0 36,0" fill="none" stroke="{COLORS["force"]}" stroke-width="2"/>'
+    f'<line x1="70" y1="60" x2="140" y2="30" stroke="#555" stroke-width="4"/>'
+    f'<circle cx="154" cy="24" r="15" fill="{COLORS["body"]}33" stroke="{COLORS["body"]}" stroke-width="3"/>'
+    f'<line x1="70" y1="60" x2="70" y2="6" stroke="{COLORS["ink"]}" stroke-width="1" stroke-dasharray="4 3"/>',
+    "A rod and disk on a torsional spring")
 
 
 def figures(solution, system: str = "si") -> list[Figure]:

@@ -5,8 +5,15 @@ import numpy as np
 
 from solvers import stick_ball as solver
 from solvers.core import plain_number as n
-from viz.common import (COLORS, Figure, animated, base_layout, circles, column, line, moving, padded, points, r,
-                         segments, trails)
+from viz.common import (COLORS, Figure, animated, base_layout, circles, column, line, moving, padded, points,
+                         r, segments, thumbnail, trails)
+
+THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
+    f'<line x1="120" y1="10" x2="120" y2="100" stroke="{COLORS["body"]}" stroke-width="7"/>'
+    f'<circle cx="50" cy="22" r="8" fill="{COLORS["impulse"]}55" stroke="{COLORS["impulse"]}" stroke-width="2"/>'
+    f'<line x1="62" y1="22" x2="100" y2="22" stroke="{COLORS["velocity"]}" stroke-width="3" marker-end="url(#g)"/>'
+    f'<line x1="120" y1="78" x2="190" y2="78" stroke="{COLORS["velocity"]}" stroke-width="2" stroke-dasharray="6 4"/>',
+    "A ball sliding toward the end of a stick")
 
 
 def figures(solution, system: str = "si") -> list[Figure]:

@@ -1,0 +1,195 @@
+"""The derivation chain: one sympy derivation, done once per process, turned into both the LaTeX
+steps and fast numbers (lambdified), with the substituted-number steps filled from templates."""
+from __future__ import annotations
+
+import functools
+import math
+import re
+from dataclasses import dataclass
+from typing import Callable, Iterable, Mapping, Sequence
+
+import numpy as np
+import sympy as sp
+
+from .formatting import latex_number
+from .solution import Step
+from .units import latex_quantity
+
+
+_DOUBLE_PARENS = re.compile(r"\\left\(\\left\(([^()]*)\\right\) \\right\)")
+
+
+def latex_eq(lhs: sp.Expr, rhs: sp.Expr, **kw) -> str:
+    return sp.latex(sp.Eq(lhs, rhs, evaluate=False), **kw)
+
+
+def _only_inside_trig(expr: sp.Expr, sym: sp.Symbol) -> bool:
+    """True when ``sym`` occurs in ``expr`` only as (part of) a trig function's argument."""
+    stripped = expr.replace(
+        lambda e: isinstance(e, sp.functions.elementary.trigonometric.TrigonometricFunction)
+        and e.has(sym),
+        lambda e: sp.Integer(1),
+    )
+    return not stripped.has(sym)
+
+
+@dataclass(frozen=True)
+class Result:
+    """One link of a derivation chain: ``symbol = expr`` with expr in parameters and earlier results."""
+
+    name: str
+    symbol: sp.Symbol
+    expr: sp.Expr
+    dimension: str
+    title: str = ""
+
+
+class Derivation:
+    """A symbolic derivation done once, evaluated many times.
+
+    ``symbols`` maps parameter names to their sympy symbols; ``steps`` are the symbolic steps
+    (already LaTeX); ``chain`` lists results in order. ``evaluate`` runs lambdified code only, and
+    ``numeric_steps`` fills a LaTeX template built once from the same expressions. ``labels``
+    names the results in words for the numeric steps' titles.
+    """
+
+    _PLACEHOLDER = "ZQ{}QZ"
+
+    def __init__(
+        self,
+        symbols: Mapping[str, sp.Symbol],
+        dimensions: Mapping[str, str],
+        steps: Iterable[Step],
+        chain: Sequence[Result],
+        labels: Mapping[str, str] | None = None,
+    ):
+        self.steps = tuple(steps)
+        self._labels = dict(labels or {})
+        self._symbols = dict(symbols)
+        self._vectorized: dict[str, Callable[..., np.ndarray]] = {}
+        self.chain = tuple(chain)
+        self._dimensions = dict(dimensions)
+        known: dict[sp.Symbol, str] = {sym: name for name, sym in symbols.items()}
+        self._compiled: list[tuple[str, Callable, tuple[str, ...]]] = []
+        self._templates: list[tuple[Result, str, str, tuple[tuple[str, str, bool], ...]]] = []
+        for link in self.chain:
+            free = sorted(link.expr.free_symbols, key=lambda s: s.name)
+            missing = [s for s in free if s not in known]
+            if missing:
+                raise RuntimeError(f"{link.name}: unknown symbols {missing}")
+            arg_names = tuple(known[s] for s in free)
+            func = sp.lambdify(free, link.expr, modules="math")
+            self._compiled.append((link.name, func, arg_names))
+            names = {s: self._PLACEHOLDER.format(i) for i, s in enumerate(free)}
+            template = sp.latex(link.expr, symbol_names=names, mul_symbol="dot")
+            slots = tuple(
+                (names[s], known[s], _only_inside_trig(link.expr, s)) for s in free
+            )
+            self._templates.append((link, sp.latex(link.symbol), template, slots))
+            known[link.symbol] = link.name
+            self._dimensions[link.name] = link.dimension
+        self._results = {link.name for link in self.chain}
+
+    @property
+    def symbols(self) -> dict[str, sp.Symbol]:
+        """Every symbol of the chain by name: the parameters' and the results'."""
+        return dict(self._symbols) | {link.name: link.symbol for link in self.chain}
+
+    @functools.cached_property
+    def _in_parameters(self) -> dict[sp.Symbol, sp.Expr]:
+        """Each result's symbol -> its expression in the parameters alone (built once)."""
+        full: dict[sp.Symbol, sp.Expr] = {}
+        for link in self.chain:
+            full[link.symbol] = link.expr.subs(full)
+        return full
+
+    def expression_of(self, name: str) -> sp.Expr:
+        """Result ``name`` as an expression in the parameters alone (earlier results substituted)."""
+        link = next((link for link in self.chain if link.name == name), None)
+        if link is None:
+            raise KeyError(name)
+        return self._in_parameters[link.symbol]
+
+    def in_parameters(self, expr: sp.Expr) -> sp.Expr:
+        """``expr``, which may use result symbols, rewritten in the parameters alone."""
+        return expr.subs(self._in_parameters)
+
+    def vectorized(self, name: str) -> Callable[..., np.ndarray]:
+        """Result ``name`` as a numpy function of the parameters (keyword arguments, arrays
+        welcome), for curves over a range of one parameter; compiled once."""
+        if name not in self._vectorized:
+            expr = self.expression_of(name)
+            names = {sym: pname for pname, sym in self._symbols.items()}
+            args = sorted(expr.free_symbols, key=lambda s: s.name)
+            func = sp.lambdify(args, expr, modules="numpy")
+            arg_names = [names[a] for a in args]
+            self._vectorized[name] = lambda **kw: np.broadcast_to(
+                func(*(kw[n] for n in arg_names)), np.broadcast(*(np.asarray(v) for v in kw.values())).shape)
+        return self._vectorized[name]
+
+    def evaluate(self, values: Mapping[str, float], upto: str | None = None,
+                 overrides: Mapping[str, float] | None = None) -> dict[str, float]:
+        """Run the chain numerically; returns the parameters plus every result (or those up to
+        and including ``upto``, to test a condition before the rest is meaningful). A result in
+        ``overrides`` takes that value instead and the later links use it (a slip in one step, for
+        tests that the shown checks catch it)."""
+        out, overrides = dict(values), overrides or {}
+        for name, func, arg_names in self._compiled:
+            out[name] = float(overrides[name] if name in overrides else func(*(out[a] for a in arg_names)))
+            if name == upto:
+                break
+        return out
+
+    def numeric_steps(self, values: Mapping[str, float]) -> list[Step]:
+        """One step per chain link: the expression with numbers substituted, then its value."""
+        steps = []
+        for link, symbol, template, slots in self._templates:
+            text = template
+            for placeholder, name, trig_only in slots:
+                text = text.replace(placeholder, self._number_for(name, values[name], trig_only))
+            text = _DOUBLE_PARENS.sub(r"\\left(\1\\right)", text)
+            value = latex_quantity(values[link.name], link.dimension)
+            title = link.title or f"With your numbers: {self._labels.get(link.name, link.name)}"
+            steps.append(Step(title, f"{symbol} = {text} = {value}", numeric=True))
+        return steps
+
+    def _number_for(self, name: str, x: float, trig_only: bool) -> str:
+        # Given parameters appear as typed (up to 6 figures); computed results with 4.
+        sig, zeros = (4, True) if name in self._results else (6, False)
+        if self._dimensions.get(name) == "angle" and trig_only and math.isfinite(x):
+            text = latex_number(math.degrees(x), sig, zeros) + r"^{\circ}"
+        else:
+            text = latex_number(x, sig, zeros)
+        if x < 0 or r"\times" in text:
+            text = rf"\left({text}\right)"
+        return text
+
+
+def presentable(derived: sp.Expr, shown: sp.Expr, trials: int = 5) -> sp.Expr:
+    """Return ``shown``, a readable arrangement of ``derived``, after checking they are equal.
+
+    sympy's own arrangement of a solved expression is often hard to read; the derivation shows a
+    form a professor would write, and this check (at random positive points) keeps it honest.
+    """
+    free = sorted(derived.free_symbols | shown.free_symbols, key=lambda s: s.name)
+    rng = np.random.default_rng(12345)
+    for _ in range(trials):
+        point = dict(zip(free, (sp.Float(x) for x in rng.uniform(0.2, 0.9, len(free)))))
+        a, b = complex(derived.evalf(subs=point)), complex(shown.evalf(subs=point))
+        if not abs(a - b) <= 1e-9 * (1 + abs(a)):
+            raise AssertionError(f"presentable form differs: {derived} vs {shown}")
+    return shown
+
+
+def root_with_sign(roots: Sequence[sp.Expr], sign: int) -> sp.Expr:
+    """The one root of ``roots`` whose value has ``sign`` (+1/−1) at a generic point in the
+    physical domain (all symbols between 0.2 and 0.9, where sin and cos are positive)."""
+    chosen = []
+    for root in roots:
+        point = {s: sp.Rational(1, 2) + sp.Rational(i, 13) for i, s in enumerate(
+            sorted(root.free_symbols, key=lambda s: s.name))}
+        if sp.sign(complex(root.evalf(subs=point)).real) == sign:
+            chosen.append(root)
+    if len(chosen) != 1:
+        raise AssertionError(f"expected one root of sign {sign} among {roots}")
+    return chosen[0]
