@@ -16,6 +16,7 @@ PROBLEM_IDS: tuple[str, ...] = (
     "rod_disk_spring",
     "driven_cart",
     "eulers_disk",
+    "sliding_ladder",
 )
 
 

@@ -1,0 +1,416 @@
+"""A ladder slides down a smooth wall onto a smooth floor (a classic beyond the worked solutions).
+
+Model: uniform slender rod (mass m, length L, I_G = m L²/12), its top A against a smooth vertical
+wall at x = 0, its foot B on a smooth floor at y = 0, released from rest at θ0 (θ between the ladder
+and the floor). While both contacts hold, G = ((L/2) cos θ, (L/2) sin θ) moves on a circle about the
+corner, the ladder turns about its instantaneous centre C (where the normals at A and B meet, L/2
+from G), and energy gives θ̇² = (3g/L)(sin θ0 − sin θ). The wall can only push: N_A = m ẍ_G falls to
+zero at sin θ = ⅔ sin θ0 and the top leaves the wall. From then on no horizontal force acts, so
+ẋ_G keeps its value; the foot stays on the floor (y_G = (L/2) sin θ) and energy with that
+constraint alone carries θ to 0, where the ladder lands flat. The two times are integrals with no
+elementary closed form (elliptic integrals): they are evaluated by quadrature. Every answer is
+checked against an integration of the Newton–Euler equations (forces from a linear solve at each
+instant) with an event where the wall's reaction reaches zero.
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import sympy as sp
+from scipy.integrate import quad, solve_ivp
+
+from .core import (
+    Answer,
+    Check,
+    Derivation,
+    Number,
+    OutOfModelRangeError,
+    Result,
+    Solution,
+    Step,
+    latex_eq,
+    latex_number,
+    plain_number,
+    presentable,
+    relative_tolerance,
+    validate_params,
+    within_model_range,
+)
+from .protocol import About, Mistake, Variants
+
+ABOUT = About(
+    title="Ladder sliding down a smooth wall",
+    group="Newton–Euler",
+    blurb="A ladder slips on a smooth wall and floor: when does its top leave the wall, and how does it land?",
+    icon=":material/stairs:",
+    source="a classic of rigid-body dynamics, beyond the worked solutions",
+    primary=("theta0", "L"),
+)
+
+PARAMS = (
+    Number("m", 10.0, "ladder mass", "mass", "m", low=0, ui_low=0.5, ui_high=100.0, step=0.5),
+    Number("L", 4.0, "ladder length", "length", "L", low=0, ui_low=0.5, ui_high=12.0, step=0.1),
+    Number("theta0", math.radians(60), "release angle from the floor", "angle", r"\theta_0", low=0,
+           high=math.pi / 2, ui_low=5, ui_high=89, step=1.0,
+           help="The angle between the ladder and the floor when it is let go, at rest."),
+    Number("g", 9.81, "gravity", "acceleration", "g", low=0, ui_low=0.5, ui_high=30.0, step=0.01),
+)
+
+ANSWERS = (
+    Answer("theta_leave", "angle when the top leaves the wall", r"\theta_\ell", "angle"),
+    Answer("omega_leave", "angular speed when the top leaves the wall", r"\lvert\dot\theta_\ell\rvert",
+           "angular_speed"),
+    Answer("vx_leave", "speed of G away from the wall then (constant afterwards)", r"\dot x_{G\ell}", "speed"),
+    Answer("t_leave", "time from release until the top leaves the wall", r"t_\ell", "time"),
+    Answer("omega_floor", "angular speed when the ladder lands flat", r"\lvert\dot\theta_f\rvert", "angular_speed"),
+    Answer("t_floor", "time from release until the ladder lands flat", r"t_f", "time"),
+    Answer("N_wall0", "wall's reaction just after release", r"N_{A0}", "force"),
+    Answer("N_floor0", "floor's reaction just after release", r"N_{B0}", "force"),
+)
+
+ERRATA: tuple[str, ...] = ()  # not in the worked solutions
+LIMIT_LABELS: dict[str, tuple[str, str]] = {}
+WARM: tuple[dict, ...] = ()
+VARIANTS = Variants(angles_deg={"theta0": (30, 80)})
+
+m, L, g = sp.symbols("m L g", positive=True)
+theta0 = sp.Symbol(r"theta_0", positive=True)
+theta = sp.Symbol(r"theta", positive=True)
+thetadot = sp.Symbol(r"\dot{\theta}", real=True)
+thetaddot = sp.Symbol(r"\ddot{\theta}", real=True)
+th_l, w_l, v_l, t_l, w_f, t_f, N_A0, N_B0 = sp.symbols(
+    r"theta_ell |\dot{\theta}_\ell| \dot{x}_{G\ell} t_\ell |\dot{\theta}_f| t_f N_{A0} N_{B0}", positive=True)
+# The two phases' times in units of sqrt(L/g): integrals evaluated by quadrature (chain inputs), and
+# the time to the floor if the wall held all the way down (only for the slip of that name).
+tau_1, tau_2, tau_held = sp.symbols(r"tau_1 tau_2 tau_held", positive=True)
+TIME_INTEGRALS = {"tau_1": tau_1, "tau_2": tau_2, "tau_held": tau_held}
+
+SYMBOLS = {"m": m, "L": L, "theta0": theta0, "g": g}
+DIMENSIONS = {p.name: p.dimension for p in PARAMS} | {name: "dimensionless" for name in TIME_INTEGRALS}
+
+# Released nearer the floor or the wall than this, the motion is too small or its start too slow
+# (an unstable equilibrium) for the arithmetic; the refusal says so. (0.0057°)
+CLOSEST_TO_REST = 1e-6
+
+
+@functools.cache
+def derivation() -> tuple[Derivation, dict]:
+    """Both phases, derived once: energy, the reactions from Newton's law for G, the instant the
+    wall's reaction vanishes, then energy with the floor constraint alone. Also θ̇²(θ) of each phase
+    as plain functions in units g = L = 1, for the time quadratures."""
+    t = sp.Symbol("t")
+    q = sp.Function(r"theta")(t)
+    x_G, y_G = L / 2 * sp.cos(q), L / 2 * sp.sin(q)
+    I_G = m * L**2 / 12
+    as_symbols = lambda e: e.subs({q.diff(t, 2): thetaddot, q.diff(t): thetadot}).subs(q, theta)  # noqa: E731
+
+    # Phase 1: both contacts. Kinetic energy of G's motion plus the turning about G.
+    v_sq = sp.simplify(as_symbols(x_G.diff(t) ** 2 + y_G.diff(t) ** 2))
+    T1 = sp.simplify(m * v_sq / 2 + I_G * thetadot**2 / 2)
+    I_C = sp.simplify(2 * T1 / thetadot**2)
+    energy1 = sp.Eq(T1, m * g * L / 2 * (sp.sin(theta0) - sp.sin(theta)))
+    W = sp.Symbol("W", positive=True)  # θ̇², solved for
+    rate_sq = sp.solve(energy1.subs(thetadot**2, W), W)[0]
+    accel = sp.simplify(sp.diff(rate_sq, theta) / 2)  # d(θ̇²)/dt = 2 θ̇ θ̈ = (d θ̇²/dθ) θ̇
+    x_acc, y_acc = as_symbols(x_G.diff(t, 2)), as_symbols(y_G.diff(t, 2))
+    on_path = {thetaddot: accel, thetadot**2: rate_sq}
+    wall = sp.factor(sp.simplify((m * x_acc).subs(on_path)))
+    floor = sp.factor(sp.simplify((m * (y_acc + g)).subs(on_path)))
+    s = sp.Symbol("s", positive=True)
+    (leaving_sin,) = sp.solve(sp.factor(wall / sp.cos(theta)).subs(sp.sin(theta), s), s)  # cos θ > 0 here
+    leave_angle = sp.asin(leaving_sin)
+    wall_0 = presentable(sp.simplify(wall.subs(theta, theta0)), 3 * m * g * sp.sin(theta0) * sp.cos(theta0) / 4)
+    floor_0 = sp.factor(sp.simplify(floor.subs(theta, theta0)))
+    omega_l = sp.sqrt(rate_sq.subs(theta, th_l))
+    speed_l = sp.simplify(as_symbols(x_G.diff(t)).subs(theta, th_l).subs(thetadot, -w_l))
+
+    # Phase 2: the floor alone. ẋ_G keeps its value; y_G = (L/2) sin θ still; energy from leaving.
+    T2 = m * (v_l**2 + as_symbols(y_G.diff(t)) ** 2) / 2 + I_G * thetadot**2 / 2
+    T_l = I_C * w_l**2 / 2
+    energy2 = sp.Eq(T2, T_l + m * g * L / 2 * (sp.sin(th_l) - sp.sin(theta)))
+    rate2_sq = presentable(sp.solve(energy2.subs(thetadot**2, W), W)[0],
+                           sp.Mul(4 / (1 + 3 * sp.cos(theta) ** 2),
+                                  w_l**2 - 3 * v_l**2 / L**2 + 3 * g / L * (sp.sin(th_l) - sp.sin(theta)),
+                                  evaluate=False))
+    omega_f = sp.sqrt(sp.expand(rate2_sq.subs(theta, 0)))
+    omega_f = presentable(omega_f, sp.sqrt(w_l**2 + 3 * g / L * sp.sin(th_l) - 3 * v_l**2 / L**2))
+
+    time_1 = sp.Integral(1 / sp.sqrt(rate_sq.subs({g: 1, L: 1})), (theta, th_l, theta0))
+    time_2 = sp.Integral(1 / sp.Function(r"\hat{\omega}_2")(theta), (theta, 0, th_l))
+    steps = [
+        Step("Both contacts hold: G moves on a circle of radius L/2 about the corner",
+             r"x_G = " + sp.latex(x_G.subs(q, theta)) + r",\quad y_G = " + sp.latex(y_G.subs(q, theta))),
+        Step("Kinetic energy: G's motion plus the turning about G (I_G = mL²/12); the ladder turns about "
+             "its instantaneous centre C, L/2 from G",
+             r"T = \tfrac12 m v_G^2 + \tfrac12 I_G \dot\theta^2 = " + sp.latex(T1)
+             + r" = \tfrac12 I_C \dot\theta^2,\quad I_C = " + sp.latex(I_C)),
+        Step("Energy from rest (the smooth wall and floor do no work)",
+             sp.latex(energy1, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate_sq, order="rev-lex")),
+        Step("Its rate of change, d(θ̇²)/dt = 2θ̇θ̈, gives the angular acceleration",
+             latex_eq(thetaddot, accel)),
+        Step("The wall's push is the only horizontal force: N_A = m ẍ_G",
+             r"N_A = m\,\ddot x_G = " + sp.latex(sp.factor(m * x_acc)) + " = " + sp.latex(wall)),
+        Step("The floor carries the weight and G's vertical acceleration: N_B = m (ÿ_G + g)",
+             r"N_B = " + sp.latex(floor)),
+        Step("Just after release (θ = θ₀, θ̇ = 0)",
+             latex_eq(N_A0, wall_0) + r",\quad " + latex_eq(N_B0, floor_0)),
+        Step("The wall cannot pull: N_A reaches zero, and the top leaves the wall, at two-thirds of its "
+             "initial height", r"N_A = 0 \;\Rightarrow\; \sin\theta_\ell = " + sp.latex(leaving_sin)
+             + r",\quad " + latex_eq(w_l, omega_l.subs(th_l, leave_angle).simplify())),
+        Step("G's speed away from the wall then (θ̇ < 0 while it falls)",
+             latex_eq(v_l, speed_l)),
+        Step("Time to leave: dt = dθ / |θ̇|, in units of √(L/g) (an elliptic integral, by quadrature)",
+             latex_eq(tau_1, time_1, order="rev-lex") + r",\quad t_\ell = \tau_1 \sqrt{L/g}"),
+        Step("After leaving no horizontal force acts: ẋ_G stays at its value; the foot stays on the floor, "
+             "so y_G = (L/2) sin θ still; energy from the moment of leaving",
+             sp.latex(energy2, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate2_sq, order="rev-lex")),
+        Step("Flat on the floor, θ = 0", latex_eq(w_f, omega_f)),
+        Step("Time from leaving to the floor, in units of √(L/g) with ω̂₂ = |θ̇| √(L/g) from the energy "
+             "above (by quadrature)", latex_eq(tau_2, time_2) + r",\quad t_f = t_\ell + \tau_2 \sqrt{L/g}"),
+    ]
+    chain = [
+        Result("theta_leave", th_l, leave_angle, "angle"),
+        Result("omega_leave", w_l, omega_l, "angular_speed"),
+        Result("vx_leave", v_l, speed_l, "speed"),
+        Result("t_leave", t_l, tau_1 * sp.sqrt(L / g), "time"),
+        Result("omega_floor", w_f, omega_f, "angular_speed"),
+        Result("t_floor", t_f, t_l + tau_2 * sp.sqrt(L / g), "time"),
+        Result("N_wall0", N_A0, wall_0, "force"),
+        Result("N_floor0", N_B0, floor_0, "force"),
+    ]
+    symbols = SYMBOLS | TIME_INTEGRALS
+    derived = Derivation(symbols, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
+    rates = {"phase1": sp.lambdify((theta, theta0), rate_sq.subs({g: 1, L: 1}), "math"),
+             "phase2": sp.lambdify((theta, th_l, w_l, v_l), rate2_sq.subs({g: 1, L: 1}), "math")}
+    return derived, rates
+
+
+def derivation_of(solution: Solution) -> Derivation:
+    """The derivation behind ``solution`` (one for every parameter set)."""
+    return derivation()[0]
+
+
+# --------------------------------------------------------------------------------------------
+# The times: quadratures in units of sqrt(L/g), as functions of θ0 alone
+
+
+def _falling_time(start: float, end: float) -> float:
+    """∫ dθ / √(3 (sin θ0 − sin θ)) from ``end`` up to ``start`` = θ0 (released at rest there).
+
+    With θ = θ0 − u² the endpoint's 1/√ singularity goes (sin θ0 − sin θ = 2 cos(θ0 − u²/2) sin(u²/2)
+    is written without cancellation); near upright the integrand peaks over u ≲ √cos θ0, where
+    quad is told to look."""
+    def integrand(u: float) -> float:
+        if u == 0.0:
+            return 2.0 / math.sqrt(3.0 * math.cos(start))
+        return 2.0 * u / math.sqrt(6.0 * math.cos(start - u * u / 2) * math.sin(u * u / 2))
+
+    top = math.sqrt(start - end)
+    peak = min(math.sqrt(math.cos(start)), top / 2)
+    value, _ = quad(integrand, 0.0, top, points=[peak], limit=200, epsabs=0.0, epsrel=1e-12)
+    return value
+
+
+@functools.lru_cache(maxsize=1024)
+def time_integrals(theta_0: float) -> dict[str, float]:
+    """τ₁ (release to leaving), τ₂ (leaving to flat) and τ_held (release to flat if the wall held)."""
+    _, rates = derivation()
+    leave = math.asin(2.0 / 3.0 * math.sin(theta_0))
+    w_leave = math.sqrt(rates["phase1"](leave, theta_0))
+    v_leave = 0.5 * math.sin(leave) * w_leave
+    phase2 = lambda q: 1.0 / math.sqrt(rates["phase2"](q, leave, w_leave, v_leave))  # noqa: E731
+    tau2, _ = quad(phase2, 0.0, leave, epsabs=0.0, epsrel=1e-12, limit=200)
+    return {"tau_1": _falling_time(theta_0, leave), "tau_2": tau2, "tau_held": _falling_time(theta_0, 0.0)}
+
+
+# --------------------------------------------------------------------------------------------
+# The second method: Newton–Euler, integrated (units m = g = L = 1)
+
+
+def reactions_and_accelerations(state, wall: bool) -> np.ndarray:
+    """[ẍ_G, ÿ_G, θ̈, N_B, N_A] (N_A only with the wall) from m a_G = ΣF, I_G α = ΣM_G and the contacts'
+    kinematics (A on the wall, B on the floor), solved as one linear system in units m = g = L = 1.
+    θ is the rod's angle from the floor, so its anticlockwise rotation is −θ̇."""
+    _, _, th, _, _, w = state
+    s, c = math.sin(th), math.cos(th)
+    # unknowns: ax, ay, α, N_B, N_A
+    rows = [
+        [1, 0, 0, 0, -1],                 # m ẍ = N_A
+        [0, 1, 0, -1, 0],                 # m ÿ = N_B − m g
+        [0, 0, 1 / 12, c / 2, -s / 2],    # I_G θ̈ = (L/2)(N_A sin θ − N_B cos θ)
+        [0, 1, -c / 2, 0, 0],             # B on the floor: y_G = (L/2) sin θ
+        [1, 0, s / 2, 0, 0],              # A on the wall: x_G = (L/2) cos θ
+    ]
+    rhs = [0.0, -1.0, 0.0, -s * w * w / 2, -c * w * w / 2]
+    if not wall:
+        rows = [row[:4] for row in rows[:4]]
+        rhs = rhs[:4]
+    return np.linalg.solve(np.array(rows, dtype=float), np.array(rhs))
+
+
+def _rates(wall: bool):
+    def f(_t, y):
+        a = reactions_and_accelerations(y, wall)
+        return [y[3], y[4], y[5], a[0], a[1], a[2]]
+    return f
+
+
+@functools.lru_cache(maxsize=256)
+def integrated(theta_0: float) -> dict:
+    """Release to landing by Newton–Euler: phase 1 until N_A = 0 (an event), phase 2 until θ = 0.
+    Returns the leaving and landing states, the start's reactions and the dense solutions."""
+    start = [0.5 * math.cos(theta_0), 0.5 * math.sin(theta_0), theta_0, 0.0, 0.0, 0.0]
+    closest = min(theta_0, math.pi / 2 - theta_0)
+    tolerances = dict(rtol=1e-11, atol=[1e-13, 1e-13, 1e-13 * closest, 1e-13, 1e-13, 1e-13 * closest],
+                      method="DOP853", dense_output=True)
+
+    def wall_push(_t, y):
+        return reactions_and_accelerations(y, True)[4]
+    wall_push.terminal, wall_push.direction = True, -1
+
+    def flat(_t, y):
+        return y[2]
+    flat.terminal, flat.direction = True, -1
+
+    horizon = 100.0 + 10 * math.log(1 / closest)
+    one = solve_ivp(_rates(True), (0.0, horizon), start, events=wall_push, **tolerances)
+    if not one.t_events[0].size:
+        raise RuntimeError("the wall's reaction never reached zero")  # pragma: no cover
+    t1, y1 = float(one.t_events[0][0]), one.y_events[0][0]
+    two = solve_ivp(_rates(False), (t1, t1 + horizon), y1, events=flat, **tolerances)
+    if not two.t_events[0].size:
+        raise RuntimeError("the ladder never landed")  # pragma: no cover
+    t2, y2 = float(two.t_events[0][0]), two.y_events[0][0]
+    first = reactions_and_accelerations(start, True)
+    return {"t_leave": t1, "leave": y1, "t_floor": t2, "floor": y2, "N_wall0": first[4], "N_floor0": first[3],
+            "phase1": one.sol, "phase2": two.sol}
+
+
+# --------------------------------------------------------------------------------------------
+
+
+def _validate(params) -> dict:
+    p = validate_params(PARAMS, params)
+    closest = min(p["theta0"], math.pi / 2 - p["theta0"])
+    if closest < CLOSEST_TO_REST:
+        lowest = plain_number(math.degrees(CLOSEST_TO_REST), 2)
+        raise OutOfModelRangeError(
+            f"theta0 (release angle from the floor) is closer than {lowest}° to lying flat (0°) or to standing "
+            "upright (90°): the motion is too small, or its start too slow, for the model's arithmetic. Use an "
+            f"angle from {lowest}° to {plain_number(90 - math.degrees(CLOSEST_TO_REST), 8)}°.")
+    return p
+
+
+@within_model_range
+def solve(**params) -> Solution:
+    p = _validate(params)
+    chain, _ = derivation()
+    integrals = time_integrals(p["theta0"])
+    values = chain.evaluate(p | integrals)
+    answers = {a.name: values[a.name] for a in ANSWERS}
+    if not all(math.isfinite(v) and v < 1e300 for v in answers.values()):
+        raise OverflowError("an answer overflows")
+    steps = (*chain.steps,
+             Step("With your numbers: the two time integrals (quadrature)",
+                  rf"\tau_1 = {latex_number(integrals['tau_1'])},\quad \tau_2 = {latex_number(integrals['tau_2'])}",
+                  numeric=True),
+             *chain.numeric_steps(values))
+    notes = (f"The top leaves the wall at θ = {plain_number(math.degrees(answers['theta_leave']))}°, two-thirds of "
+             f"its initial height; from then on only the floor pushes.",)
+    return Solution("sliding_ladder", p, answers, steps, _checks(p, answers), notes=notes,
+                    extras={"chain_inputs": integrals})
+
+
+def _checks(p, a) -> tuple[Check, ...]:
+    """Each answer against the Newton–Euler integration (scaled from m = g = L = 1), and the energy
+    at landing, from the answers, against the potential energy released."""
+    run = integrated(p["theta0"])
+    time, rate, speed, force = (math.sqrt(p["L"] / p["g"]), math.sqrt(p["g"] / p["L"]), math.sqrt(p["g"] * p["L"]),
+                                p["m"] * p["g"])
+    rel = 1e-6
+    pairs = [
+        ("θ_ℓ: θ at the event N_A = 0, integrating m a_G = ΣF, I_G θ̈ = ΣM_G", "theta_leave", run["leave"][2], 1.0),
+        ("|θ̇_ℓ| at that event", "omega_leave", -run["leave"][5], rate),
+        ("ẋ_G at that event", "vx_leave", run["leave"][3], speed),
+        ("t_ℓ: the time of that event", "t_leave", run["t_leave"], time),
+        ("|θ̇_f|: integrating on with the floor alone to θ = 0", "omega_floor", -run["floor"][5], rate),
+        ("t_f: the time at θ = 0", "t_floor", run["t_floor"], time),
+        ("N_A0: the force and moment balance at release, solved as one linear system", "N_wall0", run["N_wall0"], force),
+        ("N_B0: the same linear system", "N_floor0", run["N_floor0"], force),
+    ]
+    checks = [Check(label, a[name], value * scale, relative_tolerance(a[name], rel))
+              for label, name, value, scale in pairs]
+    released = p["m"] * p["g"] * p["L"] / 2 * math.sin(p["theta0"])
+    landed = p["m"] * a["vx_leave"] ** 2 / 2 + p["m"] * p["L"] ** 2 * a["omega_floor"] ** 2 / 6
+    checks.append(Check("energy: ½ m ẋ_G² + ½ (mL²/4 + mL²/12) θ̇_f² on landing vs m g (L/2) sin θ₀ released",
+                        landed, released, relative_tolerance(released, 1e-9),
+                        "the smooth wall and floor do no work"))
+    return tuple(checks)
+
+
+# --------------------------------------------------------------------------------------------
+# The motion the figures draw
+
+
+FRAMES = 90
+CURVE_POINTS = 240
+
+
+def motion(solution: Solution) -> dict:
+    """Both phases from the integration, scaled to SI: frames evenly in time (one exactly at the
+    leaving), the contacts' positions, and the reactions on a finer grid for their plot."""
+    p = solution.params
+    run = integrated(p["theta0"])
+    T, mg, L_ = math.sqrt(p["L"] / p["g"]), p["m"] * p["g"], p["L"]
+    t1, t2 = run["t_leave"], run["t_floor"]
+
+    def sample(times):
+        states, walls, floors = [], [], []
+        for t in times:
+            on_wall = t <= t1
+            y = run["phase1"](min(t, t1)) if on_wall else run["phase2"](t)
+            r = reactions_and_accelerations(y, on_wall)
+            states.append(y)
+            walls.append(r[4] if on_wall else 0.0)
+            floors.append(r[3])
+        return np.array(states), np.array(walls), np.array(floors)
+
+    frames = np.unique(np.concatenate([np.linspace(0.0, t2, FRAMES), [t1]]))
+    states, _, _ = sample(frames)
+    curve_t = np.unique(np.concatenate([np.linspace(0.0, t2, CURVE_POINTS), [t1]]))
+    _, walls, floors = sample(curve_t)
+    x_G, y_G, th = states[:, 0] * L_, states[:, 1] * L_, states[:, 2]
+    return {
+        "t": frames * T, "theta": th, "x_G": x_G, "y_G": y_G,
+        "x_A": x_G - L_ / 2 * np.cos(th), "y_A": y_G + L_ / 2 * np.sin(th),
+        "x_B": x_G + L_ / 2 * np.cos(th), "y_B": y_G - L_ / 2 * np.sin(th),
+        "curve_t": curve_t * T, "N_wall": walls * mg, "N_floor": floors * mg,
+        "t_leave": t1 * T, "leave_frame": int(np.searchsorted(frames, t1)),
+    }
+
+
+# --------------------------------------------------------------------------------------------
+# Practice: the typical slips, in the derivation's own symbols
+
+HELD = ("That is the ladder held against the wall all the way down. The wall can only push: its push "
+        "reaches zero at sin θ = ⅔ sin θ₀, the top leaves the wall, and from then on ẋ_G stays constant.")
+I_G_FOR_I_C = ("I_G = mL²/12 is the inertia about G, but G moves too: the ladder turns about its "
+               "instantaneous centre C (L/2 from G), so T = ½ (mL²/3) θ̇², i.e. ½ m v_G² + ½ I_G θ̇².")
+
+MISTAKES = (
+    Mistake("omega_floor", HELD, lambda p: sp.sqrt(3 * g * sp.sin(theta0) / L)),
+    Mistake("t_floor", HELD, lambda p: tau_held * sp.sqrt(L / g)),
+    Mistake("omega_leave", I_G_FOR_I_C, lambda p: sp.sqrt(12 * g / L * (sp.sin(theta0) - sp.sin(th_l)))),
+    Mistake("omega_floor", I_G_FOR_I_C, lambda p: sp.sqrt(12 * g * sp.sin(theta0) / L)),
+    Mistake("theta_leave", "Two-thirds of the height, not of the angle: the top leaves where sin θ = ⅔ sin θ₀.",
+            lambda p: sp.Rational(2, 3) * theta0),
+    Mistake("vx_leave", "That is the foot's speed, L sin θ |θ̇|: G is at the middle of the ladder.",
+            lambda p: L * sp.sin(th_l) * w_l),
+    Mistake("N_wall0", "That is the static balance, but on a smooth wall and floor the ladder cannot stand: "
+            "at release it accelerates, and the wall's push is m ẍ_G.",
+            lambda p: m * g * sp.cos(theta0) / (2 * sp.sin(theta0))),
+    Mistake("N_floor0", "The floor carries less than the weight at release: G accelerates downward, so "
+            "N_B = m (g + ÿ_G) with ÿ_G < 0.", lambda p: m * g),
+)
