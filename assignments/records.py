@@ -353,7 +353,7 @@ def safe_cell(value: object) -> object:
     return value
 
 
-def _csv(header: list[str], rows: Iterable[list[object]]) -> str:
+def safe_csv(header: list[str], rows: Iterable[list[object]]) -> str:
     out = io.StringIO()
     writer = csv.writer(out)
     writer.writerow([safe_cell(h) for h in header])
@@ -380,7 +380,7 @@ def gradebook_csv(book: Gradebook) -> str:
             c = book.cells.get((student.label, a), Cell())
             row += [c.first_right or "", _time(c.first_right_at), c.attempts, c.marked, "; ".join(c.slips)]
         rows.append(row)
-    return _csv(header, rows)
+    return safe_csv(header, rows)
 
 
 @_guarded
@@ -392,5 +392,5 @@ def attempts_csv(assignment_id: int, bound: Engine | None = None) -> str:
                              allowed)
     header = ["label", "answer", "attempt", "typed", "correct", "slip", "time", "late", "over_limit",
               "solution_shown", "counts"]
-    return _csv(header, ([a.label, a.answer, a.number, a.typed, a.correct, a.slip, _time(a.at), a.late, a.over_limit,
+    return safe_csv(header, ([a.label, a.answer, a.number, a.typed, a.correct, a.slip, _time(a.at), a.late, a.over_limit,
                           a.solution_shown, a.counts] for a in attempts))
