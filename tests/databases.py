@@ -11,7 +11,16 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-PG_BIN = Path(os.environ.get("DL_PG_BIN", "/usr/lib/postgresql/15/bin"))
+def _newest_postgres() -> Path:
+    """Debian's newest installed server (15 on bookworm), or DL_PG_BIN."""
+    if os.environ.get("DL_PG_BIN"):
+        return Path(os.environ["DL_PG_BIN"])
+    found = sorted(Path("/usr/lib/postgresql").glob("*/bin/initdb"), key=lambda p: int(p.parent.parent.name)
+                   if p.parent.parent.name.isdigit() else 0)
+    return found[-1].parent if found else Path("/usr/lib/postgresql/15/bin")
+
+
+PG_BIN = _newest_postgres()
 
 
 def postgres_missing() -> str | None:

@@ -205,3 +205,32 @@ def test_settings_are_checked_in_plain_words(database):
         records.create_assignment(settings(answers=()), database)
     with pytest.raises(ValueError, match="1 to 100 attempts"):
         records.create_assignment(settings(attempts_allowed=0), database)
+
+
+def test_the_migrate_command_makes_the_default_sqlite_file(tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    from sqlalchemy import create_engine, inspect
+
+    env = {k: v for k, v in os.environ.items() if k != db.URL_ENV} | {db.DATA_ENV: str(tmp_path / "volume")}
+    done = subprocess.run([sys.executable, "-m", "assignments", "migrate"], cwd=db.ROOT, env=env,
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    engine = create_engine(f"sqlite:///{tmp_path / 'volume' / 'dynamics-lab.sqlite'}")
+    assert {"assignment", "student", "attempt", "reveal"} <= set(inspect(engine).get_table_names())
+    engine.dispose()
+
+
+def test_replicas_starting_together_migrate_one_at_a_time(database):
+    from alembic import command
+    from concurrent.futures import ThreadPoolExecutor
+
+    cfg = migrate.config()
+    with database.begin() as connection:  # back to an empty database
+        cfg.attributes["connection"] = connection
+        command.downgrade(cfg, "base")
+    with ThreadPoolExecutor(4) as pool:
+        list(pool.map(lambda _: migrate.upgrade(database), range(4)))  # raises if any replica failed
+    assert records.create_assignment(settings(), database) == 1
