@@ -1,7 +1,6 @@
 """Dynamics Lab: the entry point. A home page and one page per problem, grouped by method."""
 import streamlit as st
 
-from ui.assignments import instructor_page
 from ui.catalog import GROUPS, PROBLEMS
 from ui.home import home
 
@@ -11,6 +10,6 @@ pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True)]
 for group in GROUPS:
     pages[group] = [st.Page(p.page_path, title=p.title, icon=p.icon, url_path=p.id)
                     for p in PROBLEMS if p.group == group]
-pages["For instructors"] = [st.Page(instructor_page, title="Assignments", icon=":material/assignment:",
+pages["For instructors"] = [st.Page("pages/assignments.py", title="Assignments", icon=":material/assignment:",
                                    url_path="assignments")]
 st.navigation(pages).run()

@@ -20,7 +20,7 @@ from ui import units
 
 ROOT = Path(__file__).resolve().parent.parent
 KEY, SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
-INSTRUCTOR_PAGE = "from ui.assignments import instructor_page\ninstructor_page()\n"
+INSTRUCTOR_PAGE = str(ROOT / "pages" / "assignments.py")
 
 
 def reset_database_caches():
@@ -41,7 +41,7 @@ def course(monkeypatch, tmp_path):
 
 
 def instructor(*, key: bool = True) -> AppTest:
-    at = AppTest.from_string(INSTRUCTOR_PAGE, default_timeout=60).run()
+    at = AppTest.from_file(INSTRUCTOR_PAGE, default_timeout=60).run()
     if key:
         at.text_input(key="assign__instructor_key").input(KEY).run()
     return at

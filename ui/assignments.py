@@ -267,6 +267,9 @@ def _gradebook(aid: int) -> None:
 
 
 def instructor_page() -> None:
+    from ui.page import _leave_legacy_pages_mode  # (ui.page imports this module)
+
+    _leave_legacy_pages_mode()  # a deep link to /assignments on a fresh server: see ui/page.py
     st.markdown("# Assignments\n:gray[Signed per-student links, every attempt recorded, the gradebook.]")
     if not instructor_key_entry("assign__instructor_key", "assignments"):
         return
