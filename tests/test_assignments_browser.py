@@ -95,6 +95,7 @@ def test_an_assignment_in_the_browser(browser, course_url):
             for name in SIZES:
                 spage.set_viewport_size(dict(zip(("width", "height"), SIZES[name])))
                 spage.wait_for_timeout(400)
+                spage.get_by_text("Recorded: attempt").first.scroll_into_view_if_needed()
                 shoot(spage, f"student-{name}")
             spage.set_viewport_size(dict(zip(("width", "height"), SIZES[size])))
         assert serious_violations(spage) == [], size
