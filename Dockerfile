@@ -19,10 +19,16 @@ COPY requirements.txt .
 RUN python3 -m venv /opt/venv \
  && if [ -n "$PIP_CERT" ]; then export PIP_CERT; else unset PIP_CERT; fi \
  && pip install -r requirements.txt \
- && useradd --create-home --uid 10001 --shell /usr/sbin/nologin app
+ && useradd --create-home --uid 10001 --shell /usr/sbin/nologin app \
+ && mkdir /data && chown app:app /data
 
 COPY --chown=app:app . .
 USER app
+
+# Assignments' records: a SQLite file on this volume unless DL_DATABASE_URL names a PostgreSQL server
+# (which several replicas must share). serve.py brings the schema up to date before it listens.
+ENV DL_DATA_DIR=/data
+VOLUME ["/data"]
 
 EXPOSE 8501
 HEALTHCHECK --interval=15s --timeout=5s --start-period=60s --retries=3 \

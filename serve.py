@@ -193,8 +193,22 @@ def run(script: Path, argv: list[str]) -> None:
     sys.exit(cli.main())
 
 
+def migrate() -> None:
+    """Create or upgrade the assignments' schema (Alembic) before listening. A database that cannot
+    be reached is logged, not fatal: practice works without it, and the pages say so."""
+    from assignments import db, migrate as schema
+
+    log = logging.getLogger("dynamics_lab")
+    try:
+        schema.upgrade()
+        log.warning("database ready: %s", db.engine().url.render_as_string(hide_password=True))
+    except Exception as error:  # noqa: BLE001
+        log.error("database not ready (assignments will not be recorded until it is): %s", error)
+
+
 def main() -> None:
     sys.path.insert(0, str(ROOT))
+    migrate()
     seconds = warm()
     logging.getLogger("dynamics_lab").warning("warmed in %.1f s", seconds)
     run(ROOT / "app.py", sys.argv[1:])

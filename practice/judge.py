@@ -22,7 +22,11 @@ from solvers.core import Answer, Derivation, Solution
 from solvers import units
 
 RELATIVE_TOLERANCE = 5e-3
-TOLERANCE_TEXT = f"±{RELATIVE_TOLERANCE * 100:g} %"
+TOLERANCE_TEXT = f"±{RELATIVE_TOLERANCE * 100:g} %"  # the practice default
+
+
+def tolerance_text(tolerance: float) -> str:
+    return f"±{tolerance * 100:g} %"
 # a number, then a unit: one that starts with a digit (1/s) only after a space
 _NUMBER_WITH_UNIT = re.compile(r"^\s*([-+−]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*((?<=\s)\S.*|[^\d\s].*)?$")
 _UNIT_LIKE = re.compile(r"[A-Za-zμ°][A-Za-zμ°/^²³·⋅*\s0-9.\-]*")
@@ -79,10 +83,6 @@ def _unit_message(text: str, answer: Answer, system: str) -> str | None:
             f"with a unit such as {example}.")
 
 
-def _close(a: float, b: float, scale: float) -> bool:
-    return abs(a - b) <= RELATIVE_TOLERANCE * max(abs(b), 1e-9 * scale)
-
-
 class Judge:
     """Judges answers for one solution (one problem, one set of parameters, one derivation).
 
@@ -90,8 +90,9 @@ class Judge:
     and the intermediate results of the derivation are refused by name, so typing the unknown
     (or v1x/R for ω₁) is never "the answer, as an expression"."""
 
-    def __init__(self, solution: Solution, derivation: Derivation, answers=()):
+    def __init__(self, solution: Solution, derivation: Derivation, answers=(), tolerance: float = RELATIVE_TOLERANCE):
         self.solution = solution
+        self.tolerance = tolerance  # relative, for numbers (an assignment may set its own)
         self.derivation = derivation
         inputs = dict(solution.params) | dict(solution.extras.get("chain_inputs", {}))
         self.values = {name: float(v) for name, v in derivation.evaluate(inputs).items()
@@ -199,9 +200,9 @@ class Judge:
         # A number nearer a known slip's value than the answer's is that slip, even when it lies
         # within the tolerance of the answer (4.92 for 4.90: the pinned disk).
         for mistake, wrong in known:
-            if _close(value, wrong, scale) and abs(value - wrong) < abs(value - correct):
+            if self._close(value, wrong, scale) and abs(value - wrong) < abs(value - correct):
                 return Verdict(False, f"Not quite. {mistake.feedback}", understood, mistake.feedback)
-        if _close(value, correct, scale):
+        if self._close(value, correct, scale):
             return Verdict(True, f"Right: {shown}" + (f" ({how})." if how else "."), understood)
         generic = self._generic_number_mistake(answer, value, correct, scale)
         message = f"Not right: you gave {shown}" + (f" ({how})" if how else "") + "."
@@ -209,15 +210,19 @@ class Judge:
             return Verdict(False, f"{message} {generic}", understood, generic)
         return Verdict(False, message + " Check each step, then try again.", understood)
 
+    def _close(self, a: float, b: float, scale: float) -> bool:
+        return abs(a - b) <= self.tolerance * max(abs(b), 1e-9 * scale)
+
     def _generic_number_mistake(self, answer, value, correct, scale) -> str:
-        if correct != 0 and _close(value, -correct, scale):
+        if correct != 0 and self._close(value, -correct, scale):
             return "The size is right but the sign is not: check the direction you took as positive."
-        if answer.dimension == "angle" and _close(value, math.radians(correct), scale):
+        if answer.dimension == "angle" and self._close(value, math.radians(correct), scale):
             return "That looks like the value in radians read as degrees: write it with 'rad', or give degrees."
         wrong_mode = self._value_with_degree_calculator(answer)
-        if wrong_mode is not None and not _close(wrong_mode, correct, scale) and _close(value, wrong_mode, scale):
+        if (wrong_mode is not None and not self._close(wrong_mode, correct, scale)
+                and self._close(value, wrong_mode, scale)):
             return "Your calculator seems to be in the wrong angle mode (degrees vs radians)."
-        if correct != 0 and (_close(value, 2 * correct, scale) or _close(value, correct / 2, scale)):
+        if correct != 0 and (self._close(value, 2 * correct, scale) or self._close(value, correct / 2, scale)):
             return "Off by a factor of 2: check a ½ (kinetic energy, ½ m R², L/2)."
         return ""
 
@@ -261,7 +266,7 @@ class Judge:
         if self._numerically_same(expr, -correct):
             return Verdict(False, "The size is right but the sign is not: check the direction you took as "
                            "positive.", understood, "sign")
-        if self._numerically_same(expr, correct, rtol=RELATIVE_TOLERANCE):
+        if self._numerically_same(expr, correct, rtol=self.tolerance):
             return Verdict(False, "Nearly: a coefficient seems rounded. Write exact numbers (2/3, not 0.667) "
                            "in an expression, or give the final number instead.", understood, "rounded")
         return Verdict(False, "Not equivalent to the answer. Check each step, then try again.", understood)

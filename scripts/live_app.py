@@ -55,9 +55,9 @@ def wait_healthy(url: str, timeout: float = 120.0, proc: subprocess.Popen | None
 
 
 @contextlib.contextmanager
-def running_app(extra: list[str] | None = None, entry: list[str] | None = None):
+def running_app(extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None):
     port = free_port()
-    proc = start_app(port, extra, entry=entry)
+    proc = start_app(port, extra, env=env, entry=entry)
     url = f"http://127.0.0.1:{port}"
     try:
         wait_healthy(url, proc=proc)

@@ -35,3 +35,51 @@ def app_url():
 
     with running_app() as url:
         yield url
+
+
+# The database tests run the same suite on both backends (tests/test_records.py): a SQLite file
+# per test, and a database per test in one PostgreSQL cluster per session. PostgreSQL is skipped
+# where it is not installed, except in CI (.ci/run installs it), where its absence is a failure.
+@pytest.fixture(scope="session")
+def postgres_server():
+    from tests.databases import postgres_cluster, postgres_missing
+
+    why = postgres_missing()
+    if why:
+        if os.environ.get("CI"):
+            pytest.fail(f"CI must test PostgreSQL: {why}")
+        pytest.skip(why)
+    with postgres_cluster() as url:
+        yield url
+
+
+_database_count = iter(range(10**6))
+
+
+@pytest.fixture(params=["sqlite", "postgresql"])
+def database(request, tmp_path):
+    """A fresh, migrated database (an engine) on each backend."""
+    from sqlalchemy import create_engine, text
+
+    from assignments import db, migrate
+
+    if request.param == "sqlite":
+        engine = db.make_engine(f"sqlite:///{tmp_path / 'test.sqlite'}")
+        migrate.upgrade(engine)
+        yield engine
+        engine.dispose()
+        return
+    server = request.getfixturevalue("postgres_server")
+    name = f"dl_test_{os.getpid()}_{next(_database_count)}"
+    admin = create_engine(server, isolation_level="AUTOCOMMIT")
+    with admin.connect() as c:
+        c.execute(text(f"CREATE DATABASE {name}"))
+    engine = db.make_engine(server.replace("/postgres?", f"/{name}?"))
+    try:
+        migrate.upgrade(engine)
+        yield engine
+    finally:
+        engine.dispose()
+        with admin.connect() as c:
+            c.execute(text(f"DROP DATABASE IF EXISTS {name} WITH (FORCE)"))
+        admin.dispose()

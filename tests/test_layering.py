@@ -1,4 +1,5 @@
-"""Layering: the physics (solvers/) and the practice logic (practice/) never import the pages (ui/),
+"""Layering: the physics (solvers/), the practice logic (practice/) and the records (assignments/,
+migrations/) never import the pages (ui/),
 the drawings (viz/) or Streamlit, in any form: ``import``, ``from … import``, relative imports and
 ``importlib.import_module`` / ``__import__`` with a literal or f-string name. Imports are read from
 the syntax tree, not grepped; a positive control proves each form is caught."""
@@ -10,8 +11,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-LOWER = ("solvers", "practice")
-FORBIDDEN = {"ui", "viz", "streamlit"}
+LOWER = ("solvers", "practice", "assignments", "migrations")
+FORBIDDEN = {"ui", "viz", "streamlit", "plotly"}
 
 
 def _dynamic_name(call: ast.Call) -> str | None:

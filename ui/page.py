@@ -9,7 +9,7 @@ import streamlit as st
 
 from practice.variants import variant
 from solvers.core import PhysicalLimitError, Solution, within_model_range
-from ui import results
+from ui import assignments, results
 from ui.practice import instructor_export, is_instructor, practice_panel, seed_from_url
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
@@ -43,8 +43,8 @@ PHONE_CSS = """
 VIEWS = ("Study", "Lecture", "Practice")
 VIEW_HELP = ("Study: answers, animation and derivation. Lecture: large type and the animation first, for "
              "a projector. Practice: the answers are hidden; type your own and get feedback.")
-VARIANT_HELP = ("A variant link (?seed=N) opens in Practice: its answers appear with “Show the solution”. "
-                "Instructors with the key can switch views.")
+VARIANT_HELP = ("A variant link (?seed=N) or an assignment link opens in Practice: its answers appear with "
+                "“Show the solution”. Instructors with the key can switch a variant link's view.")
 
 
 def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str]:
@@ -64,9 +64,10 @@ def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str
         us = st.sidebar.toggle("US customary units (lb, ft)", key=us_key,
                                help="The textbook states this problem in lb and ft; off: SI (kg, m).")
         system = "us" if us else "si"
-    view = st.sidebar.segmented_control(
-        "View", VIEWS, key=view_key, required=True, disabled=practice_only,
-        help=VARIANT_HELP if practice_only else VIEW_HELP)
+    if practice_only:  # plain text: a disabled control's grey label fails AA contrast (axe-core)
+        st.sidebar.markdown("**View:** Practice", help=VARIANT_HELP)
+        return system, "Practice"
+    view = st.sidebar.segmented_control("View", VIEWS, key=view_key, required=True, help=VIEW_HELP)
     return system, view
 
 
@@ -147,14 +148,22 @@ def problem_page(problem_id: str) -> None:
     _leave_legacy_pages_mode()
     problem = BY_ID[problem_id]
     solver = problem.solver
-    seed, seed_warning = seed_from_url()
+    link = assignments.student_link(problem)  # None unless opened with a signed assignment link
+    seed, seed_warning = (link.identity.seed, None) if link and link.identity else seed_from_url()
     instructor = is_instructor()  # before mirror_to_url drops ?instructor=KEY from the address
-    system, view = _page_flags(problem, practice_only=seed is not None and not instructor)
+    system, view = _page_flags(problem, practice_only=(seed is not None and not instructor) or link is not None)
     lecture, practice = view == "Lecture", view == "Practice"
     if lecture:  # the projector: the figure gets the screen, one click brings the controls back
         st.set_page_config(initial_sidebar_state="collapsed")
     st.html(PHONE_CSS + (LECTURE_CSS if lecture else ""))
     heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
+    if link is not None:  # an assignment: its variant, fixed, and the link kept as it came
+        _heading(heading, [])
+        if link.refused:
+            st.error(link.refused, icon=":material/link_off:")
+            return
+        _assignment(problem, link, system)
+        return
     base = variant(solver, problem.id, seed) if seed is not None else {}
     st.sidebar.markdown("### Parameters" + (f" · variant {seed}" if seed is not None else ""))
     params, warnings = parameter_panel(problem, system, base)
@@ -189,6 +198,26 @@ def problem_page(problem_id: str) -> None:
     _derivation(solver, solution)
     if practice:
         instructor_export(problem)
+
+
+def _assignment(problem: Problem, link, system: str) -> None:
+    """A student's assignment: the link's variant with no controls to change it, judged and recorded
+    under the assignment's rules (or, with the database down, practice unrecorded, and said so)."""
+    params = dict(problem.solver.solve(**variant(problem.solver, problem.id, link.identity.seed)).params)
+    st.sidebar.markdown(f"### Parameters · variant {link.identity.seed}\nFixed by your assignment link.")
+    keep = {k: st.query_params.get(k) for k in ("assignment", "seed", "student", "sig")}
+    mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "", **keep}, params)
+    assignments.assignment_heading(link)
+    solution, figures = _solve_and_draw(problem, params, system)
+    answers = _answers_for(problem.solver, solution)
+    if link.settings is not None:
+        answers = tuple(a for a in answers if a.name in link.settings.answers)
+    recording = assignments.recording(link) if link.settings is not None else None
+    if practice_panel(problem, solution, answers, system, recording):
+        results.answer_section(solution, answers, system)
+        _figures(figures)
+        _derivation(problem.solver, solution)
+    assignments.your_attempts(link, answers)
 
 
 def _beside_refusal(problem: Problem, params: dict, practice: bool = False) -> None:

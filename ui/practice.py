@@ -5,12 +5,14 @@ link) needs the instructor key. Nothing a student types is evaluated or rendered
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
+from typing import Callable
 
 import sympy as sp
 import streamlit as st
 
 from practice import instructor
-from practice.judge import TOLERANCE_TEXT, Judge
+from practice.judge import RELATIVE_TOLERANCE, Judge, Verdict, tolerance_text
 from practice.variants import MAX_SEED, variants_csv
 from solvers.core import Choice, Derivation, Solution
 from solvers import units
@@ -94,13 +96,27 @@ def method(steps, derivation: Derivation) -> str:
                         "with the solution.]", *blocks])
 
 
-def practice_panel(problem: Problem, solution: Solution, answers, system: str) -> bool:
+@dataclass(frozen=True)
+class Recording:
+    """An assignment's rules and the calls that record what the student does (ui/assignments.py)."""
+    tolerance: float
+    on_verdict: Callable[[object, str, Verdict], None]  # (answer, typed text, verdict), after it is shown
+    on_reveal: Callable[[], bool]  # record "solution shown"; False if it could not be recorded
+    revealed: bool = False  # the student has already seen the solution (recorded earlier)
+    reveal_blocked: str = ""  # why "Show the solution" is not offered yet ("" when it is)
+
+
+def practice_panel(problem: Problem, solution: Solution, answers, system: str,
+                   recording: Recording | None = None) -> bool:
     """The exercise and its answer box; return True once the student asked to see the solution."""
     signature = repr(sorted(solution.params.items()))
     revealed_key = f"{problem.id}__revealed"
+    if recording is not None and recording.revealed:
+        st.session_state[revealed_key] = signature
     if st.session_state.get(revealed_key) != signature:
         st.session_state.pop(revealed_key, None)
-    judge = Judge(solution, problem.solver.derivation_of(solution), answers)
+    tolerance_value = recording.tolerance if recording else RELATIVE_TOLERANCE
+    judge = Judge(solution, problem.solver.derivation_of(solution), answers, tolerance_value)
     revealed = st.session_state.get(revealed_key) == signature
     if not revealed:
         st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
@@ -116,7 +132,7 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str) -
                                    "or read in the unit the page shows, degrees for angles; or an expression in "
                                    f"the givens: {judge.givens_text()}. Write powers as ^ or **, e.g. "
                                    "(a + b)^2/3, sqrt(x), sin(θ), or 30° inside sin.")
-        tolerance.markdown(f"within {TOLERANCE_TEXT}", help="A number counts as right within this relative "
+        tolerance.markdown(f"within {tolerance_text(tolerance_value)}", help="A number counts as right within this relative "
                            "tolerance, unless it is nearer a known slip's value. An expression must equal "
                            "the answer.")
         submitted = st.form_submit_button("Check", type="primary", key=f"{problem.id}__check")
@@ -126,27 +142,39 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str) -
             st.markdown("Read as:")  # not st.caption: its grey fails AA contrast
             st.latex(verdict.understood)
         (st.success if verdict.correct else st.error)(plain(verdict.message))
-    if not revealed and st.button("Show the solution", key=f"{problem.id}__reveal"):
-        st.session_state[revealed_key] = signature
-        st.rerun()
+        if recording is not None:
+            recording.on_verdict(answer, text or "", verdict)
+    if not revealed and recording is not None and recording.reveal_blocked:
+        st.markdown(plain(recording.reveal_blocked))
+    elif not revealed and st.button("Show the solution", key=f"{problem.id}__reveal"):
+        if recording is None or recording.on_reveal():
+            st.session_state[revealed_key] = signature
+            st.rerun()
     return revealed
+
+
+def instructor_key_entry(key: str, what: str = "the answer keys") -> bool:
+    """True for an instructor (the key given once this session); else ask for it and return False."""
+    if not instructor.configured():
+        st.markdown(f"The course admin has not set an instructor key (`{instructor.KEY_ENV}`, at least "
+                    f"{instructor.MIN_LENGTH} characters), so {what} stay closed.")
+        return False
+    if is_instructor():
+        return True
+    typed = st.text_input("Instructor key", type="password", key=key,
+                          help="Set by the course admin. Entered once per browser session; an "
+                               "instructor link (?instructor=KEY) does the same.")
+    if typed and instructor.key_matches(typed):
+        st.session_state[INSTRUCTOR] = True
+        st.rerun()
+    if typed:
+        st.error("That is not the instructor key.")
+    return False
 
 
 def instructor_export(problem: Problem) -> None:
     with st.expander("For instructors: per-student variants"):
-        if not instructor.configured():
-            st.markdown(f"The course admin has not set an instructor key (`{instructor.KEY_ENV}`, at least "
-                        f"{instructor.MIN_LENGTH} characters), so the answer keys stay closed.")
-            return
-        if not is_instructor():
-            typed = st.text_input("Instructor key", type="password", key=f"{problem.id}__instructor_key",
-                                  help="Set by the course admin. Entered once per browser session; an "
-                                       "instructor link (?instructor=KEY) does the same.")
-            if typed and instructor.key_matches(typed):
-                st.session_state[INSTRUCTOR] = True
-                st.rerun()
-            if typed:
-                st.error("That is not the instructor key.")
+        if not instructor_key_entry(f"{problem.id}__instructor_key"):
             return
         st.markdown(f"Hand out `?seed=N` links (N from 0 to {MAX_SEED:,}); each gives its own numbers, the "
                     "same in every session, and opens in Practice. Export the parameters and answers (SI units, "

@@ -1,0 +1,143 @@
+"""The database: its tables, and the one engine per process.
+
+SQLite by default, a file at ``DL_DATA_DIR/dynamics-lab.sqlite`` (``./data`` if unset; put it on a
+volume), so ``make run`` needs nothing installed. ``DL_DATABASE_URL`` points elsewhere, e.g.
+``postgresql+psycopg://user:password@db/dynamics_lab`` when replicas share one database. The
+schema is created and upgraded by Alembic (``migrations/``, ``python -m assignments migrate``,
+which serve.py runs before it listens), never by ``create_all`` in production.
+
+Times are stored in UTC. On SQLite every transaction starts with ``BEGIN IMMEDIATE`` and waits up
+to 15 s for the file's write lock, so concurrent submissions queue instead of failing."""
+from __future__ import annotations
+
+import datetime as dt
+import functools
+import os
+from pathlib import Path
+
+from sqlalchemy import (JSON, Boolean, DateTime, Float, ForeignKey, Integer, String, UniqueConstraint,
+                        create_engine, event)
+from sqlalchemy.engine import Engine
+from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, sessionmaker
+from sqlalchemy.types import TypeDecorator
+
+ROOT = Path(__file__).resolve().parent.parent
+URL_ENV, DATA_ENV = "DL_DATABASE_URL", "DL_DATA_DIR"
+
+
+class UTCDateTime(TypeDecorator):
+    """A timezone-aware UTC time on every backend (SQLite keeps no zone)."""
+    impl = DateTime(timezone=True)
+    cache_ok = True
+
+    def process_bind_param(self, value, dialect):
+        if value is not None and value.tzinfo is None:
+            raise ValueError("store aware times only")
+        return value.astimezone(dt.timezone.utc) if value is not None else None
+
+    def process_result_value(self, value, dialect):
+        if value is None:
+            return None
+        return value.replace(tzinfo=dt.timezone.utc) if value.tzinfo is None else value.astimezone(dt.timezone.utc)
+
+
+class Base(DeclarativeBase):
+    pass
+
+
+class Assignment(Base):
+    __tablename__ = "assignment"
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    title: Mapped[str] = mapped_column(String(120))
+    problem: Mapped[str] = mapped_column(String(40))
+    answers: Mapped[list] = mapped_column(JSON)  # the answer names that count, in the page's order
+    tolerance: Mapped[float] = mapped_column(Float)  # relative, for numbers
+    due: Mapped[dt.datetime] = mapped_column(UTCDateTime)
+    attempts_allowed: Mapped[int] = mapped_column(Integer)  # per answer
+    solution_before_due: Mapped[bool] = mapped_column(Boolean)
+    created: Mapped[dt.datetime] = mapped_column(UTCDateTime)
+
+
+class Student(Base):
+    """One roster line: a label (the instructor's opaque code) and its variant."""
+    __tablename__ = "student"
+    __table_args__ = (UniqueConstraint("assignment_id", "label"),)
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
+    label: Mapped[str] = mapped_column(String(40))
+    seed: Mapped[int] = mapped_column(Integer)
+
+
+class Attempt(Base):
+    __tablename__ = "attempt"
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
+    label: Mapped[str] = mapped_column(String(40))
+    answer: Mapped[str] = mapped_column(String(40))
+    typed: Mapped[str] = mapped_column(String(400))
+    correct: Mapped[bool] = mapped_column(Boolean)
+    message: Mapped[str] = mapped_column(String(1000))  # what the student was told
+    slip: Mapped[str] = mapped_column(String(400), default="")  # the slip named, if any
+    at: Mapped[dt.datetime] = mapped_column(UTCDateTime)
+    late: Mapped[bool] = mapped_column(Boolean)  # after the due time: kept, does not count
+    solution_shown: Mapped[bool] = mapped_column(Boolean)  # the student had seen the solution
+
+
+class Reveal(Base):
+    """A student asked for the solution (attempts after it are marked)."""
+    __tablename__ = "reveal"
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
+    label: Mapped[str] = mapped_column(String(40))
+    at: Mapped[dt.datetime] = mapped_column(UTCDateTime)
+
+
+def database_url() -> str:
+    url = os.environ.get(URL_ENV, "").strip()
+    if url:
+        return url
+    data = Path(os.environ.get(DATA_ENV) or ROOT / "data")
+    return f"sqlite:///{data / 'dynamics-lab.sqlite'}"
+
+
+def make_engine(url: str) -> Engine:
+    """An engine with this project's settings (pool checks, SQLite's locking)."""
+    if url.startswith("sqlite"):
+        path = url.split("///", 1)[1] if "///" in url else ""
+        if path and path != ":memory:":
+            Path(path).parent.mkdir(parents=True, exist_ok=True)
+        engine = create_engine(url, connect_args={"timeout": 15}, pool_size=10, max_overflow=20, pool_timeout=60)
+
+        @event.listens_for(engine, "connect")
+        def _sqlite_connect(dbapi_connection, _record):
+            dbapi_connection.isolation_level = None  # SQLAlchemy's BEGIN below, not the driver's
+            cursor = dbapi_connection.cursor()
+            cursor.execute("PRAGMA journal_mode=WAL")  # readers never wait for a writer
+            cursor.execute("PRAGMA foreign_keys=ON")
+            cursor.execute("PRAGMA busy_timeout=15000")
+            cursor.close()
+
+        @event.listens_for(engine, "begin")
+        def _sqlite_begin(connection):
+            # Take the write lock at the start: a deferred transaction that reads, then writes, can
+            # fail at once with "database is locked" when another writer got in between.
+            connection.exec_driver_sql("BEGIN IMMEDIATE")
+        return engine
+    connect_args = {"connect_timeout": 5} if url.startswith("postgresql") else {}
+    return create_engine(url, pool_pre_ping=True, pool_size=10, max_overflow=20, pool_timeout=60,
+                         connect_args=connect_args)
+
+
+@functools.cache
+def engine() -> Engine:
+    """The process's engine (one pool per process), for ``database_url()``."""
+    return make_engine(database_url())
+
+
+@functools.cache
+def _sessions(bound: Engine) -> sessionmaker:
+    return sessionmaker(bound, expire_on_commit=False)
+
+
+def session(bound: Engine | None = None):
+    return _sessions(bound or engine())()

@@ -1,0 +1,65 @@
+"""Who is answering: the seam between how a student arrives and what is recorded.
+
+Today a student arrives with a signed assignment link (``from_link``). An LTI 1.3 launch from
+Canvas or Moodle would arrive as a verified ID token instead: its ``sub`` claim (opaque per
+platform) would become the label, its resource link the assignment, and it would build the same
+``StudentIdentity`` with ``source="lti"``. Everything downstream (the page, the records, the
+gradebook) sees only a ``StudentIdentity``, so a launch adds one constructor here and a route in
+front; grade passback would read ``records.gradebook``."""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import Mapping
+
+from assignments import signing
+from practice.variants import MAX_SEED
+
+# The link's query keys. ``seed`` is the same key an ordinary variant link uses.
+LINK_KEYS = ("assignment", "seed", "student", "sig")
+
+
+@dataclass(frozen=True)
+class StudentIdentity:
+    assignment_id: int
+    label: str  # the instructor's opaque code for the student (or an LTI platform's ``sub``)
+    seed: int   # the student's variant
+    source: str = "link"
+
+
+class LinkRefused(ValueError):
+    """A link that is not the one the instructor issued; the message says so in plain words."""
+
+
+TAMPERED = ("This assignment link has been changed since your instructor issued it (its assignment, "
+            "variant or student code does not match its signature), so it cannot be used. Open the link "
+            "exactly as you received it, or ask your instructor for it again.")
+
+
+def is_assignment_link(query: Mapping[str, str]) -> bool:
+    return "assignment" in query or "sig" in query or "student" in query
+
+
+def from_link(query: Mapping[str, str]) -> StudentIdentity:
+    """The identity a signed link carries; ``LinkRefused`` if a part is missing, malformed or changed."""
+    missing = [k for k in LINK_KEYS if not query.get(k)]
+    if missing:
+        raise LinkRefused(f"This assignment link is incomplete (it lacks {', '.join(missing)}). Open the "
+                          "link exactly as you received it, or ask your instructor for it again.")
+    assignment, seed, label, signature = (str(query[k]) for k in LINK_KEYS)
+    if not (re.fullmatch(r"\d{1,9}", assignment) and re.fullmatch(r"\d{1,10}", seed) and int(seed) <= MAX_SEED
+            and signing.valid_label(label) and re.fullmatch(r"[A-Za-z0-9_-]{1,64}", signature)):
+        raise LinkRefused(TAMPERED)
+    try:
+        ok = signing.verify(int(assignment), int(seed), label, signature)
+    except signing.NotConfigured as error:
+        raise LinkRefused("Assignment links cannot be checked on this server: " + str(error)) from None
+    if not ok:
+        raise LinkRefused(TAMPERED)
+    return StudentIdentity(int(assignment), label, int(seed), "link")
+
+
+def link_query(identity: StudentIdentity) -> dict[str, str]:
+    """The query a student's link carries (signed here)."""
+    return {"assignment": str(identity.assignment_id), "seed": str(identity.seed), "student": identity.label,
+            "sig": signing.sign(identity.assignment_id, identity.seed, identity.label)}
