@@ -121,6 +121,9 @@ class Figure {
 
   async draw(args, theme, seq) {
     this.title.textContent = args.title || "";
+    // The text a screen reader gets, at once: it does not wait for plotly.js.
+    this.graph.setAttribute("aria-label", (args.title ? args.title + ". " : "") + (args.description || ""));
+    this.description.textContent = args.description || "";
     const Plotly = await plotlyFor(args.bundle);
     if (seq !== this.seq) return;  // a newer run came while plotly.js loaded
     if (this.Plotly && this.Plotly !== Plotly) Plotly.purge(this.graph);  // drawn by the other bundle
@@ -142,8 +145,6 @@ class Figure {
     this.graph.dataset.frameMs = (spec.animation && spec.animation.frame_ms) || 60;
     this.controls.hidden = !this.frameNames.length;
     this.frameIndex = 0;
-    this.graph.setAttribute("aria-label", (args.title ? args.title + ". " : "") + (args.description || ""));
-    this.description.textContent = args.description || "";
     if (!this.listening) {
       this.listening = true;
       this.graph.on("plotly_animatingframe", (ev) => { this.frameIndex = Math.max(0, this.frameNames.indexOf(ev.name)); });
