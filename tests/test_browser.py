@@ -101,8 +101,8 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
         wait_until_idle(page)
 
     # Play moves the animation: a moving trace's coordinates change; the keyboard steps it too.
-    figure = page.frame_locator("iframe[title*='dynamics_lab_figure']").first
-    graph = figure.locator("#graph")
+    figure = page.locator(".dl-figure").first  # the figure component, in the page (no frame)
+    graph = figure.locator(".dl-graph")
     graph.wait_for()
     snapshot = ("(el) => JSON.stringify(el._fullData.map(t => [t.x && Array.from(t.x).slice(0, 4), "
                 "t.y && Array.from(t.y).slice(0, 4)]))")
@@ -113,7 +113,7 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
     figure.get_by_role("button", name="Pause the animation").click()
     page.wait_for_timeout(300)
     paused = graph.evaluate(snapshot)
-    figure.locator("body").press("ArrowRight")
+    figure.press("ArrowRight")
     page.wait_for_timeout(300)
     assert graph.evaluate(snapshot) != paused, "the arrow key did not step the animation"
     assert not errors, errors
@@ -191,9 +191,10 @@ def test_the_whole_practice_page_gives_no_answer_away(browser, app_url, problem)
         context.close()
 
 
-def test_a_revisit_downloads_no_plotly_again(browser, app_url):
+def test_a_revisit_downloads_no_plotly_again_and_a_page_compiles_one(browser, app_url):
     """What can be counted of issue 13: a second visit in the same browser moves ≤ 100 KB over
-    HTTP (the figure's plotly.js bundle comes from the cache: serve.py gives it a year's lifetime)."""
+    HTTP (the figure's plotly.js bundle comes from the cache: serve.py gives it a year's lifetime),
+    and a page with two figures loads one plotly.js, in the page itself (no frame per figure)."""
     context = browser.new_context(viewport={"width": 1400, "height": 1000})
     visits = []
     for _ in range(2):
@@ -207,8 +208,10 @@ def test_a_revisit_downloads_no_plotly_again(browser, app_url):
         cdp.send("Network.enable")
         page.goto(f"{app_url}/driven_cart")  # two figures
         wait_until_idle(page)
-        page.frame_locator("iframe[title*='dynamics_lab_figure']").last.locator(".main-svg").first.wait_for()
+        page.locator(".dl-figure").last.locator(".main-svg").first.wait_for()
         page.wait_for_timeout(500)
+        assert page.locator(".dl-graph.js-plotly-plot").count() == 2 and page.locator("iframe").count() == 0
+        assert page.evaluate("document.querySelectorAll('script[src*=\"/plotly-\"]').length") == 1
         visits.append(received)
     first, again = ({}, {})
     for visit, sizes in zip(visits, (first, again)):

@@ -31,7 +31,8 @@ axe_playwright = pytest.importorskip("axe_playwright_python.sync_playwright")
 IDS = [p.id for p in PROBLEMS]
 PROJECTORS = [(1280, 720), (1024, 768)]
 PHONES = [(390, 844), (360, 740)]
-FIGURE = "iframe[title*='dynamics_lab_figure']"
+# The figure component's root (ui/plotly_component/figure.js): in the page itself, no frame.
+FIGURE = ".dl-figure"
 WCAG = {"runOnly": {"type": "tag", "values": ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"]},
         "resultTypes": ["violations"]}
 # Streamlit's own page navigation fails two list rules even in an empty app: not the project's.
@@ -48,11 +49,11 @@ def open_at(browser, url: str, size: tuple[int, int], phone: bool = False):
 
 
 def graph_of(page):
-    """The first figure's frame, once its graph is drawn."""
-    frame = page.frame_locator(FIGURE).first
-    frame.locator("#graph .main-svg").first.wait_for()
+    """The first figure, once its graph is drawn."""
+    figure = page.locator(FIGURE).first
+    figure.locator(".dl-graph .main-svg").first.wait_for()
     page.wait_for_timeout(300)
-    return frame
+    return figure
 
 
 def serious_violations(page) -> list[str]:
@@ -87,19 +88,19 @@ def test_lecture_view_on_a_projector(browser, app_url, size):
         assert sidebar_collapsed(page), where
         frame = graph_of(page)
         frame_top = page.locator(FIGURE).first.bounding_box()["y"]
-        graph = frame.locator("#graph").bounding_box()
+        graph = frame.locator(".dl-graph").bounding_box()
         play = frame.get_by_role("button", name="Play the animation").bounding_box()
         # The whole figure and its Play control within the first screen, with no scrolling (boxes
         # inside the frame are in the page's coordinates).
         assert 0 <= frame_top <= play["y"] and graph["y"] + graph["height"] <= height, where
         assert play["y"] + play["height"] <= height, where
         # Every text the figure draws (ticks, axis titles, legend, labels) at least 18 px.
-        fonts = frame.locator("#graph").evaluate(
+        fonts = frame.locator(".dl-graph").evaluate(
             "g => [...g.querySelectorAll('text')].filter(t => t.textContent.trim())"
             ".map(t => parseFloat(getComputedStyle(t).fontSize))")
         assert fonts and min(fonts) >= LECTURE["min_font"], (where, sorted(fonts)[:5])
         # Lines and markers as drawn: thicker than the study view's thinnest (1 px lines, 9 px markers).
-        widths = frame.locator("#graph").evaluate(
+        widths = frame.locator(".dl-graph").evaluate(
             "g => g._fullData.flatMap(t => [t.line && t.mode !== 'markers' ? t.line.width : null,"
             " t.marker && /markers/.test(t.mode || '') ? t.marker.size : null]).filter(v => v != null)")
         assert min(widths) >= 1.8, (where, widths)
@@ -156,9 +157,9 @@ def test_on_a_phone(browser, app_url, size):
         # The figure fits the width, and Play works by touch.
         iframe = page.locator(FIGURE).first.bounding_box()
         assert iframe["x"] >= 0 and iframe["x"] + iframe["width"] <= width, where
-        svg_width = frame.locator("#graph .main-svg").first.bounding_box()["width"]
+        svg_width = frame.locator(".dl-graph .main-svg").first.bounding_box()["width"]
         assert svg_width <= iframe["width"] + 0.5, where
-        graph = frame.locator("#graph")
+        graph = frame.locator(".dl-graph")
         start = graph.evaluate(SNAPSHOT)
         frame.get_by_role("button", name="Play the animation").tap()
         page.wait_for_timeout(1200)
@@ -223,7 +224,7 @@ def test_the_view_and_the_animation_answer_the_keyboard(browser, app_url):
     page.wait_for_url("**lecture=1**", timeout=30_000)
     wait_until_idle(page)
     frame = graph_of(page)
-    graph = frame.locator("#graph")
+    graph = frame.locator(".dl-graph")
     start = graph.evaluate(SNAPSHOT)
     frame.get_by_role("button", name="Play the animation").focus()
     page.keyboard.press("Enter")

@@ -1,14 +1,18 @@
-"""Show a figure (viz.common.Figure) through a small custom component instead of st.plotly_chart.
+"""Show a figure (viz.common.Figure) in the page, through a small Streamlit components-v2 module
+instead of st.plotly_chart.
 
 st.plotly_chart rebuilds and validates every figure through plotly's go.Figure on each call
-(tens of milliseconds for an animation; see BENCHMARKS.md). This component takes the figure's
-JSON as it is and draws it with a partial plotly.js bundle served by this app (no network),
-keeps an animation running across reruns when the figure is unchanged, and adds real Play/Pause
-buttons that work from the keyboard (Space, ← →).
+(tens of milliseconds for an animation; see BENCHMARKS.md). The component (components v2, since
+Streamlit 1.51: no iframe) takes the figure's JSON as it is and draws it in the page with a
+partial plotly.js bundle served by this app (no network): plotly.js is loaded and compiled once
+per page load, a rerun with a new figure updates the graph in place (``Plotly.react``), a rerun
+with the same figure leaves it alone (a running animation goes on), and real Play/Pause/step
+buttons work from the keyboard (Space, ← →) and by touch.
 
 The bundles (ui/plotly_bundles: 2-D "basic", and "gl3d" for every figure of a page with a 3-D
-scene) are served under names that carry their content's hash, so ``serve.py`` can let browsers
-keep them for a year (``BundleServer``): a revisit downloads none of plotly.js again.
+scene) and the component's module (plotly_component/figure.js) are served under names that carry
+their content's hash, so ``serve.py`` can let browsers keep them for a year (``BundleServer``): a
+revisit downloads none of them again. Each run sends only a two-line module that imports it.
 """
 from __future__ import annotations
 
@@ -18,7 +22,9 @@ import threading
 from functools import cache
 from pathlib import Path
 
-import streamlit.components.v1 as components
+import orjson
+import streamlit as st
+import streamlit.components.v1 as components_v1
 
 from viz.common import Figure
 
@@ -29,19 +35,27 @@ KINDS = ("basic", "gl3d")
 YEAR = 365 * 24 * 3600
 
 
+def _keyed(source: Path, stem: str, suffix: str) -> tuple[str, bytes]:
+    """A file's content under a name keyed by its hash, written beside the component's module so
+    that Streamlit's own component route can serve it too (without serve.py)."""
+    data = source.read_bytes()
+    name = f"{stem}.{hashlib.sha256(data).hexdigest()[:16]}{suffix}"
+    target = _DIR / name
+    if not target.exists() or target.stat().st_size != len(data):
+        target.write_bytes(data)
+    return name, data
+
+
 @cache
 def bundles() -> dict[str, tuple[str, bytes]]:
-    """kind -> (file name keyed by the content's hash, the script), written beside the component's
-    page so that Streamlit's own component route can serve it too (without serve.py)."""
-    out = {}
-    for kind in KINDS:
-        data = (_BUNDLES / f"plotly-{kind}.min.js").read_bytes()
-        name = f"plotly-{kind}.{hashlib.sha256(data).hexdigest()[:16]}.min.js"
-        target = _DIR / name
-        if not target.exists() or target.stat().st_size != len(data):
-            target.write_bytes(data)
-        out[kind] = (name, data)
-    return out
+    """kind -> (file name keyed by the content's hash, the script)."""
+    return {kind: _keyed(_BUNDLES / f"plotly-{kind}.min.js", f"plotly-{kind}", ".min.js") for kind in KINDS}
+
+
+@cache
+def module() -> tuple[str, bytes]:
+    """The component's JavaScript module (plotly_component/figure.js), keyed by its content."""
+    return _keyed(_DIR / "figure.js", "figure", ".js")
 
 
 def kind_of(figure: Figure, page=()) -> str:
@@ -51,15 +65,16 @@ def kind_of(figure: Figure, page=()) -> str:
 
 
 class BundleServer:
-    """ASGI middleware (installed by serve.py): the plotly bundles, gzipped once at start-up rather
-    than on every request, with a year's immutable cache lifetime (their names change with their
-    content). Everything else passes through to Streamlit."""
+    """ASGI middleware (installed by serve.py): the plotly bundles and the component's module,
+    gzipped once at start-up rather than on every request, with a year's immutable cache lifetime
+    (their names change with their content). Everything else passes through to Streamlit."""
 
     def __init__(self, app):
         self.app = app
         # Streamlit names the component after its module too (ui.figure.dynamics_lab_figure), so a
-        # bundle is known by the end of its path: /component/<component's name>/<bundle's name>.
-        self.files = {f".{NAME}/{name}": (data, gzip.compress(data, 9)) for name, data in bundles().values()}
+        # file is known by the end of its path: /component/<component's name>/<file's name>.
+        self.files = {f".{NAME}/{name}": (data, gzip.compress(data, 9))
+                      for name, data in (*bundles().values(), module())}
 
     async def __call__(self, scope, receive, send):
         if scope["type"] == "http" and scope["method"] in ("GET", "HEAD"):
@@ -81,18 +96,32 @@ class BundleServer:
         await send({"type": "http.response.body", "body": b"" if scope["method"] == "HEAD" else body})
 
 
+def url(name: str) -> str:
+    """A served file's path on this server (Streamlit's component route, under the base path)."""
+    base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
+    return f"{'/' + base if base else ''}/component/{__name__}.{NAME}/{name}"
+
+
 _lock = threading.Lock()
 _component = None
 
 
 def _declared():
     """Declare the component on first use, inside a running app: a declaration made before the
-    runtime exists (serve.py imports this module while warming up) would not be registered."""
+    runtime exists (serve.py imports this module while warming up) would not be registered. The v1
+    declaration only gives the files their route; the figure itself is the v2 component."""
     global _component
     with _lock:
         if _component is None:
             bundles()
-            _component = components.declare_component(NAME, path=str(_DIR))
+            components_v1.declare_component(NAME, path=str(_DIR))
+            # The module a run carries: a dynamic import of figure.<hash>.js, which the browser
+            # fetches once and keeps (a blob URL cannot resolve a path: hence the page's URL).
+            # (A newline tells Streamlit this is the module's text, not a file's path.)
+            stub = (f"export default (c) => {{\n  import(new URL({url(module()[0])!r}, location.href).href)"
+                    ".then(m => m.render(c));\n};\n")
+            # isolate_styles=False: in the page's own DOM, where plotly.js puts its stylesheet.
+            _component = st.components.v2.component(NAME, js=stub, isolate_styles=False)
         return _component
 
 
@@ -104,10 +133,16 @@ def _declared():
 LECTURE = {"min_font": 18, "title_font": 22, "line_scale": 1.8, "marker_scale": 1.6, "legend_right": True}
 
 
+def payload(figure: Figure, bundle: str, style: dict | None) -> bytes:
+    """What a run sends for one figure: one JSON object as bytes, the figure's cached JSON spliced
+    in as it is (no second encoding of it)."""
+    head = orjson.dumps({"height": figure.height, "title": figure.title, "description": figure.description,
+                         "bundle": bundle, "style": style})
+    return head[:-1] + b',"spec":' + figure.json_bytes() + b"}"
+
+
 def show(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False) -> None:
     """``page``: every figure of the page, so that all of them share one plotly.js bundle."""
     style = {**LECTURE, "fit_screen": fit_screen} if lecture else None
-    # Bytes travel as a binary argument: no second JSON encoding of the figure by Streamlit.
-    _declared()(spec=figure.json_bytes(), height=figure.height, title=figure.title,
-                description=figure.description, bundle=bundles()[kind_of(figure, page)][0], style=style,
-                key=figure.key, default=None)
+    mount = _declared()
+    mount(data=payload(figure, url(bundles()[kind_of(figure, page)][0]), style), key=figure.key)

@@ -1,0 +1,62 @@
+"""What a run sends, counted (issue 13): the elements of a page and the bytes of its figures.
+
+Every element is re-rendered by Streamlit's frontend on every run, and every byte crosses the
+websocket while the browser is busy with the first of them: a page in the study view is one
+Markdown element for the heading, answers, ledger and checks, one per figure, and two for the
+derivation (the symbolic steps, whose text does not change, and the steps with numbers). A figure
+is the components-v2 element of ui/figure.py carrying the figure's JSON once, with the module that
+draws it imported by the browser (once per page load) rather than sent with every run. No timing
+here: the times are measured in bench/browser.py.
+"""
+from __future__ import annotations
+
+import importlib
+
+import pytest
+
+from tests.test_pages import IDS, assert_clean, first_number_control, run_page
+from ui import figure as component
+
+STUB_BYTES = 400  # the module a run carries: an import of plotly_component/figure.<hash>.js
+
+
+def counted(at) -> tuple[int, list]:
+    """(Markdown elements, figure elements) in the main area."""
+    markdown = sum(1 for e in at.main if getattr(e, "type", None) == "markdown")
+    figures = [e.proto for e in at.main if getattr(e, "type", None) == "bidi_component"]
+    return markdown, figures
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_a_run_sends_three_markdown_elements_and_each_figure_once(pid):
+    at = run_page(pid)
+    solution = importlib.import_module(f"solvers.{pid}").solve()
+    shown = importlib.import_module(f"viz.{pid}").figures(solution)
+    for state in ("first run", "after a change"):
+        assert_clean(at)
+        markdown, figures = counted(at)
+        assert markdown == 3, (pid, state, markdown)  # heading + answers, the two derivation blocks
+        assert len(figures) == len(shown), (pid, state)
+        for proto in figures:
+            assert proto.component_name == component.NAME and not proto.isolate_styles
+            assert len(proto.js_content) <= STUB_BYTES, len(proto.js_content)
+            assert f"/figure.{component.module()[0].split('.')[1]}.js" in proto.js_content
+        if state == "first run":
+            # The defaults' figures, byte for byte, each with only its title, description, height
+            # and bundle around it.
+            for proto, figure in zip(figures, shown):
+                assert figure.json_bytes() in proto.bytes
+                assert len(proto.bytes) - len(figure.json_bytes()) <= 200 + len(figure.title) + 3 * len(figure.description.encode())
+            widget, spec = first_number_control(at, pid)
+            widget.set_value(widget.value * 0.9 if widget.value else 0.1).run()
+
+
+def test_the_payload_is_one_json_object_around_the_figure():
+    import orjson
+
+    solution = importlib.import_module("solvers.disk_wall").solve()
+    figure = importlib.import_module("viz.disk_wall").figures(solution)[0]
+    sent = orjson.loads(component.payload(figure, "/b.js", component.LECTURE))
+    assert sent["spec"] == orjson.loads(figure.json_bytes())
+    assert (sent["title"], sent["description"], sent["height"], sent["bundle"], sent["style"]) == (
+        figure.title, figure.description, figure.height, "/b.js", component.LECTURE)

@@ -1,0 +1,242 @@
+// The figure component (ui/figure.py), a Streamlit components-v2 module: no iframe, the figure
+// lives in the page. plotly.js is loaded once per page load (a partial bundle, ui/plotly_bundles)
+// and compiled once; a rerun with a new figure updates the graph in place with Plotly.react, and a
+// rerun with the same figure leaves it alone (a running animation goes on).
+//
+// ui/figure.py registers a two-line module that imports this file (served under a name keyed by
+// its content, cached a year) and calls render() with Streamlit's arguments on every run.
+"use strict";
+
+const CSS = `
+.dl-figure { font-family: var(--st-font, "Source Sans Pro", sans-serif); line-height: 1.4; color: var(--st-text-color, #31333F); outline: none; }
+.dl-figure .dl-controls { display: flex; flex-wrap: wrap; gap: 8px; align-items: center; margin: 2px 0 4px 2px; }
+.dl-figure .dl-controls[hidden] { display: none; }
+.dl-figure .dl-controls button { white-space: nowrap; font: inherit; font-size: 14px; padding: 3px 12px; margin: 0;
+  border-radius: 6px; cursor: pointer; border: 1px solid rgba(128,128,128,.6); background: transparent; color: inherit; }
+.dl-figure .dl-controls button:focus-visible { outline: 3px solid #E69F00; outline-offset: 1px; }
+.dl-figure .dl-hint { font-size: 12px; opacity: .7; }
+.dl-figure h4.dl-title { font-family: inherit; font-size: 1.25rem; font-weight: 600; line-height: 1.3;
+  margin: 0.2rem 0 0.4rem 0; padding: 0; color: inherit; }
+.dl-figure .dl-description { font-size: 14px; opacity: .75; margin: 0.2rem 0 0.6rem 0; line-height: 1.5; }
+.dl-figure.dl-lecture .dl-controls button { font-size: 20px; padding: 6px 18px; }
+.dl-figure.dl-lecture .dl-hint, .dl-figure.dl-lecture .dl-description { font-size: 18px; }
+.dl-figure.dl-lecture h4.dl-title { font-size: 1.6rem; }
+`;
+
+const HTML = `
+<h4 class="dl-title"></h4>
+<div class="dl-controls" hidden>
+  <button class="dl-play" type="button" aria-label="Play the animation">▶ Play</button>
+  <button class="dl-pause" type="button" aria-label="Pause the animation">❚❚ Pause</button>
+  <button class="dl-back" type="button" aria-label="Step back one frame">◀</button>
+  <button class="dl-forward" type="button" aria-label="Step forward one frame">▶</button>
+  <span class="dl-hint">Space: play/pause · ← →: step</span>
+</div>
+<div class="dl-graph" role="img"></div>
+<p class="dl-description" aria-live="polite"></p>`;
+
+// ------------------------------------------------------------------ plotly.js, once per page load
+// A page with a 3-D scene loads the gl3d bundle, which draws everything basic draws: once it is
+// here, every figure uses it (one plotly.js compiled per page load, even across page switches).
+const loaded = {};   // bundle URL -> Promise of its Plotly
+function plotlyFor(url) {
+  const superset = Object.keys(loaded).find(u => u.includes("plotly-gl3d."));
+  if (superset && !url.includes("plotly-gl3d.")) return loaded[superset];
+  if (!loaded[url]) loaded[url] = new Promise((resolve, reject) => {
+    const script = document.createElement("script");
+    script.src = url;
+    script.onload = () => resolve(window.Plotly);
+    script.onerror = () => { delete loaded[url]; reject(new Error("could not load " + url)); };
+    document.head.appendChild(script);
+  });
+  return loaded[url];
+}
+
+function quiet(promise) { if (promise && promise.catch) promise.catch(() => {}); }  // an interrupted animation rejects
+
+// ------------------------------------------------------------------ one figure on the page
+class Figure {
+  constructor(parent) {
+    if (!document.getElementById("dl-figure-style")) {
+      const style = document.createElement("style");
+      style.id = "dl-figure-style";
+      style.textContent = CSS;
+      document.head.appendChild(style);
+    }
+    this.root = document.createElement("div");
+    this.root.className = "dl-figure";
+    this.root.tabIndex = -1;  // a click on the figure gives it the keys; no extra tab stop
+    this.root.innerHTML = HTML;
+    parent.appendChild(this.root);
+    const $ = (c) => this.root.querySelector(c);
+    this.title = $(".dl-title");
+    this.controls = $(".dl-controls");
+    this.graph = $(".dl-graph");
+    this.description = $(".dl-description");
+    this.current = null;   // what is drawn now: the same text is not drawn again
+    this.seq = 0;
+    this.frameNames = [];
+    this.frameIndex = 0;
+    this.playing = false;
+    this.Plotly = null;
+    $(".dl-play").addEventListener("click", () => this.play());
+    $(".dl-pause").addEventListener("click", () => this.pause());
+    $(".dl-back").addEventListener("click", () => { this.pause(); this.goTo(this.frameIndex - 1); });
+    $(".dl-forward").addEventListener("click", () => { this.pause(); this.goTo(this.frameIndex + 1); });
+    this.root.addEventListener("keydown", (e) => {
+      if (!this.frameNames.length) return;
+      if (e.key === " ") { e.preventDefault(); this.playing ? this.pause() : this.play(); }
+      else if (e.key === "ArrowRight") { e.preventDefault(); this.pause(); this.goTo(this.frameIndex + 1); }
+      else if (e.key === "ArrowLeft") { e.preventDefault(); this.pause(); this.goTo(this.frameIndex - 1); }
+    });
+  }
+
+  needsRedraw() { return !!(this.graph.layout && this.graph.layout.scene); }
+  goTo(index) {
+    if (!this.frameNames.length) return;
+    this.frameIndex = (index + this.frameNames.length) % this.frameNames.length;
+    quiet(this.Plotly.animate(this.graph, [this.frameNames[this.frameIndex]], {mode: "immediate",
+      frame: {duration: 0, redraw: this.needsRedraw()}, transition: {duration: 0}}));
+  }
+  play() {
+    if (!this.frameNames.length) return;
+    this.playing = true;
+    const duration = Number(this.graph.dataset.frameMs || 60);
+    quiet(this.Plotly.animate(this.graph, null, {fromcurrent: true, mode: "immediate",
+      frame: {duration: duration, redraw: this.needsRedraw()}, transition: {duration: 0}}));
+  }
+  pause() {
+    this.playing = false;
+    quiet(this.Plotly.animate(this.graph, [null], {mode: "immediate", frame: {duration: 0, redraw: false}, transition: {duration: 0}}));
+  }
+
+  // The first figure of the lecture view fills what is left of the first screen below its top, so
+  // the whole figure and its Play button show without scrolling (the page's scroll offset is added
+  // back). Capped at the figure's own height.
+  screenHeight(height) {
+    const main = this.root.closest("[data-testid='stMain']");
+    const top = this.graph.getBoundingClientRect().top + (main ? main.scrollTop : 0);
+    return Math.max(280, Math.min(height, Math.floor(window.innerHeight - top - 12)));
+  }
+
+  async draw(args, theme, seq) {
+    this.title.textContent = args.title || "";
+    // The text a screen reader gets, at once: it does not wait for plotly.js.
+    this.graph.setAttribute("aria-label", (args.title ? args.title + ". " : "") + (args.description || ""));
+    this.description.textContent = args.description || "";
+    const Plotly = await plotlyFor(args.bundle);
+    if (seq !== this.seq) return;  // a newer run came while plotly.js loaded
+    if (this.Plotly && this.Plotly !== Plotly) Plotly.purge(this.graph);  // drawn by the other bundle
+    this.Plotly = Plotly;
+    const spec = args.spec, style = args.style;
+    const layout = themeLayout(spec.layout || {}, theme);
+    this.root.classList.toggle("dl-lecture", !!style);
+    if (style) spec.data = emphasised(spec.data, layout, style);
+    this.controls.hidden = !spec.animation;  // before measuring: the controls sit above the graph
+    layout.height = style && style.fit_screen ? this.screenHeight(args.height) : args.height;
+    layout.autosize = true;
+    const frames = unfold(spec.animation, spec.data, layout);
+    this.playing = false;
+    // One update in place: data, layout and the frames replaced together (no new plot).
+    await Plotly.react(this.graph, {data: spec.data, layout: layout, frames: frames,
+                                    config: {displayModeBar: false, responsive: true}});
+    if (seq !== this.seq) return;
+    this.frameNames = frames.map(f => f.name);
+    this.graph.dataset.frameMs = (spec.animation && spec.animation.frame_ms) || 60;
+    this.controls.hidden = !this.frameNames.length;
+    this.frameIndex = 0;
+    if (!this.listening) {
+      this.listening = true;
+      this.graph.on("plotly_animatingframe", (ev) => { this.frameIndex = Math.max(0, this.frameNames.indexOf(ev.name)); });
+      this.graph.on("plotly_animated", () => { this.playing = false; });
+    }
+  }
+
+  update(text, theme) {
+    const key = text + "|" + theme.text + "|" + theme.dark;
+    if (key === this.current) return;  // the same figure: leave it (and its animation) alone
+    this.current = key;
+    const seq = ++this.seq;
+    quiet(this.draw(JSON.parse(text), theme, seq).catch((e) => {
+      if (this.current === key) this.current = null;  // try again on the next run
+      throw e;
+    }));
+  }
+}
+
+// ------------------------------------------------------------------ the figure's data, for plotly
+function themeOf(element) {
+  const css = getComputedStyle(element);
+  const text = css.getPropertyValue("--st-text-color").trim() || "#31333F";
+  const bg = css.getPropertyValue("--st-background-color").trim();
+  const rgb = (bg.match(/^#([0-9a-f]{6})$/i) || [])[1];
+  const dark = !!rgb && [0, 2, 4].reduce((s, i) => s + parseInt(rgb.slice(i, i + 2), 16), 0) < 3 * 128;
+  return {text: text, dark: dark};
+}
+
+function themeLayout(layout, theme) {
+  const grid = theme.dark ? "rgba(250,250,250,0.12)" : "rgba(49,51,63,0.12)";
+  const out = Object.assign({}, layout, {paper_bgcolor: "rgba(0,0,0,0)", plot_bgcolor: "rgba(0,0,0,0)",
+                                         font: Object.assign({color: theme.text, family: "Source Sans Pro, sans-serif"}, layout.font || {})});
+  for (const key of Object.keys(out)) {
+    if (/^[xy]axis\d*$/.test(key)) out[key] = Object.assign({gridcolor: grid, zerolinecolor: grid, linecolor: grid}, out[key]);
+  }
+  if (out.scene) {
+    out.scene = Object.assign({}, out.scene);
+    for (const a of ["xaxis", "yaxis", "zaxis"]) out.scene[a] = Object.assign({gridcolor: grid, color: theme.text}, out.scene[a]);
+  }
+  return out;
+}
+
+// A compact animation (viz/common.py: animated) unfolded into plotly frames, one per time, each
+// carrying only the moving traces' coordinates, and the time slider's steps (as viz.common.expanded).
+function unfold(anim, data, layout) {
+  if (!anim) return [];
+  const step = {frame: {duration: 0, redraw: !!anim.redraw}, mode: "immediate", transition: {duration: 0}};
+  const names = anim.times.map((_, i) => String(i));
+  if (layout.sliders && layout.sliders.length) {
+    layout.sliders = [Object.assign({}, layout.sliders[0], {steps: anim.times.map((t, i) =>
+      ({label: t.toFixed(2), method: "animate", args: [[names[i]], step]}))})];
+  }
+  const kinds = anim.traces.map(j => data[j].type || "scatter");
+  return names.map((name, i) => ({name: name, traces: anim.traces, data: anim.coords.map((c, n) => {
+    const update = {type: kinds[n]};
+    for (const k of Object.keys(c)) update[k] = c[k][i];
+    return update;
+  })}));
+}
+
+// Lecture sizing (issue 14), applied on top of the figure's own layout and styles: every text at
+// least style.min_font px, lines and markers thicker, for the back row of a lecture hall. The
+// numbers live in ui/figure.py (LECTURE); the figures themselves are not changed.
+function emphasised(data, layout, style) {
+  const min = style.min_font;
+  const at = (font) => Object.assign({}, font || {}, {size: Math.max((font && font.size) || 0, min)});
+  layout.font = at(layout.font);
+  layout.legend = Object.assign({}, layout.legend, {font: at((layout.legend || {}).font)},
+    style.legend_right ? {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"} : {});
+  if (layout.title) layout.title = Object.assign({}, layout.title, {font: at(Object.assign({size: style.title_font}, (layout.title || {}).font))});
+  const axis = (a) => Object.assign({}, a, {tickfont: at((a || {}).tickfont), automargin: true,
+    title: Object.assign({}, (a || {}).title, {font: at(((a || {}).title || {}).font)})});
+  for (const key of Object.keys(layout)) if (/^[xy]axis\d*$/.test(key)) layout[key] = axis(layout[key]);
+  if (layout.scene) for (const a of ["xaxis", "yaxis", "zaxis"]) layout.scene[a] = axis(layout.scene[a]);
+  if (layout.annotations) layout.annotations = layout.annotations.map(n => Object.assign({}, n, {font: at(n.font)}));
+  if (layout.sliders) layout.sliders = layout.sliders.map(sl => Object.assign({}, sl, {font: at(sl.font),
+    currentvalue: Object.assign({}, sl.currentvalue, {font: at((sl.currentvalue || {}).font)})}));
+  return data.map(t => {
+    const out = Object.assign({}, t);
+    if (t.line && t.line.width) out.line = Object.assign({}, t.line, {width: t.line.width * style.line_scale});
+    if (t.marker && t.marker.size) out.marker = Object.assign({}, t.marker, {size: t.marker.size * style.marker_scale});
+    return out;
+  });
+}
+
+// ------------------------------------------------------------------ Streamlit's entry, every run
+const figures = new WeakMap();   // Streamlit's element for a mounted figure -> its Figure
+const decoder = new TextDecoder();
+
+export function render({data, parentElement}) {
+  let figure = figures.get(parentElement);
+  if (!figure) figures.set(parentElement, figure = new Figure(parentElement));
+  figure.update(typeof data === "string" ? data : decoder.decode(data), themeOf(parentElement));
+}
