@@ -10,6 +10,6 @@ pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True)]
 for group in GROUPS:
     pages[group] = [st.Page(p.page_path, title=p.title, icon=p.icon, url_path=p.id)
                     for p in PROBLEMS if p.group == group]
-pages["For instructors"] = [st.Page("pages/assignments.py", title="Assignments", icon=":material/assignment:",
+pages["For instructors"] = [st.Page("pages/gradebook.py", title="Assignments", icon=":material/assignment:",
                                    url_path="assignments")]
 st.navigation(pages).run()
