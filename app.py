@@ -11,5 +11,5 @@ for group in GROUPS:
     pages[group] = [st.Page(p.page_path, title=p.title, icon=p.icon, url_path=p.id)
                     for p in PROBLEMS if p.group == group]
 pages["For instructors"] = [st.Page("pages/gradebook.py", title="Assignments", icon=":material/assignment:",
-                                   url_path="assignments")]
+                                   url_path="gradebook")]
 st.navigation(pages).run()

@@ -12,6 +12,11 @@ from . import units
 from .errors import ParameterError
 
 
+# How far from the textbook's value a magnitude may go: a laboratory's range (a gram to a tonne
+# for a kilogram), and a bound on the work a link can ask of the time integrations.
+MODEL_FACTOR = 1e3
+
+
 @dataclass(frozen=True)
 class Number:
     """A real-valued parameter, SI units, radians for angles.
@@ -81,7 +86,25 @@ class Number:
             raise ParameterError(
                 f"{self.name} ({self.label}) = {shown} is out of range: it must be {self.range_text()}."
             )
+        bounds = self.model_bounds()
+        if bounds and not (math.isinf(x) and self.allow_inf) and x != 0 and not bounds[0] <= abs(x) <= bounds[1]:
+            raise ParameterError(
+                f"{self.name} ({self.label}) = {x:g} is out of range for this model: it is meant for "
+                f"magnitudes from {bounds[0]:g} to {bounds[1]:g} (a thousandth to a thousand times the "
+                f"textbook's {self.default:g}); far beyond that the numbers say nothing about a real "
+                "set-up and the time integrations cannot follow the motion in reasonable time."
+            )
         return x
+
+    def model_bounds(self) -> tuple[float, float] | None:
+        """The magnitudes the model is meant for: within ``MODEL_FACTOR`` of the textbook's value
+        (a strictly positive parameter also from below). None for angles (their ranges bound
+        them) and for a parameter whose default is 0 or infinite."""
+        d = abs(self.default)
+        if self.dimension == "angle" or d == 0 or math.isinf(d):
+            return None
+        positive = self.low == 0 and not self.low_inclusive
+        return (d / MODEL_FACTOR if positive else 0.0, d * MODEL_FACTOR)
 
 
 @dataclass(frozen=True)

@@ -67,7 +67,7 @@ def check(page, typed: str) -> None:
 
 def test_an_assignment_in_the_browser(browser, course_url):
     # The instructor: key, new assignment (the disk and the wall, two students), the links as CSV.
-    context, page, errors = at_size(browser, f"{course_url}/assignments", "laptop")
+    context, page, errors = at_size(browser, f"{course_url}/gradebook", "laptop")
     page.get_by_label("Instructor key", exact=True).fill(KEY)
     page.get_by_label("Instructor key", exact=True).press("Enter")
     wait_for_text(page, "New assignment")
@@ -110,9 +110,11 @@ def test_an_assignment_in_the_browser(browser, course_url):
     tctx.close()
 
     # The gradebook, then its CSV.
-    page.reload()
+    page.reload()  # a new session: the key is asked again
+    page.get_by_label("Instructor key", exact=True).fill(KEY)
+    page.get_by_label("Instructor key", exact=True).press("Enter")
     wait_until_idle(page)
-    page.get_by_text("Gradebook").first.wait_for(timeout=60_000)
+    page.get_by_role("button", name="Download the gradebook (CSV)").wait_for(timeout=60_000)
     body = page.inner_text("body")
     assert "1 / 7" in body and "0 / 7" in body and "named the slip" in body
     with page.expect_download() as download:

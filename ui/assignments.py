@@ -159,8 +159,8 @@ def _app_base() -> str:
     """The app's address as the instructor's browser reached it, without this page's path."""
     parts = urllib.parse.urlsplit(st.context.url or "http://localhost:8501/")
     path = parts.path.rstrip("/")
-    if path.endswith("/assignments") or path == "assignments":
-        path = path[: -len("assignments")].rstrip("/")
+    if path.endswith("/gradebook") or path == "gradebook":  # this page's url_path (app.py)
+        path = path[: -len("gradebook")].rstrip("/")
     return urllib.parse.urlunsplit((parts.scheme, parts.netloc, path, "", ""))
 
 
@@ -269,7 +269,7 @@ def _gradebook(aid: int) -> None:
 def instructor_page() -> None:
     from ui.page import _leave_legacy_pages_mode  # (ui.page imports this module)
 
-    _leave_legacy_pages_mode()  # a deep link to /assignments on a fresh server: see ui/page.py
+    _leave_legacy_pages_mode()  # a deep link to /gradebook on a fresh server: see ui/page.py
     st.markdown("# Assignments\n:gray[Signed per-student links, every attempt recorded, the gradebook.]")
     if not instructor_key_entry("assign__instructor_key", "assignments"):
         return
