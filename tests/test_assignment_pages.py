@@ -20,7 +20,7 @@ from solvers import units
 
 ROOT = Path(__file__).resolve().parent.parent
 KEY, SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
-INSTRUCTOR_PAGE = str(ROOT / "pages" / "assignments.py")
+INSTRUCTOR_PAGE = str(ROOT / "pages" / "gradebook.py")
 
 
 def reset_database_caches():

@@ -171,3 +171,34 @@ def test_the_reviewed_huge_values_are_refused_in_plain_words(pid, params):
     """The review's examples (each raised OverflowError or ZeroDivisionError)."""
     with pytest.raises(ValueError, match="too large|out of range|must be"):
         module(pid).solve(**params)
+
+
+# ----------------------------------------------------------------------------------------------
+# The magnitudes a model is meant for (Number.model_bounds): beyond them, a plain refusal
+
+
+def _bounded(pid):
+    return [p for p in module(pid).PARAMS if isinstance(p, Number) and p.model_bounds()]
+
+
+@pytest.mark.parametrize("pid", PROBLEMS)
+def test_beyond_a_thousand_times_the_textbook_value_is_refused_in_plain_words(pid):
+    for p in _bounded(pid):
+        beyond = [abs(p.default) * 1e3 * 1.5]  # 1.5 × the bound, written independently of it
+        if p.low == 0 and not p.low_inclusive:
+            beyond.append(abs(p.default) / 1e3 / 1.5)
+        for value in beyond:
+            physical = p.high is not None and value > p.high  # the physical range refuses it first
+            with pytest.raises(ValueError, match=f"{p.name} .*out of range{'' if physical else ' for this model'}"):
+                module(pid).solve(**{p.name: value})
+
+
+@pytest.mark.parametrize("pid", PROBLEMS)
+def test_the_controls_and_the_variants_stay_inside_the_model_bounds(pid):
+    from practice.variants import variant
+    for p in _bounded(pid):
+        lo, hi = p.model_bounds()
+        for v in (p.ui_low, p.ui_high):
+            assert v in (None, 0) or lo <= abs(v) <= hi, (pid, p.name, v)
+    for seed in range(20):  # variant() raises RuntimeError if the bounds left it no valid draw
+        assert variant(module(pid), pid, seed)
