@@ -1,4 +1,4 @@
-"""One problem page, the same for all six: controls -> solve -> answers, figure, derivation."""
+"""One problem page, the same for every problem: controls -> solve -> answers, figure, derivation."""
 from __future__ import annotations
 
 import functools
