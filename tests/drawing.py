@@ -4,10 +4,13 @@ problem's "what a student sees" tests use."""
 from __future__ import annotations
 
 import importlib
+import json
 import math
 
 import numpy as np
 from hypothesis import settings
+
+from viz.common import unpacked
 
 DRAWN = 2e-4  # coordinates are rounded to 4 decimals: a drawn gap may read this much short
 EXAMPLES = settings(max_examples=25, deadline=None)
@@ -19,11 +22,12 @@ def figures(pid, **params):
 
 
 def drawn(figure, name):
-    """Per frame, the (x, y) points of the moving trace called ``name`` (NaN gaps dropped)."""
-    spec = figure.spec
+    """Per frame, the (x, y) points of the moving trace called ``name`` (NaN gaps dropped), rebuilt
+    from the figure's JSON as the browser component rebuilds them (viz.common.unpacked)."""
+    spec = json.loads(figure.json())
     anim = spec["animation"]
     index = next(i for i, j in enumerate(anim["traces"]) if spec["data"][j]["name"] == name)
-    coords = anim["coords"][index]
+    coords = unpacked(anim["coords"][index], len(anim["times"]))
     frames = []
     for xs, ys in zip(coords["x"], coords["y"]):
         xs, ys = np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)

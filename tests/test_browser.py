@@ -222,3 +222,39 @@ def test_a_revisit_downloads_no_plotly_again_and_a_page_compiles_one(browser, ap
     assert all(again.get(url, 0) == 0 for url in bundle), "plotly.js downloaded again"
     assert sum(again.values()) <= 100 * 1024, sorted(again.items(), key=lambda kv: -kv[1])[:5]
     context.close()
+
+
+def test_the_browser_rebuilds_the_frames_the_server_means(browser, app_url):
+    """A change sends an animation compacted (viz.common.compacted: a map per frame for a rigid
+    body, a trail once, a spring's turns); the component rebuilds the rows in JavaScript. Every
+    frame plotly holds in the browser is the frame Python's own rebuilding (viz.common.expanded)
+    gives, on every page, for a rigid body, a trail and a spring alike."""
+    import importlib
+    import json
+
+    import numpy as np
+
+    from viz.common import expanded
+
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    for problem in PROBLEMS:
+        figure = importlib.import_module(f"viz.{problem.id}").figures(problem.solver.solve(), "si")[0]
+        meant = expanded(json.loads(figure.json()))["frames"]
+        page = context.new_page()
+        page.goto(f"{app_url}/{problem.id}")
+        wait_until_idle(page)
+        graph = page.locator(".dl-figure .dl-graph").first
+        graph.locator(".main-svg").first.wait_for()
+        got = graph.evaluate("(el) => el._transitionData._frames.map(f => f.data.map(d =>"
+                             " Object.fromEntries(['x', 'y', 'z'].filter(k => d[k]).map(k => [k, d[k]]))))")
+        assert len(got) == len(meant), problem.id
+        for frame, want in zip(got, meant):
+            for trace, expected in zip(frame, want["data"], strict=True):
+                for k in ("x", "y", "z"):
+                    if k in expected:
+                        a = np.asarray(trace[k], dtype=float)
+                        b = np.asarray(expected[k], dtype=float)
+                        assert a.shape == b.shape and (np.isnan(a) == np.isnan(b)).all(), (problem.id, k)
+                        assert np.nanmax(np.abs(a - b), initial=0.0) <= 1e-9, (problem.id, k)
+        page.close()
+    context.close()

@@ -17,6 +17,8 @@ from solvers.core import Choice, Number
 from tests import strategies
 
 PROBLEMS = registry.PROBLEM_IDS
+# Imported here, not inside a @given test (hypothesis calls that nesting @given).
+VALID = {pid: strategies.valid(pid) for pid in PROBLEMS}
 
 
 def contract(pid):
@@ -132,7 +134,7 @@ def test_symbolic_work_is_done_once_per_process(pid):
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(data=strategies.st.data())
 def test_every_check_passes_over_random_valid_parameters(pid, data):
-    params = data.draw(strategies.valid(pid))
+    params = data.draw(VALID[pid])
     solution = module(pid).solve(**params)
     assert solution.checks, "every problem shows at least one check"
     for check in solution.checks:

@@ -6,6 +6,7 @@ import importlib
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 
@@ -13,9 +14,11 @@ import plotly.graph_objects as go
 
 from solvers import registry
 from tests import strategies
-from viz.common import expanded
+from viz.common import REBUILT, compacted, expanded, unpacked
 
 IDS = registry.PROBLEM_IDS
+# Imported here, not inside a @given test (hypothesis calls that nesting @given).
+VALID = {pid: strategies.valid(pid) for pid in IDS}
 LIMIT = 300 * 1024
 
 
@@ -38,6 +41,15 @@ def check_figures(figures):
         anim = f.spec["animation"]  # compact: one row of coordinates per frame for each moving trace
         assert all(len(rows) == len(anim["times"]) for coords in anim["coords"] for rows in coords.values())
         assert len(anim["coords"]) == len(anim["traces"])
+        sent = json.loads(f.json())["animation"]  # compacted: rebuilt, each row is the row drawn
+        for coords, packed in zip(anim["coords"], sent["coords"]):
+            rebuilt = unpacked(packed, len(anim["times"]))
+            assert rebuilt.keys() == coords.keys()
+            for k, rows in coords.items():
+                for row, again in zip(rows, rebuilt[k], strict=True):
+                    row, again = np.asarray(row, dtype=float), np.asarray(again, dtype=float)
+                    assert (np.isnan(row) == np.isnan(again)).all()
+                    assert np.nanmax(np.abs(row - again), initial=0.0) <= REBUILT, (f.key, k)
         spec = expanded(json.loads(f.json()))  # the plotly figure the browser component unfolds
         go.Figure(spec)  # plotly's own validation of every trace, frame and slider step
         assert len(spec["frames"]) >= 30
@@ -82,6 +94,38 @@ def test_shapes_stay_round_where_they_must(pid):
 @settings(max_examples=8, deadline=None)
 @given(data=strategies.st.data())
 def test_figures_over_random_valid_parameters(pid, data):
-    params = data.draw(strategies.valid(pid))
+    params = data.draw(VALID[pid])
     check_figures(build(pid, **params))
 
+
+
+SENT = 32 * 1024
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_a_change_sends_the_motion_compacted(pid):
+    """What every change sends (issue 13): rigid bodies as one map per frame, trails once, a spring
+    as its turns; each page's animation at its defaults stays under SENT (it was 26–142 KB as rows)."""
+    for f in build(pid):
+        if f.animated:
+            assert len(f.json_bytes()) <= SENT, (f.key, len(f.json_bytes()))
+
+
+def test_compacting_keeps_what_is_not_rigid():
+    """A positive control: rows that no affine map takes from the first (a circle whose radius
+    grows, random points) are sent as they are; a translated and turned polygon is sent as maps."""
+    from viz.common import circles, r
+
+    t = np.linspace(0, 1, 40)
+    rng = np.random.default_rng(7)
+    turned = np.exp(1j * 3 * t)[:, None] * (rng.normal(size=9) + 1j * rng.normal(size=9))[None, :] + 2 * t[:, None]
+    kept = {"x": r(rng.normal(size=(40, 9))), "y": r(rng.normal(size=(40, 9)))}
+    growing_x, growing_y = circles(t, t, 1.0)
+    growing = {"x": growing_x * (1 + t[:, None]), "y": growing_y}
+    spec = {"data": [], "layout": {}, "animation": {"traces": [0, 1, 2], "times": list(t), "frame_ms": 60,
+            "redraw": False, "coords": [kept, growing, {"x": r(turned.real), "y": r(turned.imag)}]}}
+    packed = compacted(spec)["animation"]["coords"]
+    assert packed[0] is kept and packed[1] is growing
+    assert "affine" in packed[2]
+    rebuilt = unpacked(packed[2], 40)
+    assert np.abs(np.asarray(rebuilt["x"]) - turned.real).max() <= REBUILT

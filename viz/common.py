@@ -31,10 +31,11 @@ class Figure:
     extra: dict = field(default_factory=dict)
 
     def json_bytes(self) -> bytes:
-        """The figure as JSON, serialised once and kept (figures are shared between sessions)."""
+        """The figure as JSON, serialised once and kept (figures are shared between sessions); an
+        animation's rows go in their compact form (``compacted``)."""
         cached = self.__dict__.get("_json")
         if cached is None:
-            cached = orjson.dumps(self.spec, option=orjson.OPT_SERIALIZE_NUMPY)
+            cached = orjson.dumps(compacted(self.spec), option=orjson.OPT_SERIALIZE_NUMPY)
             object.__setattr__(self, "_json", cached)
         return cached
 
@@ -109,21 +110,46 @@ def as_one(xs: np.ndarray, ys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.hstack([xs, gap]).ravel()[:-1], np.hstack([ys, gap]).ravel()[:-1]
 
 
-def spirals(inner: float, outer: float, turns, start, n: int = 48) -> tuple[np.ndarray, np.ndarray]:
-    """Flat spirals about the origin (a torsional spring), one row per frame: ``turns[i]`` turns
-    from ``inner`` to ``outer`` radius, starting at angle ``start[i]``."""
+class Spirals(list):
+    """Rows of flat spirals (``spirals``, one per frame) that also know their few numbers, so a
+    change sends those."""
+
+    def __init__(self, rows: np.ndarray, shape_of: dict):
+        super().__init__(rows)
+        self.shape_of = shape_of
+
+
+def spiral_rows(inner: float, outer: float, turns, start, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Flat spirals about the origin, one row per frame: ``turns[i]`` turns from ``inner`` to
+    ``outer`` radius, starting at angle ``start[i]`` (unrounded; ui/plotly_component draws the same)."""
     s = np.linspace(0.0, 1.0, n)[None, :]
-    a = 2 * np.pi * np.maximum(np.asarray(turns, dtype=float), 0.05)[:, None] * s
+    phase = np.asarray(start, dtype=float)[:, None] + 2 * np.pi * np.asarray(turns, dtype=float)[:, None] * s
     rad = inner + (outer - inner) * s
-    phase = np.asarray(start, dtype=float)[:, None] + a
-    return r(rad * np.cos(phase)), r(rad * np.sin(phase))
+    return rad * np.cos(phase), rad * np.sin(phase)
 
 
-def trails(x, y, keep: int | None = None) -> tuple[list, list]:
+def spirals(inner: float, outer: float, turns, start, n: int = 48) -> tuple[Spirals, Spirals]:
+    """Flat spirals about the origin (a torsional spring), one row per frame (at least 0.05 turn)."""
+    turns, start = np.broadcast_arrays(np.maximum(np.asarray(turns, dtype=float), 0.05), np.asarray(start, dtype=float))
+    shape_of = {"inner": float(inner), "outer": float(outer), "turns": r(turns), "start": r(start), "n": n}
+    x, y = spiral_rows(inner, outer, shape_of["turns"], shape_of["start"], n)
+    return Spirals(r(x), shape_of), Spirals(r(y), shape_of)
+
+
+class Trail(list):
+    """Rows that are slices of one path: row i is ``path[starts[i]: i + 1]``. A list of the rows
+    (as every other moving coordinate), which also knows its path, so it is sent once."""
+
+    def __init__(self, path: np.ndarray, starts: list[int]):
+        super().__init__(path[a: i + 1] for i, a in enumerate(starts))
+        self.path, self.starts = path, starts
+
+
+def trails(x, y, keep: int | None = None) -> tuple[Trail, Trail]:
     """The path so far in every frame (the last ``keep`` points, if given): views of one array."""
     x, y = r(x), r(y)
     starts = [0] * len(x) if keep is None else [max(0, i - keep) for i in range(len(x))]
-    return ([x[a: i + 1] for i, a in enumerate(starts)], [y[a: i + 1] for i, a in enumerate(starts)])
+    return Trail(x, starts), Trail(y, starts)
 
 
 def line(x, y, name: str, color: str, width: float = 3, dash: str | None = None, show_legend: bool = True,
@@ -200,6 +226,81 @@ def animated(
     }
 
 
+# What a change sends: an animation's rows, compacted. Most moving bodies are rigid (a disk's rim,
+# a ladder, a cart's wheels): every frame's points are one affine map of the first frame's, so a
+# frame is sent as its map (6 numbers in the plane, 12 in space) instead of every point; a trail is
+# sent once as its path, with where each frame's slice starts; a spiral spring as its turns and start. The browser (ui/plotly_component:
+# ``unpack``) and ``unpacked`` here rebuild the rows; a trace is compacted only when its rebuilt
+# rows are within ``REBUILT`` of the rounded rows, else it goes as it is.
+REBUILT = 1.2e-4  # a little more than one unit of the rounding (DIGITS)
+
+
+def _affine(coords: dict):
+    """{"affine": ...} for rows that one affine map per frame takes from the first frame, else None."""
+    keys = list(coords)
+    try:
+        points = np.stack([np.asarray(coords[k], dtype=float) for k in keys], axis=-1)  # frame, point, axis
+    except ValueError:  # ragged rows
+        return None
+    if points.ndim != 3 or points.shape[1] <= points.shape[2] + 2:
+        return None
+    gaps = np.isnan(points)
+    if not (gaps == gaps[:1]).all() or not (gaps.any(-1) == gaps.all(-1)).all():
+        return None
+    keep = ~gaps[0].any(-1)
+    if keep.sum() <= points.shape[2] + 1:  # too few points to be worth a map (or none at all)
+        return None
+    template = points[0][keep]
+    homogeneous = np.hstack([template, np.ones((len(template), 1))])
+    maps = np.einsum("jk,fkd->fjd", np.linalg.pinv(homogeneous, rcond=1e-6), points[:, keep])
+    maps[:, :-1] = maps[:, :-1].round(9)
+    maps[:, -1] = maps[:, -1].round(7)
+    if not np.abs(np.einsum("kj,fjd->fkd", homogeneous, maps) - points[:, keep]).max() <= REBUILT:
+        return None
+    return {"affine": {"keys": keys, "template": [np.ascontiguousarray(points[0][:, n]) for n in range(len(keys))],
+                       "maps": maps.reshape(len(maps), -1)}}
+
+
+def _compact(coords: dict) -> dict:
+    rows = list(coords.values())
+    if all(isinstance(t, Trail) for t in rows) and all(t.starts == rows[0].starts for t in rows):
+        return {"slices": {"keys": list(coords), "paths": [t.path for t in rows], "starts": rows[0].starts}}
+    if list(coords) == ["x", "y"] and all(isinstance(t, Spirals) and t.shape_of is rows[0].shape_of for t in rows):
+        sent = {"spirals": rows[0].shape_of}
+        if all(np.abs(np.asarray(unpacked(sent, len(rows[0]))[k]) - np.asarray(coords[k])).max() <= REBUILT
+               for k in coords):
+            return sent
+    return _affine(coords) or coords
+
+
+def compacted(spec: dict) -> dict:
+    """The figure as sent: an animation's rows compacted (``_compact``), everything else as it is."""
+    if "animation" not in spec:
+        return spec
+    anim = spec["animation"]
+    return {**spec, "animation": {**anim, "coords": [_compact(c) for c in anim["coords"]]}}
+
+
+def unpacked(coords: dict, frames: int) -> dict:
+    """The rows (key -> one row per frame) that a compacted trace stands for."""
+    if "slices" in coords:
+        s = coords["slices"]
+        return {k: [path[a: i + 1] for i, a in enumerate(s["starts"])] for k, path in zip(s["keys"], s["paths"])}
+    if "spirals" in coords:
+        s = coords["spirals"]
+        x, y = spiral_rows(s["inner"], s["outer"], s["turns"], s["start"], s["n"])
+        return {"x": x.tolist(), "y": y.tolist()}
+    if "affine" in coords:
+        a = coords["affine"]
+        template = np.array(a["template"], dtype=float).T  # point, axis (None: a gap)
+        homogeneous = np.hstack([template, np.ones((len(template), 1))])
+        maps = np.asarray(a["maps"], dtype=float).reshape(frames, template.shape[1] + 1, template.shape[1])
+        rows = np.einsum("kj,fjd->fkd", homogeneous, maps)
+        return {k: [[None if np.isnan(v) else float(v) for v in row] for row in rows[:, :, n]]
+                for n, k in enumerate(a["keys"])}
+    return coords
+
+
 def expanded(spec: dict) -> dict:
     """The plain plotly figure a compact animation stands for: frames, the slider's steps and
     Play/Pause buttons (what the browser component builds; for plotly in Python and the tests)."""
@@ -216,9 +317,10 @@ def expanded(spec: dict) -> dict:
                "buttons": [{"label": "▶ Play", "method": "animate", "args": [None, play]},
                            {"label": "❚❚ Pause", "method": "animate", "args": [[None], step]}]}
     kinds = [spec["data"][j].get("type", "scatter") for j in anim["traces"]]
+    coords = [unpacked(c, len(names)) for c in anim["coords"]]
     frames = [{"name": name, "traces": anim["traces"],
-               "data": [{"type": kind, **{k: rows[i] for k, rows in coords.items()}}
-                        for kind, coords in zip(kinds, anim["coords"])]}
+               "data": [{"type": kind, **{k: rows[i] for k, rows in rows_of.items()}}
+                        for kind, rows_of in zip(kinds, coords)]}
               for i, name in enumerate(names)]
     return {"data": spec["data"], "layout": {**spec["layout"], "sliders": [slider], "updatemenus": [buttons]},
             "frames": frames}

@@ -199,11 +199,55 @@ function unfold(anim, data, layout) {
       ({label: t.toFixed(2), method: "animate", args: [[names[i]], step]}))})];
   }
   const kinds = anim.traces.map(j => data[j].type || "scatter");
-  return names.map((name, i) => ({name: name, traces: anim.traces, data: anim.coords.map((c, n) => {
+  const coords = anim.coords.map(c => unpack(c, names.length));
+  return names.map((name, i) => ({name: name, traces: anim.traces, data: coords.map((c, n) => {
     const update = {type: kinds[n]};
     for (const k of Object.keys(c)) update[k] = c[k][i];
     return update;
   })}));
+}
+
+// A moving trace's rows (key -> one row per frame) from what the server sent (viz/common.py:
+// compacted, and unpacked, which this mirrors): the rows themselves; a trail's path and where each
+// frame's slice starts; a spiral spring's turns and start; or a template and one affine map per frame.
+function unpack(c, frames) {
+  if (c.slices) {
+    const s = c.slices, out = {};
+    s.keys.forEach((k, n) => { out[k] = s.starts.map((a, i) => s.paths[n].slice(a, i + 1)); });
+    return out;
+  }
+  if (c.spirals) {
+    const s = c.spirals, x = [], y = [];
+    for (let i = 0; i < frames; i++) {
+      const xr = new Array(s.n), yr = new Array(s.n);
+      for (let p = 0; p < s.n; p++) {
+        const f = s.n > 1 ? p / (s.n - 1) : 0;
+        const phase = s.start[i] + 2 * Math.PI * s.turns[i] * f, rad = s.inner + (s.outer - s.inner) * f;
+        xr[p] = rad * Math.cos(phase); yr[p] = rad * Math.sin(phase);
+      }
+      x.push(xr); y.push(yr);
+    }
+    return {x: x, y: y};
+  }
+  if (c.affine) {
+    const a = c.affine, d = a.keys.length, points = a.template[0].length, out = {};
+    a.keys.forEach(k => { out[k] = []; });
+    for (let i = 0; i < frames; i++) {
+      const m = a.maps[i];  // (d + 1) rows of d: the linear part, then the offset
+      const rows = a.keys.map(() => new Array(points));
+      for (let p = 0; p < points; p++) {
+        const gap = a.template[0][p] === null;
+        for (let e = 0; e < d; e++) {
+          let v = m[d * d + e];
+          for (let j = 0; j < d; j++) v += a.template[j][p] * m[j * d + e];
+          rows[e][p] = gap ? null : v;
+        }
+      }
+      a.keys.forEach((k, e) => out[k].push(rows[e]));
+    }
+    return out;
+  }
+  return c;
 }
 
 // Lecture sizing (issue 14), applied on top of the figure's own layout and styles: every text at
