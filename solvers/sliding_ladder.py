@@ -91,7 +91,7 @@ SYMBOLS = {"m": m, "L": L, "theta0": theta0, "g": g}
 DIMENSIONS = {p.name: p.dimension for p in PARAMS} | {name: "dimensionless" for name in TIME_INTEGRALS}
 
 # Released nearer the floor or the wall than this, the motion is too small or its start too slow
-# (an unstable equilibrium) for the arithmetic; the refusal says so. (0.0057°)
+# (an unstable equilibrium) for the arithmetic; the refusal says so. (1e-6 rad = 5.7e-5°)
 CLOSEST_TO_REST = 1e-6
 
 
