@@ -17,6 +17,9 @@ from practice.variants import MAX_SEED
 
 # The link's query keys. ``seed`` is the same key an ordinary variant link uses.
 LINK_KEYS = ("assignment", "seed", "student", "sig")
+# Each number has one spelling: ASCII digits, no leading zero ("01" and "٣" would read as 1 and 3).
+ASSIGNMENT_NUMBER = re.compile(r"[1-9][0-9]{0,8}")
+SEED_NUMBER = re.compile(r"0|[1-9][0-9]{0,9}")
 
 
 @dataclass(frozen=True)
@@ -47,7 +50,7 @@ def from_link(query: Mapping[str, str]) -> StudentIdentity:
         raise LinkRefused(f"This assignment link is incomplete (it lacks {', '.join(missing)}). Open the "
                           "link exactly as you received it, or ask your instructor for it again.")
     assignment, seed, label, signature = (str(query[k]) for k in LINK_KEYS)
-    if not (re.fullmatch(r"\d{1,9}", assignment) and re.fullmatch(r"\d{1,10}", seed) and int(seed) <= MAX_SEED
+    if not (ASSIGNMENT_NUMBER.fullmatch(assignment) and SEED_NUMBER.fullmatch(seed) and int(seed) <= MAX_SEED
             and signing.valid_label(label) and re.fullmatch(r"[A-Za-z0-9_-]{1,64}", signature)):
         raise LinkRefused(TAMPERED)
     try:

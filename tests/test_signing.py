@@ -63,3 +63,16 @@ def test_a_missing_part_or_secret_says_what_is_wrong(monkeypatch):
 def test_labels_are_opaque_codes(label):
     with pytest.raises(ValueError, match="no names or e-mail"):
         signing.sign(1, 1, label)
+
+
+@pytest.mark.parametrize("key, spelling", [("assignment", "0{}"), ("seed", "0{}"), ("assignment", "arabic-indic"),
+                                           ("seed", "arabic-indic"), ("assignment", "+{}"), ("seed", " {}")])
+def test_a_number_has_one_spelling(key, spelling):
+    """Only the canonical ASCII spelling is accepted: "01" or "٣" (int() reads both as the same
+    number, so the signature would verify) are refused in plain words."""
+    query = link_query(StudentIdentity(3, "s017", 417))
+    value = query[key]
+    other = ("".join(chr(0x660 + int(d)) for d in value) if spelling == "arabic-indic" else spelling.format(value))
+    assert int(other) == int(value)  # the same number to Python
+    with pytest.raises(LinkRefused, match="changed since your instructor issued it"):
+        from_link(query | {key: other})
