@@ -52,6 +52,16 @@ def _guarded(fn: Callable[..., T]) -> Callable[..., T]:
     return wrapper
 
 
+# Control characters but tab, newline and carriage return (kept, and neutralised in the CSV):
+# PostgreSQL's text cannot hold NUL (SQLite can), and none belongs in an answer, a message, a slip's
+# name or a title; stored as U+FFFD, the same on both backends.
+CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+
+
+def _storable(text: str, limit: int) -> str:
+    return CONTROL.sub("\ufffd", text[:limit])
+
+
 def now() -> dt.datetime:
     return dt.datetime.now(dt.timezone.utc)
 
@@ -90,7 +100,8 @@ def create_assignment(settings: Settings, bound: Engine | None = None) -> int:
     if settings.errors():
         raise ValueError(" ".join(settings.errors()))
     with db.session(bound) as s, s.begin():
-        row = db.Assignment(title=settings.title.strip(), problem=settings.problem, answers=list(settings.answers),
+        row = db.Assignment(title=_storable(settings.title.strip(), 120), problem=settings.problem,
+                            answers=list(settings.answers),
                             tolerance=settings.tolerance, due=settings.due, attempts_allowed=settings.attempts_allowed,
                             solution_before_due=settings.solution_before_due, created=now())
         s.add(row)
@@ -225,7 +236,8 @@ def record_attempt(identity: StudentIdentity, answer: str, typed: str, correct: 
             shown = bool(s.scalar(select(exists().where(db.Reveal.assignment_id == identity.assignment_id,
                                                         db.Reveal.label == identity.label))))
             row = db.Attempt(assignment_id=identity.assignment_id, label=identity.label, answer=answer,
-                             typed=typed[:MAX_TYPED], correct=bool(correct), message=message[:1000], slip=slip[:400],
+                             typed=_storable(typed, MAX_TYPED), correct=bool(correct), message=_storable(message, 1000),
+                             slip=_storable(slip, 400),
                              at=when, late=when > due, solution_shown=shown)
             s.add(row)
         # committed: from here on the attempt is recorded

@@ -13,7 +13,7 @@ import threading
 import pytest
 from hypothesis import given
 from hypothesis import strategies as hst
-from sqlalchemy import event
+from sqlalchemy import event, select
 from sqlalchemy.exc import OperationalError
 from sqlalchemy.orm import Session
 
@@ -181,6 +181,18 @@ def test_safe_cell_neutralises_exactly_the_formula_starts(text):
     else:
         assert safe == text
     assert records.safe_cell(-1.5) == -1.5  # numbers stay numbers
+
+
+def test_control_characters_are_stored_the_same_on_both_backends(database):
+    """PostgreSQL's text cannot hold NUL (the insert failed and the student read "cannot be reached");
+    SQLite can. Both store a control character (but tab, CR, LF) as U+FFFD, in what was typed, said and named."""
+    aid, (ann, _) = new_assignment(database)
+    kept = records.record_attempt(ann, "theta_rebound", "1\x00 m\x1b/s", False, "said\x00", "slip\x07", database, BEFORE)
+    assert kept.typed == "1\ufffd m\ufffd/s" and kept.slip == "slip\ufffd"
+    with Session(database) as s:
+        assert s.scalars(select(db.Attempt.message)).one() == "said\ufffd"
+    spaced = attempt(database, ann, typed="\t2\r\n")  # kept (and neutralised in the CSV)
+    assert spaced.typed == "\t2\r\n"
 
 
 def test_rosters_are_opaque_labels_with_bad_lines_named():
