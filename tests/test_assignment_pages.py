@@ -138,3 +138,16 @@ def test_with_the_database_down_practice_works_unrecorded(course, monkeypatch):
     assert page.success and page.success[0].value.startswith("Right")  # judged all the same
     assert not any("Recorded" in i.value for i in page.info)
     assert "cannot be reached" in instructor().error[0].value
+
+
+def test_what_a_student_typed_is_shown_as_plain_text(course):
+    """st.table renders its cells as Markdown: a typed image or link would load or be clickable on
+    the page of whoever opens the link. The cell holds every punctuation mark escaped (typed here)."""
+    create(instructor())
+    ann = records.roster(records.assignments()[0][0])[0]
+    page = answer(student(link_query(ann)), "theta_rebound",
+                  "![x](https://attacker.example/p.png) [**click**](https://evil.example)")
+    assert not page.exception
+    typed = page.table[-1].value["you typed"].iloc[-1]
+    assert typed == (r"\!\[x\]\(https\:\/\/attacker\.example\/p\.png\) "
+                     r"\[\*\*click\*\*\]\(https\:\/\/evil\.example\)")

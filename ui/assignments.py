@@ -3,7 +3,8 @@
 assignment from a roster, hand out the links, read the gradebook, download it as CSV).
 
 Everything stored goes through ``assignments.records``; nothing a student typed is rendered as
-Markdown (tables are st.table cells, text passes through ``plain``)."""
+Markdown: st.table renders its cells as Markdown, so a stored string in a cell (what was typed, a
+slip's name, a label) passes through ``literal``, and text through ``plain``."""
 from __future__ import annotations
 
 import datetime as dt
@@ -17,7 +18,7 @@ from assignments.identity import LinkRefused, StudentIdentity, from_link, is_ass
 from practice.judge import RELATIVE_TOLERANCE
 from ui.catalog import BY_ID, PROBLEMS, Problem
 from ui.practice import Recording, answer_label, instructor_key_entry
-from ui.results import plain
+from ui.results import literal, plain
 
 UTC = dt.timezone.utc
 
@@ -120,7 +121,7 @@ def assignment_heading(link: StudentLink) -> None:
         return
     s = link.settings
     late = " The due time has passed: attempts are still kept, marked late." if records.now() > s.due else ""
-    st.info(f"**{plain(s.title)}**, for student {plain(link.identity.label)}: due {_when(s.due)}. An attempt counts "
+    st.info(f"**{plain(s.title)}**, for student {literal(link.identity.label)}: due {_when(s.due)}. An attempt counts "
             f"if it is right (numbers within ±{s.tolerance * 100:g} %), made before the due time, within "
             f"{s.attempts_allowed} attempts per answer, and before you open the solution.{late}",
             icon=":material/assignment:")
@@ -147,8 +148,8 @@ def your_attempts(link: StudentLink, answers) -> None:
             f"not yet right; {left} of {link.settings.attempts_allowed} attempts left"))
     st.markdown("\n".join(lines))
     if mine:
-        st.table([{"#": a.number, "answer": labels.get(a.answer, a.answer), "you typed": a.typed,
-                   "verdict": "right" if a.correct else "not right", "slip": records.slip_name(a.slip),
+        st.table([{"#": a.number, "answer": labels.get(a.answer, a.answer), "you typed": literal(a.typed),
+                   "verdict": "right" if a.correct else "not right", "slip": literal(records.slip_name(a.slip)),
                    "time": a.at.strftime("%d %b %H:%M:%S UTC"), "counts": "yes" if a.counts else
                    ("no: " + ", ".join(a.marks()) if a.marks() else "no")} for a in mine])
 
@@ -245,15 +246,16 @@ def _gradebook(aid: int) -> None:
     st.download_button("Download the links (CSV)", _links_csv(base, s.problem, book.students),
                        file_name=f"assignment-{aid}-links.csv", mime="text/csv", key="assign__links_csv")
     with st.expander(f"The links ({len(book.students)})"):
-        st.table([{"label": st_.label, "link": student_url(base, s.problem, st_)} for st_ in book.students])
+        st.table([{"label": literal(st_.label), "link": student_url(base, s.problem, st_)} for st_ in book.students])
     st.markdown("#### Gradebook")
     rows = []
     for student in book.students:
-        row = {"student": student.label, "score": f"{book.score(student.label)} / {len(s.answers)}"}
+        row = {"student": literal(student.label), "score": f"{book.score(student.label)} / {len(s.answers)}"}
         for a in s.answers:
             c = book.cells.get((student.label, a), records.Cell())
             right = f"at {c.first_right}" if c.first_right else "—"
-            row[labels.get(a, a)] = f"{right}; {c.attempts} used" + (f"; slips: {', '.join(c.slips)}" if c.slips else "")
+            slips = f"; slips: {', '.join(map(literal, c.slips))}" if c.slips else ""
+            row[labels.get(a, a)] = f"{right}; {c.attempts} used{slips}"
         rows.append(row)
     st.table(rows)
     c1, c2 = st.columns(2)

@@ -39,6 +39,16 @@ def plain(text: str) -> str:
     return _MARKDOWN_SPECIAL.sub(r"\\\1", text)
 
 
+_ASCII_PUNCTUATION = re.compile(r"([!-/:-@\[-`{-~])")
+
+
+def literal(text: str) -> str:
+    """Stored text (what a student typed, a slip's name, a label) shown as it is in an ``st.table``
+    cell, which Streamlit renders as Markdown: every ASCII punctuation mark escaped, as CommonMark
+    allows, so no link, image, bare URL or e-mail address, entity, emphasis, math or directive."""
+    return _ASCII_PUNCTUATION.sub(r"\\\1", text)
+
+
 def derivation(solution: Solution, caption: str = "", slips: tuple[str, ...] = ()) -> None:
     """The derivation, all steps (display math in $$ … $$) under a grey caption, then the worked
     solution's common slips, in two Markdown elements: the symbolic steps, whose text a new value
