@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from types import ModuleType
 from typing import Mapping
 
 from assignments import signing
-from practice.variants import MAX_SEED
+from practice.variants import ASSIGNMENT, MAX_SEED, variant
 
 # The link's query keys. ``seed`` is the same key an ordinary variant link uses.
 LINK_KEYS = ("assignment", "seed", "student", "sig")
@@ -60,6 +61,12 @@ def from_link(query: Mapping[str, str]) -> StudentIdentity:
     if not ok:
         raise LinkRefused(TAMPERED)
     return StudentIdentity(int(assignment), label, int(seed), "link")
+
+
+def parameters(identity: StudentIdentity, solver: ModuleType, problem: str) -> dict:
+    """The student's givens (SI, radians): their variant number in the assignment stream, so the
+    number in their link opened as a public ``?seed=N`` link gives other givens."""
+    return variant(solver, problem, identity.seed, ASSIGNMENT)
 
 
 def link_query(identity: StudentIdentity) -> dict[str, str]:

@@ -4,7 +4,8 @@ A link carries the assignment, the variant (seed) and the student's label in the
 signature over all three; a changed character in any of them, or in the signature, is refused.
 The label is the instructor's own opaque code (no names, no e-mail addresses: links reach access
 logs and browser histories), so the signature proves only "the instructor issued this link", not
-who holds it. Compared in constant time."""
+who holds it. Compared in constant time. The same secret keys each student's variant number
+(``variant_key``), so nobody without it can work out a classmate's."""
 from __future__ import annotations
 
 import base64
@@ -45,11 +46,20 @@ def _message(assignment: int, seed: int, label: str) -> bytes:
     return f"dynamics-lab/assignment/v1\x1f{assignment}\x1f{seed}\x1f{label}".encode()
 
 
+def _mac(message: bytes) -> bytes:
+    return hmac.new(_secret(), message, hashlib.sha256).digest()
+
+
+def variant_key(assignment: int, label: str) -> int:
+    """A 64-bit number fixed by the assignment, the label and the course secret."""
+    return int.from_bytes(_mac(f"dynamics-lab/variant/v1\x1f{assignment}\x1f{label}".encode())[:8], "big")
+
+
 def sign(assignment: int, seed: int, label: str) -> str:
     """The link's signature (URL-safe base64, no padding)."""
     if not valid_label(label):
         raise ValueError(f"A student label is {LABEL_RULE}.")
-    digest = hmac.new(_secret(), _message(assignment, seed, label), hashlib.sha256).digest()
+    digest = _mac(_message(assignment, seed, label))
     return base64.urlsafe_b64encode(digest[:SIGNATURE_BYTES]).decode().rstrip("=")
 
 

@@ -7,6 +7,9 @@ significant figures, and redrawn until the solver accepts the combination. Optio
 μ = ∞ keep their defaults, so each variant stays the worked problem with other numbers. What a
 problem varies differently (an angle's range, a parameter never varied, one set from the others) its
 solver module declares as ``VARIANTS`` (``solvers.protocol.Variants``).
+
+An assignment's variants come from a stream of their own (``ASSIGNMENT``): the number in a
+student's assignment link, opened as a public ``?seed=N`` link, gives other numbers.
 """
 from __future__ import annotations
 
@@ -22,10 +25,11 @@ from solvers.core import Choice, Number
 from solvers.protocol import Variants
 
 MAX_SEED = 10**9
+PUBLIC, ASSIGNMENT = "dynamics-lab", "dynamics-lab/assignment"  # the parameter streams
 
 
-def _generator(problem: str, seed: int, attempt: int) -> np.random.Generator:
-    digest = hashlib.sha256(f"dynamics-lab|{problem}|{seed}|{attempt}".encode()).digest()
+def _generator(stream: str, problem: str, seed: int, attempt: int) -> np.random.Generator:
+    digest = hashlib.sha256(f"{stream}|{problem}|{seed}|{attempt}".encode()).digest()
     return np.random.Generator(np.random.PCG64(int.from_bytes(digest[:16], "big")))
 
 
@@ -44,14 +48,15 @@ def _draw(rules: Variants, p: Number, rng: np.random.Generator) -> float:
     return _three_figures(p.default * float(rng.uniform(0.6, 1.4)))
 
 
-def variant(solver: ModuleType, problem: str, seed: int) -> dict:
-    """The parameters (SI, radians) of variant ``seed``; raises ValueError for a bad seed."""
+def variant(solver: ModuleType, problem: str, seed: int, stream: str = PUBLIC) -> dict:
+    """The parameters (SI, radians) of variant ``seed`` in ``stream`` (PUBLIC: ``?seed=N``, or
+    ASSIGNMENT); raises ValueError for a bad seed."""
     if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed <= MAX_SEED:
         raise ValueError(f"A variant number is a whole number from 0 to {MAX_SEED}.")
     rules = solver.VARIANTS
     kept = {name for name, degrees in rules.angles_deg.items() if degrees is None}  # the textbook's value
     for attempt in range(200):
-        rng = _generator(problem, seed, attempt)
+        rng = _generator(stream, problem, seed, attempt)
         params = {}
         for p in solver.PARAMS:
             if isinstance(p, Choice) or p.name in rules.fixed or p.name in kept or p.name in rules.derived:

@@ -13,8 +13,7 @@ import pytest
 from streamlit.testing.v1 import AppTest
 
 from assignments import db, records, signing
-from assignments.identity import link_query
-from practice.variants import variant
+from assignments.identity import StudentIdentity, link_query, parameters
 from solvers import pendulum_rebound
 from solvers import units
 
@@ -69,8 +68,8 @@ def answer(at: AppTest, name: str, text: str) -> AppTest:
     return at.button(key="pendulum_rebound__check").click().run()
 
 
-def rebound_in_degrees(seed: int) -> str:
-    params = variant(pendulum_rebound, "pendulum_rebound", seed)
+def rebound_in_degrees(who: StudentIdentity) -> str:
+    params = parameters(who, pendulum_rebound, "pendulum_rebound")
     return f"{math.degrees(pendulum_rebound.solve(**params).answers['theta_rebound']):.4f}"
 
 
@@ -91,12 +90,12 @@ def test_an_assignment_end_to_end(course):
     # Ann: a slip, then the right number. Each attempt is recorded, and says so.
     page = student(link_query(ann))
     assert not page.exception and "Week 9: the bounce" in page.info[0].value
-    assert f"variant {ann.seed}" in page.sidebar.markdown[-1].value
+    assert "Fixed by your assignment link" in page.sidebar.markdown[-1].value
     assert not any(b.label == "Show the solution" for b in page.button)  # not before the due time
     assert any("opens at the due time" in m.value for m in page.markdown)
     answer(page, "theta_rebound", "1")
     assert any("Recorded: attempt 1 of 3" in i.value for i in page.info)
-    answer(page, "theta_rebound", rebound_in_degrees(ann.seed))
+    answer(page, "theta_rebound", rebound_in_degrees(ann))
     assert any("attempt 2 of 3" in i.value and "it counts" in i.value for i in page.info)
     table = page.table[-1].value
     assert list(table["#"]) == [1, 2] and list(table["counts"]) == ["no", "yes"]
@@ -120,7 +119,7 @@ def test_a_link_cannot_change_the_numbers_it_was_issued_with(course):
     aid, _ = records.assignments()[0]
     ann = records.roster(aid)[0]
     page = student(link_query(ann) | {"e": "1", "theta0": "80"})  # an easier variant, asked for in the link
-    params = variant(pendulum_rebound, "pendulum_rebound", ann.seed)
+    params = parameters(ann, pendulum_rebound, "pendulum_rebound")
     statement = next(m.value for m in page.markdown if m.value.startswith("### The problem"))
     assert units.format_quantity(params["e"], "dimensionless") in statement
     assert "e" not in page.query_params and page.query_params["sig"] == link_query(ann)["sig"]
@@ -134,7 +133,7 @@ def test_with_the_database_down_practice_works_unrecorded(course, monkeypatch):
     reset_database_caches()
     page = student(link_query(ann))
     assert not page.exception and "cannot be reached" in page.warning[0].value
-    answer(page, "theta_rebound", rebound_in_degrees(ann.seed))
+    answer(page, "theta_rebound", rebound_in_degrees(ann))
     assert page.success and page.success[0].value.startswith("Right")  # judged all the same
     assert not any("Recorded" in i.value for i in page.info)
     assert "cannot be reached" in instructor().error[0].value
@@ -151,3 +150,22 @@ def test_what_a_student_typed_is_shown_as_plain_text(course):
     typed = page.table[-1].value["you typed"].iloc[-1]
     assert typed == (r"\!\[x\]\(https\:\/\/attacker\.example\/p\.png\) "
                      r"\[\*\*click\*\*\]\(https\:\/\/evil\.example\)")
+
+
+def givens(page: AppTest) -> list[str]:
+    statement = next(m.value for m in page.markdown if m.value.startswith("### The problem"))
+    return [row for row in statement.splitlines() if row.startswith("| ") and "---" not in row]
+
+
+def test_a_plain_variant_link_is_not_the_assignment(course):
+    """The number in a student's link opened as ``?seed=N`` (no signature, "Show the solution" offered,
+    nothing recorded) gives other givens: the solution before the due time stays closed."""
+    create(instructor())
+    aid, _ = records.assignments()[0]
+    ann = records.roster(aid)[0]
+    signed = student(link_query(ann))
+    plain_link = student({"seed": str(ann.seed)})
+    assert not plain_link.exception and any(b.label == "Show the solution" for b in plain_link.button)
+    assert len(givens(signed)) == len(givens(plain_link)) > 3
+    assert givens(signed) != givens(plain_link)
+    assert str(ann.seed) not in "".join(m.value for m in signed.sidebar.markdown)  # no number to reuse

@@ -14,7 +14,7 @@ import pytest
 
 from scripts.live_app import CHROMIUM, running_app, wait_until_idle
 from solvers import disk_wall
-from practice.variants import variant
+from practice.variants import ASSIGNMENT, variant
 from solvers import units
 
 pytestmark = pytest.mark.browser
@@ -85,7 +85,7 @@ def test_an_assignment_in_the_browser(browser, course_url):
     for row, size, right in ((links[0], "phone", True), (links[1], "laptop", False)):
         sctx, spage, serrors = at_size(browser, row["link"], size)
         wait_for_text(spage, "Week 6: the disk and the wall")
-        value = disk_wall.solve(**variant(disk_wall, "disk_wall", int(row["seed"]))).answers["v1x"]
+        value = disk_wall.solve(**variant(disk_wall, "disk_wall", int(row["seed"]), ASSIGNMENT)).answers["v1x"]
         typed = f"{units.to_display(value, 'speed'):.5g}" if right else f"{-units.to_display(value, 'speed'):.5g}"
         check(spage, typed)
         assert ("and it counts" in spage.inner_text("body")) == right

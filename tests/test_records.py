@@ -17,7 +17,7 @@ from sqlalchemy import event, select
 from sqlalchemy.exc import OperationalError
 from sqlalchemy.orm import Session
 
-from assignments import db, migrate, records
+from assignments import db, migrate, records, signing
 from assignments.identity import StudentIdentity
 from solvers import registry
 from scripts.live_app import free_port
@@ -26,6 +26,14 @@ UTC = dt.timezone.utc
 DUE = dt.datetime(2026, 12, 1, 12, 0, tzinfo=UTC)
 BEFORE, AFTER = DUE - dt.timedelta(days=1), DUE + dt.timedelta(minutes=1)
 E_FOR_E2 = next(m.feedback for m in registry.solver("pendulum_rebound").MISTAKES if m.answer == "theta_rebound")
+
+
+SECRET = "course-secret-for-the-tests-0018"
+
+
+@pytest.fixture(autouse=True)
+def course_secret(monkeypatch):
+    monkeypatch.setenv(signing.SECRET_ENV, SECRET)  # it keys the students' variants
 
 
 def settings(**changes) -> records.Settings:
@@ -211,6 +219,18 @@ def test_each_student_gets_a_fixed_variant_of_their_own(database):
     assert {s.label: s.seed for s in again}["s00"] == seeds[0] and len(again) == 31
     assert records.enrolled(students[0], database)
     assert not records.enrolled(StudentIdentity(aid, "s00", seeds[0] + 1), database)
+
+
+def test_a_variant_number_needs_the_course_secret(monkeypatch):
+    """Keyed with the secret: another course's secret gives other numbers, so a classmate's cannot be
+    worked out from their label; and without a secret there is none."""
+    ours = [records.student_seed(1, f"s{n:02}") for n in range(20)]
+    monkeypatch.setenv(signing.SECRET_ENV, SECRET + "-other")
+    theirs = [records.student_seed(1, f"s{n:02}") for n in range(20)]
+    assert len(set(ours)) == 20 and not set(ours) & set(theirs)
+    monkeypatch.delenv(signing.SECRET_ENV)
+    with pytest.raises(signing.NotConfigured):
+        records.student_seed(1, "s00")
 
 
 def test_settings_are_checked_in_plain_words(database):

@@ -7,6 +7,7 @@ import math
 
 import streamlit as st
 
+from assignments.identity import parameters
 from practice.variants import variant
 from solvers.core import PhysicalLimitError, Solution, within_model_range
 from ui import assignments, results
@@ -203,8 +204,8 @@ def problem_page(problem_id: str) -> None:
 def _assignment(problem: Problem, link, system: str) -> None:
     """A student's assignment: the link's variant with no controls to change it, judged and recorded
     under the assignment's rules (or, with the database down, practice unrecorded, and said so)."""
-    params = dict(problem.solver.solve(**variant(problem.solver, problem.id, link.identity.seed)).params)
-    st.sidebar.markdown(f"### Parameters · variant {link.identity.seed}\nFixed by your assignment link.")
+    params = dict(problem.solver.solve(**parameters(link.identity, problem.solver, problem.id)).params)
+    st.sidebar.markdown("### Parameters\nFixed by your assignment link.")  # no number a ?seed link could reuse
     keep = {k: st.query_params.get(k) for k in ("assignment", "seed", "student", "sig")}
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "", **keep}, params)
     assignments.assignment_heading(link)
