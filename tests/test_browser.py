@@ -258,3 +258,32 @@ def test_the_browser_rebuilds_the_frames_the_server_means(browser, app_url):
                         assert np.nanmax(np.abs(a - b), initial=0.0) <= 1e-9, (problem.id, k)
         page.close()
     context.close()
+
+
+def test_the_time_slider_scrubs_by_keyboard_and_follows_play(browser, app_url):
+    """The animation's time slider is a range input above the graph (plotly's own slider redrew
+    every step as SVG on each change): Home/End and the arrows move the motion and its time
+    readout, and Play moves the slider with the frames."""
+    context, page, errors = open_page(browser, f"{app_url}/disk_wall")
+    figure = page.locator(".dl-figure").first
+    figure.locator(".main-svg").first.wait_for()
+    scrub, readout, graph = figure.locator("input.dl-scrub"), figure.locator(".dl-readout"), figure.locator(".dl-graph")
+    first = readout.inner_text()  # the impact's animation starts a little before it: t < 0
+    assert scrub.get_attribute("aria-label") and first.startswith("t = ") and first.endswith(" s")
+    snapshot = "(el) => JSON.stringify(el._fullData.map(t => t.x && Array.from(t.x).slice(0, 4)))"
+    start = graph.evaluate(snapshot)
+    scrub.focus()
+    scrub.press("End")
+    page.wait_for_timeout(300)
+    last = int(scrub.get_attribute("max"))
+    assert last >= 29 and scrub.input_value() == str(last)
+    assert readout.inner_text() != first and graph.evaluate(snapshot) != start
+    scrub.press("Home")
+    scrub.press("ArrowRight")
+    page.wait_for_timeout(300)
+    assert scrub.input_value() == "1"  # one step, not two (the figure's own arrow keys stay out)
+    figure.get_by_role("button", name="Play the animation").click()
+    page.wait_for_timeout(1200)
+    assert int(scrub.input_value()) > 3, "the slider did not follow Play"
+    assert not errors, errors
+    context.close()

@@ -41,6 +41,18 @@ PHONE_CSS = """
 """
 
 
+# A rerun without the fade: Streamlit marks every element stale while a run is under way and gives
+# it an opacity transition, which makes the browser repaint the whole page twice on every change
+# (about 20 ms each in software rendering, more than the run itself takes; BENCHMARKS.md §6). A run
+# here takes tens of milliseconds, so the fade would never show; Streamlit's running indicator in
+# the header still says a run is under way.
+RUN_CSS = """
+<style>
+  [data-stale] { transition: none !important; opacity: 1 !important; }
+</style>
+"""
+
+
 VIEWS = ("Study", "Lecture", "Practice")
 VIEW_HELP = ("Study: answers, animation and derivation. Lecture: large type and the animation first, for "
              "a projector. Practice: the answers are hidden; type your own and get feedback.")
@@ -156,7 +168,7 @@ def problem_page(problem_id: str) -> None:
     lecture, practice = view == "Lecture", view == "Practice"
     if lecture:  # the projector: the figure gets the screen, one click brings the controls back
         st.set_page_config(initial_sidebar_state="collapsed")
-    st.html(PHONE_CSS + (LECTURE_CSS if lecture else ""))
+    st.html(RUN_CSS + PHONE_CSS + (LECTURE_CSS if lecture else ""))
     heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
     if link is not None:  # an assignment: its variant, fixed, and the link kept as it came
         _heading(heading, [])

@@ -303,7 +303,9 @@ def unpacked(coords: dict, frames: int) -> dict:
 
 def expanded(spec: dict) -> dict:
     """The plain plotly figure a compact animation stands for: frames, the slider's steps and
-    Play/Pause buttons (what the browser component builds; for plotly in Python and the tests)."""
+    Play/Pause buttons, for plotly in Python and the tests. The browser component builds the same
+    frames, and draws the time slider and the buttons in HTML above the graph instead (a plotly
+    slider's steps are redrawn as SVG on every change)."""
     if "animation" not in spec:
         return spec
     anim = spec["animation"]

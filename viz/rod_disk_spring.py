@@ -48,9 +48,9 @@ def figures(solution, system: str = "si") -> list[Figure]:
     ]
     layout = base_layout(equal_axes=True, x_range=(-reach * 1.15, reach * 1.15),
                          y_range=(-reach * 1.15, reach * 1.15))
-    layout["yaxis"]["domain"] = [0.36, 1.0]
+    layout["yaxis"]["domain"] = [0.40, 1.0]  # room between for the x title and the ticks, in lecture type too
     layout["xaxis2"] = {"anchor": "y2"}
-    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.24], "range": [0, top * 1.05],
+    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.22], "range": [0, top * 1.05],
                         "title": {"text": "energy (J)"}}
     layout["height"] = 700
     spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout, frame_ms=50)

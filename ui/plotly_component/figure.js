@@ -15,11 +15,15 @@ const CSS = `
   border-radius: 6px; cursor: pointer; border: 1px solid rgba(128,128,128,.6); background: transparent; color: inherit; }
 .dl-figure .dl-controls button:focus-visible { outline: 3px solid #E69F00; outline-offset: 1px; }
 .dl-figure .dl-hint { font-size: 12px; opacity: .7; }
+.dl-figure .dl-time { display: flex; align-items: center; gap: 8px; flex: 1 1 220px; min-width: 180px; }
+.dl-figure .dl-time input { flex: 1 1 auto; min-width: 120px; margin: 0; accent-color: #0072B2; }
+.dl-figure .dl-time input:focus-visible { outline: 3px solid #E69F00; outline-offset: 2px; }
+.dl-figure .dl-readout { font-size: 14px; font-variant-numeric: tabular-nums; white-space: nowrap; min-width: 6.5em; }
 .dl-figure h4.dl-title { font-family: inherit; font-size: 1.25rem; font-weight: 600; line-height: 1.3;
   margin: 0.2rem 0 0.4rem 0; padding: 0; color: inherit; }
 .dl-figure .dl-description { font-size: 14px; opacity: .75; margin: 0.2rem 0 0.6rem 0; line-height: 1.5; }
 .dl-figure.dl-lecture .dl-controls button { font-size: 20px; padding: 6px 18px; }
-.dl-figure.dl-lecture .dl-hint, .dl-figure.dl-lecture .dl-description { font-size: 18px; }
+.dl-figure.dl-lecture .dl-hint, .dl-figure.dl-lecture .dl-description, .dl-figure.dl-lecture .dl-readout { font-size: 18px; }
 .dl-figure.dl-lecture h4.dl-title { font-size: 1.6rem; }
 `;
 
@@ -30,6 +34,7 @@ const HTML = `
   <button class="dl-pause" type="button" aria-label="Pause the animation">❚❚ Pause</button>
   <button class="dl-back" type="button" aria-label="Step back one frame">◀</button>
   <button class="dl-forward" type="button" aria-label="Step forward one frame">▶</button>
+  <label class="dl-time"><span class="dl-readout"></span><input class="dl-scrub" type="range" min="0" max="0" step="1" value="0"></label>
   <span class="dl-hint">Space: play/pause · ← →: step</span>
 </div>
 <div class="dl-graph" role="img"></div>
@@ -73,6 +78,13 @@ class Figure {
     this.controls = $(".dl-controls");
     this.graph = $(".dl-graph");
     this.description = $(".dl-description");
+    // The time slider is an HTML range input, not plotly's slider: plotly draws a slider's every
+    // step as SVG on each redraw (about half of a redraw's time for 100 frames), and a range input
+    // scrubs by mouse, touch and keyboard (← →, Home, End, Page Up/Down) by itself.
+    this.scrub = $(".dl-scrub");
+    this.readout = $(".dl-readout");
+    this.times = [];
+    this.timeLabel = ["t = ", " s"];
     this.current = null;   // what is drawn now: the same text is not drawn again
     this.seq = 0;
     this.frameNames = [];
@@ -83,8 +95,9 @@ class Figure {
     $(".dl-pause").addEventListener("click", () => this.pause());
     $(".dl-back").addEventListener("click", () => { this.pause(); this.goTo(this.frameIndex - 1); });
     $(".dl-forward").addEventListener("click", () => { this.pause(); this.goTo(this.frameIndex + 1); });
+    this.scrub.addEventListener("input", () => { this.pause(); this.goTo(Number(this.scrub.value)); });
     this.root.addEventListener("keydown", (e) => {
-      if (!this.frameNames.length) return;
+      if (!this.frameNames.length || e.target === this.scrub && e.key !== " ") return;  // the range input steps itself
       if (e.key === " ") { e.preventDefault(); this.playing ? this.pause() : this.play(); }
       else if (e.key === "ArrowRight") { e.preventDefault(); this.pause(); this.goTo(this.frameIndex + 1); }
       else if (e.key === "ArrowLeft") { e.preventDefault(); this.pause(); this.goTo(this.frameIndex - 1); }
@@ -95,6 +108,7 @@ class Figure {
   goTo(index) {
     if (!this.frameNames.length) return;
     this.frameIndex = (index + this.frameNames.length) % this.frameNames.length;
+    this.showTime(this.frameIndex);
     quiet(this.Plotly.animate(this.graph, [this.frameNames[this.frameIndex]], {mode: "immediate",
       frame: {duration: 0, redraw: this.needsRedraw()}, transition: {duration: 0}}));
   }
@@ -104,6 +118,12 @@ class Figure {
     const duration = Number(this.graph.dataset.frameMs || 60);
     quiet(this.Plotly.animate(this.graph, null, {fromcurrent: true, mode: "immediate",
       frame: {duration: duration, redraw: this.needsRedraw()}, transition: {duration: 0}}));
+  }
+  showTime(index) {
+    this.scrub.value = String(index);
+    const t = this.times[index];
+    this.readout.textContent = t === undefined ? "" : this.timeLabel[0] + t.toFixed(2) + this.timeLabel[1];
+    this.scrub.setAttribute("aria-valuetext", this.readout.textContent);
   }
   pause() {
     this.playing = false;
@@ -130,24 +150,38 @@ class Figure {
     this.Plotly = Plotly;
     const spec = args.spec, style = args.style;
     const layout = themeLayout(spec.layout || {}, theme);
+    const slider = (layout.sliders || [])[0];
+    if (slider) {  // drawn as the range input above the graph; its room below the axes is not needed
+      delete layout.sliders;
+      layout.margin = Object.assign({}, layout.margin, {b: layout.scene ? 10 : Math.min((layout.margin || {}).b || 60, 60)});
+      const current = slider.currentvalue || {};
+      this.timeLabel = [current.prefix || "t = ", current.suffix || ""];
+    }
     this.root.classList.toggle("dl-lecture", !!style);
     if (style) spec.data = emphasised(spec.data, layout, style);
     this.controls.hidden = !spec.animation;  // before measuring: the controls sit above the graph
     layout.height = style && style.fit_screen ? this.screenHeight(args.height) : args.height;
     layout.autosize = true;
-    const frames = unfold(spec.animation, spec.data, layout);
+    const frames = unfold(spec.animation, spec.data);
     this.playing = false;
     // One update in place: data, layout and the frames replaced together (no new plot).
     await Plotly.react(this.graph, {data: spec.data, layout: layout, frames: frames,
                                     config: {displayModeBar: false, responsive: true}});
     if (seq !== this.seq) return;
     this.frameNames = frames.map(f => f.name);
+    this.times = spec.animation ? spec.animation.times : [];
+    this.scrub.max = String(Math.max(0, this.times.length - 1));
+    this.scrub.setAttribute("aria-label", (args.title ? args.title + ": " : "") + "time");
+    this.showTime(0);
     this.graph.dataset.frameMs = (spec.animation && spec.animation.frame_ms) || 60;
     this.controls.hidden = !this.frameNames.length;
     this.frameIndex = 0;
     if (!this.listening) {
       this.listening = true;
-      this.graph.on("plotly_animatingframe", (ev) => { this.frameIndex = Math.max(0, this.frameNames.indexOf(ev.name)); });
+      this.graph.on("plotly_animatingframe", (ev) => {
+        this.frameIndex = Math.max(0, this.frameNames.indexOf(ev.name));
+        this.showTime(this.frameIndex);
+      });
       this.graph.on("plotly_animated", () => { this.playing = false; });
     }
   }
@@ -189,15 +223,10 @@ function themeLayout(layout, theme) {
 }
 
 // A compact animation (viz/common.py: animated) unfolded into plotly frames, one per time, each
-// carrying only the moving traces' coordinates, and the time slider's steps (as viz.common.expanded).
-function unfold(anim, data, layout) {
+// carrying only the moving traces' coordinates (as viz.common.expanded).
+function unfold(anim, data) {
   if (!anim) return [];
-  const step = {frame: {duration: 0, redraw: !!anim.redraw}, mode: "immediate", transition: {duration: 0}};
   const names = anim.times.map((_, i) => String(i));
-  if (layout.sliders && layout.sliders.length) {
-    layout.sliders = [Object.assign({}, layout.sliders[0], {steps: anim.times.map((t, i) =>
-      ({label: t.toFixed(2), method: "animate", args: [[names[i]], step]}))})];
-  }
   const kinds = anim.traces.map(j => data[j].type || "scatter");
   const coords = anim.coords.map(c => unpack(c, names.length));
   return names.map((name, i) => ({name: name, traces: anim.traces, data: coords.map((c, n) => {
