@@ -232,22 +232,32 @@ def time_integrals(theta_0: float) -> dict[str, float]:
 def reactions_and_accelerations(state, wall: bool) -> np.ndarray:
     """[ẍ_G, ÿ_G, θ̈, N_B, N_A] (N_A only with the wall) from m a_G = ΣF, I_G α = ΣM_G and the contacts'
     kinematics (A on the wall, B on the floor), solved as one linear system in units m = g = L = 1.
-    θ is the rod's angle from the floor, so its anticlockwise rotation is −θ̇."""
-    _, _, th, _, _, w = state
-    s, c = math.sin(th), math.cos(th)
+    θ is the rod's angle from the floor, so its anticlockwise rotation is −θ̇. ``state`` may also
+    be many states (one per row): one system each, solved together (one row per result)."""
+    many = np.ndim(state) == 2
+    if many:
+        th, w = np.asarray(state, dtype=float)[:, 2], np.asarray(state, dtype=float)[:, 5]
+        s, c = np.sin(th), np.cos(th)
+        one, zero = np.ones_like(th), np.zeros_like(th)
+    else:
+        _, _, th, _, _, w = state
+        s, c, one, zero = math.sin(th), math.cos(th), 1.0, 0.0
     # unknowns: ax, ay, α, N_B, N_A
     rows = [
-        [1, 0, 0, 0, -1],                 # m ẍ = N_A
-        [0, 1, 0, -1, 0],                 # m ÿ = N_B − m g
-        [0, 0, 1 / 12, c / 2, -s / 2],    # I_G θ̈ = (L/2)(N_A sin θ − N_B cos θ)
-        [0, 1, -c / 2, 0, 0],             # B on the floor: y_G = (L/2) sin θ
-        [1, 0, s / 2, 0, 0],              # A on the wall: x_G = (L/2) cos θ
+        [one, zero, zero, zero, -one],            # m ẍ = N_A
+        [zero, one, zero, -one, zero],            # m ÿ = N_B − m g
+        [zero, zero, one / 12, c / 2, -s / 2],    # I_G θ̈ = (L/2)(N_A sin θ − N_B cos θ)
+        [zero, one, -c / 2, zero, zero],          # B on the floor: y_G = (L/2) sin θ
+        [one, zero, s / 2, zero, zero],           # A on the wall: x_G = (L/2) cos θ
     ]
-    rhs = [0.0, -1.0, 0.0, -s * w * w / 2, -c * w * w / 2]
+    rhs = [zero, -one, zero, -s * w * w / 2, -c * w * w / 2]
     if not wall:
         rows = [row[:4] for row in rows[:4]]
         rhs = rhs[:4]
-    return np.linalg.solve(np.array(rows, dtype=float), np.array(rhs))
+    if not many:
+        return np.linalg.solve(np.array(rows, dtype=float), np.array(rhs))
+    matrices = np.moveaxis(np.array(rows, dtype=float), -1, 0)  # state, row, column
+    return np.linalg.solve(matrices, np.array(rhs, dtype=float).T[..., None])[..., 0]
 
 
 def _rates(wall: bool):
@@ -367,15 +377,15 @@ def motion(solution: Solution) -> dict:
     t1, t2 = run["t_leave"], run["t_floor"]
 
     def sample(times):
-        states, walls, floors = [], [], []
-        for t in times:
-            on_wall = t <= t1
-            y = run["phase1"](min(t, t1)) if on_wall else run["phase2"](t)
-            r = reactions_and_accelerations(y, on_wall)
-            states.append(y)
-            walls.append(r[4] if on_wall else 0.0)
-            floors.append(r[3])
-        return np.array(states), np.array(walls), np.array(floors)
+        on_wall = times <= t1
+        first, second = times[on_wall], times[~on_wall]
+        held = run["phase1"](first).T if len(first) else np.empty((0, 6))
+        free = run["phase2"](second).T if len(second) else np.empty((0, 6))
+        r_held = reactions_and_accelerations(held, True) if len(first) else np.empty((0, 5))
+        r_free = reactions_and_accelerations(free, False) if len(second) else np.empty((0, 4))
+        walls = np.concatenate([r_held[:, 4], np.zeros(len(second))])
+        floors = np.concatenate([r_held[:, 3], r_free[:, 3]])
+        return np.concatenate([held, free]), walls, floors
 
     frames = np.unique(np.concatenate([np.linspace(0.0, t2, FRAMES), [t1]]))
     states, _, _ = sample(frames)

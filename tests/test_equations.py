@@ -15,7 +15,7 @@ from hypothesis import given, settings, strategies as st
 
 from tests import strategies
 from ui.catalog import PROBLEMS
-from ui.equations import PHONE_WIDTH_EM, broken, tokens, width
+from ui.equations import PHONE_WIDTH_EM, _broken, broken, tokens, width
 
 SCAFFOLD = {r"\begin", r"\end", "aligned", "&", r"\\", r"\quad", r"\small", r"\footnotesize", r"\scriptsize",
             r"\Bigl", r"\Bigr", r"\left", r"\right", r"\,", "{", "}", r"\qquad", r"\;", ","}  # layout only
@@ -32,9 +32,12 @@ def rows(latex: str) -> list[str]:
     return inner.split(r" \\ ")
 
 
+# Each problem's random valid parameters (its tests' VALID), imported here, not inside a @given test.
+VALID = {p.id: strategies.valid(p.id) for p in PROBLEMS}
+
+
 def params_of(problem):
-    strategy = getattr(strategies, problem.id, None)
-    return strategy() if callable(strategy) and not isinstance(strategy, st.SearchStrategy) else strategy
+    return VALID[problem.id]
 
 
 @pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
@@ -82,3 +85,30 @@ def test_a_list_of_results_gets_a_row_each_and_keeps_its_implication():
     first, second = rows(broken(latex))
     assert re.search(r"&(\\small )?=", first), first
     assert second.startswith(r"\Rightarrow\; \omega _{p} &=")
+
+
+@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
+@settings(max_examples=15, deadline=None)
+@given(data=st.data())
+def test_a_step_broken_by_its_shape_is_the_step_broken_itself(problem, data):
+    """``broken`` breaks a step's shape (each digit a stand-in) once and puts the digits back; that
+    must be exactly what breaking the step itself gives, on every step of random valid parameters."""
+    try:
+        solution = problem.solver.solve(**data.draw(VALID[problem.id]))
+    except ValueError:
+        return
+    for step in solution.steps:
+        assert broken(step.latex) == _broken(step.latex, PHONE_WIDTH_EM), step.title
+
+
+def test_digits_go_back_where_their_group_went():
+    """A fraction opened as 1/B · A moves its numerator after the denominator and adds a 1: the
+    digits must travel with their groups, and the added 1 stay a 1."""
+    latex = (r"v = \frac{12.34 \cdot 56.78 + 90.12 \cdot 34.56 + 78.9 \cdot 0.123 + 4.5 \cdot 6.7 + 8.9}{2.5}"
+             r" = 987.6 + 543.2 + 109.8 + 765.4 + 321.0 + 111.1")
+    shown = broken(latex)
+    assert shown == _broken(latex, PHONE_WIDTH_EM) and shown != latex
+    # The same shape with other digits is answered from the cache, with its own digits.
+    other = latex.replace("12.34", "43.21").replace("987.6", "678.9")
+    assert broken(other) == _broken(other, PHONE_WIDTH_EM)
+    assert "43.21" in broken(other) and "12.34" not in broken(other)

@@ -14,6 +14,7 @@ boxes at 360 and 390 px.
 """
 from __future__ import annotations
 
+import functools
 import re
 
 # The width a display row may take, in em of KaTeX's display font, as this module estimates it: a
@@ -60,6 +61,13 @@ def _group(toks: list[str], i: int) -> tuple[list[str], int]:
 
 def width(toks: list[str]) -> float:
     """Estimated width in em of a token list as KaTeX lays it out in display mode."""
+    return _width(tuple(toks))
+
+
+@functools.lru_cache(maxsize=65536)
+def _width(toks: tuple[str, ...]) -> float:
+    # Kept per token run: breaking a side measures the same groups and growing prefixes again and
+    # again (tens of thousands of calls per derivation without it).
     total, i = 0.0, 0
     while i < len(toks):
         t = toks[i]
@@ -299,8 +307,30 @@ def _depth_zero(toks: list[str]) -> bool:
     return depth == 0
 
 
+_DIGIT = re.compile(r"[0-9]")
+_PLACEHOLDER = 0xE000  # Unicode's private use area: one stand-in per digit of a step
+_PRIVATE = re.compile("[\ue000-\uf8ff]")
+
+
 def broken(latex: str, limit: float = PHONE_WIDTH_EM) -> str:
-    """The step's LaTeX, unchanged when it fits ``limit`` em, else as aligned rows that do."""
+    """The step's LaTeX, unchanged when it fits ``limit`` em, else as aligned rows that do.
+
+    Breaking is the largest part of a page's run (about 10 ms a derivation), and on a new value
+    only the digits of the numeric steps change, while every digit is one glyph of one width to
+    this module. So a step is broken once per *shape*: each digit replaced by its own stand-in
+    (the first digit by U+E000, the second by U+E001, …), the shape's rows kept, and the digits
+    put back where their stand-ins went (``tests/test_equations.py`` holds this to breaking the
+    step itself)."""
+    digits = _DIGIT.findall(latex)
+    if not digits or len(digits) > 6000 or _PRIVATE.search(latex):
+        return _broken(latex, limit)
+    counter = iter(range(_PLACEHOLDER, _PLACEHOLDER + len(digits)))
+    shape = _DIGIT.sub(lambda _: chr(next(counter)), latex)
+    return _broken(shape, limit).translate({_PLACEHOLDER + n: d for n, d in enumerate(digits)})
+
+
+@functools.lru_cache(maxsize=4096)
+def _broken(latex: str, limit: float) -> str:
     if width(tokens(latex)) <= limit:
         return latex
     rows = [row for connective, clause in _clauses(latex) for row in _rows_of_clause(connective, clause, limit)]
