@@ -1,15 +1,18 @@
 """Benchmark 4, the lecture: hundreds of students open the same link, then each moves a control.
 
-    python bench/lecture_load.py [--sessions 200] [--join 20] [--changes 5] [--processes 1]
-                                 [--pages PAGE ...]
+    python bench/lecture_load.py [--sessions 200] [--join 20] [--changes 5] [--pause 4 6]
+                                 [--processes 1] [--spread] [--pages PAGE ...]
 
 A load generator that speaks Streamlit's own websocket protocol (the protobuf messages in
 streamlit.proto): each session connects to /_stcore/stream, sends BackMsg.rerun_script for its
 page and reads ForwardMsgs until script_finished (first load), then moves one control ``changes``
-times, 2–4 s apart, sending the widget's new state (interaction). Hundreds of sessions run from
+times, sending the widget's new state (interaction), each change ``--pause`` seconds after the
+last one's answer (uniform; 4–6 s by default, the issue's "about every 5 s"; tables before the
+seventh session used 2–4 s, a lecture half again as busy: ``--pause 2 4``). Hundreds of sessions run from
 one asyncio process. The same scenario runs against an empty one-slider app in the same run.
-Reports first-load and interaction latency (p50/p95/p99), errors, bytes per interaction and server
-memory per session. Loopback only, bounded in count and time.
+Reports first-load and interaction latency (p50/p95/p99), errors, bytes per interaction, the server's
+CPU time per run (first loads and interactions together; one process, holding one interpreter lock,
+has about a second of it per second) and server memory per session. Loopback only, bounded in count and time.
 """
 from __future__ import annotations
 
@@ -94,7 +97,7 @@ def widget_state(wid: str, kind: str, value: float) -> WidgetState:
 
 
 async def session(url: str, page: str, delay: float, changes: int, results: Results, rng: random.Random,
-                  spread: bool) -> None:
+                  spread: bool, pause: tuple[float, float]) -> None:
     await asyncio.sleep(delay)
     key, value, step = CONTROLS[page]
     if spread:  # every student her own values: no two sessions ask for the same state
@@ -110,7 +113,7 @@ async def session(url: str, page: str, delay: float, changes: int, results: Resu
                 return
             wid, kind = found
             for _ in range(changes):
-                await asyncio.sleep(rng.uniform(2.0, 4.0))
+                await asyncio.sleep(rng.uniform(*pause))
                 value = round(value + step, 6)
                 seconds, size, messages = await run_script(ws, page, [widget_state(wid, kind, value)])
                 if any(m.HasField("delta") and m.delta.HasField("new_element")
@@ -132,6 +135,18 @@ def rss_mb(pids: list[int]) -> float:
         except OSError:
             pass
     return total / 1024
+
+
+def cpu_seconds(pids: list[int]) -> float:
+    """User + system CPU time the server processes have used so far."""
+    total = 0
+    for pid in pids:
+        try:
+            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+            total += int(fields[11]) + int(fields[12])  # utime, stime (fields 14 and 15 of stat)
+        except OSError:
+            pass
+    return total / os.sysconf("SC_CLK_TCK")
 
 
 def percentile(values: list[float], q: float) -> float:
@@ -162,13 +177,14 @@ def start_servers(app: Path, processes: int) -> tuple[list[subprocess.Popen], st
 
 
 async def scenario(url: str, page: str, sessions: int, join: float, changes: int, pids: list[int],
-                   spread: bool) -> tuple[Results, float]:
+                   spread: bool, pause: tuple[float, float] = (4.0, 6.0)) -> tuple[Results, float, float]:
     results = Results()
     rng = random.Random(1234)
     before = rss_mb(pids)
+    cpu_before = cpu_seconds(pids)
     samples = [before]
     tasks = [asyncio.create_task(session(url, page, rng.uniform(0, join), changes, results, random.Random(i),
-                                         spread)) for i in range(sessions)]
+                                         spread, pause)) for i in range(sessions)]
 
     async def sample_memory():
         while not all(t.done() for t in tasks):
@@ -176,12 +192,14 @@ async def scenario(url: str, page: str, sessions: int, join: float, changes: int
             await asyncio.sleep(0.5)
 
     sampler = asyncio.create_task(sample_memory())
-    await asyncio.wait_for(asyncio.gather(*tasks), timeout=join + changes * 4 + 2 * SESSION_TIMEOUT)
+    await asyncio.wait_for(asyncio.gather(*tasks), timeout=join + changes * pause[1] + 2 * SESSION_TIMEOUT)
     await sampler
-    return results, max(0.0, max(samples) - before) / sessions
+    runs = len(results.first_load) + len(results.interaction)
+    cpu_per_run = (cpu_seconds(pids) - cpu_before) / max(1, runs)
+    return results, max(0.0, max(samples) - before) / sessions, cpu_per_run
 
 
-def report(label: str, r: Results, mb_per_session: float) -> dict:
+def report(label: str, r: Results, mb_per_session: float, cpu_per_run: float) -> dict:
     row = {
         "page": label,
         "first p50": percentile(r.first_load, 50), "first p95": percentile(r.first_load, 95),
@@ -189,7 +207,7 @@ def report(label: str, r: Results, mb_per_session: float) -> dict:
         "int p99": percentile(r.interaction, 99), "errors": len(r.errors),
         "interactions": len(r.interaction),
         "KB/interaction": statistics.mean(r.interaction_bytes) / 1024 if r.interaction_bytes else float("nan"),
-        "MB/session": mb_per_session,
+        "MB/session": mb_per_session, "CPU/run": cpu_per_run,
     }
     if r.errors:
         print(f"  {label}: first errors: {r.errors[:3]}", file=sys.stderr)
@@ -201,6 +219,8 @@ def main() -> None:
     parser.add_argument("--sessions", type=int, default=200)
     parser.add_argument("--join", type=float, default=20.0)
     parser.add_argument("--changes", type=int, default=5)
+    parser.add_argument("--pause", type=float, nargs=2, default=(4.0, 6.0), metavar=("LOW", "HIGH"),
+                        help="seconds between a session's changes, drawn uniformly (default 4 6)")
     parser.add_argument("--processes", type=int, default=1)
     parser.add_argument("--pages", nargs="*", default=[p for p in CONTROLS if p])
     parser.add_argument("--spread", action="store_true",
@@ -212,9 +232,9 @@ def main() -> None:
     for label, app, page in targets:
         procs, url, workdir, nginx = start_servers(app, args.processes)
         try:
-            results, mb = asyncio.run(scenario(url, page, args.sessions, args.join, args.changes,
-                                               [p.pid for p in procs], args.spread))
-            rows.append(report(label, results, mb))
+            results, mb, cpu = asyncio.run(scenario(url, page, args.sessions, args.join, args.changes,
+                                                    [p.pid for p in procs], args.spread, tuple(args.pause)))
+            rows.append(report(label, results, mb, cpu))
             print(f"  done: {label}", file=sys.stderr)
         finally:
             if nginx:
@@ -229,16 +249,18 @@ def main() -> None:
             if workdir:
                 shutil.rmtree(workdir, ignore_errors=True)
     empty_p95 = rows[0]["int p95"]
-    print(f"\n{args.sessions} sessions joining over {args.join:g} s, {args.changes} changes each 2–4 s apart, "
+    print(f"\n{args.sessions} sessions joining over {args.join:g} s, {args.changes} changes each "
+          f"{args.pause[0]:g}–{args.pause[1]:g} s apart, "
           f"{args.processes} process(es){' behind nginx' if args.processes > 1 else ''}, "
           f"{'each session its own values' if args.spread else 'the same values in every session'}\n")
-    print("| page | first load p50 / p95 | interaction p50 / p95 / p99 | p95 × empty | errors | KB per interaction | server MB per session |")
-    print("|---|---|---|---|---|---|---|")
+    print("| page | first load p50 / p95 | interaction p50 / p95 / p99 | p95 × empty | errors | KB per interaction "
+          "| server MB per session | server CPU per run |")
+    print("|---|---|---|---|---|---|---|---|")
     for row in rows:
         print(f"| {row['page']} | {row['first p50'] * 1000:.0f} / {row['first p95'] * 1000:.0f} ms | "
               f"{row['int p50'] * 1000:.0f} / {row['int p95'] * 1000:.0f} / {row['int p99'] * 1000:.0f} ms | "
               f"{row['int p95'] / empty_p95:.1f} | {row['errors']} ({row['interactions']} done) | "
-              f"{row['KB/interaction']:.0f} | {row['MB/session']:.2f} |")
+              f"{row['KB/interaction']:.0f} | {row['MB/session']:.2f} | {row['CPU/run'] * 1000:.1f} ms |")
 
 
 if __name__ == "__main__":

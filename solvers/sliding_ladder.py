@@ -229,20 +229,11 @@ def time_integrals(theta_0: float) -> dict[str, float]:
 # The second method: Newton–Euler, integrated (units m = g = L = 1)
 
 
-def reactions_and_accelerations(state, wall: bool) -> np.ndarray:
-    """[ẍ_G, ÿ_G, θ̈, N_B, N_A] (N_A only with the wall) from m a_G = ΣF, I_G α = ΣM_G and the contacts'
-    kinematics (A on the wall, B on the floor), solved as one linear system in units m = g = L = 1.
-    θ is the rod's angle from the floor, so its anticlockwise rotation is −θ̇. ``state`` may also
-    be many states (one per row): one system each, solved together (one row per result)."""
-    many = np.ndim(state) == 2
-    if many:
-        th, w = np.asarray(state, dtype=float)[:, 2], np.asarray(state, dtype=float)[:, 5]
-        s, c = np.sin(th), np.cos(th)
-        one, zero = np.ones_like(th), np.zeros_like(th)
-    else:
-        _, _, th, _, _, w = state
-        s, c, one, zero = math.sin(th), math.cos(th), 1.0, 0.0
-    # unknowns: ax, ay, α, N_B, N_A
+def _newton_euler(s, c, w, one, zero, wall: bool) -> tuple[list, list]:
+    """The rows and right-hand side of m a_G = ΣF, I_G α = ΣM_G and the contacts' kinematics (A on the
+    wall, B on the floor) for the unknowns [ẍ_G, ÿ_G, θ̈, N_B, N_A] in units m = g = L = 1, at
+    sin θ = s, cos θ = c, θ̇ = w (numbers, arrays or symbols). θ is the rod's angle from the floor, so
+    its anticlockwise rotation is −θ̇. Without the wall, N_A and its kinematic row go."""
     rows = [
         [one, zero, zero, zero, -one],            # m ẍ = N_A
         [zero, one, zero, -one, zero],            # m ÿ = N_B − m g
@@ -252,17 +243,39 @@ def reactions_and_accelerations(state, wall: bool) -> np.ndarray:
     ]
     rhs = [zero, -one, zero, -s * w * w / 2, -c * w * w / 2]
     if not wall:
-        rows = [row[:4] for row in rows[:4]]
-        rhs = rhs[:4]
-    if not many:
-        return np.linalg.solve(np.array(rows, dtype=float), np.array(rhs))
-    matrices = np.moveaxis(np.array(rows, dtype=float), -1, 0)  # state, row, column
-    return np.linalg.solve(matrices, np.array(rhs, dtype=float).T[..., None])[..., 0]
+        return [row[:4] for row in rows[:4]], rhs[:4]
+    return rows, rhs
+
+
+def reactions_and_accelerations(state, wall: bool) -> np.ndarray:
+    """[ẍ_G, ÿ_G, θ̈, N_B, N_A] (N_A only with the wall), the Newton–Euler system solved numerically
+    as one linear system. ``state`` may also be many states (one per row): one system each, solved
+    together (one row per result)."""
+    if np.ndim(state) == 2:
+        th, w = np.asarray(state, dtype=float)[:, 2], np.asarray(state, dtype=float)[:, 5]
+        rows, rhs = _newton_euler(np.sin(th), np.cos(th), w, np.ones_like(th), np.zeros_like(th), wall)
+        matrices = np.moveaxis(np.array(rows, dtype=float), -1, 0)  # state, row, column
+        return np.linalg.solve(matrices, np.array(rhs, dtype=float).T[..., None])[..., 0]
+    th, w = state[2], state[5]
+    rows, rhs = _newton_euler(math.sin(th), math.cos(th), w, 1.0, 0.0, wall)
+    return np.linalg.solve(np.array(rows, dtype=float), np.array(rhs))
+
+
+@functools.cache
+def _solved_in_closed_form(wall: bool):
+    """The same linear system solved once by sympy (Gaussian elimination on the symbols), as a plain
+    function of (θ, θ̇): the integrator calls it a few hundred times per release angle, where
+    solving the 5 × 5 system numerically each time cost most of the integration."""
+    th, w = sp.symbols("theta omega")
+    rows, rhs = _newton_euler(sp.sin(th), sp.cos(th), w, sp.Integer(1), sp.Integer(0), wall)
+    return sp.lambdify((th, w), list(sp.Matrix(rows).LUsolve(sp.Matrix(rhs))), "math", cse=True)
 
 
 def _rates(wall: bool):
+    accelerations = _solved_in_closed_form(wall)
+
     def f(_t, y):
-        a = reactions_and_accelerations(y, wall)
+        a = accelerations(y[2], y[5])
         return [y[3], y[4], y[5], a[0], a[1], a[2]]
     return f
 
@@ -277,7 +290,7 @@ def integrated(theta_0: float) -> dict:
                       method="DOP853", dense_output=True)
 
     def wall_push(_t, y):
-        return reactions_and_accelerations(y, True)[4]
+        return _solved_in_closed_form(True)(y[2], y[5])[4]
     wall_push.terminal, wall_push.direction = True, -1
 
     def flat(_t, y):

@@ -139,6 +139,15 @@ def test_energy_is_conserved_through_both_phases_and_the_contacts_behave(theta0)
 
 
 @settings(max_examples=15, deadline=None)
+@given(pos(0.01, math.pi / 2 - 0.01), pos(-10, 10), st.booleans())
+def test_the_integrators_closed_form_equals_the_linear_system_solved_numerically(theta, omega, wall):
+    """The integration's right-hand side is the Newton–Euler system solved once by sympy; at any
+    state it gives what numpy's solve of the same 5 × 5 (or 4 × 4) system gives."""
+    closed = ladder._solved_in_closed_form(wall)(theta, omega)
+    numeric = ladder.reactions_and_accelerations([0.0, 0.0, theta, 0.0, 0.0, omega], wall)
+    assert np.allclose(closed, numeric, rtol=1e-9, atol=1e-9 * (1 + omega * omega))
+
+
 @given(VALID)
 def test_the_reactions_never_pull_and_the_wall_lets_go_once(p):
     s = ladder.solve(**p)

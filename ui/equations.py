@@ -312,6 +312,7 @@ _PLACEHOLDER = 0xE000  # Unicode's private use area: one stand-in per digit of a
 _PRIVATE = re.compile("[\ue000-\uf8ff]")
 
 
+@functools.lru_cache(maxsize=2048)  # the symbolic steps: the same text on every run
 def broken(latex: str, limit: float = PHONE_WIDTH_EM) -> str:
     """The step's LaTeX, unchanged when it fits ``limit`` em, else as aligned rows that do.
 
