@@ -1,6 +1,6 @@
 """Benchmark 5, what a student feels: the app in Debian's Chromium against an empty page, same run.
 
-    flock /tmp/dl-browser.lock python bench/browser.py [--changes 15] [--visits 3] [--pages ...]
+    flock /tmp/dl-browser.lock python bench/browser.py [--changes 15] [--visits 3] [--pages ...] [--frame]
 
 Two servers on loopback, both started by ``serve.run`` (the same settings, Nagle off): the app
 (serve.py, warmed) and an empty page with one number box and one slider (bench/empty_controls.py).
@@ -14,6 +14,9 @@ For every page, alternating with the empty page so drift on the shared machine h
   tab in the same context opens it again; time from navigation to every figure drawn (the empty
   page: its controls drawn and the script idle), and bytes over the wire (CDP Network
   ``encodedDataLength`` of every finished request; the websocket's bytes are listed apart).
+- with ``--frame``, a third tab: the page's frame alone (bench/page_frame.py: the navigation, the
+  same sidebar controls and title, no answers, figure or derivation), changed the same way, so the
+  table shows what Streamlit itself costs for a page with these controls.
 - **where one change goes**: one more change under a Chromium performance trace (CPU samples and
   the renderer's main thread), split into server run (websocket BackMsg sent → last ForwardMsg of
   the run received), websocket bytes, JavaScript by source (plotly.js, KaTeX, Streamlit's React
@@ -37,6 +40,7 @@ from solvers import registry  # noqa: E402
 
 PAGES = list(registry.PROBLEM_IDS)
 EMPTY = "empty"
+FRAME = "frame"
 VIEWPORT = {"width": 1400, "height": 1000}
 
 # Installed in every document; only the top one uses it. Graphs are looked for in the page and in
@@ -69,7 +73,7 @@ if (window === window.top) {
       return !!app && app.dataset.testScriptState === 'notRunning';
     },
     drawn(figures) {
-      if (figures === 0) return this.idle() && document.querySelectorAll("[data-testid='stMain'] input").length >= 2;
+      if (figures === 0) return this.idle() && document.querySelectorAll("[data-testid='stApp'] input").length >= 2;
       const g = this.graphs();
       return g.length >= figures && g.every(d => d._fullLayout && d.querySelector('.main-svg'));
     },
@@ -261,6 +265,8 @@ def main() -> None:
     parser.add_argument("--visits", type=int, default=3)
     parser.add_argument("--pages", nargs="*", default=PAGES)
     parser.add_argument("--json", type=Path, help="write the raw numbers here")
+    parser.add_argument("--frame", action="store_true",
+                        help="also the page's frame alone (bench/page_frame.py), changed the same way")
     args = parser.parse_args()
     from playwright.sync_api import sync_playwright
 
@@ -269,10 +275,14 @@ def main() -> None:
         app = stack.enter_context(running_app())
         empty = stack.enter_context(running_app(entry=[str(ROOT / "bench" / "serve_empty.py"),
                                                        "--script", "empty_controls.py"]))
+        frame = stack.enter_context(running_app(entry=[str(ROOT / "bench" / "serve_empty.py"),
+                                                       "--script", "page_frame.py"])) if args.frame else None
         pw = stack.enter_context(sync_playwright())
         browser = launch_browser(pw)
         for page_id in args.pages:
             pair = {EMPTY: (f"{empty}/", 0), page_id: (f"{app}/{page_id}", figure_count(page_id))}
+            if frame:
+                pair[FRAME] = (f"{frame}/?problem={page_id}", 0)
             r = {k: defaultdict(list) for k in pair}
             # First visits and revisits, alternating.
             for _ in range(args.visits):
@@ -335,7 +345,13 @@ def report(page_id: str, r: dict) -> None:
         print(f"{visit_kind:8s}: drawn {ms:.0f} ms [{ems:.0f}] × {ms / ems:.2f}; "
               f"{kb:.0f} KB over HTTP [{ekb:.0f}], +{kb - ekb:.0f} KB; websocket "
               f"{med(p[f'{visit_kind}_ws']) / 1024:.0f} KB [{med(e[f'{visit_kind}_ws']) / 1024:.0f}]")
-    for key in (page_id, EMPTY):
+    if FRAME in r:
+        f = r[FRAME]
+        frame_ratios = [a / b for a, b in zip(f["change_ms"], e["change_ms"])]
+        print(f"the frame alone: change median {med(f['change_ms']):.0f} ms, p90 {percentile(f['change_ms'], 0.9):.0f} ms, "
+              f"× empty {med(frame_ratios):.2f}; first visit {med(f['first_ms']):.0f} ms, revisit "
+              f"{med(f['revisit_ms']):.0f} ms")
+    for key in [k for k in (page_id, FRAME, EMPTY) if k in r]:
         parts = r[key]["breakdown"]
         print(f"one change, {key}: " + ", ".join(f"{k} {v:.1f}" for k, v in
                                                    sorted(parts.items(), key=lambda kv: -kv[1])))

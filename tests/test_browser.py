@@ -60,6 +60,23 @@ def test_a_deep_link_on_a_fresh_server_gets_the_app(browser):
         context.close()
 
 
+def test_every_request_stays_on_the_app_s_own_server(browser, app_url):
+    """A lecture hall's network, or a course site's policy, may reach nothing but the app: no font,
+    icon or script from anywhere else (the tab's icon too: a Material icon there was fetched from
+    fonts.gstatic.com)."""
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    elsewhere: list[str] = []
+    context.on("request", lambda r: None if r.url.startswith((app_url, "data:", "blob:")) else elsewhere.append(r.url))
+    page = context.new_page()
+    for path in ("/", f"/{PROBLEMS[0].id}"):
+        page.goto(app_url + path)
+        wait_until_idle(page)
+        page.wait_for_timeout(500)
+    assert page.locator("[data-testid='stMain'] .js-plotly-plot").count() >= 1  # the page was really drawn
+    assert not elsewhere, elsewhere
+    context.close()
+
+
 @pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
 def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser, app_url, problem):
     context, page, errors = open_page(browser, app_url)

@@ -36,6 +36,20 @@ def version(text: str) -> str:
     return re.search(r"plotly\.js (?:\(\w+ - minified\) )?v(\d+\.\d+\.\d+)", text[:400]).group(1)
 
 
+def test_the_derivation_s_katex_is_the_version_of_streamlit_s_markdown():
+    """Streamlit puts the stylesheet and fonts of its Markdown's KaTeX in every page; the derivation
+    component lays out its equations with ui/katex, so the two must be one version (a 0.18 layout
+    under the 0.16 stylesheet overflowed a phone)."""
+    import streamlit
+
+    static = Path(streamlit.__file__).parent / "static" / "static" / "js"
+    chunks = list(static.glob("rehype-katex.*.js"))
+    assert len(chunks) == 1, chunks
+    streamlit_katex = re.search(r"version:`(\d+\.\d+\.\d+)`", chunks[0].read_text()).group(1)
+    ours = re.search(r'version:"(\d+\.\d+\.\d+)"', component.katex()[1].decode()).group(1)
+    assert ours == streamlit_katex
+
+
 def test_the_bundles_are_the_plotly_js_of_the_pinned_plotly_package():
     full = Path(plotly.__file__).parent / "package_data" / "plotly.min.js"
     for kind, (name, data) in component.bundles().items():

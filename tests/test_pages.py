@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import orjson
 import pytest
 from streamlit.testing.v1 import AppTest
 
@@ -27,20 +28,29 @@ def answers_text(at: AppTest) -> str:
     return section[section.find("### Answers"):].split("#####")[0]  # (the study view's heading shares it)
 
 
+def derivations_shown(at: AppTest) -> list[dict]:
+    """Each derivation as the page sends it to its element (ui/results.py): heading, caption, steps
+    ([title, LaTeX] each) and the worked solution's slips."""
+    return [orjson.loads(e.proto.bytes) for e in at.main if getattr(e, "type", None) == "bidi_component"
+            and e.proto.component_name.endswith("dynamics_lab_derivation")]
+
+
+def derivation_shown(at: AppTest) -> dict:
+    """The page's one derivation."""
+    shown = derivations_shown(at)
+    assert len(shown) == 1, f"{len(shown)} derivation elements"
+    return shown[0]
+
+
 def latex_text(at: AppTest) -> list[str]:
-    """The derivation's display-math blocks ($$ … $$), in order."""
-    return derivation_text(at).split("$$")[1::2]
+    """The derivation's display equations, in order."""
+    return [tex for _, tex in derivation_shown(at)["steps"]]
 
 
-def derivation_blocks(at: AppTest) -> list[str]:
-    """The derivation's Markdown elements: the symbolic steps, then the numbers and the slips."""
-    values = [m.value for m in at.markdown]
-    start = next((i for i, v in enumerate(values) if v.startswith("### Derivation, step by step")), len(values))
-    return values[start:start + 2]
-
-
-def derivation_text(at: AppTest) -> str:
-    return "\n\n".join(derivation_blocks(at))
+def derivation_text(at: AppTest, d: dict | None = None) -> str:
+    d = d or derivation_shown(at)
+    parts = [d["heading"], d["caption"], *(f"{title}\n\n{tex}" for title, tex in d["steps"])]
+    return "\n\n".join(parts + ([d["slips_heading"], *d["slips"]] if d["slips"] else []))
 
 
 def first_number_control(at: AppTest, pid: str):
@@ -76,7 +86,7 @@ def test_page_runs_with_answers_derivation_and_checks(pid):
     derivation = derivation_text(at)
     errata = BY_ID[pid].solver.ERRATA  # may be empty: a problem not in the worked solutions
     assert ("Common slips in the worked solution" in derivation) == bool(errata)
-    assert all(f"- {slip}" in derivation for slip in errata), "the worked solution's slips follow it"
+    assert derivation_shown(at)["slips"] == list(errata), "the worked solution's slips follow it"
     ledger = [m.value for m in at.markdown if ":material/check_circle:" in m.value]
     assert ledger, "the checks are shown"
 
@@ -85,16 +95,16 @@ def test_page_runs_with_answers_derivation_and_checks(pid):
 def test_moving_a_control_changes_the_derivation_and_the_answers(pid):
     at = run_page(pid)
     before_answers, before_latex = answers_text(at), latex_text(at)
-    symbolic, numeric = derivation_blocks(at)
+    symbolic = BY_ID[pid].solver.solve().symbolic_steps
     widget, spec = first_number_control(at, pid)
     widget.set_value(widget.value * 1.1).run()
     assert_clean(at)
     assert not at.error
     assert answers_text(at) != before_answers
     assert latex_text(at) != before_latex
-    # Only the steps with numbers change: the browser keeps the symbolic steps' typeset KaTeX.
-    assert derivation_blocks(at)[0] == symbolic and derivation_blocks(at)[1] != numeric
-    assert "$$" in symbolic and "$$" in numeric
+    # Only the steps with numbers change: the browser leaves the symbolic steps as they are.
+    assert 0 < symbolic < len(before_latex)
+    assert latex_text(at)[:symbolic] == before_latex[:symbolic] and latex_text(at)[symbolic:] != before_latex[symbolic:]
     assert pid and spec.name in at.query_params
 
 

@@ -24,6 +24,7 @@ from solvers import registry
 from practice.variants import MAX_SEED, variant, variants_csv
 from solvers import units
 from tests import strategies
+from tests.test_pages import derivation_text, derivations_shown
 from solvers.core import Answer
 from practice.worker import SimplifyWorker
 from ui.practice import flat_latex
@@ -396,6 +397,7 @@ def page_text(at) -> str:
                     parts.append(got)
             if kind == "selectbox":
                 parts += [str(o) for o in element.options]
+    parts += [derivation_text(at, d) for d in derivations_shown(at)]  # the derivation's own element
     return "\n".join(parts)
 
 

@@ -20,23 +20,28 @@ from ui import figure as component
 STUB_BYTES = 400  # the module a run carries: an import of plotly_component/figure.<hash>.js
 
 
-def counted(at) -> tuple[int, list]:
-    """(Markdown elements, figure elements) in the main area."""
+def counted(at) -> tuple[int, list, list]:
+    """(Markdown elements, figure elements, derivation elements) in the main area."""
     markdown = sum(1 for e in at.main if getattr(e, "type", None) == "markdown")
-    figures = [e.proto for e in at.main if getattr(e, "type", None) == "bidi_component"]
-    return markdown, figures
+    ours = [e.proto for e in at.main if getattr(e, "type", None) == "bidi_component"]
+    figures = [p for p in ours if p.component_name == component.NAME]
+    derivations = [p for p in ours if p.component_name.endswith("dynamics_lab_derivation")]
+    assert len(figures) + len(derivations) == len(ours)
+    return markdown, figures, derivations
 
 
 @pytest.mark.parametrize("pid", IDS)
-def test_a_run_sends_three_markdown_elements_and_each_figure_once(pid):
+def test_a_run_sends_one_markdown_element_the_derivation_and_each_figure_once(pid):
     at = run_page(pid)
     solution = importlib.import_module(f"solvers.{pid}").solve()
     shown = importlib.import_module(f"viz.{pid}").figures(solution)
     for state in ("first run", "after a change"):
         assert_clean(at)
-        markdown, figures = counted(at)
-        assert markdown == 3, (pid, state, markdown)  # heading + answers, the two derivation blocks
+        markdown, figures, derivations = counted(at)
+        assert markdown == 1, (pid, state, markdown)  # heading + answers (+ ledger and checks)
         assert len(figures) == len(shown), (pid, state)
+        assert len(derivations) == 1 and len(derivations[0].js_content) <= STUB_BYTES
+        assert f"/derivation.{component.module('derivation.js')[0].split('.')[1]}.js" in derivations[0].js_content
         for proto in figures:
             assert proto.component_name == component.NAME and not proto.isolate_styles
             assert len(proto.js_content) <= STUB_BYTES, len(proto.js_content)

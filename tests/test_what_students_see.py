@@ -19,7 +19,7 @@ import pytest
 from solvers.core import Choice, Number, plain_fixed, plain_number
 from tests.drawing import figures
 from tests.strategies import problem_tests
-from tests.test_pages import IDS, assert_clean, run_page
+from tests.test_pages import IDS, assert_clean, derivation_shown, derivation_text, derivations_shown, run_page
 from ui.catalog import BY_ID
 from ui.params import as_shown, display_format
 
@@ -73,6 +73,7 @@ def test_no_shown_number_is_minus_zero(pid, query):
     at = run_page(pid, query)
     assert_clean(at)
     texts = [m.value for m in at.markdown] + [c.value for c in at.caption]
+    texts += [derivation_text(at, d) for d in derivations_shown(at)]
     solver = BY_ID[pid].solver
     params = {}
     for spec in solver.PARAMS:
@@ -128,7 +129,7 @@ def test_on_screen_the_course_s_solution_is_the_worked_solution(pid):
                 words += [s.title for s in solution.steps] + list(solution.notes)
                 words += [c.name + c.explanation for c in solution.checks]
     at = run_page(pid)
-    words += [m.value for m in at.markdown] + [r.label for r in at.radio]
+    words += [m.value for m in at.markdown] + [r.label for r in at.radio] + [derivation_text(at)]
     for text in words:
         assert "seed" not in text.lower(), text
 
@@ -175,8 +176,8 @@ def test_a_physical_limit_keeps_the_method_and_what_shows_why(pid, query, figure
     at = run_page(pid, query)
     assert_clean(at)
     assert at.error and at.metric
-    method = next(m.value for m in at.markdown if "### Derivation, step by step" in m.value)
-    assert "without numbers" in method and "$$" in method
-    assert sum(getattr(e, "type", None) == "bidi_component" for e in at.main) == figures_shown  # the figures
+    method = derivation_shown(at)
+    assert "without numbers" in method["caption"] and method["steps"] and all(tex for _, tex in method["steps"])
+    assert sum(getattr(e, "type", None) == "bidi_component" for e in at.main) == figures_shown + 1  # figures, derivation
 
 

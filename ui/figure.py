@@ -29,8 +29,9 @@ import streamlit.components.v1 as components_v1
 from viz.common import Figure
 
 NAME = "dynamics_lab_figure"
-_DIR = Path(__file__).resolve().parent / "plotly_component"
-_BUNDLES = Path(__file__).resolve().parent / "plotly_bundles"
+_HERE = Path(__file__).resolve().parent
+_DIR = _HERE / "plotly_component"
+_BUNDLES = _HERE / "plotly_bundles"
 KINDS = ("basic", "gl3d")
 YEAR = 365 * 24 * 3600
 
@@ -52,10 +53,13 @@ def bundles() -> dict[str, tuple[str, bytes]]:
     return {kind: _keyed(_BUNDLES / f"plotly-{kind}.min.js", f"plotly-{kind}", ".min.js") for kind in KINDS}
 
 
+MODULES = ("figure.js", "derivation.js")  # this file's component, and ui/results.py's derivation
+
+
 @cache
-def module() -> tuple[str, bytes]:
-    """The component's JavaScript module (plotly_component/figure.js), keyed by its content."""
-    return _keyed(_DIR / "figure.js", "figure", ".js")
+def module(file: str = "figure.js") -> tuple[str, bytes]:
+    """A component's JavaScript module (plotly_component/<file>), keyed by its content."""
+    return _keyed(_DIR / file, file.removesuffix(".js"), ".js")
 
 
 def kind_of(figure: Figure, page=()) -> str:
@@ -74,7 +78,7 @@ class BundleServer:
         # Streamlit names the component after its module too (ui.figure.dynamics_lab_figure), so a
         # file is known by the end of its path: /component/<component's name>/<file's name>.
         self.files = {f".{NAME}/{name}": (data, gzip.compress(data, 9))
-                      for name, data in (*bundles().values(), module())}
+                      for name, data in (*bundles().values(), *map(module, MODULES), katex())}
 
     async def __call__(self, scope, receive, send):
         if scope["type"] == "http" and scope["method"] in ("GET", "HEAD"):
@@ -96,33 +100,50 @@ class BundleServer:
         await send({"type": "http.response.body", "body": b"" if scope["method"] == "HEAD" else body})
 
 
+def _base() -> str:
+    base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
+    return "/" + base if base else ""
+
+
 def url(name: str) -> str:
     """A served file's path on this server (Streamlit's component route, under the base path)."""
-    base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
-    return f"{'/' + base if base else ''}/component/{__name__}.{NAME}/{name}"
+    return f"{_base()}/component/{__name__}.{NAME}/{name}"
+
+
+@cache
+def katex() -> tuple[str, bytes]:
+    """KaTeX for the derivation component (ui/katex/: the version of Streamlit's own Markdown, whose
+    stylesheet and fonts are already in the page), keyed by its content like the bundles."""
+    return _keyed(_HERE / "katex" / "katex.min.js", "katex", ".min.js")
+
+
+def katex_url() -> str:
+    return url(katex()[0])
 
 
 _lock = threading.Lock()
-_component = None
+_components: dict[str, object] = {}
 
 
-def _declared():
-    """Declare the component on first use, inside a running app: a declaration made before the
-    runtime exists (serve.py imports this module while warming up) would not be registered. The v1
-    declaration only gives the files their route; the figure itself is the v2 component."""
-    global _component
+def declared(file: str = "figure.js"):
+    """The v2 component drawn by ``file`` (one of ``MODULES``), declared on first use inside a
+    running app: a declaration made before the runtime exists (serve.py imports this module while
+    warming up) would not be registered. The v1 declaration only gives the files their route."""
     with _lock:
-        if _component is None:
+        if not _components:
             bundles()
             components_v1.declare_component(NAME, path=str(_DIR))
-            # The module a run carries: a dynamic import of figure.<hash>.js, which the browser
+        if file not in _components:
+            # The module a run carries: a dynamic import of <file>.<hash>.js, which the browser
             # fetches once and keeps (a blob URL cannot resolve a path: hence the page's URL).
             # (A newline tells Streamlit this is the module's text, not a file's path.)
-            stub = (f"export default (c) => {{\n  import(new URL({url(module()[0])!r}, location.href).href)"
+            stub = (f"export default (c) => {{\n  import(new URL({url(module(file)[0])!r}, location.href).href)"
                     ".then(m => m.render(c));\n};\n")
-            # isolate_styles=False: in the page's own DOM, where plotly.js puts its stylesheet.
-            _component = st.components.v2.component(NAME, js=stub, isolate_styles=False)
-        return _component
+            # isolate_styles=False: in the page's own DOM, where plotly.js puts its stylesheet and
+            # Streamlit its KaTeX styles.
+            name = NAME if file == "figure.js" else f"dynamics_lab_{file.removesuffix('.js')}"
+            _components[file] = st.components.v2.component(name, js=stub, isolate_styles=False)
+        return _components[file]
 
 
 # The lecture view on a projector (issue 14): the component raises every text of the figure to at
@@ -144,5 +165,5 @@ def payload(figure: Figure, bundle: str, style: dict | None) -> bytes:
 def show(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False) -> None:
     """``page``: every figure of the page, so that all of them share one plotly.js bundle."""
     style = {**LECTURE, "fit_screen": fit_screen} if lecture else None
-    mount = _declared()
+    mount = declared()
     mount(data=payload(figure, url(bundles()[kind_of(figure, page)][0]), style), key=figure.key)

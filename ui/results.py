@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import re
 
+import orjson
 import streamlit as st
 
 from solvers.core import Answer, PhysicalLimitError, Solution
 from solvers import units
+from ui import figure
 from ui.equations import broken
 
 def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str, heading: str = "") -> None:
@@ -49,20 +51,20 @@ def literal(text: str) -> str:
     return _ASCII_PUNCTUATION.sub(r"\\\1", text)
 
 
+DERIVATION_HEADING = "Derivation, step by step"
+SLIPS_HEADING = "Common slips in the worked solution"
+
+
 def derivation(solution: Solution, caption: str = "", slips: tuple[str, ...] = ()) -> None:
-    """The derivation, all steps (display math in $$ … $$) under a grey caption, then the worked
-    solution's common slips, in two Markdown elements: the symbolic steps, whose text a new value
-    does not change (so the browser keeps their KaTeX instead of typesetting them again), and the
-    steps with the numbers together with the slips. A display equation too wide for a phone is
-    broken over aligned rows (``broken``)."""
-    blocks = [f"**{i}.** {plain(step.title)}\n\n$$\n{broken(step.latex)}\n$$"
-              for i, step in enumerate(solution.steps, start=1)]
-    symbolic, numeric = blocks[: solution.symbolic_steps], blocks[solution.symbolic_steps:]
-    st.markdown("\n\n".join(["### Derivation, step by step"] + [f":gray[{caption}]"] * bool(caption) + symbolic))
-    if slips:
-        numeric += ["#### Common slips in the worked solution", "\n".join(f"- {note}" for note in slips)]
-    if numeric:
-        st.markdown("\n\n".join(numeric))
+    """The derivation, all steps under a grey caption, then the worked solution's common slips, in
+    one element of our own (ui/plotly_component/derivation.js): the browser typesets each equation
+    once per distinct text and leaves alone the steps a new value does not change (the symbolic
+    ones), where Streamlit's Markdown would typeset and lay out the whole derivation again. A
+    display equation too wide for a phone is broken over aligned rows (``broken``)."""
+    payload = {"heading": DERIVATION_HEADING, "caption": caption,
+               "steps": [[step.title, broken(step.latex)] for step in solution.steps],
+               "slips_heading": SLIPS_HEADING, "slips": list(slips), "katex": figure.katex_url()}
+    figure.declared("derivation.js")(data=orjson.dumps(payload), key="derivation")
 
 
 def checks(solution: Solution) -> str:
