@@ -8,7 +8,7 @@ streamlit.proto): each session connects to /_stcore/stream, sends BackMsg.rerun_
 page and reads ForwardMsgs until script_finished (first load), then moves one control ``changes``
 times, sending the widget's new state (interaction), each change ``--pause`` seconds after the
 last one's answer (uniform; 4–6 s by default, the issue's "about every 5 s"; tables before the
-seventh session used 2–4 s, a lecture half again as busy: ``--pause 2 4``). Hundreds of sessions run from
+seventh session used 2–4 s, a lecture 1.7 times as busy: ``--pause 2 4``). Hundreds of sessions run from
 one asyncio process. The same scenario runs against an empty one-slider app in the same run.
 Reports first-load and interaction latency (p50/p95/p99), errors, bytes per interaction, the server's
 CPU time per run (first loads and interactions together; one process, holding one interpreter lock,

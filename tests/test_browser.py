@@ -8,6 +8,7 @@ Skipped when Chromium is missing on a workstation; in CI (CI set) a missing brow
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -41,6 +42,11 @@ def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: b
 
 def main_text(page) -> str:
     return page.locator("[data-testid='stMain']").inner_text()
+
+
+def derivation_text(page) -> str:
+    """The derivation's element (ui/plotly_component/derivation.js) as the page shows it."""
+    return page.locator("[data-testid='stMain'] .dl-derivation").inner_text()
 
 
 def answers_table(page) -> str:
@@ -84,7 +90,9 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
     page.wait_for_url(f"**/{problem.id}")
     wait_until_idle(page)
     page.get_by_role("heading", name=problem.title).wait_for()
-    before_answers, before_text = answers_table(page), main_text(page)
+    before_answers, before_derivation = answers_table(page), derivation_text(page)
+    # The slips' Markdown (bold, emphasis, inline math) is rendered, not shown as marks.
+    assert not re.search(r"\*\w|\w\*|\$", before_derivation), before_derivation
 
     # Change the first number box as a person does: select, type, Enter. A page whose lesson
     # parameters are all sliders has its number boxes under "More parameters": open it first.
@@ -103,7 +111,7 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
                            " return t && t.innerText !== before; }", arg=before_answers, timeout=30_000)
     wait_until_idle(page)
     assert answers_table(page) != before_answers
-    assert main_text(page) != before_text  # the derivation's numbers follow
+    assert derivation_text(page) != before_derivation  # the derivation's numbers follow
     assert page.locator("[data-testid='stException']").count() == 0
     assert page.locator("[data-testid='stAlertContentError']").count() == 0
 

@@ -10,8 +10,8 @@
 
 const CSS = `
 .dl-derivation { font-family: var(--st-font, "Source Sans Pro", sans-serif); color: var(--st-text-color, inherit); }
-.dl-derivation h3 { font-size: 1.75rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 1.25rem 0 1rem 0; }
-.dl-derivation h4 { font-size: 1.5rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 1rem 0 0.75rem 0; }
+.dl-derivation h3 { font-size: 1.75rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 0.75rem 0 1rem 0; }
+.dl-derivation h4 { font-size: 1.5rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 0.75rem 0 1rem 0; }
 .dl-derivation p, .dl-derivation li { font-size: 1em; }  /* the page's size: larger in the lecture view */
 .dl-derivation p { margin: 0 0 1rem 0; line-height: 1.6; }
 .dl-derivation .dl-muted { opacity: 0.75; }
@@ -34,10 +34,10 @@ function html(katex, tex, display) {
   return out;
 }
 
-// A slip's text: plain text with $inline math$ and **bold**, as the solvers write them. Built as
-// nodes (text is never parsed as HTML); only KaTeX's own output is inserted as HTML.
+// A slip's text: plain text with $inline math$, **bold** and *emphasis*, as the solvers write them.
+// Built as nodes (text is never parsed as HTML); only KaTeX's own output is inserted as HTML.
 function inline(katex, text, into) {
-  const parts = /\$([^$]+)\$|\*\*([^*]+)\*\*/g;
+  const parts = /\$([^$]+)\$|\*\*([^*]+)\*\*|\*([^*\s][^*]*)\*/g;
   let at = 0;
   for (const m of text.matchAll(parts)) {
     into.append(text.slice(at, m.index));
@@ -46,9 +46,9 @@ function inline(katex, text, into) {
       span.innerHTML = html(katex, m[1], false);
       into.append(span);
     } else {
-      const strong = document.createElement("strong");
-      strong.textContent = m[2];
-      into.append(strong);
+      const mark = document.createElement(m[2] !== undefined ? "strong" : "em");
+      mark.textContent = m[2] ?? m[3];
+      into.append(mark);
     }
     at = m.index + m[0].length;
   }
@@ -57,12 +57,8 @@ function inline(katex, text, into) {
 
 class Derivation {
   constructor(parent) {
-    if (!document.getElementById("dl-derivation-style")) {
-      const style = document.createElement("style");
-      style.id = "dl-derivation-style";
-      style.textContent = CSS;
-      document.head.append(style);
-    }
+    if (!document.getElementById("dl-derivation-style"))  // one stylesheet for the page
+      document.head.append(Object.assign(document.createElement("style"), {id: "dl-derivation-style", textContent: CSS}));
     this.root = document.createElement("div");
     this.root.className = "dl-derivation";
     this.heading = document.createElement("h3");
