@@ -289,8 +289,10 @@ def integrated(theta_0: float) -> dict:
     tolerances = dict(rtol=1e-11, atol=[1e-13, 1e-13, 1e-13 * closest, 1e-13, 1e-13, 1e-13 * closest],
                       method="DOP853", dense_output=True)
 
+    on_wall = _solved_in_closed_form(True)
+
     def wall_push(_t, y):
-        return _solved_in_closed_form(True)(y[2], y[5])[4]
+        return on_wall(y[2], y[5])[4]
     wall_push.terminal, wall_push.direction = True, -1
 
     def flat(_t, y):

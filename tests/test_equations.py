@@ -36,15 +36,11 @@ def rows(latex: str) -> list[str]:
 VALID = {p.id: strategies.valid(p.id) for p in PROBLEMS}
 
 
-def params_of(problem):
-    return VALID[problem.id]
-
-
 @pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
 @settings(max_examples=15)
 @given(data=st.data())
 def test_broken_steps_keep_the_algebra_and_close_every_group_on_its_row(problem, data):
-    strategy = params_of(problem)
+    strategy = VALID[problem.id]
     params = data.draw(strategy) if strategy is not None else {}
     try:
         solution = problem.solver.solve(**params)

@@ -10,6 +10,7 @@ import pytest
 from streamlit.testing.v1 import AppTest
 
 from ui.catalog import BY_ID, PROBLEMS
+from ui.figure import DERIVATION
 
 IDS = [p.id for p in PROBLEMS]
 TIMEOUT = 60
@@ -32,7 +33,7 @@ def derivations_shown(at: AppTest) -> list[dict]:
     """Each derivation as the page sends it to its element (ui/results.py): heading, caption, steps
     ([title, LaTeX] each) and the worked solution's slips."""
     return [orjson.loads(e.proto.bytes) for e in at.main if getattr(e, "type", None) == "bidi_component"
-            and e.proto.component_name.endswith("dynamics_lab_derivation")]
+            and e.proto.component_name == DERIVATION]
 
 
 def derivation_shown(at: AppTest) -> dict:

@@ -25,7 +25,7 @@ def counted(at) -> tuple[int, list, list]:
     markdown = sum(1 for e in at.main if getattr(e, "type", None) == "markdown")
     ours = [e.proto for e in at.main if getattr(e, "type", None) == "bidi_component"]
     figures = [p for p in ours if p.component_name == component.NAME]
-    derivations = [p for p in ours if p.component_name.endswith("dynamics_lab_derivation")]
+    derivations = [p for p in ours if p.component_name == component.DERIVATION]
     assert len(figures) + len(derivations) == len(ours)
     return markdown, figures, derivations
 

@@ -53,7 +53,10 @@ def bundles() -> dict[str, tuple[str, bytes]]:
     return {kind: _keyed(_BUNDLES / f"plotly-{kind}.min.js", f"plotly-{kind}", ".min.js") for kind in KINDS}
 
 
-MODULES = ("figure.js", "derivation.js")  # this file's component, and ui/results.py's derivation
+DERIVATION = "dynamics_lab_derivation"
+# Each component's module (plotly_component/<file>) and its name: this file's figure, and the
+# derivation that ui/results.py shows.
+MODULES = {"figure.js": NAME, "derivation.js": DERIVATION}
 
 
 @cache
@@ -126,7 +129,7 @@ _components: dict[str, object] = {}
 
 
 def declared(file: str = "figure.js"):
-    """The v2 component drawn by ``file`` (one of ``MODULES``), declared on first use inside a
+    """The v2 component drawn by ``file`` (a key of ``MODULES``), declared on first use inside a
     running app: a declaration made before the runtime exists (serve.py imports this module while
     warming up) would not be registered. The v1 declaration only gives the files their route."""
     with _lock:
@@ -141,8 +144,7 @@ def declared(file: str = "figure.js"):
                     ".then(m => m.render(c));\n};\n")
             # isolate_styles=False: in the page's own DOM, where plotly.js puts its stylesheet and
             # Streamlit its KaTeX styles.
-            name = NAME if file == "figure.js" else f"dynamics_lab_{file.removesuffix('.js')}"
-            _components[file] = st.components.v2.component(name, js=stub, isolate_styles=False)
+            _components[file] = st.components.v2.component(MODULES[file], js=stub, isolate_styles=False)
         return _components[file]
 
 
