@@ -20,7 +20,8 @@ For every page, alternating with the empty page so drift on the shared machine h
 - **where one change goes**: one more change under a Chromium performance trace (CPU samples and
   the renderer's main thread), split into server run (websocket BackMsg sent → last ForwardMsg of
   the run received), websocket bytes, JavaScript by source (plotly.js, KaTeX, Streamlit's React
-  bundle, the figure component), style/layout and paint.
+  bundle, the figure component; a built-in such as JSON.parse or a DOM call counts as the script
+  that called it), style/layout and paint.
 """
 from __future__ import annotations
 
@@ -215,6 +216,19 @@ def js_source(frame: dict) -> str:
     return "other script"
 
 
+def attributed(key: tuple, node: int, nodes: dict, parents: dict) -> str:
+    """A sample's source: its own script's, or for a built-in (JSON.parse, a DOM call; no URL) the
+    script that called it, so plotly.js's or React's DOM work counts as theirs."""
+    source = js_source(nodes.get((key, node), {}))
+    seen = 0
+    while source == "other script" and (key, node) in parents and seen < 200:
+        node, seen = parents[(key, node)], seen + 1
+        caller = js_source(nodes.get((key, node), {}))
+        if caller not in ("other script", ""):
+            return caller
+    return source
+
+
 def breakdown(trace: dict, frames: list[tuple[str, float, int]], ms: float) -> dict:
     events = trace["traceEvents"] if isinstance(trace, dict) else trace
     t0 = next(e["ts"] for e in events if e.get("name") == "dl-change")
@@ -223,6 +237,7 @@ def breakdown(trace: dict, frames: list[tuple[str, float, int]], ms: float) -> d
     out["total"] = (t1 - t0) / 1000
     # CPU samples, attributed by the script they are in.
     nodes: dict[tuple, dict] = {}
+    parents: dict[tuple, int] = {}
     clock: dict[tuple, float] = {}
     for e in events:
         if e.get("name") == "Profile":
@@ -234,11 +249,13 @@ def breakdown(trace: dict, frames: list[tuple[str, float, int]], ms: float) -> d
         profile = data.get("cpuProfile", {})
         for node in profile.get("nodes", []):
             nodes[(key, node["id"])] = node["callFrame"]
+            if "parent" in node:
+                parents[(key, node["id"])] = node["parent"]
         ts = clock.get(key, 0.0)
         for sample, delta in zip(profile.get("samples", []), data.get("timeDeltas", [])):
             ts += delta
             if t0 <= ts <= t1:
-                source = js_source(nodes.get((key, sample), {}))
+                source = attributed(key, sample, nodes, parents)
                 if source:
                     out["js: " + source] += delta / 1000
         clock[key] = ts
@@ -339,7 +356,7 @@ def report(page_id: str, r: dict) -> None:
           f"p90 {percentile(p['change_ms'], 0.9):.0f} ms [{percentile(e['change_ms'], 0.9):.0f}], "
           f"× empty {med(ratios):.2f} (median of {len(ratios)} pairs; "
           f"{sum(p['redrawn'])} of them redrew a figure, the others left it unchanged)")
-    for visit_kind in ("first", "revisit"):
+    for visit_kind in [k for k in ("first", "revisit") if p.get(f"{k}_ms")]:  # none with --visits 0
         ms, kb = med(p[f"{visit_kind}_ms"]), med(p[f"{visit_kind}_bytes"]) / 1024
         ems, ekb = med(e[f"{visit_kind}_ms"]), med(e[f"{visit_kind}_bytes"]) / 1024
         print(f"{visit_kind:8s}: drawn {ms:.0f} ms [{ems:.0f}] × {ms / ems:.2f}; "
@@ -349,8 +366,8 @@ def report(page_id: str, r: dict) -> None:
         f = r[FRAME]
         frame_ratios = [a / b for a, b in zip(f["change_ms"], e["change_ms"])]
         print(f"the frame alone: change median {med(f['change_ms']):.0f} ms, p90 {percentile(f['change_ms'], 0.9):.0f} ms, "
-              f"× empty {med(frame_ratios):.2f}; first visit {med(f['first_ms']):.0f} ms, revisit "
-              f"{med(f['revisit_ms']):.0f} ms")
+              f"× empty {med(frame_ratios):.2f}" + (f"; first visit {med(f['first_ms']):.0f} ms, revisit "
+              f"{med(f['revisit_ms']):.0f} ms" if f.get("first_ms") else ""))
     for key in [k for k in (page_id, FRAME, EMPTY) if k in r]:
         parts = r[key]["breakdown"]
         print(f"one change, {key}: " + ", ".join(f"{k} {v:.1f}" for k, v in
