@@ -45,7 +45,7 @@ def main_text(page) -> str:
 
 
 def derivation_text(page) -> str:
-    """The derivation's element (ui/plotly_component/derivation.js) as the page shows it."""
+    """The derivation's element (ui/plotly_component/text.js) as the page shows it."""
     return page.locator("[data-testid='stMain'] .dl-derivation").inner_text()
 
 

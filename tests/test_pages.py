@@ -10,7 +10,7 @@ import pytest
 from streamlit.testing.v1 import AppTest
 
 from ui.catalog import BY_ID, PROBLEMS
-from ui.figure import DERIVATION
+from ui.figure import ANSWERS, DERIVATION
 
 IDS = [p.id for p in PROBLEMS]
 TIMEOUT = 60
@@ -23,17 +23,46 @@ def run_page(pid: str, query: dict | None = None) -> AppTest:
     return at.run()
 
 
+def shown(at: AppTest, component: str) -> list[dict]:
+    """What the page sends to each of its elements named ``component`` (ui/results.py)."""
+    return [orjson.loads(e.proto.bytes) for e in at.main if getattr(e, "type", None) == "bidi_component"
+            and e.proto.component_name == component]
+
+
+def answers_shown(at: AppTest) -> dict | None:
+    """The answer section as sent to its element: heading, answers ([symbol, quantity, value] each),
+    notes, ledger ([quantity, before, after, conserved, why]) and checks ([ok, name, closed form,
+    second method, why]); None where the page shows no answers."""
+    sections = shown(at, ANSWERS)
+    assert len(sections) <= 1, f"{len(sections)} answer sections"
+    return sections[0] if sections else None
+
+
 def answers_text(at: AppTest) -> str:
-    """The answers table (the Markdown of the answer section, up to the ledger and checks)."""
-    section = next((m.value for m in at.markdown if "| | quantity | value |" in m.value), "")
-    return section[section.find("### Answers"):].split("#####")[0]  # (the study view's heading shares it)
+    """The answers table as text, a row per line ("" where the page shows no answers)."""
+    section = answers_shown(at)
+    return answers_text_of(section) if section else ""
+
+
+def answer_section_text(section: dict) -> str:
+    """Every word and number of an answer section, as a student reads them."""
+    parts = [section["heading"], answers_text_of(section), *section["notes"]]
+    if section["ledger"]:
+        parts += [section["ledger_heading"], *(f"{q} {b} {a} {'conserved' if c else 'changes'}: {why}"
+                                               for q, b, a, c, why in section["ledger"])]
+    parts += [section["checks_heading"], *(f"{'' if ok else 'differs '}{name}: {closed} vs {second} {why}"
+                                           for ok, name, closed, second, why in section["checks"])]
+    return "\n".join(parts)
+
+
+def answers_text_of(section: dict) -> str:
+    return "\n".join(" | ".join(row) for row in section["answers"])
 
 
 def derivations_shown(at: AppTest) -> list[dict]:
     """Each derivation as the page sends it to its element (ui/results.py): heading, caption, steps
     ([title, LaTeX] each) and the worked solution's slips."""
-    return [orjson.loads(e.proto.bytes) for e in at.main if getattr(e, "type", None) == "bidi_component"
-            and e.proto.component_name == DERIVATION]
+    return shown(at, DERIVATION)
 
 
 def derivation_shown(at: AppTest) -> dict:
@@ -80,16 +109,15 @@ def test_page_runs_with_answers_derivation_and_checks(pid):
     assert_clean(at)
     assert not at.error
     assert any(m.value.startswith(f"# {BY_ID[pid].title}") for m in at.markdown)
-    answers = answers_text(at)
+    symbols = [symbol for symbol, _, _ in answers_shown(at)["answers"]]
     for answer in BY_ID[pid].solver.ANSWERS:
-        assert f"${answer.symbol}$" in answers
+        assert answer.symbol in symbols
     assert len(latex_text(at)) >= 6
     derivation = derivation_text(at)
     errata = BY_ID[pid].solver.ERRATA  # may be empty: a problem not in the worked solutions
     assert ("Common slips in the worked solution" in derivation) == bool(errata)
     assert derivation_shown(at)["slips"] == list(errata), "the worked solution's slips follow it"
-    ledger = [m.value for m in at.markdown if ":material/check_circle:" in m.value]
-    assert ledger, "the checks are shown"
+    assert answers_shown(at)["checks"], "the checks are shown"
 
 
 @pytest.mark.parametrize("pid", IDS)
@@ -210,7 +238,7 @@ def test_no_slip_toggle_gives_finite_mu_control():
     at.number_input(key="disk_wall__si__mu").set_value(0.02).run()
     assert_clean(at)
     assert at.query_params.get("mu") == "0.02"
-    assert any("Slides" in m.value for m in at.markdown)
+    assert "Slides" in " ".join(answers_shown(at)["notes"])
 
 
 def test_pendulum_in_us_customary_units():
@@ -249,12 +277,12 @@ def test_lecture_view_from_the_url():
 def test_one_view_control_switches_between_study_lecture_and_practice():
     at = run_page("disk_wall", {"practice": "1"})
     assert at.query_params.get("practice") == "1"
-    assert not any("| | quantity | value |" in m.value for m in at.markdown)  # practice hides the answers
+    assert answers_shown(at) is None  # practice hides the answers
     at.session_state["disk_wall__view"] = "Lecture"
     at.run()
     assert_clean(at)
     assert at.query_params.get("lecture") == "1" and at.query_params.get("practice") is None
-    assert any("| | quantity | value |" in m.value for m in at.markdown)
+    assert answers_shown(at) is not None
     at.session_state["disk_wall__view"] = "Study"
     at.run()
     assert at.query_params.get("lecture") is None and at.query_params.get("practice") is None
@@ -292,9 +320,10 @@ def test_answers_use_degrees_for_angles():
 @pytest.mark.parametrize("pid", ["disk_wall", "stick_ball", "pendulum_rebound"])
 def test_impact_pages_show_the_ledger_across_the_impact(pid):
     at = run_page(pid)
-    assert any("Across the impact" in m.value for m in at.markdown)
-    table = next(m.value for m in at.markdown if "| quantity | before | after" in m.value)
-    assert "kinetic energy" in table and ("conserved" in table or "changes" in table)
+    section = answers_shown(at)
+    assert section["ledger_heading"] == "Across the impact"
+    rows = {quantity: (conserved, why) for quantity, _, _, conserved, why in section["ledger"]}
+    assert "kinetic energy" in rows and all(why for _, why in rows.values())
 
 
 @pytest.mark.parametrize("pid", IDS)

@@ -24,7 +24,8 @@ from solvers import registry
 from practice.variants import MAX_SEED, variant, variants_csv
 from solvers import units
 from tests import strategies
-from tests.test_pages import derivation_text, derivations_shown
+from tests.test_pages import answer_section_text, answers_shown, answers_text, derivation_text, derivations_shown, shown
+from ui.figure import ANSWERS
 from solvers.core import Answer
 from practice.worker import SimplifyWorker
 from ui.practice import flat_latex
@@ -333,18 +334,13 @@ def run_page(pid, query):
 
 
 KEY = "test-instructor-key-15"
-TABLE = "| | quantity | value |"
-
-
-def answers_table(at) -> list[str]:
-    return [m.value for m in at.markdown if TABLE in m.value]
 
 
 def test_seed_link_reproduces_the_numbers_for_the_instructor(monkeypatch):
     monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
     teacher = {"seed": "31", "instructor": KEY}
     a, b = run_page("rod_disk_spring", teacher), run_page("rod_disk_spring", teacher)
-    assert answers_table(a) == answers_table(b) and answers_table(a) != answers_table(run_page("rod_disk_spring", {}))
+    assert answers_text(a) == answers_text(b) and answers_text(a) != answers_text(run_page("rod_disk_spring", {}))
     assert not a.exception and not a.warning
     assert "instructor" not in a.query_params  # the key does not stay in the address bar
     bad = run_page("rod_disk_spring", {"seed": "abc"})
@@ -356,15 +352,15 @@ def test_a_students_variant_link_shows_its_answers_only_through_show_the_solutio
     if key:
         monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
     at = run_page("rod_disk_spring", {"seed": "31"} | ({"instructor": key} if key else {}))
-    assert not answers_table(at) and any("Show the solution" == b.label for b in at.button)
+    assert not answers_text(at) and any("Show the solution" == b.label for b in at.button)
     at.session_state["rod_disk_spring__view"] = "Study"  # switching the link to Study
     at.run()
-    assert not answers_table(at) and not at.exception
+    assert not answers_text(at) and not at.exception
     statement = next(m.value for m in at.markdown if m.value.startswith("### The problem"))
     params = variant(importlib.import_module("solvers.rod_disk_spring"), "rod_disk_spring", 31)
     assert units.format_quantity(params["m1"], "mass") in statement  # the givens, in the main area
     at.button(key="rod_disk_spring__reveal").click().run()
-    assert answers_table(at)
+    assert answers_text(at)
 
 
 def test_the_variant_export_needs_the_instructor_key(monkeypatch):
@@ -398,6 +394,7 @@ def page_text(at) -> str:
             if kind == "selectbox":
                 parts += [str(o) for o in element.options]
     parts += [derivation_text(at, d) for d in derivations_shown(at)]  # the derivation's own element
+    parts += [answer_section_text(section) for section in shown(at, ANSWERS)]  # and the answers'
     return "\n".join(parts)
 
 
@@ -456,6 +453,7 @@ def test_the_practice_page_gives_no_answer_away(pid, options):
     assert leaks(text, solution, answers.values(), judge) == []
     at.button(key=f"{pid}__reveal").click().run()
     assert leaks(page_text(at), solution, answers.values(), judge)  # the check can find them
+    assert leaks(answer_section_text(answers_shown(at)), solution, answers.values(), judge)  # in the answers too
 
 
 @pytest.mark.parametrize("pid, options, past_limit", [
@@ -481,7 +479,7 @@ def test_past_a_physical_limit_practice_shows_the_method_not_the_derivation(pid,
 
 def test_practice_mode_hides_answers_until_revealed():
     at = run_page("stick_ball", {"practice": "1"})
-    assert not answers_table(at)
+    assert not answers_text(at)
     assert any("not a proctored assessment" in i.value for i in at.info)
     at.text_input(key="stick_ball__attempt").input("m_b*v/(m_b + m_s)")
     from solvers.stick_ball import ANSWERS_STICK
@@ -489,7 +487,7 @@ def test_practice_mode_hides_answers_until_revealed():
     at.button[0].click().run()
     assert at.success and not at.exception
     at.button(key="stick_ball__reveal").click().run()
-    assert answers_table(at)
+    assert answers_text(at)
 
 
 def test_answer_labels_keep_their_symbols():

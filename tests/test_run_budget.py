@@ -2,11 +2,11 @@
 
 Every element is re-rendered by Streamlit's frontend on every run, and every byte crosses the
 websocket while the browser is busy with the first of them: a page in the study view is one
-Markdown element for the heading, answers, ledger and checks, one per figure, and two for the
-derivation (the symbolic steps, whose text does not change, and the steps with numbers). A figure
-is the components-v2 element of ui/figure.py carrying the figure's JSON once, with the module that
-draws it imported by the browser (once per page load) rather than sent with every run. No timing
-here: the times are measured in bench/browser.py.
+Markdown element for the heading, one element for the answers, ledger and checks, one per figure,
+and one for the derivation. Each is a components-v2 element of ui/figure.py carrying its data once
+(a figure's JSON; the answers' and the derivation's text), with the module that draws it imported
+by the browser (once per page load) rather than sent with every run. No timing here: the times are
+measured in bench/browser.py.
 """
 from __future__ import annotations
 
@@ -20,28 +20,30 @@ from ui import figure as component
 STUB_BYTES = 400  # the module a run carries: an import of plotly_component/figure.<hash>.js
 
 
-def counted(at) -> tuple[int, list, list]:
-    """(Markdown elements, figure elements, derivation elements) in the main area."""
+def counted(at) -> tuple[int, list, list, list]:
+    """(Markdown elements, figure elements, answer elements, derivation elements) in the main area."""
     markdown = sum(1 for e in at.main if getattr(e, "type", None) == "markdown")
     ours = [e.proto for e in at.main if getattr(e, "type", None) == "bidi_component"]
-    figures = [p for p in ours if p.component_name == component.NAME]
-    derivations = [p for p in ours if p.component_name == component.DERIVATION]
-    assert len(figures) + len(derivations) == len(ours)
-    return markdown, figures, derivations
+    figures, answers, derivations = ([p for p in ours if p.component_name == name]
+                                     for name in (component.NAME, component.ANSWERS, component.DERIVATION))
+    assert len(figures) + len(answers) + len(derivations) == len(ours)
+    return markdown, figures, answers, derivations
 
 
 @pytest.mark.parametrize("pid", IDS)
-def test_a_run_sends_one_markdown_element_the_derivation_and_each_figure_once(pid):
+def test_a_run_sends_the_heading_the_answers_the_derivation_and_each_figure_once(pid):
     at = run_page(pid)
     solution = importlib.import_module(f"solvers.{pid}").solve()
     shown = importlib.import_module(f"viz.{pid}").figures(solution)
+    text_module = f"/text.{component.module('text.js')[0].split('.')[1]}.js"
     for state in ("first run", "after a change"):
         assert_clean(at)
-        markdown, figures, derivations = counted(at)
-        assert markdown == 1, (pid, state, markdown)  # heading + answers (+ ledger and checks)
+        markdown, figures, answers, derivations = counted(at)
+        assert markdown == 1, (pid, state, markdown)  # the heading
         assert len(figures) == len(shown), (pid, state)
-        assert len(derivations) == 1 and len(derivations[0].js_content) <= STUB_BYTES
-        assert f"/derivation.{component.module('derivation.js')[0].split('.')[1]}.js" in derivations[0].js_content
+        for text in (*answers, *derivations):
+            assert len(text.js_content) <= STUB_BYTES and text_module in text.js_content
+        assert len(answers) == 1 and len(derivations) == 1
         for proto in figures:
             assert proto.component_name == component.NAME and not proto.isolate_styles
             assert len(proto.js_content) <= STUB_BYTES, len(proto.js_content)

@@ -19,7 +19,9 @@ import pytest
 from solvers.core import Choice, Number, plain_fixed, plain_number
 from tests.drawing import figures
 from tests.strategies import problem_tests
-from tests.test_pages import IDS, assert_clean, derivation_shown, derivation_text, derivations_shown, run_page
+from tests.test_pages import (IDS, answer_section_text, answers_shown, assert_clean, derivation_shown, derivation_text,
+                              derivations_shown, run_page, shown)
+from ui.figure import ANSWERS
 from ui.catalog import BY_ID
 from ui.params import as_shown, display_format
 
@@ -74,6 +76,7 @@ def test_no_shown_number_is_minus_zero(pid, query):
     assert_clean(at)
     texts = [m.value for m in at.markdown] + [c.value for c in at.caption]
     texts += [derivation_text(at, d) for d in derivations_shown(at)]
+    texts += [answer_section_text(section) for section in shown(at, ANSWERS)]
     solver = BY_ID[pid].solver
     params = {}
     for spec in solver.PARAMS:
@@ -130,6 +133,7 @@ def test_on_screen_the_course_s_solution_is_the_worked_solution(pid):
                 words += [c.name + c.explanation for c in solution.checks]
     at = run_page(pid)
     words += [m.value for m in at.markdown] + [r.label for r in at.radio] + [derivation_text(at)]
+    words += [answer_section_text(answers_shown(at))]
     for text in words:
         assert "seed" not in text.lower(), text
 

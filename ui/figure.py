@@ -54,9 +54,10 @@ def bundles() -> dict[str, tuple[str, bytes]]:
 
 
 DERIVATION = "dynamics_lab_derivation"
-# Each component's module (plotly_component/<file>) and its name: this file's figure, and the
-# derivation that ui/results.py shows.
-MODULES = {"figure.js": NAME, "derivation.js": DERIVATION}
+ANSWERS = "dynamics_lab_answers"
+# Each component's name and the module that draws it (plotly_component/<file>): this file's figure,
+# and the answers and the derivation that ui/results.py shows (one module, text.js, for both).
+COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js"}
 
 
 @cache
@@ -81,7 +82,7 @@ class BundleServer:
         # Streamlit names the component after its module too (ui.figure.dynamics_lab_figure), so a
         # file is known by the end of its path: /component/<component's name>/<file's name>.
         self.files = {f".{NAME}/{name}": (data, gzip.compress(data, 9))
-                      for name, data in (*bundles().values(), *map(module, MODULES), katex())}
+                      for name, data in (*bundles().values(), *map(module, set(COMPONENTS.values())), katex())}
 
     async def __call__(self, scope, receive, send):
         if scope["type"] == "http" and scope["method"] in ("GET", "HEAD"):
@@ -115,7 +116,7 @@ def url(name: str) -> str:
 
 @cache
 def katex() -> tuple[str, bytes]:
-    """KaTeX for the derivation component (ui/katex/: the version of Streamlit's own Markdown, whose
+    """KaTeX for the answers and the derivation (plotly_component/text.js; ui/katex/: the version of Streamlit's own Markdown, whose
     stylesheet and fonts are already in the page), keyed by its content like the bundles."""
     return _keyed(_HERE / "katex" / "katex.min.js", "katex", ".min.js")
 
@@ -128,15 +129,16 @@ _lock = threading.Lock()
 _components: dict[str, object] = {}
 
 
-def declared(file: str = "figure.js"):
-    """The v2 component drawn by ``file`` (a key of ``MODULES``), declared on first use inside a
-    running app: a declaration made before the runtime exists (serve.py imports this module while
-    warming up) would not be registered. The v1 declaration only gives the files their route."""
+def declared(name: str = NAME):
+    """The v2 component ``name`` (a key of ``COMPONENTS``), declared on first use inside a running
+    app: a declaration made before the runtime exists (serve.py imports this module while warming
+    up) would not be registered. The v1 declaration only gives the files their route."""
     with _lock:
         if not _components:
             bundles()
             components_v1.declare_component(NAME, path=str(_DIR))
-        if file not in _components:
+        if name not in _components:
+            file = COMPONENTS[name]
             # The module a run carries: a dynamic import of <file>.<hash>.js, which the browser
             # fetches once and keeps (a blob URL cannot resolve a path: hence the page's URL).
             # (A newline tells Streamlit this is the module's text, not a file's path.)
@@ -144,8 +146,8 @@ def declared(file: str = "figure.js"):
                     ".then(m => m.render(c));\n};\n")
             # isolate_styles=False: in the page's own DOM, where plotly.js puts its stylesheet and
             # Streamlit its KaTeX styles.
-            _components[file] = st.components.v2.component(MODULES[file], js=stub, isolate_styles=False)
-        return _components[file]
+            _components[name] = st.components.v2.component(name, js=stub, isolate_styles=False)
+        return _components[name]
 
 
 # The lecture view on a projector (issue 14): the component raises every text of the figure to at

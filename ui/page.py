@@ -197,16 +197,13 @@ def problem_page(problem_id: str) -> None:
         return
 
     answers = _answers_for(solver, solution)
-    # In the study view the heading shares the answers' Markdown element: one element less per run.
-    together = view == "Study" and not notices
-    if not together:
-        _heading(heading, notices)
+    _heading(heading, notices)
     if practice and not practice_panel(problem, solution, answers, system):
         instructor_export(problem)  # the statement, the method and the answer box, nothing more
         return
     if lecture:
         _figures(figures, lecture=True)
-    results.answer_section(solution, answers, system, heading=heading if together else "")
+    results.answer_section(solution, answers, system)
     if not lecture:
         _figures(figures)
     _on_request(problem, solution, figures)

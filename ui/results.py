@@ -12,25 +12,30 @@ from solvers import units
 from ui import figure
 from ui.equations import broken
 
-def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str, heading: str = "") -> None:
-    """Answers, notes, the ledger across an impact and the checks (under ``heading``, if given): one
-    Markdown element."""
-    parts = [heading] * bool(heading) + ["### Answers", answers_table(solution, answers, system)]
-    parts += [f":gray[{note}]" for note in solution.notes]
-    if solution.ledger:
-        parts += ["##### Across the impact", ledger(solution, system)]
-    parts += ["##### Checked a second way", checks(solution)]
-    st.markdown("\n\n".join(parts))
+ANSWERS_HEADING = "Answers"
+LEDGER_HEADING = "Across the impact"
+CHECKS_HEADING = "Checked a second way"
 
 
-def answers_table(solution: Solution, answers: tuple[Answer, ...], system: str) -> str:
-    rows = ["| | quantity | value |", "|---|---|---|"]
+def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str) -> None:
+    """Answers, notes, the ledger across an impact and the checks, in one element of our own
+    (ui/plotly_component/text.js, as the derivation): the values go as data, each symbol is typeset
+    once in the browser, and a cell a new value does not change is left alone."""
+    payload = {"view": "answers", "heading": ANSWERS_HEADING, "answers": answer_rows(solution, answers, system),
+               "notes": list(solution.notes), "ledger_heading": LEDGER_HEADING, "ledger": ledger(solution, system),
+               "checks_heading": CHECKS_HEADING, "checks": checks(solution), "katex": figure.katex_url()}
+    figure.declared(figure.ANSWERS)(data=orjson.dumps(payload), key="answers")
+
+
+def answer_rows(solution: Solution, answers: tuple[Answer, ...], system: str) -> list[list[str]]:
+    """[symbol (LaTeX), quantity, value with its unit] per answer; an angle in degrees and radians."""
+    rows = []
     for a in answers:
         value = units.format_quantity(solution.answers[a.name], a.dimension, system)
         if a.dimension == "angle":
             value += f" ({units.format_value(solution.answers[a.name])} rad)"
-        rows.append(f"| ${a.symbol}$ | {a.label} | **{value}** |")
-    return "\n".join(rows)
+        rows.append([a.symbol, a.label, value])
+    return rows
 
 
 _MARKDOWN_SPECIAL = re.compile(r"([\\`*_{}\[\]()#+!|<>~$-])")
@@ -57,34 +62,28 @@ SLIPS_HEADING = "Common slips in the worked solution"
 
 def derivation(solution: Solution, caption: str = "", slips: tuple[str, ...] = ()) -> None:
     """The derivation, all steps under a grey caption, then the worked solution's common slips, in
-    one element of our own (ui/plotly_component/derivation.js): the browser typesets each equation
+    one element of our own (ui/plotly_component/text.js): the browser typesets each equation
     once per distinct text and leaves alone the steps a new value does not change (the symbolic
     ones), where Streamlit's Markdown would typeset and lay out the whole derivation again. A
     display equation too wide for a phone is broken over aligned rows (``broken``)."""
-    payload = {"heading": DERIVATION_HEADING, "caption": caption,
+    payload = {"view": "derivation", "heading": DERIVATION_HEADING, "caption": caption,
                "steps": [[step.title, broken(step.latex)] for step in solution.steps],
                "slips_heading": SLIPS_HEADING, "slips": list(slips), "katex": figure.katex_url()}
-    figure.declared("derivation.js")(data=orjson.dumps(payload), key="derivation")
+    figure.declared(figure.DERIVATION)(data=orjson.dumps(payload), key="derivation")
 
 
-def checks(solution: Solution) -> str:
-    """The conservation ledger: each closed-form answer beside an independent second method."""
-    lines = []
-    for c in solution.checks:
-        mark = ":green[:material/check_circle:]" if c.ok else ":red[:material/cancel: **differs**]"
-        lines.append(f"- {mark} **{c.name}**: {units.format_value(c.closed_form, 8)} vs "
-                     f"{units.format_value(c.second_method, 8)}  \n  :gray[{c.explanation}]")
-    return "\n".join(lines)
+def checks(solution: Solution) -> list[list]:
+    """The conservation ledger: [agrees?, name, closed form, second method, why] per check, each
+    closed-form answer beside an independent second method."""
+    return [[c.ok, c.name, units.format_value(c.closed_form, 8), units.format_value(c.second_method, 8), c.explanation]
+            for c in solution.checks]
 
 
-def ledger(solution: Solution, system: str) -> str:
-    """Before and after the impact: what is conserved, what is not, and why."""
-    rows = ["| quantity | before | after | |", "|---|---|---|---|"]
-    for row in solution.ledger:
-        mark = ":green[conserved]" if row.conserved else ":orange[changes]"
-        rows.append(f"| {row.quantity} | {units.format_quantity(row.before, row.dimension, system)} | "
-                    f"{units.format_quantity(row.after, row.dimension, system)} | {mark}: {row.why} |")
-    return "\n".join(rows)
+def ledger(solution: Solution, system: str) -> list[list]:
+    """Before and after the impact: [quantity, before, after, conserved?, why] per row."""
+    return [[row.quantity, units.format_quantity(row.before, row.dimension, system),
+             units.format_quantity(row.after, row.dimension, system), row.conserved, row.why]
+            for row in solution.ledger]
 
 
 def refused(error: ValueError, system: str, limit_labels: dict[str, tuple[str, str]] | None = None) -> None:

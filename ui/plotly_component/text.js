@@ -1,0 +1,205 @@
+// The page's typeset text (ui/results.py), a Streamlit components-v2 module in the page's own DOM,
+// in two elements: the answers (the answers table, notes, the ledger across an impact, the checks)
+// and the derivation (the steps, a title and a display equation each, and the worked solution's
+// slips).
+//
+// A new value changes only the numbers. Streamlit's Markdown would parse and typeset the whole text
+// again and let React patch it, which made the browser lay out and repaint all of it on every
+// change (a third of a change's time: BENCHMARKS.md section 6). Here each formula is typeset once
+// per distinct text (KaTeX, ui/katex: the version of Streamlit's own Markdown, whose stylesheet is
+// in the page), and a cell or a step whose text did not change is not touched. Everything else is
+// set as text, never parsed as HTML: only KaTeX's own output is inserted as HTML.
+"use strict";
+
+const CSS = `
+.dl-text { font-family: var(--st-font, "Source Sans Pro", sans-serif); color: var(--st-text-color, inherit); }
+.dl-text h3 { font-size: 1.75rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 0.75rem 0 1rem 0; }
+.dl-text h4 { font-size: 1.5rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 0.75rem 0 1rem 0; }
+.dl-text h5 { font-size: 1.25rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 0.375rem 0 1rem 0; }
+.dl-text p, .dl-text li { font-size: 1em; }  /* the page's size: larger in the lecture view */
+.dl-text p { margin: 0 0 1rem 0; line-height: 1.6; }
+.dl-text .dl-muted { color: var(--st-gray-text-color, inherit); }
+.dl-text .dl-caption { opacity: 0.75; }
+.dl-text .dl-math { margin: 0 0 1rem 0; }
+.dl-text .dl-math .katex-display { margin: 0.5em 0; overflow-x: auto; overflow-y: hidden; }
+.dl-text ul { margin: 0 0 1rem 0; padding-left: 1.5rem; line-height: 1.6; }
+.dl-text li { margin: 0.2em 0; }
+.dl-text table { border-collapse: collapse; margin: 0 0 1rem 0; line-height: 1.6; }
+.dl-text th, .dl-text td { padding: 0.375rem 0.75rem; text-align: left; vertical-align: middle;
+  border: 1px solid var(--st-dataframe-border-color, rgba(49, 51, 63, 0.1)); }
+.dl-text th { font-weight: 700; }
+.dl-text .dl-good { color: var(--st-green-text-color, #0C5A44); }
+.dl-text .dl-bad { color: var(--st-red-text-color, #9E303B); }
+.dl-text .dl-changes { color: var(--st-orange-text-color, #9B4519); }
+.dl-text .dl-mark { display: inline-block; min-width: 1.1em; text-align: center; font-weight: 700; margin-right: 0.2em; }
+`;
+
+let katexPromise = null;
+const typeset = new Map();  // (display?) + TeX -> KaTeX's HTML, kept across runs and pages
+
+function html(katex, tex, display) {
+  const key = (display ? "D" : "I") + tex;
+  let out = typeset.get(key);
+  if (out === undefined) {
+    out = katex.renderToString(tex, {displayMode: display, throwOnError: false, output: "htmlAndMathml"});
+    if (typeset.size > 4000) typeset.clear();
+    typeset.set(key, out);
+  }
+  return out;
+}
+
+const make = (tag, className, text) => {
+  const el = document.createElement(tag);
+  if (className) el.className = className;
+  if (text !== undefined) el.textContent = text;
+  return el;
+};
+
+// An element's content, redone only when its value changed since the last run.
+function put(el, value, fill) {
+  const key = JSON.stringify(value);
+  if (el.dlShown === key) return;
+  el.dlShown = key;
+  if (fill) fill(el, value); else el.textContent = value;
+}
+
+// ``parent``'s children, one per item, made by ``create`` as needed, extra ones removed.
+function children(parent, count, create) {
+  while (parent.children.length < count) parent.append(create());
+  while (parent.children.length > count) parent.lastChild.remove();
+  return [...parent.children];
+}
+
+// A slip's text: plain text with $inline math$, **bold** and *emphasis*, as the solvers write them.
+function inline(katex, text, into) {
+  const parts = /\$([^$]+)\$|\*\*([^*]+)\*\*|\*([^*\s][^*]*)\*/g;
+  let at = 0;
+  for (const m of text.matchAll(parts)) {
+    into.append(text.slice(at, m.index));
+    if (m[1] !== undefined) {
+      const span = make("span");
+      span.innerHTML = html(katex, m[1], false);
+      into.append(span);
+    } else {
+      into.append(make(m[2] !== undefined ? "strong" : "em", "", m[2] ?? m[3]));
+    }
+    at = m.index + m[0].length;
+  }
+  into.append(text.slice(at));
+}
+
+// A table with a header row; ``cell(td, value, column)`` fills a body cell.
+function table(header, cell) {
+  const el = make("table");
+  const head = make("tr");
+  for (const name of header) head.append(make("th", "", name));
+  el.append(make("thead"), make("tbody"));
+  el.tHead.append(head);
+  el.update = (rows) => {
+    children(el.tBodies[0], rows.length, () => make("tr")).forEach((tr, i) => {
+      children(tr, rows[i].length, () => make("td")).forEach((td, j) => put(td, rows[i][j], (c, v) => cell(c, v, j)));
+    });
+  };
+  return el;
+}
+
+class Answers {
+  constructor(root, katex) {
+    this.heading = make("h3");
+    // The symbol typeset, the quantity as text, the value in bold.
+    this.table = table(["", "quantity", "value"], (td, value, column) => {
+      if (column === 0) td.innerHTML = html(katex, value, false);
+      else if (column === 2) td.replaceChildren(make("strong", "", value));
+      else td.textContent = value;
+    });
+    this.notes = make("div");
+    this.ledgerHeading = make("h5");
+    // What is conserved across the impact, what changes, and why.
+    this.ledger = table(["quantity", "before", "after", ""], (td, value, column) => {
+      if (column < 3) { td.textContent = value; return; }
+      const [conserved, why] = value;
+      td.replaceChildren(make("span", conserved ? "dl-good" : "dl-changes", conserved ? "conserved" : "changes"), `: ${why}`);
+    });
+    this.checksHeading = make("h5");
+    this.checks = make("ul");
+    root.append(this.heading, this.table, this.notes, this.ledgerHeading, this.ledger, this.checksHeading, this.checks);
+  }
+
+  update(katex, d) {
+    put(this.heading, d.heading);
+    this.table.update(d.answers);
+    children(this.notes, d.notes.length, () => make("p", "dl-muted")).forEach((p, i) => put(p, d.notes[i]));
+    this.ledgerHeading.hidden = this.ledger.hidden = !d.ledger.length;
+    put(this.ledgerHeading, d.ledger_heading);
+    this.ledger.update(d.ledger.map(([quantity, before, after, conserved, why]) => [quantity, before, after, [conserved, why]]));
+    put(this.checksHeading, d.checks_heading);
+    // Each check: agrees or differs, its name, the closed form against the second method, and why.
+    children(this.checks, d.checks.length, () => make("li")).forEach((li, i) => put(li, d.checks[i], (el, [ok, name, closed, second, why]) => {
+      const mark = make("span", `dl-mark ${ok ? "dl-good" : "dl-bad"}`, ok ? "✓" : "✗");
+      mark.setAttribute("aria-hidden", "true");
+      el.replaceChildren(mark, ...(ok ? [] : [make("strong", "dl-bad", "differs"), " "]), make("strong", "", name),
+                         `: ${closed} vs ${second}`, make("br"), make("span", "dl-muted", why));
+    }));
+  }
+}
+
+class Derivation {
+  constructor(root) {
+    this.heading = make("h3");
+    this.caption = make("p", "dl-caption");
+    this.steps = make("div");
+    this.slips = make("div");
+    root.append(this.heading, this.caption, this.steps, this.slips);
+  }
+
+  update(katex, d) {
+    put(this.heading, d.heading);
+    put(this.caption, d.caption);
+    this.caption.hidden = !d.caption;
+    children(this.steps, d.steps.length, () => {
+      const step = make("div");
+      const p = make("p");
+      p.append(make("strong"), document.createTextNode(""));
+      step.append(p, make("div", "dl-math"));
+      return step;
+    }).forEach((step, i) => {
+      const [title, tex] = d.steps[i];
+      put(step.firstChild, [i, title], (p) => {
+        p.firstChild.textContent = `${i + 1}.`;
+        p.lastChild.textContent = ` ${title}`;
+      });
+      put(step.lastChild, tex, (math) => { math.innerHTML = html(katex, tex, true); });
+    });
+    put(this.slips, [d.slips_heading, d.slips], (el) => {
+      el.replaceChildren();
+      if (!d.slips.length) return;
+      const ul = make("ul");
+      for (const note of d.slips) {
+        const li = make("li");
+        inline(katex, note, li);
+        ul.append(li);
+      }
+      el.append(make("h4", "", d.slips_heading), ul);
+    });
+  }
+}
+
+const VIEWS = {answers: Answers, derivation: Derivation};
+const views = new WeakMap();
+const decoder = new TextDecoder();
+
+export async function render({data, parentElement}) {
+  const d = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
+  // KaTeX's script (UMD) sets window.katex when it runs; loaded once per page.
+  katexPromise ??= import(new URL(d.katex, location.href).href).then(() => window.katex);
+  const katex = await katexPromise;
+  let view = views.get(parentElement);
+  if (!view) {
+    if (!document.getElementById("dl-text-style"))  // one stylesheet for the page
+      document.head.append(Object.assign(make("style", "", CSS), {id: "dl-text-style"}));
+    const root = make("div", `dl-text dl-${d.view}`);
+    parentElement.replaceChildren(root);
+    views.set(parentElement, view = new VIEWS[d.view](root, katex));
+  }
+  view.update(katex, d);
+}
