@@ -14,6 +14,9 @@ For every page, alternating with the empty page so drift on the shared machine h
   tab in the same context opens it again; time from navigation to every figure drawn (the empty
   page: its controls drawn and the script idle), and bytes over the wire (CDP Network
   ``encodedDataLength`` of every finished request; the websocket's bytes are listed apart).
+- **the figures' redraw alone**: the page's figures for the same values, redrawn by Plotly.react in
+  a bare page (the same plotly.js bundle, the component's unfolding of the frames): what plotly.js
+  alone costs a change, as a ratio to the empty page's change.
 - with ``--frame``, a third tab: the page's frame alone (bench/page_frame.py: the navigation, the
   same sidebar controls and title, no answers, figure or derivation), changed the same way, so the
   table shows what Streamlit itself costs for a page with these controls.
@@ -276,6 +279,60 @@ def breakdown(trace: dict, frames: list[tuple[str, float, int]], ms: float) -> d
     return dict(out)
 
 
+FIGURE_ALONE = """<!doctype html><html><body style="width:1000px">%s<script src="plotly.js"></script><script>
+%s
+const specs = %s;  // per value, the page's figures
+function shaped(spec) {
+  const layout = Object.assign({}, spec.layout);
+  delete layout.sliders;  // drawn in HTML by the component
+  return {data: spec.data, layout: layout, frames: unfold(spec.animation, spec.data), config: {displayModeBar: false}};
+}
+async function run() {
+  const graphs = specs[0].map((_, i) => document.getElementById("g" + i));
+  await Promise.all(graphs.map((g, i) => Plotly.newPlot(g, shaped(specs[0][i]))));
+  const times = [];
+  for (const figures of specs.slice(1)) {
+    const shaped_ = figures.map(shaped);
+    await new Promise(r => setTimeout(r, 30));
+    const t0 = performance.now();
+    await Promise.all(graphs.map((g, i) => Plotly.react(g, shaped_[i])));
+    times.push(performance.now() - t0);
+  }
+  return times;
+}
+</script></body></html>"""
+
+
+def figure_alone(browser, page_id: str, changes: int) -> list[float]:
+    """The page's figures redrawn with nothing else around them: Plotly.react from one value of the
+    first control to the next (the values a change uses), in a bare page with the same plotly.js
+    bundle and the figure component's own unfolding of the frames. What plotly.js alone costs a
+    change, whatever Streamlit and the rest of the page do."""
+    import importlib
+
+    from ui import figure as component
+    from ui.catalog import BY_ID
+
+    solver, viz = (importlib.import_module(f"{m}.{page_id}") for m in ("solvers", "viz"))
+    name = BY_ID[page_id].primary[0]
+    start = solver.solve().params[name]
+    shown = [viz.figures(solver.solve(**{name: start * (1 + 0.004 * i)})) for i in range(changes + 1)]
+    bundle = component.bundles()[component.kind_of(shown[0][0], shown[0])][1]
+    module = (ROOT / "ui" / "plotly_component" / "figure.js").read_text()
+    unfold = module[module.index("function unfold"):module.index("// Lecture sizing")]
+    specs = "[" + ",".join("[" + ",".join(f.json_bytes().decode() for f in figures) + "]" for figures in shown) + "]"
+    html = FIGURE_ALONE % ("".join(f'<div id="g{i}"></div>' for i in range(len(shown[0]))), unfold, specs)
+    context = browser.new_context(viewport=VIEWPORT)
+    page = context.new_page()
+    page.route("**/plotly.js", lambda route: route.fulfill(body=bundle, content_type="text/javascript"))
+    page.route("**/figure-alone.html", lambda route: route.fulfill(body=html, content_type="text/html"))
+    page.goto("http://figure-alone.test/figure-alone.html")
+    page.wait_for_function("() => !!window.Plotly")
+    times = page.evaluate("run()")
+    context.close()
+    return times
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--changes", type=int, default=15)
@@ -340,6 +397,7 @@ def main() -> None:
                 r[key]["breakdown"] = breakdown(trace, wire.ws_frames, ms)
             for context, *_ in tabs.values():
                 context.close()
+            r[page_id]["figure_alone_ms"] = figure_alone(browser, page_id, args.changes)
             results[page_id] = {k: dict(v) for k, v in r.items()}
             report(page_id, results[page_id])
         browser.close()
@@ -356,6 +414,10 @@ def report(page_id: str, r: dict) -> None:
           f"p90 {percentile(p['change_ms'], 0.9):.0f} ms [{percentile(e['change_ms'], 0.9):.0f}], "
           f"× empty {med(ratios):.2f} (median of {len(ratios)} pairs; "
           f"{sum(p['redrawn'])} of them redrew a figure, the others left it unchanged)")
+    alone = p.get("figure_alone_ms")
+    if alone:
+        print(f"the figures' redraw alone (plotly.js in a bare page): median {med(alone):.0f} ms, "
+              f"p90 {percentile(alone, 0.9):.0f} ms, {med(alone) / med(e['change_ms']):.2f}× the empty page's change")
     for visit_kind in [k for k in ("first", "revisit") if p.get(f"{k}_ms")]:  # none with --visits 0
         ms, kb = med(p[f"{visit_kind}_ms"]), med(p[f"{visit_kind}_bytes"]) / 1024
         ems, ekb = med(e[f"{visit_kind}_ms"]), med(e[f"{visit_kind}_bytes"]) / 1024
@@ -366,8 +428,10 @@ def report(page_id: str, r: dict) -> None:
         f = r[FRAME]
         frame_ratios = [a / b for a, b in zip(f["change_ms"], e["change_ms"])]
         print(f"the frame alone: change median {med(f['change_ms']):.0f} ms, p90 {percentile(f['change_ms'], 0.9):.0f} ms, "
-              f"× empty {med(frame_ratios):.2f}" + (f"; first visit {med(f['first_ms']):.0f} ms, revisit "
-              f"{med(f['revisit_ms']):.0f} ms" if f.get("first_ms") else ""))
+              f"× empty {med(frame_ratios):.2f}" + (f"; first visit {med(f['first_ms']):.0f} ms "
+              f"(× {med(f['first_ms']) / med(e['first_ms']):.2f}), +{(med(f['first_bytes']) - med(e['first_bytes'])) / 1024:.0f} KB; "
+              f"revisit {med(f['revisit_ms']):.0f} ms (× {med(f['revisit_ms']) / med(e['revisit_ms']):.2f})"
+              if f.get("first_ms") else ""))
     for key in [k for k in (page_id, FRAME, EMPTY) if k in r]:
         parts = r[key]["breakdown"]
         print(f"one change, {key}: " + ", ".join(f"{k} {v:.1f}" for k, v in
