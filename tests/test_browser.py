@@ -66,6 +66,23 @@ def test_a_deep_link_on_a_fresh_server_gets_the_app(browser):
         context.close()
 
 
+def test_a_shared_link_to_a_heading_lands_on_it_and_each_check_says_it_agrees(browser, app_url):
+    """The answers' and the derivation's headings keep the ids Streamlit's Markdown gave them, so a
+    link to one scrolls there once the element is drawn; a passing check is said, not only shown."""
+    context, page, errors = open_page(browser, f"{app_url}/stick_ball#checked-a-second-way")
+    heading = page.locator("#checked-a-second-way")
+    heading.wait_for(timeout=30_000)
+    page.wait_for_function("() => { const r = document.getElementById('checked-a-second-way')"
+                           ".getBoundingClientRect(); return r.top >= 40 && r.top < 200; }", timeout=10_000)  # below the header
+    ids = page.locator(".dl-text h3, .dl-text h4").evaluate_all("hs => hs.map(h => h.id)")
+    assert {"answers", "across-the-impact", "checked-a-second-way", "derivation-step-by-step"} <= set(ids), ids
+    spoken = page.locator(".dl-answers ul").aria_snapshot()  # what a screen reader is given
+    items = spoken.count("- listitem")
+    assert items and spoken.count('text: "agrees:"') == items and "✓" not in spoken, spoken
+    assert not errors, errors
+    context.close()
+
+
 def test_every_request_stays_on_the_app_s_own_server(browser, app_url):
     """A lecture hall's network, or a course site's policy, may reach nothing but the app: no font,
     icon or script from anywhere else (the tab's icon too: a Material icon there was fetched from

@@ -108,6 +108,11 @@ def test_lecture_view_on_a_projector(browser, app_url, size):
         table = answers_table(page)
         assert table.bounding_box()["y"] > graph["y"] + graph["height"], where
         assert float(table.evaluate("t => getComputedStyle(t).fontSize").rstrip("px")) >= 20, where
+        # And every paragraph and list item of the answers and the derivation (the checks, the notes,
+        # the slips), which Streamlit's own 1rem for p, ul and ol would keep at 16 px.
+        sizes = page.locator(".dl-text p, .dl-text li").evaluate_all(
+            "els => els.map(e => parseFloat(getComputedStyle(e).fontSize))")
+        assert sizes and min(sizes) >= 20, (where, sorted(sizes)[:3])
         assert serious_violations(page) == [], where
         if all(is_slider(p) for p in problem.solver.PARAMS if p.name in problem.primary and hasattr(p, "dimension")):
             _controls_come_back_and_the_figure_stays(page, where)

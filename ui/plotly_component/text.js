@@ -15,8 +15,10 @@ const CSS = `
 .dl-text { font-family: var(--st-font, "Source Sans Pro", sans-serif); color: var(--st-text-color, inherit); }
 .dl-text h3 { font-size: 1.75rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 0.75rem 0 1rem 0; }
 .dl-text h4 { font-size: 1.5rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 0.75rem 0 1rem 0; }
-.dl-text h5 { font-size: 1.25rem; font-weight: 600; line-height: 1.2; margin: 0; padding: 0.375rem 0 1rem 0; }
-.dl-text p, .dl-text li { font-size: 1em; }  /* the page's size: larger in the lecture view */
+.dl-text h3, .dl-text h4 { scroll-margin-top: 4rem; }  /* a link to one lands below Streamlit's header */
+.dl-text h4.dl-sub { font-size: 1.25rem; padding: 0.375rem 0 1rem 0; }
+/* The page's size, larger in the lecture view (Streamlit sets p, ul and ol in 1rem everywhere). */
+.dl-text p, .dl-text ul, .dl-text li { font-size: 1em; }
 .dl-text p { margin: 0 0 1rem 0; line-height: 1.6; }
 .dl-text .dl-muted { color: var(--st-gray-text-color, inherit); }
 .dl-text .dl-caption { opacity: 0.75; }
@@ -32,6 +34,7 @@ const CSS = `
 .dl-text .dl-bad { color: var(--st-red-text-color, #9E303B); }
 .dl-text .dl-changes { color: var(--st-orange-text-color, #9B4519); }
 .dl-text .dl-mark { display: inline-block; min-width: 1.1em; text-align: center; font-weight: 700; margin-right: 0.2em; }
+.dl-text .dl-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }
 `;
 
 let katexPromise = null;
@@ -54,6 +57,21 @@ const make = (tag, className, text) => {
   if (text !== undefined) el.textContent = text;
   return el;
 };
+
+// A heading with the id Streamlit's Markdown would give it, so a shared link (…/disk_wall#answers)
+// still lands on it: the browser's own scroll to the fragment comes before this element exists.
+function heading(tag, className = "") {
+  const el = make(tag, className);
+  el.update = (text) => put(el, text, () => {
+    el.textContent = text;
+    el.id = text.toLowerCase().replace(/[^\p{L}\p{N}]+/gu, "-").replace(/^-|-$/g, "");
+    if (el.id && decodeURIComponent(location.hash.slice(1)) === el.id) requestAnimationFrame(() => el.scrollIntoView());
+  });
+  return el;
+}
+
+// A header cell that only a screen reader reads (a column whose content names itself).
+const unseen = (text) => make("span", "dl-sr", text);
 
 // An element's content, redone only when its value changed since the last run.
 function put(el, value, fill) {
@@ -92,7 +110,11 @@ function inline(katex, text, into) {
 function table(header, cell) {
   const el = make("table");
   const head = make("tr");
-  for (const name of header) head.append(make("th", "", name));
+  for (const name of header) {
+    const th = make("th");
+    th.append(name);
+    head.append(th);
+  }
   el.append(make("thead"), make("tbody"));
   el.tHead.append(head);
   el.update = (rows) => {
@@ -105,39 +127,39 @@ function table(header, cell) {
 
 class Answers {
   constructor(root, katex) {
-    this.heading = make("h3");
+    this.heading = heading("h3");
     // The symbol typeset, the quantity as text, the value in bold.
-    this.table = table(["", "quantity", "value"], (td, value, column) => {
+    this.table = table([unseen("symbol"), "quantity", "value"], (td, value, column) => {
       if (column === 0) td.innerHTML = html(katex, value, false);
       else if (column === 2) td.replaceChildren(make("strong", "", value));
       else td.textContent = value;
     });
     this.notes = make("div");
-    this.ledgerHeading = make("h5");
+    this.ledgerHeading = heading("h4", "dl-sub");
     // What is conserved across the impact, what changes, and why.
-    this.ledger = table(["quantity", "before", "after", ""], (td, value, column) => {
+    this.ledger = table(["quantity", "before", "after", unseen("conserved or not, and why")], (td, value, column) => {
       if (column < 3) { td.textContent = value; return; }
       const [conserved, why] = value;
       td.replaceChildren(make("span", conserved ? "dl-good" : "dl-changes", conserved ? "conserved" : "changes"), `: ${why}`);
     });
-    this.checksHeading = make("h5");
+    this.checksHeading = heading("h4", "dl-sub");
     this.checks = make("ul");
     root.append(this.heading, this.table, this.notes, this.ledgerHeading, this.ledger, this.checksHeading, this.checks);
   }
 
   update(katex, d) {
-    put(this.heading, d.heading);
+    this.heading.update(d.heading);
     this.table.update(d.answers);
     children(this.notes, d.notes.length, () => make("p", "dl-muted")).forEach((p, i) => put(p, d.notes[i]));
     this.ledgerHeading.hidden = this.ledger.hidden = !d.ledger.length;
-    put(this.ledgerHeading, d.ledger_heading);
+    this.ledgerHeading.update(d.ledger_heading);
     this.ledger.update(d.ledger.map(([quantity, before, after, conserved, why]) => [quantity, before, after, [conserved, why]]));
-    put(this.checksHeading, d.checks_heading);
+    this.checksHeading.update(d.checks_heading);
     // Each check: agrees or differs, its name, the closed form against the second method, and why.
     children(this.checks, d.checks.length, () => make("li")).forEach((li, i) => put(li, d.checks[i], (el, [ok, name, closed, second, why]) => {
       const mark = make("span", `dl-mark ${ok ? "dl-good" : "dl-bad"}`, ok ? "✓" : "✗");
-      mark.setAttribute("aria-hidden", "true");
-      el.replaceChildren(mark, ...(ok ? [] : [make("strong", "dl-bad", "differs"), " "]), make("strong", "", name),
+      mark.setAttribute("aria-hidden", "true");  // said in words: "agrees" to a screen reader, "differs" to all
+      el.replaceChildren(mark, ...(ok ? [unseen("agrees: ")] : [make("strong", "dl-bad", "differs"), " "]), make("strong", "", name),
                          `: ${closed} vs ${second}`, make("br"), make("span", "dl-muted", why));
     }));
   }
@@ -145,7 +167,7 @@ class Answers {
 
 class Derivation {
   constructor(root) {
-    this.heading = make("h3");
+    this.heading = heading("h3");
     this.caption = make("p", "dl-caption");
     this.steps = make("div");
     this.slips = make("div");
@@ -153,7 +175,7 @@ class Derivation {
   }
 
   update(katex, d) {
-    put(this.heading, d.heading);
+    this.heading.update(d.heading);
     put(this.caption, d.caption);
     this.caption.hidden = !d.caption;
     children(this.steps, d.steps.length, () => {
