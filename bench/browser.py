@@ -16,7 +16,8 @@ For every page, alternating with the empty page so drift on the shared machine h
   ``encodedDataLength`` of every finished request; the websocket's bytes are listed apart).
 - **the figures' redraw alone**: the page's figures for the same values, redrawn by Plotly.react in
   a bare page (the same plotly.js bundle, the component's unfolding of the frames): what plotly.js
-  alone costs a change, as a ratio to the empty page's change.
+  alone costs a change, as a ratio to the empty page's change; and, opened again from the cache, how
+  long after navigation plotly.js has run and how long its first drawing takes.
 - with ``--frame``, a third tab: the page's frame alone (bench/page_frame.py: the navigation, the
   same sidebar controls and title, no answers, figure or derivation), changed the same way, so the
   table shows what Streamlit itself costs for a page with these controls.
@@ -30,9 +31,11 @@ from __future__ import annotations
 
 import argparse
 import base64
+import http.server
 import json
 import statistics
 import sys
+import threading
 from collections import defaultdict
 from contextlib import ExitStack
 from pathlib import Path
@@ -280,12 +283,19 @@ def breakdown(trace: dict, frames: list[tuple[str, float, int]], ms: float) -> d
 
 
 FIGURE_ALONE = """<!doctype html><html><body style="width:1000px">%s<script src="plotly.js"></script><script>
+const plotlyReady = performance.now();  // plotly.js loaded and run: the time a page pays before any drawing
 %s
 const specs = %s;  // per value, the page's figures
 function shaped(spec) {
   const layout = Object.assign({}, spec.layout);
   delete layout.sliders;  // drawn in HTML by the component
   return {data: spec.data, layout: layout, frames: unfold(spec.animation, spec.data), config: {displayModeBar: false}};
+}
+async function firstDraw() {
+  const graphs = specs[0].map((_, i) => document.getElementById("g" + i));
+  const t0 = performance.now();
+  await Promise.all(graphs.map((g, i) => Plotly.newPlot(g, shaped(specs[0][i]))));
+  return [plotlyReady, performance.now() - t0];
 }
 async function run() {
   const graphs = specs[0].map((_, i) => document.getElementById("g" + i));
@@ -303,11 +313,12 @@ async function run() {
 </script></body></html>"""
 
 
-def figure_alone(browser, page_id: str, changes: int) -> list[float]:
-    """The page's figures redrawn with nothing else around them: Plotly.react from one value of the
-    first control to the next (the values a change uses), in a bare page with the same plotly.js
-    bundle and the figure component's own unfolding of the frames. What plotly.js alone costs a
-    change, whatever Streamlit and the rest of the page do."""
+def figure_alone(browser, page_id: str, changes: int) -> tuple[list[float], float, float]:
+    """The page's figures with nothing else around them, in a bare page with the same plotly.js
+    bundle and the figure component's own unfolding of the frames: Plotly.react from one value of
+    the first control to the next (the values a change uses), what plotly.js alone costs a change
+    whatever Streamlit and the rest of the page do; and on a revisit (plotly.js in the browser's
+    cache), the time from navigation until plotly.js has run and the first drawing's time."""
     import importlib
 
     from ui import figure as component
@@ -322,15 +333,38 @@ def figure_alone(browser, page_id: str, changes: int) -> list[float]:
     unfold = module[module.index("function unfold"):module.index("// Lecture sizing")]
     specs = "[" + ",".join("[" + ",".join(f.json_bytes().decode() for f in figures) + "]" for figures in shown) + "]"
     html = FIGURE_ALONE % ("".join(f'<div id="g{i}"></div>' for i in range(len(shown[0]))), unfold, specs)
+    files = {"/figure-alone.html": (html.encode(), "text/html"), "/plotly.js": (bundle, "text/javascript")}
+
+    class Files(http.server.BaseHTTPRequestHandler):
+        def do_GET(self):  # noqa: N802 (the standard library's name)
+            if self.path not in files:
+                return self.send_error(404)
+            body, kind = files[self.path]
+            self.send_response(200)
+            self.send_header("Content-Type", kind)
+            self.send_header("Content-Length", str(len(body)))
+            self.send_header("Cache-Control", "public, max-age=31536000, immutable")  # as BundleServer
+            self.end_headers()
+            self.wfile.write(body)
+
+        def log_message(self, *args):
+            pass
+
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Files)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    url = f"http://127.0.0.1:{server.server_address[1]}/figure-alone.html"
     context = browser.new_context(viewport=VIEWPORT)
     page = context.new_page()
-    page.route("**/plotly.js", lambda route: route.fulfill(body=bundle, content_type="text/javascript"))
-    page.route("**/figure-alone.html", lambda route: route.fulfill(body=html, content_type="text/html"))
-    page.goto("http://figure-alone.test/figure-alone.html")
+    page.goto(url)
     page.wait_for_function("() => !!window.Plotly")
     times = page.evaluate("run()")
+    again = context.new_page()  # a revisit: the bundle comes from the browser's cache
+    again.goto(url)
+    again.wait_for_function("() => !!window.Plotly")
+    ready, first_draw = again.evaluate("firstDraw()")
     context.close()
-    return times
+    server.shutdown()
+    return times, ready, first_draw
 
 
 def main() -> None:
@@ -397,7 +431,8 @@ def main() -> None:
                 r[key]["breakdown"] = breakdown(trace, wire.ws_frames, ms)
             for context, *_ in tabs.values():
                 context.close()
-            r[page_id]["figure_alone_ms"] = figure_alone(browser, page_id, args.changes)
+            alone, ready, first_draw = figure_alone(browser, page_id, args.changes)
+            r[page_id].update(figure_alone_ms=alone, plotly_ready_ms=ready, first_draw_ms=first_draw)
             results[page_id] = {k: dict(v) for k, v in r.items()}
             report(page_id, results[page_id])
         browser.close()
@@ -417,7 +452,9 @@ def report(page_id: str, r: dict) -> None:
     alone = p.get("figure_alone_ms")
     if alone:
         print(f"the figures' redraw alone (plotly.js in a bare page): median {med(alone):.0f} ms, "
-              f"p90 {percentile(alone, 0.9):.0f} ms, {med(alone) / med(e['change_ms']):.2f}× the empty page's change")
+              f"p90 {percentile(alone, 0.9):.0f} ms, {med(alone) / med(e['change_ms']):.2f}× the empty page's change; "
+              f"on a revisit plotly.js has run {p['plotly_ready_ms']:.0f} ms after navigation and draws the "
+              f"figures in {p['first_draw_ms']:.0f} ms")
     for visit_kind in [k for k in ("first", "revisit") if p.get(f"{k}_ms")]:  # none with --visits 0
         ms, kb = med(p[f"{visit_kind}_ms"]), med(p[f"{visit_kind}_bytes"]) / 1024
         ems, ekb = med(e[f"{visit_kind}_ms"]), med(e[f"{visit_kind}_bytes"]) / 1024
