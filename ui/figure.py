@@ -116,8 +116,9 @@ def url(name: str) -> str:
 
 @cache
 def katex() -> tuple[str, bytes]:
-    """KaTeX for the answers and the derivation (plotly_component/text.js; ui/katex/: the version of Streamlit's own Markdown, whose
-    stylesheet and fonts are already in the page), keyed by its content like the bundles."""
+    """KaTeX for the answers and the derivation (plotly_component/text.js; ui/katex/: the version of
+    Streamlit's own Markdown, whose stylesheet and fonts are already in the page), keyed by its
+    content like the bundles."""
     return _keyed(_HERE / "katex" / "katex.min.js", "katex", ".min.js")
 
 
