@@ -66,6 +66,24 @@ def test_a_deep_link_on_a_fresh_server_gets_the_app(browser):
         context.close()
 
 
+def test_without_katex_the_answers_still_show_their_values(browser, app_url):
+    """KaTeX's script lost on the way (a network dropping mid-visit): the answers' numbers, the
+    ledger and the checks still show, the symbols and equations as their TeX."""
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context.route("**/katex.*.min.js", lambda route: route.abort())
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    page.goto(f"{app_url}/disk_wall")
+    page.locator(".dl-answers table").first.wait_for(timeout=30_000)
+    wait_until_idle(page)
+    table = page.locator(".dl-answers table").first.inner_text()
+    assert "m/s" in table and "v_{1x}" in table, table  # the value, and the symbol as TeX
+    assert page.locator(".dl-answers li").count() >= 3 and page.locator(".dl-derivation code").count() >= 6
+    assert not errors, errors
+    context.close()
+
+
 def test_a_shared_link_to_a_heading_lands_on_it_and_each_check_says_it_agrees(browser, app_url):
     """The answers' and the derivation's headings keep the ids Streamlit's Markdown gave them, so a
     link to one scrolls there once the element is drawn; a passing check is said, not only shown."""

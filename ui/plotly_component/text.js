@@ -40,13 +40,17 @@ const CSS = `
 let katexPromise = null;
 const typeset = new Map();  // (display?) + TeX -> KaTeX's HTML, kept across runs and pages
 
+// Should KaTeX's script not load (a network that drops mid-visit), the formulas show as their TeX
+// and the numbers, words and tables as usual; the next run tries to load KaTeX again.
+const asTeX = {renderToString: (tex) => Object.assign(document.createElement("code"), {textContent: tex}).outerHTML};
+
 function html(katex, tex, display) {
   const key = (display ? "D" : "I") + tex;
   let out = typeset.get(key);
   if (out === undefined) {
     out = katex.renderToString(tex, {displayMode: display, throwOnError: false, output: "htmlAndMathml"});
     if (typeset.size > 4000) typeset.clear();
-    typeset.set(key, out);
+    if (katex !== asTeX) typeset.set(key, out);
   }
   return out;
 }
@@ -213,7 +217,8 @@ const decoder = new TextDecoder();
 export async function render({data, parentElement}) {
   const d = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
   // KaTeX's script (UMD) sets window.katex when it runs; loaded once per page.
-  katexPromise ??= import(new URL(d.katex, location.href).href).then(() => window.katex);
+  katexPromise ??= import(new URL(d.katex, location.href).href).then(() => window.katex)
+    .catch(() => { katexPromise = null; return asTeX; });
   const katex = await katexPromise;
   let view = views.get(parentElement);
   if (!view) {
