@@ -80,6 +80,14 @@ def test_without_katex_the_answers_still_show_their_values(browser, app_url):
     table = page.locator(".dl-answers table").first.inner_text()
     assert "m/s" in table and "v_{1x}" in table, table  # the value, and the symbol as TeX
     assert page.locator(".dl-answers li").count() >= 3 and page.locator(".dl-derivation code").count() >= 6
+    # The network back: the next change typesets every formula shown, the unchanged ones too.
+    context.unroute("**/katex.*.min.js")
+    box = page.locator("[data-testid='stSidebar'] [data-testid='stNumberInput'] input").first
+    box.fill(f"{float(box.input_value()) * 1.1:.6g}")
+    box.press("Enter")
+    page.wait_for_function("() => !document.querySelector('.dl-text code')"
+                           " && document.querySelectorAll('.dl-answers .katex').length >= 7", timeout=30_000)
+    assert page.locator(".dl-derivation .katex-display").count() >= 6
     assert not errors, errors
     context.close()
 

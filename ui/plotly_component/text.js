@@ -41,7 +41,8 @@ let katexPromise = null;
 const typeset = new Map();  // (display?) + TeX -> KaTeX's HTML, kept across runs and pages
 
 // Should KaTeX's script not load (a network that drops mid-visit), the formulas show as their TeX
-// and the numbers, words and tables as usual; the next run tries to load KaTeX again.
+// and the numbers, words and tables as usual; the next run tries to load KaTeX again and, if it
+// comes, typesets everything shown (``render`` forgets what was drawn without it).
 const asTeX = {renderToString: (tex) => Object.assign(document.createElement("code"), {textContent: tex}).outerHTML};
 
 function html(katex, tex, display) {
@@ -130,11 +131,11 @@ function table(header, cell) {
 }
 
 class Answers {
-  constructor(root, katex) {
+  constructor(root) {
     this.heading = heading("h3");
     // The symbol typeset, the quantity as text, the value in bold.
     this.table = table([unseen("symbol"), "quantity", "value"], (td, value, column) => {
-      if (column === 0) td.innerHTML = html(katex, value, false);
+      if (column === 0) td.innerHTML = html(this.katex, value, false);
       else if (column === 2) td.replaceChildren(make("strong", "", value));
       else td.textContent = value;
     });
@@ -152,6 +153,7 @@ class Answers {
   }
 
   update(katex, d) {
+    this.katex = katex;  // the table's cells typeset with this run's KaTeX
     this.heading.update(d.heading);
     this.table.update(d.answers);
     children(this.notes, d.notes.length, () => make("p", "dl-muted")).forEach((p, i) => put(p, d.notes[i]));
@@ -226,7 +228,9 @@ export async function render({data, parentElement}) {
       document.head.append(Object.assign(make("style", "", CSS), {id: "dl-text-style"}));
     const root = make("div", `dl-text dl-${d.view}`);
     parentElement.replaceChildren(root);
-    views.set(parentElement, view = new VIEWS[d.view](root, katex));
+    views.set(parentElement, view = new VIEWS[d.view](root));
   }
   view.update(katex, d);
+  if (katex === asTeX)  // drawn without KaTeX: drawn again on the next run (headings keep their place)
+    for (const el of parentElement.querySelectorAll(":not(h3, h4)")) delete el.dlShown;
 }
