@@ -298,8 +298,8 @@ async function firstDraw() {
   return [plotlyReady, performance.now() - t0];
 }
 async function run() {
+  await firstDraw();
   const graphs = specs[0].map((_, i) => document.getElementById("g" + i));
-  await Promise.all(graphs.map((g, i) => Plotly.newPlot(g, shaped(specs[0][i]))));
   const times = [];
   for (const figures of specs.slice(1)) {
     const shaped_ = figures.map(shaped);

@@ -104,14 +104,10 @@ class BundleServer:
         await send({"type": "http.response.body", "body": b"" if scope["method"] == "HEAD" else body})
 
 
-def _base() -> str:
-    base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
-    return "/" + base if base else ""
-
-
 def url(name: str) -> str:
     """A served file's path on this server (Streamlit's component route, under the base path)."""
-    return f"{_base()}/component/{__name__}.{NAME}/{name}"
+    base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
+    return f"{'/' + base if base else ''}/component/{__name__}.{NAME}/{name}"
 
 
 @cache

@@ -20,7 +20,7 @@ from ui.params import mirror_to_url, parameter_panel
 LECTURE_CSS = """
 <style>
   .stMainBlockContainer { font-size: 1.3rem; padding-top: 3.5rem; }
-  /* Streamlit's Markdown sets its paragraphs in 1rem: the notes and checks follow the projector's size */
+  /* Streamlit's Markdown sets its paragraphs in 1rem: the blurb and Practice's text follow the projector's size */
   .stMainBlockContainer [data-testid='stMarkdownContainer'] { font-size: inherit; }
   .stMainBlockContainer h1 { font-size: 2.4rem; padding-top: 0; }
   .stMainBlockContainer .katex { font-size: 1.45em; }
