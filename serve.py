@@ -157,32 +157,37 @@ class StaticGzip:
         await send({"type": "http.response.body", "body": packed})
 
 
-def serve_static_compressed() -> None:
-    """Put two middlewares in front of Streamlit, after its path-security check and before its gzip:
-    ``StaticGzip`` (Streamlit's static files gzipped once) and ``ui.figure.BundleServer`` (the
-    figure component's plotly bundles gzipped once and cached by browsers for a year; Streamlit's
-    own component route would send them with a bare ``Cache-Control: public`` and no validator, so
-    every visit downloaded plotly.js again, gzipped anew on every request)."""
+def install_middleware() -> None:
+    """Put our middlewares in front of Streamlit, after its path-security check and before its gzip:
+    ``SecurityHeaders`` (the headers a course site expects, metrics closed: edge/headers.py),
+    ``FairShare`` (each websocket session's message budget: edge/fair_share.py), ``StaticGzip``
+    (Streamlit's static files gzipped once) and ``ui.figure.BundleServer`` (the figure component's
+    plotly bundles gzipped once and cached by browsers for a year; Streamlit's own component route
+    would send them with a bare ``Cache-Control: public`` and no validator, so every visit
+    downloaded plotly.js again, gzipped anew on every request)."""
     from starlette.middleware import Middleware
     from streamlit.web.server.starlette import starlette_app
 
+    from edge.fair_share import FairShare
+    from edge.headers import SecurityHeaders
     from ui.figure import BundleServer
 
     streamlit_middleware = starlette_app.create_streamlit_middleware  # fails loudly if renamed
 
-    def with_compression():
+    def with_ours():
         stack = streamlit_middleware()
-        stack[1:1] = [Middleware(StaticGzip), Middleware(BundleServer)]
+        stack[1:1] = [Middleware(SecurityHeaders), Middleware(FairShare), Middleware(StaticGzip),
+                      Middleware(BundleServer)]
         return stack
 
-    starlette_app.create_streamlit_middleware = with_compression
+    starlette_app.create_streamlit_middleware = with_ours
 
 
 def run(script: Path, argv: list[str]) -> None:
     """``streamlit run script *argv`` in this process, with Nagle off, static files gzipped once, the
-    figure bundles cached by browsers and the warmed heap frozen."""
+    figure bundles cached by browsers, our middlewares and the warmed heap frozen."""
     accept_without_nagle()
-    serve_static_compressed()
+    install_middleware()
     # The warmed derivations (sympy trees, lambdified code) live as long as the process: move them
     # out of the collector's sight, so a full collection under load scans only what requests make.
     gc.collect()

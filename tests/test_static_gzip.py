@@ -1,6 +1,6 @@
 """serve.py's StaticGzip: Streamlit's own static files (its JS bundles, KaTeX) leave gzipped, each
 compressed once, with Streamlit's cache headers kept. Requests go through Streamlit's real static
-route and its real middleware stack, as serve.py patches it (serve_static_compressed)."""
+route and its real middleware stack, as serve.py patches it (install_middleware)."""
 from __future__ import annotations
 
 import asyncio
@@ -23,7 +23,7 @@ KATEX_PATH = f"/static/js/{KATEX.name}"
 def app():
     patch = pytest.MonkeyPatch()
     patch.setattr(starlette_app, "create_streamlit_middleware", starlette_app.create_streamlit_middleware)
-    serve.serve_static_compressed()  # restored after the module's tests
+    serve.install_middleware()  # restored after the module's tests
     yield Starlette(routes=create_streamlit_static_assets_routes(None),
                     middleware=starlette_app.create_streamlit_middleware())
     patch.undo()

@@ -1,0 +1,152 @@
+"""A per-session budget for Streamlit's websocket: one session cannot stall the others.
+
+Every message a browser sends on ``/_stcore/stream`` (a rerun with the widgets' values, mostly)
+starts work on the server: a rerun of the page's script, which holds the interpreter while it
+runs. A person changes a control a few times a second at most; a script can send a thousand
+reruns a second, and every other session in the process then waits behind them (issue 25: a
+change took 27 s). So each connection gets a token bucket: ``RATE`` messages a second, bursts of
+``BURST``. A message beyond it is held until a token comes, and while it is held a newer rerun
+replaces an older one (each rerun carries every widget's value, so the latest is the state the
+person sees; a rerun that carries a button's click is never replaced). A connection held back
+continuously for ``DROP_AFTER`` seconds is closed (1008, policy violation), and so is one with
+more than ``MAX_HELD`` messages that cannot be merged. Nothing here touches another connection,
+and a person at a person's pace never meets the limit.
+
+The browser's own reconnect brings a dropped session back at the person's pace; the log says once
+per connection that it was slowed, and when it was dropped.
+"""
+from __future__ import annotations
+
+import asyncio
+import collections
+import logging
+import time
+
+from streamlit.proto.BackMsg_pb2 import BackMsg
+
+RATE = 10.0        # messages a second, sustained: more than a person can send
+BURST = 30         # a quick series of changes (a held arrow key) passes untouched
+DROP_AFTER = 15.0  # seconds held back without a break: no person does that
+MAX_HELD = 64      # messages waiting that cannot be merged (clicks): a bound on memory
+STREAM_PATH = "/_stcore/stream"
+ONE_SHOT = {"trigger_value", "string_trigger_value", "json_trigger_value", "chat_input_value"}
+
+log = logging.getLogger("dynamics_lab.fair_share")
+
+
+class TokenBucket:
+    def __init__(self, rate: float = RATE, burst: int = BURST, clock=time.monotonic):
+        self.rate, self.burst, self.clock = rate, burst, clock
+        self.tokens, self.at = float(burst), clock()
+
+    def _refill(self) -> None:
+        now = self.clock()
+        self.tokens = min(self.burst, self.tokens + (now - self.at) * self.rate)
+        self.at = now
+
+    def wait(self) -> float:
+        """Seconds until a token is there (0 if one is there now)."""
+        self._refill()
+        return 0.0 if self.tokens >= 1 else (1 - self.tokens) / self.rate
+
+    def take(self) -> None:
+        self._refill()
+        self.tokens -= 1
+
+
+def mergeable(message: dict) -> bool:
+    """A rerun without a click: a newer one stands for it."""
+    data = message.get("bytes")
+    if not data:
+        return False
+    back = BackMsg()
+    try:
+        back.ParseFromString(data)
+    except Exception:  # noqa: BLE001 - Streamlit itself refuses and closes it
+        return False
+    if back.WhichOneof("type") != "rerun_script":
+        return False
+    return not any(w.WhichOneof("value") in ONE_SHOT for w in back.rerun_script.widget_states.widgets)
+
+
+class SessionBudget:
+    """The receive side of one websocket connection, metered."""
+
+    def __init__(self, receive, send, who: str, clock=time.monotonic):
+        self.inner, self.send, self.who, self.clock = receive, send, who, clock
+        self.bucket = TokenBucket(clock=clock)
+        self.held: collections.deque[dict] = collections.deque()
+        self.reader: asyncio.Future | None = None
+        self.over_since: float | None = None  # held back since, without a message passing at once
+        self.slowed = self.closed = False
+
+    async def send_to_client(self, message: dict) -> None:
+        """The app's send, silent once this budget has closed the connection."""
+        if not self.closed:
+            await self.send(message)
+
+    async def receive(self) -> dict:
+        while True:
+            if self.held and self.bucket.wait() == 0:
+                self.bucket.take()
+                return self.held.popleft()
+            if self.held and self.clock() - self.over_since > DROP_AFTER:
+                return await self._drop(f"held back for {DROP_AFTER:.0f} s")
+            if self.reader is None:
+                self.reader = asyncio.ensure_future(self.inner())
+            timeout = self.bucket.wait() if self.held else None
+            done, _ = await asyncio.wait({self.reader}, timeout=timeout)
+            if not done:
+                continue
+            message, self.reader = self.reader.result(), None
+            if message["type"] != "websocket.receive":
+                self.held.clear()  # a disconnect needs no rerun before it
+                return message
+            if not self.held and self.bucket.wait() == 0:  # the usual case: at a person's pace
+                self.bucket.take()
+                self.over_since = None
+                return message
+            self._hold(message)
+            if len(self.held) > MAX_HELD:
+                return await self._drop(f"{MAX_HELD} messages waiting")
+
+    def _hold(self, message: dict) -> None:
+        if not self.slowed:
+            self.slowed = True
+            log.warning("session from %s sends more than %g messages a second: slowed", self.who, RATE)
+        if self.over_since is None:
+            self.over_since = self.clock()
+        if self.held and mergeable(self.held[-1]) and mergeable(message):
+            self.held[-1] = message
+        else:
+            self.held.append(message)
+
+    async def _drop(self, why: str) -> dict:
+        log.warning("session from %s dropped (%s)", self.who, why)
+        self.held.clear()
+        if self.reader is not None:
+            self.reader.cancel()
+        self.closed = True
+        try:
+            await self.send({"type": "websocket.close", "code": 1008, "reason": "too many messages"})
+        except Exception:  # noqa: BLE001 - already gone
+            pass
+        return {"type": "websocket.disconnect", "code": 1008}
+
+
+class FairShare:
+    """ASGI middleware: every connection to Streamlit's websocket gets its own SessionBudget."""
+
+    def __init__(self, app):
+        self.app = app
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "websocket" or not scope["path"].endswith(STREAM_PATH):
+            return await self.app(scope, receive, send)
+        client = scope.get("client") or ("?", 0)
+        budget = SessionBudget(receive, send, f"{client[0]}")
+        try:
+            await self.app(scope, budget.receive, budget.send_to_client)
+        finally:
+            if budget.reader is not None:
+                budget.reader.cancel()

@@ -1,0 +1,101 @@
+"""The headers a course site expects on every answer, and Streamlit's metrics kept private.
+
+One setting decides who may embed the app in a frame: ``DL_FRAME_ANCESTORS``, the origins
+separated by spaces (an LMS such as ``https://canvas.example.edu``), ``'self'`` when unset. The
+same value goes into the Content-Security-Policy's ``frame-ancestors`` here and in the nginx
+templates (``deploy/``). The policy lets scripts come only from the app itself (plus the hash of
+the one inline line in Streamlit's index.html, computed from the file at start-up) and lets the
+page connect only to its own server. ``'unsafe-eval'`` stays: plotly.js's 3-D scenes compile their
+WebGL shaders' glue with ``new Function`` (regl), which Euler's disk needs; it admits no script
+from elsewhere. Styles allow inline ones (Streamlit and plotly.js write style attributes).
+
+``/_stcore/metrics`` (Streamlit's per-session counters) answers 404 unless ``DL_PUBLIC_METRICS=1``.
+"""
+from __future__ import annotations
+
+import base64
+import functools
+import hashlib
+import os
+import re
+from pathlib import Path
+
+FRAME_ENV, METRICS_ENV = "DL_FRAME_ANCESTORS", "DL_PUBLIC_METRICS"
+METRICS_PATH = "/_stcore/metrics"
+_ORIGIN = re.compile(r"^(https?://[A-Za-z0-9.-]+(:\d{1,5})?|https?://\*\.[A-Za-z0-9.-]+|'self'|'none')$")
+
+
+class SettingError(ValueError):
+    """A setting the admin gave cannot be used as it is."""
+
+
+def frame_ancestors(value: str | None = None) -> str:
+    """The origins that may embed the app, checked: each an http(s) origin, 'self' or 'none'."""
+    raw = (os.environ.get(FRAME_ENV, "") if value is None else value).split()
+    if not raw:
+        return "'self'"
+    bad = [origin for origin in raw if not _ORIGIN.match(origin)]
+    if bad:
+        raise SettingError(f"{FRAME_ENV}: {bad[0]!r} is not an origin such as https://lms.example.edu, "
+                           "'self' or 'none'")
+    return " ".join(raw)
+
+
+@functools.cache
+def inline_script_hashes() -> tuple[str, ...]:
+    """CSP hashes of the inline scripts in Streamlit's index.html (one line today)."""
+    import streamlit
+
+    html = (Path(streamlit.__file__).parent / "static" / "index.html").read_text(encoding="utf-8")
+    scripts = re.findall(r"<script(?![^>]*\bsrc=)[^>]*>(.*?)</script>", html, flags=re.S)
+    return tuple("'sha256-" + base64.b64encode(hashlib.sha256(s.encode()).digest()).decode() + "'"
+                 for s in scripts)
+
+
+def content_security_policy(ancestors: str | None = None) -> str:
+    return "; ".join([
+        "default-src 'self'",
+        "script-src 'self' 'unsafe-eval' " + " ".join(inline_script_hashes()),
+        "style-src 'self' 'unsafe-inline'",
+        "img-src 'self' data: blob:",
+        "font-src 'self' data:",
+        "connect-src 'self'",
+        "worker-src 'self' blob:",
+        "frame-src 'self'",
+        "object-src 'none'",
+        "base-uri 'self'",
+        "form-action 'self'",
+        f"frame-ancestors {frame_ancestors() if ancestors is None else ancestors}",
+    ])
+
+
+def security_headers() -> list[tuple[bytes, bytes]]:
+    return [(b"content-security-policy", content_security_policy().encode()),
+            (b"x-content-type-options", b"nosniff"),
+            (b"referrer-policy", b"same-origin")]
+
+
+class SecurityHeaders:
+    """ASGI middleware: the headers above on every HTTP answer; the metrics route closed."""
+
+    def __init__(self, app):
+        self.app = app
+        self.headers = security_headers()  # a bad setting fails here, at start-up, in plain words
+        self.names = {name for name, _ in self.headers}
+        self.metrics_public = os.environ.get(METRICS_ENV, "") == "1"
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http":
+            return await self.app(scope, receive, send)
+        if scope["path"].endswith(METRICS_PATH) and not self.metrics_public:
+            await send({"type": "http.response.start", "status": 404, "headers": self.headers + [
+                (b"content-type", b"text/plain; charset=utf-8")]})
+            return await send({"type": "http.response.body", "body": b"not found\n"})
+
+        async def with_headers(message):
+            if message["type"] == "http.response.start":
+                kept = [(k, v) for k, v in message.get("headers", []) if k.lower() not in self.names]
+                message = {**message, "headers": kept + self.headers}
+            await send(message)
+
+        await self.app(scope, receive, with_headers)

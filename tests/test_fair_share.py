@@ -1,0 +1,174 @@
+"""The websocket budget (edge/fair_share.py): a flood is slowed to a person's pace, merged to its
+latest state, and dropped when it goes on; a person's messages and clicks pass untouched."""
+from __future__ import annotations
+
+import asyncio
+import time
+
+import pytest
+from streamlit.proto.BackMsg_pb2 import BackMsg
+
+from edge import fair_share
+from edge.fair_share import BURST, RATE, FairShare, SessionBudget, TokenBucket, mergeable
+
+
+def rerun(value: float, click: bool = False) -> dict:
+    msg = BackMsg()
+    msg.rerun_script.page_name = "disk_wall"
+    state = msg.rerun_script.widget_states.widgets.add(id="theta")
+    state.double_value = value
+    if click:
+        msg.rerun_script.widget_states.widgets.add(id="show").trigger_value = True
+    return {"type": "websocket.receive", "bytes": msg.SerializeToString()}
+
+
+def value_of(message: dict) -> float:
+    msg = BackMsg()
+    msg.ParseFromString(message["bytes"])
+    return msg.rerun_script.widget_states.widgets[0].double_value
+
+
+class Browser:
+    """The client side: messages queued to arrive at once, and what the server sent back."""
+
+    def __init__(self, messages):
+        self.incoming: asyncio.Queue = asyncio.Queue()
+        for m in messages:
+            self.incoming.put_nowait(m)
+        self.sent: list[dict] = []
+
+    async def receive(self):
+        return await self.incoming.get()
+
+    async def send(self, message):
+        self.sent.append(message)
+
+
+async def drain(budget: SessionBudget, seconds: float) -> list[dict]:
+    """What the app is handed within ``seconds``."""
+    got = []
+    end = time.monotonic() + seconds
+    while (left := end - time.monotonic()) > 0:
+        try:
+            got.append(await asyncio.wait_for(budget.receive(), timeout=left))
+        except asyncio.TimeoutError:
+            break
+        if got[-1]["type"] == "websocket.disconnect":
+            break
+    return got
+
+
+def test_token_bucket_gives_a_burst_then_the_rate():
+    now = [0.0]
+    bucket = TokenBucket(rate=10, burst=3, clock=lambda: now[0])
+    for _ in range(3):
+        assert bucket.wait() == 0
+        bucket.take()
+    assert bucket.wait() == pytest.approx(0.1)
+    now[0] += 0.05
+    assert bucket.wait() == pytest.approx(0.05)
+    now[0] += 10  # refills to the burst, no further
+    assert bucket.tokens < 4 and bucket.wait() == 0
+
+
+def test_mergeable_only_reruns_without_a_click():
+    assert mergeable(rerun(1.0))
+    assert not mergeable(rerun(1.0, click=True))
+    heartbeat = BackMsg()
+    heartbeat.app_heartbeat = True
+    assert not mergeable({"type": "websocket.receive", "bytes": heartbeat.SerializeToString()})
+    assert not mergeable({"type": "websocket.receive", "bytes": b"\xff\xff not a message"})
+
+
+def test_a_person_passes_untouched():
+    async def scenario():
+        browser = Browser([rerun(v) for v in range(BURST)])
+        budget = SessionBudget(browser.receive, browser.send, "test")
+        started = time.monotonic()
+        got = await drain(budget, 0.3)
+        return got, time.monotonic() - started, budget
+
+    got, _, budget = asyncio.run(scenario())
+    assert [value_of(m) for m in got] == list(range(BURST))  # every one, in order, none merged
+    assert not budget.slowed
+
+
+def test_a_flood_is_slowed_and_merged_to_its_latest_state():
+    flood = [rerun(v) for v in range(1000)]
+
+    async def scenario():
+        browser = Browser(flood)
+        budget = SessionBudget(browser.receive, browser.send, "test")
+        return await drain(budget, 1.0), budget
+
+    got, budget = asyncio.run(scenario())
+    # A burst, then about RATE a second: 1,000 reruns reach the app as at most BURST + RATE + 1.
+    assert BURST <= len(got) <= BURST + RATE + 2
+    assert value_of(got[-1]) == 999  # the latest state is what the app ends with
+    assert budget.slowed
+
+
+def test_a_click_is_never_merged_away():
+    messages = [rerun(v) for v in range(BURST)] + [rerun(100, click=True)] + [rerun(v) for v in range(200, 260)]
+
+    async def scenario():
+        browser = Browser(messages)
+        return await drain(SessionBudget(browser.receive, browser.send, "test"), 0.5)
+
+    got = asyncio.run(scenario())
+    assert 100 in [value_of(m) for m in got]
+    assert value_of(got[-1]) == 259
+
+
+def test_a_disconnect_passes_at_once_even_when_held_back():
+    messages = [rerun(v) for v in range(BURST + 50)] + [{"type": "websocket.disconnect", "code": 1001}]
+
+    async def scenario():
+        browser = Browser(messages)
+        return await drain(SessionBudget(browser.receive, browser.send, "test"), 2.0)
+
+    got = asyncio.run(scenario())
+    assert got[-1]["type"] == "websocket.disconnect"
+    assert len(got) <= BURST + 3  # not after the held reruns had been paid for
+
+
+def test_a_flood_that_goes_on_is_dropped(monkeypatch):
+    monkeypatch.setattr(fair_share, "DROP_AFTER", 0.3)
+
+    async def scenario():
+        browser = Browser([])
+        budget = SessionBudget(browser.receive, browser.send, "test")
+
+        async def flood():
+            for v in range(10_000):
+                browser.incoming.put_nowait(rerun(v))
+                await asyncio.sleep(0.001)
+        feeder = asyncio.create_task(flood())
+        got = await drain(budget, 3.0)
+        feeder.cancel()
+        await budget.send_to_client({"type": "websocket.send", "bytes": b"late"})
+        return got, browser.sent
+
+    got, sent = asyncio.run(scenario())
+    assert got[-1] == {"type": "websocket.disconnect", "code": 1008}
+    assert sent[0]["type"] == "websocket.close" and sent[0]["code"] == 1008
+    assert len(sent) == 1  # nothing goes out after the close
+
+
+def test_other_routes_and_http_are_not_metered():
+    seen = []
+
+    async def app(scope, receive, send):
+        seen.append((scope["type"], receive))
+
+    async def scenario():
+        share = FairShare(app)
+        own = object()
+        await share({"type": "http", "path": "/_stcore/stream"}, own, None)
+        await share({"type": "websocket", "path": "/elsewhere"}, own, None)
+        await share({"type": "websocket", "path": "/_stcore/stream", "client": ("127.0.0.1", 1)}, own, None)
+        return own
+
+    own = asyncio.run(scenario())
+    assert seen[0][1] is own and seen[1][1] is own
+    assert seen[2][1] is not own  # the stream gets the metered receive
