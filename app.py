@@ -3,10 +3,13 @@ import streamlit as st
 
 from ui.catalog import GROUPS, PROBLEMS
 from ui.home import home
+from ui.practice import take_instructor_link
 
 # An emoji icon is drawn in the browser (an SVG data URL); a Material icon here would be fetched from
 # fonts.gstatic.com, which a lecture-hall network or a course site's policy may not reach.
 st.set_page_config(page_title="Dynamics Lab", page_icon="🔄", layout="wide")
+
+take_instructor_link()  # ?instructor=KEY leaves the address bar on every page, the home page too
 
 pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True)]}
 for group in GROUPS:

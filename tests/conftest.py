@@ -11,6 +11,15 @@ settings.register_profile("ci", deadline=None, derandomize=True, print_blob=True
 settings.load_profile("ci" if os.environ.get("CI") else "dev")
 
 
+@pytest.fixture(autouse=True)
+def fresh_key_throttle():
+    """Each test starts with no wrong instructor keys on record (the throttle is process-wide)."""
+    from practice import instructor
+
+    instructor.THROTTLE.records.clear()
+    yield
+
+
 # The browser tests' shared fixtures (tests/test_browser.py, tests/test_where_used.py): one Chromium
 # and one server per test module.
 @pytest.fixture(scope="module")

@@ -14,6 +14,8 @@ import time
 from pathlib import Path
 
 import pytest
+
+from practice import instructor
 import sympy as sp
 from streamlit.testing.v1 import AppTest
 
@@ -373,6 +375,11 @@ def test_the_variant_export_needs_the_instructor_key(monkeypatch):
     assert not any(b.label == "Prepare the CSV" for b in at.button)
     at.text_input(key="driven_cart__instructor_key").input("guess-guess").run()
     assert at.error and not any(b.label == "Prepare the CSV" for b in at.button)
+    assert "next try is possible in 1 s" in at.error[0].value
+    at.text_input(key="driven_cart__instructor_key").input(KEY).run()  # too soon: not looked at
+    assert "Too soon" in at.error[0].value and not any(b.label == "Prepare the CSV" for b in at.button)
+    later = instructor.THROTTLE.clock() + 1.5
+    monkeypatch.setattr(instructor.THROTTLE, "clock", lambda: later)
     at.text_input(key="driven_cart__instructor_key").input(KEY).run()
     assert any(b.label == "Prepare the CSV" for b in at.button)
     for link in ({"practice": "1", "instructor": KEY}, {"seed": "7", "practice": "1", "instructor": KEY}):

@@ -4,12 +4,14 @@ solution on request. The instructor's side (the variant export, and Study or Lec
 link) needs the instructor key. Nothing a student types is evaluated or rendered as Markdown."""
 from __future__ import annotations
 
+import ipaddress
 import re
 from dataclasses import dataclass
 from typing import Callable
 
 import sympy as sp
 import streamlit as st
+from streamlit.runtime.scriptrunner import get_script_run_ctx
 
 from practice import instructor
 from practice.judge import RELATIVE_TOLERANCE, Judge, Verdict, tolerance_text
@@ -20,6 +22,7 @@ from ui.catalog import Problem
 from ui.results import plain
 
 INSTRUCTOR = "dl_instructor"  # session flag: the key was entered (once per session, for every page)
+KEY_MESSAGE = "dl_instructor_message"  # what the last try of the key was told
 
 
 def seed_from_url() -> tuple[int | None, str | None]:
@@ -32,11 +35,44 @@ def seed_from_url() -> tuple[int | None, str | None]:
                  "showing the textbook's numbers."
 
 
-def is_instructor() -> bool:
-    """True once this session gave the instructor key, in the expander or as ?instructor=KEY (read
-    before the page rewrites its URL, so the key does not stay in the address bar)."""
-    if not st.session_state.get(INSTRUCTOR) and instructor.key_matches(st.query_params.get("instructor")):
+def client() -> tuple[str, str]:
+    """(this browser session's id, the client's address). Behind the project's nginx the peer is the
+    proxy on this machine or a private network, and the client is the last X-Forwarded-For entry
+    (the one nginx added); otherwise the peer itself (Streamlit says None for loopback)."""
+    ctx = get_script_run_ctx()
+    peer = st.context.ip_address
+    peer = peer if isinstance(peer, str) else None
+    forwarded = st.context.headers.get("X-Forwarded-For")
+    forwarded = forwarded.split(",")[-1].strip() if isinstance(forwarded, str) else ""
+    try:
+        behind_proxy = peer is None or ipaddress.ip_address(peer).is_private
+    except ValueError:
+        behind_proxy = False
+    address = forwarded if forwarded and behind_proxy else (peer or "127.0.0.1")
+    return (ctx.session_id if ctx else "?"), address[:64]
+
+
+def try_instructor_key(typed: str) -> None:
+    """One try of the key (throttled: practice/instructor.py); the verdict's words kept for the page."""
+    verdict = instructor.try_key(typed, *client())
+    if verdict.ok:
         st.session_state[INSTRUCTOR] = True
+    st.session_state[KEY_MESSAGE] = verdict.message()
+
+
+def take_instructor_link() -> None:
+    """?instructor=KEY, on any page: tried once and dropped from the address bar at once (it still
+    reaches the browser's history and the proxy's log: typing the key is safer)."""
+    if "instructor" in st.query_params:
+        typed = st.query_params.get("instructor")
+        del st.query_params["instructor"]
+        if not st.session_state.get(INSTRUCTOR):
+            try_instructor_key(typed)
+
+
+def is_instructor() -> bool:
+    """True once this session gave the instructor key, in a key box or as ?instructor=KEY."""
+    take_instructor_link()
     return bool(st.session_state.get(INSTRUCTOR))
 
 
@@ -161,15 +197,20 @@ def instructor_key_entry(key: str, what: str = "the answer keys") -> bool:
         return False
     if is_instructor():
         return True
-    typed = st.text_input("Instructor key", type="password", key=key,
-                          help="Set by the course admin. Entered once per browser session; an "
-                               "instructor link (?instructor=KEY) does the same.")
-    if typed and instructor.key_matches(typed):
-        st.session_state[INSTRUCTOR] = True
-        st.rerun()
-    if typed:
-        st.error("That is not the instructor key.")
+    st.text_input("Instructor key", type="password", key=key, on_change=_key_typed, args=(key,),
+                  help="Set by the course admin. Entered once per browser session; an "
+                       "instructor link (?instructor=KEY) does the same.")
+    if st.session_state.get(KEY_MESSAGE):
+        st.error(st.session_state[KEY_MESSAGE])
     return False
+
+
+def _key_typed(key: str) -> None:
+    """The key box changed: one try, and the box emptied (a rerun does not try the same text again)."""
+    typed = st.session_state.get(key) or ""
+    st.session_state[key] = ""
+    if typed:
+        try_instructor_key(typed)
 
 
 def instructor_export(problem: Problem) -> None:
