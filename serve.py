@@ -200,13 +200,18 @@ def run(script: Path, argv: list[str]) -> None:
 
 def migrate() -> None:
     """Create or upgrade the assignments' schema (Alembic) before listening. A database that cannot
-    be reached is logged, not fatal: practice works without it, and the pages say so."""
+    be reached is logged, not fatal: practice works without it, and the pages say so. An empty
+    database where an earlier one is expected (assignments/migrate.py) is fatal: the app refuses to
+    start, and says why, rather than record a course's attempts into a fresh, empty gradebook."""
     from assignments import db, migrate as schema
 
     log = logging.getLogger("dynamics_lab")
     try:
         schema.upgrade()
         log.warning("database ready: %s", db.engine().url.render_as_string(hide_password=True))
+    except schema.DatabaseMissing as error:
+        log.error("not starting: %s", error)
+        sys.exit(f"Dynamics Lab did not start: {error}")
     except Exception as error:  # noqa: BLE001
         log.error("database not ready (assignments will not be recorded until it is): %s", error)
 

@@ -7,5 +7,8 @@ from assignments import db, migrate
 if __name__ == "__main__":
     if sys.argv[1:] != ["migrate"]:
         sys.exit("usage: python -m assignments migrate")
-    migrate.upgrade()
+    try:
+        migrate.upgrade()
+    except migrate.DatabaseMissing as error:
+        sys.exit(str(error))
     print(f"schema at head: {db.engine().url.render_as_string(hide_password=True)}")

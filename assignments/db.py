@@ -13,11 +13,13 @@ from __future__ import annotations
 import datetime as dt
 import functools
 import os
+import sqlite3
 from pathlib import Path
 
 from sqlalchemy import (JSON, Boolean, DateTime, Float, ForeignKey, Integer, String, UniqueConstraint,
                         create_engine, event)
 from sqlalchemy.engine import Engine
+from sqlalchemy.pool import QueuePool
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, sessionmaker
 from sqlalchemy.types import TypeDecorator
 
@@ -100,38 +102,92 @@ def database_url() -> str:
     return f"sqlite:///{data / 'dynamics-lab.sqlite'}"
 
 
-def make_engine(url: str) -> Engine:
-    """An engine with this project's settings (pool checks, SQLite's locking)."""
+class DatabaseGone(OSError):
+    """The SQLite file this engine opened was removed or replaced: nothing is written in its place."""
+
+
+def sqlite_path(url: str) -> Path | None:
+    """The file of a SQLite URL (None for another backend or an in-memory database)."""
+    if not url.startswith("sqlite"):
+        return None
+    path = url.split("///", 1)[1] if "///" in url else ""
+    return Path(path) if path and path != ":memory:" else None
+
+
+def make_engine(url: str, create: bool = True) -> Engine:
+    """An engine with this project's settings (pool checks, SQLite's locking).
+
+    A SQLite file is created only by an engine made with ``create`` (the migration's), and only
+    before its first connection: from then on every connection and every commit checks that the file
+    is still the one first opened. A file removed under a running server (its directory deleted, a
+    volume gone) would otherwise take writes into an unlinked inode, committed and lost, while the
+    student read "Recorded"; here the commit fails, and the student reads "not recorded"."""
+    path = sqlite_path(url)
+    if path is not None:
+        return _sqlite_file_engine(path, create)
     if url.startswith("sqlite"):
-        path = url.split("///", 1)[1] if "///" in url else ""
-        if path and path != ":memory:":
-            Path(path).parent.mkdir(parents=True, exist_ok=True)
-        engine = create_engine(url, connect_args={"timeout": 15}, pool_size=10, max_overflow=20, pool_timeout=60)
-
-        @event.listens_for(engine, "connect")
-        def _sqlite_connect(dbapi_connection, _record):
-            dbapi_connection.isolation_level = None  # SQLAlchemy's BEGIN below, not the driver's
-            cursor = dbapi_connection.cursor()
-            cursor.execute("PRAGMA journal_mode=WAL")  # readers never wait for a writer
-            cursor.execute("PRAGMA foreign_keys=ON")
-            cursor.execute("PRAGMA busy_timeout=15000")
-            cursor.close()
-
-        @event.listens_for(engine, "begin")
-        def _sqlite_begin(connection):
-            # Take the write lock at the start: a deferred transaction that reads, then writes, can
-            # fail at once with "database is locked" when another writer got in between.
-            connection.exec_driver_sql("BEGIN IMMEDIATE")
-        return engine
+        return create_engine(url)
     connect_args = {"connect_timeout": 5} if url.startswith("postgresql") else {}
     return create_engine(url, pool_pre_ping=True, pool_size=10, max_overflow=20, pool_timeout=60,
                          connect_args=connect_args)
 
 
+def _sqlite_file_engine(path: Path, create: bool) -> Engine:
+    if create:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    first: list[tuple[int, int]] = []  # (device, inode) of the file at the first connection
+
+    def still_there() -> None:
+        try:
+            stat = os.stat(path)
+        except OSError as error:
+            raise DatabaseGone(f"the database file {path} is gone") from error
+        if first and (stat.st_dev, stat.st_ino) != first[0]:
+            raise DatabaseGone(f"the database file {path} was replaced while the app ran")
+
+    def connect():
+        mode = "rwc" if create and not first else "rw"
+        connection = sqlite3.connect(f"{path.resolve().as_uri()}?mode={mode}", uri=True, timeout=15,
+                                     check_same_thread=False)
+        try:
+            still_there()
+        except DatabaseGone:
+            connection.close()
+            raise
+        if not first:
+            stat = os.stat(path)
+            first.append((stat.st_dev, stat.st_ino))
+        return connection
+
+    engine = create_engine("sqlite://", creator=connect, poolclass=QueuePool, pool_size=10, max_overflow=20,
+                           pool_timeout=60)
+
+    @event.listens_for(engine, "connect")
+    def _sqlite_connect(dbapi_connection, _record):
+        dbapi_connection.isolation_level = None  # SQLAlchemy's BEGIN below, not the driver's
+        cursor = dbapi_connection.cursor()
+        cursor.execute("PRAGMA journal_mode=WAL")  # readers never wait for a writer
+        cursor.execute("PRAGMA foreign_keys=ON")
+        cursor.execute("PRAGMA busy_timeout=15000")
+        cursor.close()
+
+    @event.listens_for(engine, "begin")
+    def _sqlite_begin(connection):
+        # Take the write lock at the start: a deferred transaction that reads, then writes, can
+        # fail at once with "database is locked" when another writer got in between.
+        connection.exec_driver_sql("BEGIN IMMEDIATE")
+
+    @event.listens_for(engine, "commit")
+    def _sqlite_commit(_connection):
+        still_there()  # raised before COMMIT: the transaction is rolled back, nothing recorded
+    return engine
+
+
 @functools.cache
 def engine() -> Engine:
-    """The process's engine (one pool per process), for ``database_url()``."""
-    return make_engine(database_url())
+    """The process's engine (one pool per process), for ``database_url()``. It never creates a
+    SQLite file: ``migrate.upgrade`` does, once, where the start-up checks allow it."""
+    return make_engine(database_url(), create=False)
 
 
 @functools.cache

@@ -239,8 +239,11 @@ def record_attempt(identity: StudentIdentity, answer: str, typed: str, correct: 
                              slip=_storable(slip, 400),
                              at=when, late=when > due, solution_shown=shown)
             s.add(row)
+            s.flush()
+            # Numbered in the same transaction: its commit alone decides "Recorded" (a read after it
+            # could fail, and tell a student whose attempt was kept that it was not).
+            mine = _attempts_in(s, identity)
         # committed: from here on the attempt is recorded
-        mine = attempts_of(identity, bound)
     return next(a for a in mine if a.id == row.id)
 
 
@@ -261,10 +264,14 @@ def solution_shown(identity: StudentIdentity, bound: Engine | None = None) -> bo
 def attempts_of(identity: StudentIdentity, bound: Engine | None = None) -> list[Recorded]:
     """One student's attempts at one assignment, in the order recorded."""
     with db.session(bound) as s:
-        allowed = s.scalar(select(db.Assignment.attempts_allowed).where(db.Assignment.id == identity.assignment_id))
-        rows = s.scalars(select(db.Attempt).where(db.Attempt.assignment_id == identity.assignment_id,
-                                                  db.Attempt.label == identity.label)).all()
-        return _numbered(rows, allowed or 0)
+        return _attempts_in(s, identity)
+
+
+def _attempts_in(s, identity: StudentIdentity) -> list[Recorded]:
+    allowed = s.scalar(select(db.Assignment.attempts_allowed).where(db.Assignment.id == identity.assignment_id))
+    rows = s.scalars(select(db.Attempt).where(db.Attempt.assignment_id == identity.assignment_id,
+                                              db.Attempt.label == identity.label)).all()
+    return _numbered(rows, allowed or 0)
 
 
 @_guarded

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import streamlit as st
 
-from assignments import db, migrate, records, signing
+from assignments import migrate, records, signing
 from assignments.identity import LinkRefused, StudentIdentity, from_link, is_assignment_link, link_query
 from practice.judge import RELATIVE_TOLERANCE
 from ui.catalog import BY_ID, PROBLEMS, Problem
@@ -28,7 +28,7 @@ def _schema_ready() -> bool:
     """Bring the schema to head once per process (serve.py does it before listening; this covers
     ``streamlit run app.py``). False when the database cannot be reached: tried again next run."""
     try:
-        migrate.upgrade(db.engine())
+        migrate.upgrade()
     except Exception:  # noqa: BLE001  (reported to the user as "cannot be reached" by the caller)
         _schema_ready.clear()
         return False
