@@ -1,6 +1,7 @@
 """Dynamics Lab: the entry point. A home page and one page per problem, grouped by method."""
 import streamlit as st
 
+from edge import widget_values
 from ui.catalog import GROUPS, PROBLEMS
 from ui.home import home
 from ui.practice import take_instructor_link
@@ -9,7 +10,11 @@ from ui.practice import take_instructor_link
 # fonts.gstatic.com, which a lecture-hall network or a course site's policy may not reach.
 st.set_page_config(page_title="Dynamics Lab", page_icon="🔄", layout="wide")
 
+widget_values.install()  # (serve.py installs it before the first session; this covers `streamlit run`)
 take_instructor_link()  # ?instructor=KEY leaves the address bar on every page, the home page too
+if widget_values.take_refusals():
+    st.warning("A value this browser sent for a control could not be read, so the control keeps its last "
+               "value. Reloading the page sets everything right.")
 
 pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True)]}
 for group in GROUPS:

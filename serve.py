@@ -188,6 +188,9 @@ def run(script: Path, argv: list[str]) -> None:
     figure bundles cached by browsers, our middlewares and the warmed heap frozen."""
     accept_without_nagle()
     install_middleware()
+    from edge import widget_values
+
+    widget_values.install()
     # The warmed derivations (sympy trees, lambdified code) live as long as the process: move them
     # out of the collector's sight, so a full collection under load scans only what requests make.
     gc.collect()
@@ -208,7 +211,7 @@ def migrate() -> None:
     log = logging.getLogger("dynamics_lab")
     try:
         schema.upgrade()
-        log.warning("database ready: %s", db.engine().url.render_as_string(hide_password=True))
+        log.warning("database ready: %s", db.described())
     except schema.DatabaseMissing as error:
         log.error("not starting: %s", error)
         sys.exit(f"Dynamics Lab did not start: {error}")

@@ -11,4 +11,4 @@ if __name__ == "__main__":
         migrate.upgrade()
     except migrate.DatabaseMissing as error:
         sys.exit(str(error))
-    print(f"schema at head: {db.engine().url.render_as_string(hide_password=True)}")
+    print(f"schema at head: {db.described()}")

@@ -17,7 +17,7 @@ import sqlite3
 from pathlib import Path
 
 from sqlalchemy import (JSON, Boolean, DateTime, Float, ForeignKey, Integer, String, UniqueConstraint,
-                        create_engine, event)
+                        create_engine, event, make_url)
 from sqlalchemy.engine import Engine
 from sqlalchemy.pool import QueuePool
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, sessionmaker
@@ -181,6 +181,11 @@ def _sqlite_file_engine(path: Path, create: bool) -> Engine:
     def _sqlite_commit(_connection):
         still_there()  # raised before COMMIT: the transaction is rolled back, nothing recorded
     return engine
+
+
+def described() -> str:
+    """The app's database for a log line: its URL without the password."""
+    return make_url(database_url()).render_as_string(hide_password=True)
 
 
 @functools.cache
