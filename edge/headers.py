@@ -3,11 +3,12 @@
 One setting decides who may embed the app in a frame: ``DL_FRAME_ANCESTORS``, the origins
 separated by spaces (an LMS such as ``https://canvas.example.edu``), ``'self'`` when unset. The
 same value goes into the Content-Security-Policy's ``frame-ancestors`` here and in the nginx
-templates (``deploy/``). The policy lets scripts come only from the app itself (plus the hash of
-the one inline line in Streamlit's index.html, computed from the file at start-up) and lets the
-page connect only to its own server. ``'unsafe-eval'`` stays: plotly.js's 3-D scenes compile their
-WebGL shaders' glue with ``new Function`` (regl), which Euler's disk needs; it admits no script
-from elsewhere. Styles allow inline ones (Streamlit and plotly.js write style attributes).
+templates (``deploy/``). The policy lets scripts come only from the app itself: its files, the
+blob: modules Streamlit's components v2 make in the page from the app's own code (the figure, the
+answers, the derivation), the hash of the one inline line in Streamlit's index.html (computed from
+the file at start-up), and WebAssembly compiled by the app's own scripts ('wasm-unsafe-eval'; no
+eval of strings). The page connects only to its own server. Styles allow inline ones (Streamlit and
+plotly.js write style attributes). A browser test opens every page under it and finds no violation.
 
 ``/_stcore/metrics`` (Streamlit's per-session counters) answers 404 unless ``DL_PUBLIC_METRICS=1``.
 """
@@ -55,7 +56,7 @@ def inline_script_hashes() -> tuple[str, ...]:
 def content_security_policy(ancestors: str | None = None) -> str:
     return "; ".join([
         "default-src 'self'",
-        "script-src 'self' 'unsafe-eval' " + " ".join(inline_script_hashes()),
+        "script-src 'self' blob: 'wasm-unsafe-eval' " + " ".join(inline_script_hashes()),
         "style-src 'self' 'unsafe-inline'",
         "img-src 'self' data: blob:",
         "font-src 'self' data:",

@@ -29,7 +29,7 @@ if not Path(CHROMIUM).exists():
 
 playwright = pytest.importorskip("playwright.sync_api")
 
-from tests.test_browser import open_page  # noqa: E402
+from tests.test_browser import csp_violations, open_page  # noqa: E402
 from tests.test_where_used import serious_violations  # noqa: E402
 
 
@@ -129,3 +129,18 @@ def test_an_assignment_in_the_browser(browser, course_url):
         shoot(page, f"instructor-{name}")
     assert not errors
     context.close()
+
+
+def test_an_instructor_link_leaves_the_address_bar_on_every_page(browser, course_url):
+    """?instructor=KEY opens the instructor's side and is gone from the address bar at once, on
+    the home page, every problem and the Assignments page; no page meets a CSP violation."""
+    from solvers import registry
+
+    for path in ["", *registry.PROBLEM_IDS, "gradebook"]:
+        context, page, errors = open_page(browser, f"{course_url}/{path}?instructor={KEY}")
+        page.wait_for_function("() => !location.search.includes('instructor')", timeout=15_000)
+        assert KEY not in page.url and KEY not in page.evaluate("document.body.innerText"), path
+        assert csp_violations(page) == [] and not errors, path
+        if path == "gradebook":
+            page.get_by_text("Create the assignment", exact=False).first.wait_for(timeout=30_000)
+        context.close()

@@ -32,12 +32,22 @@ def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: b
     and the list its script errors go to."""
     extra = {"is_mobile": True, "has_touch": True, "device_scale_factor": 2} if phone else {}
     context = browser.new_context(viewport={"width": width, "height": height}, **extra)
+    context.add_init_script(CSP_WATCH)
     page = context.new_page()
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))
     page.goto(url)
     wait_until_idle(page)
     return context, page, errors
+
+
+# Every Content-Security-Policy violation a page meets, kept for csp_violations(page).
+CSP_WATCH = ("window.__csp = []; document.addEventListener('securitypolicyviolation', "
+             "e => window.__csp.push(e.violatedDirective + ' ' + e.blockedURI));")
+
+
+def csp_violations(page) -> list[str]:
+    return page.evaluate("window.__csp")
 
 
 def main_text(page) -> str:
@@ -185,6 +195,7 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
     page.wait_for_timeout(300)
     assert graph.evaluate(snapshot) != paused, "the arrow key did not step the animation"
     assert not errors, errors
+    assert csp_violations(page) == []  # the page works under the app's Content-Security-Policy
 
     SHOTS.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(SHOTS / f"{problem.id}.png"))
