@@ -14,6 +14,7 @@ import gc
 import gzip
 import itertools
 import logging
+import os
 import socket
 import sys
 import time
@@ -201,6 +202,32 @@ def run(script: Path, argv: list[str]) -> None:
     sys.exit(cli.main())
 
 
+def settings_problems() -> list[str]:
+    """What in the admin's settings cannot work, in words that say how to mend it. Assignments are
+    on when either secret is set, and then both must be (Compose's empty defaults had left them
+    silently closed); a key or secret too short to resist guessing is refused, not ignored."""
+    from assignments import migrate as schema, signing
+    from edge.headers import SettingError, frame_ancestors
+    from practice import instructor
+
+    problems = []
+    try:
+        frame_ancestors()
+    except SettingError as error:
+        problems.append(str(error))
+    key, secret = os.environ.get(instructor.KEY_ENV, ""), os.environ.get(signing.SECRET_ENV, "")
+    for name, value, least, make in ((instructor.KEY_ENV, key, instructor.MIN_LENGTH, "openssl rand -base64 18"),
+                                     (signing.SECRET_ENV, secret, signing.MIN_SECRET, "openssl rand -hex 32")):
+        if value and len(value) < least:
+            problems.append(f"{name} has {len(value)} characters; it needs at least {least} (make one with: {make}).")
+    if bool(key) != bool(secret):
+        given, missing = ((instructor.KEY_ENV, signing.SECRET_ENV) if key else (signing.SECRET_ENV, instructor.KEY_ENV))
+        problems.append(f"{given} is set but {missing} is not: assignments need both (README: Deploy).")
+    if os.environ.get(schema.EXPECT_ENV, "") not in ("", "0", "1"):
+        problems.append(f"{schema.EXPECT_ENV} is 1 (the database must exist) or unset.")
+    return problems
+
+
 def migrate() -> None:
     """Create or upgrade the assignments' schema (Alembic) before listening. A database that cannot
     be reached is logged, not fatal: practice works without it, and the pages say so. An empty
@@ -221,6 +248,11 @@ def migrate() -> None:
 
 def main() -> None:
     sys.path.insert(0, str(ROOT))
+    problems = settings_problems()
+    if problems:
+        for problem in problems:
+            logging.getLogger("dynamics_lab").error("setting: %s", problem)
+        sys.exit("Dynamics Lab did not start: " + " ".join(problems))
     migrate()
     seconds = warm()
     logging.getLogger("dynamics_lab").warning("warmed in %.1f s", seconds)

@@ -38,10 +38,30 @@ def start_replica(port: int, secret: str) -> subprocess.Popen:
                             cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
+COMPOSE_SERVERS = "    server app:8501 max_fails=1 fail_timeout=10s;  # every replica of the service"
+
+
+def render_nginx(servers: str, listen: str, frame_ancestors: str | None = None) -> str:
+    """deploy/nginx.conf.template with its upstream servers and listen address; ``frame_ancestors``
+    fills ${DL_FRAME_ANCESTORS} as the nginx image does from its environment (None leaves it, as
+    deploy/nginx-compose.conf does)."""
+    text = (ROOT / "deploy" / "nginx.conf.template").read_text()
+    text = text.replace("@UPSTREAM_SERVERS@", servers).replace("@LISTEN@", listen)
+    if frame_ancestors is not None:
+        text = text.replace("${DL_FRAME_ANCESTORS}", frame_ancestors)
+    return text
+
+
+def compose_nginx() -> str:
+    """What deploy/nginx-compose.conf holds (a test keeps the two equal)."""
+    return "# Generated from nginx.conf.template for docker-compose.yml.\n" + render_nginx(COMPOSE_SERVERS, "80")
+
+
 def start_nginx(ports: list[int], listen: int, workdir: Path) -> subprocess.Popen:
-    template = (ROOT / "deploy" / "nginx.conf.template").read_text()
+    from edge.headers import frame_ancestors
+
     servers = "\n".join(f"    server 127.0.0.1:{p} max_fails=1 fail_timeout=10s;" for p in ports)
-    http = template.replace("@UPSTREAM_SERVERS@", servers).replace("@LISTEN@", f"127.0.0.1:{listen}")
+    http = render_nginx(servers, f"127.0.0.1:{listen}", frame_ancestors())
     for sub in ("client_body", "proxy", "fastcgi", "uwsgi", "scgi"):
         (workdir / sub).mkdir(exist_ok=True)
     conf = workdir / "nginx.conf"

@@ -224,3 +224,35 @@ def test_serve_refuses_to_start_and_says_why(tmp_path, monkeypatch):
     finally:
         db.engine.cache_clear()
     assert "did not start" in str(stopped.value.code) and "Is the data volume mounted" in str(stopped.value.code)
+
+
+@pytest.mark.parametrize("env, said", [
+    ({"DL_INSTRUCTOR_KEY": "short", "DL_COURSE_SECRET": "c" * 32}, "DL_INSTRUCTOR_KEY has 5 characters"),
+    ({"DL_INSTRUCTOR_KEY": "k" * 24}, "DL_COURSE_SECRET is not: assignments need both"),
+    ({"DL_COURSE_SECRET": "c" * 32}, "DL_INSTRUCTOR_KEY is not: assignments need both"),
+    ({"DL_COURSE_SECRET": "tooshort", "DL_INSTRUCTOR_KEY": "k" * 24}, "DL_COURSE_SECRET has 8 characters"),
+    ({"DL_FRAME_ANCESTORS": "javascript:alert(1)"}, "is not an origin"),
+    ({"DL_EXPECT_DATABASE": "yes"}, "DL_EXPECT_DATABASE is 1"),
+])
+def test_settings_that_cannot_work_stop_the_start_in_plain_words(tmp_path, env, said):
+    clean = {k: v for k, v in os.environ.items()
+             if k not in ("DL_INSTRUCTOR_KEY", "DL_COURSE_SECRET", "DL_FRAME_ANCESTORS", migrate.EXPECT_ENV)}
+    started = subprocess.run([sys.executable, str(db.ROOT / "serve.py"), "--server.port", "1"], cwd=db.ROOT,
+                             env=clean | {db.DATA_ENV: str(tmp_path)} | env, capture_output=True, text=True,
+                             timeout=60)
+    assert started.returncode != 0 and said in started.stderr and "did not start" in started.stderr
+    assert "Traceback" not in started.stderr
+
+
+def test_settings_that_work_pass():
+    import serve
+
+    fine = {"DL_INSTRUCTOR_KEY": "k" * 24, "DL_COURSE_SECRET": "c" * 32,
+            "DL_FRAME_ANCESTORS": "'self' https://canvas.example.edu", migrate.EXPECT_ENV: "1"}
+    with pytest.MonkeyPatch.context() as patch:
+        for name, value in fine.items():
+            patch.setenv(name, value)
+        assert serve.settings_problems() == []
+        for name in fine:
+            patch.delenv(name)
+        assert serve.settings_problems() == []  # a fresh machine's make run
