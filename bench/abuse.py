@@ -28,7 +28,7 @@ from streamlit.proto.BackMsg_pb2 import BackMsg
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
-from bench.lecture_load import CONTROLS, percentile, run_script, widget_id, widget_state  # noqa: E402
+from bench.lecture_load import CONTROLS, percentile, rss_mb, run_script, widget_id, widget_state  # noqa: E402
 from scripts.live_app import free_port, wait_healthy  # noqa: E402
 
 
@@ -149,6 +149,7 @@ def main() -> None:
     args = parser.parse_args()
     seconds = args.flood + 15.0  # the flood, and the time after it that a queue would hold everyone
     proc, url = (None, args.url) if args.url else start_server()
+    warm_mb = rss_mb([proc.pid]) if proc else float("nan")
     try:
         calm = asyncio.run(run_phase(url, args.page, args.students, seconds, None))
         flood = asyncio.run(run_phase(url, args.page, args.students, seconds, (args.rate, args.flood)))
@@ -156,6 +157,7 @@ def main() -> None:
         if proc:
             proc.terminate()
             proc.wait(15)
+    print(f"\nserver memory once warm (serve.py, before any session): {warm_mb:.0f} MB")
     print(f"\n{args.page}: {args.students} students changing every 1-2 s for {seconds:g} s, a visitor a second; "
           f"flood {args.rate:g}/s for {args.flood:g} s from one session\n")
     print("| phase | changes | change p50 / p95 / max | page load max | errors | flood sent | flooder |")
