@@ -132,7 +132,7 @@ def duration_text(span: dt.timedelta) -> str:
     days, rest = divmod(minutes, 24 * 60)
     hours, minutes = divmod(rest, 60)
     parts = ([f"{days} day{'s' if days != 1 else ''}"] if days else []) + ([f"{hours} h"] if hours else [])
-    if not days:
+    if not days and (minutes or not hours):
         parts.append(f"{minutes} min")
     return " ".join(parts)
 
