@@ -129,6 +129,8 @@ def when_text(moment: dt.datetime, zone: str = "UTC") -> str:
 def duration_text(span: dt.timedelta) -> str:
     """'3 h 20 min', '2 days 1 h': how late, rounded down to the minute."""
     minutes = int(span.total_seconds() // 60)
+    if minutes == 0:
+        return "less than a minute"
     days, rest = divmod(minutes, 24 * 60)
     hours, minutes = divmod(rest, 60)
     parts = ([f"{days} day{'s' if days != 1 else ''}"] if days else []) + ([f"{hours} h"] if hours else [])
@@ -907,14 +909,16 @@ class Gradebook:
         total = sum(self.settings.weight(q) * self.cell(label, q).credit for q in self.settings.questions)
         return round(total, 4)
 
-    def how(self, label: str) -> str:
-        """How the score was computed, in words: each answer that earned points, and the late rule."""
+    def how(self, label: str, names: dict[Question, str] | None = None) -> str:
+        """How the score was computed, in words: each answer that earned points (its points, times
+        its late credit), summed. ``names``: how to call each answer (its name by default)."""
         terms = []
         for q in self.settings.questions:
             c, w = self.cell(label, q), self.settings.weight(q)
             if c.credit <= 0:
                 continue
-            term = f"{q[1]} {_number(w)}" if c.credit >= 1 else f"{q[1]} {_number(w)} × {c.credit * 100:g} % (late)"
+            name = (names or {}).get(q, q[1])
+            term = f"{name} {_number(w)}" if c.credit >= 1 else f"{name} {_number(w)} × {c.credit * 100:g} % (late)"
             terms.append(term)
         earned = " + ".join(terms) if terms else "nothing yet"
         return f"{earned} = {_number(self.score(label))} of {_number(self.settings.out_of)}"

@@ -227,7 +227,7 @@ def _problem_links(link: StudentLink) -> str:
     items = []
     for n, pid in enumerate(link.settings.problems, start=1):
         name = plain(_title(pid))
-        items.append(f"{n}. **{name}** (this page)" if pid == link.problem else f"{n}. [{name}](/{pid}?{query})")
+        items.append(f"{n}. **{name}** (this page)" if pid == link.problem else f"{n}. [{name}]({pid}?{query})")  # beside this page
     return "\n".join(items)
 
 
@@ -261,8 +261,9 @@ def assignment_heading(link: StudentLink) -> None:
     if standing:
         labels = _answer_labels(s)
         part = s.part(link.problem)
-        left = [f"{plain(labels[(link.problem, a)].split(': ')[-1])} {standing.left((link.problem, a))} of {allowed}"
-                for a in part.answers]
+        left = [f"{plain(labels[(link.problem, a)].split(': ')[-1])} "
+                + ("done (right)" if standing.cells[(link.problem, a)].credit >= 1
+                   else f"{standing.left((link.problem, a))} of {allowed}") for a in part.answers]
         lines.append("**Attempts left**: " + " · ".join(left) + ".")
         lines.append(f"**Your score so far**: {records._number(standing.score())} of {records._number(s.out_of)} "
                      "points.")
@@ -301,7 +302,7 @@ def your_attempts(link: StudentLink, answers, solution=None, system: str = "si")
         cell = standing.cells[(link.problem, name)]
         lines.append(f"- {plain(labels.get(name, name))}: {plain(cell.status(s))}"
                      f" ({records._number(part.weight(name) * cell.credit)} of {records._number(part.weight(name))} "
-                     "points)")
+                     f"point{'s' if part.weight(name) != 1 else ''})")
         if (s.answer_after_last and cell.first_right is None and cell.attempts >= cell.allowed
                 and solution is not None and name in by_name):
             value = solution.answers.get(name)
@@ -391,7 +392,7 @@ def _due_inputs(prefix: str, zone: str, current: dt.datetime | None = None) -> d
     c1, c2 = st.columns(2)
     day = c1.date_input(f"Due date ({zone})", local.date(), key=f"{prefix}due_day")
     time = c2.time_input(f"Due time ({zone})", local.time().replace(second=0, microsecond=0) if current
-                         else dt.time(23, 59), key=f"{prefix}due_time", step=300)
+                         else dt.time(23, 59), key=f"{prefix}due_time", step=60)
     return dt.datetime.combine(day, time, zoneinfo.ZoneInfo(zone))
 
 
@@ -430,7 +431,6 @@ def _roster_text(prefix: str) -> tuple[str, str]:
 
 
 def _new_assignment() -> None:
-    st.markdown("### New assignment")
     st.markdown("Nothing is created until you press **Create**; the check above the button lists what "
                 "would be wrong first.")
     p = "assign__"
@@ -490,6 +490,7 @@ def _new_assignment() -> None:
         st.markdown(f"“{plain(title.strip() or '(no title)')}”: {plain(summary)}; due "
                     f"{records.when_text(due, zone)}; {int(attempts)} attempts per answer; "
                     f"{len(labels)} students; late: {plain(settings.late_rule())}; feedback: {settings.feedback_rule()}.")
+    st.session_state["assign__drafting"] = bool(title.strip() or chosen or text.strip())
     if not (title.strip() or chosen or text.strip()):  # a fresh form: what it needs, not errors
         st.markdown("To create an assignment: a title, at least one problem, a due time in the future and a roster.")
         st.button("Create the assignment and its links", type="primary", key=f"{p}create", disabled=True)
@@ -650,8 +651,9 @@ def _gradebook(aid: int) -> None:
     labels = _answer_labels(s)
     base = _app_base()
     said = st.session_state.pop("assign__said", "")
+    slot = st.empty()  # always there, so the expanders below keep their place (and stay open)
     if said:
-        st.success(plain(said))
+        slot.success(plain(said))
     st.markdown(f"Due {records.when_text(s.due, s.timezone)} · {s.attempts_allowed} attempts per answer · numbers "
                 f"within ±{s.tolerance * 100:g} % · late: {plain(s.late_rule())} · feedback: {s.feedback_rule()}"
                 f"{'; the answer after the last attempt' if s.answer_after_last else ''} · solution before the due "
@@ -688,7 +690,7 @@ def _gradebook(aid: int) -> None:
         if grant.extra_attempts:
             granted.append(f"+{grant.extra_attempts} attempts")
         row["extension"] = ", ".join(granted) or "—"
-        row["how"] = book.how(student.label)
+        row["how"] = book.how(student.label, labels)
         rows.append(row)
     st.table(rows)
     st.markdown(LEGEND)
@@ -751,10 +753,13 @@ def instructor_page() -> None:
                  "Practice pages still work. (Admin: check DL_DATABASE_URL and the database server.)")
         return
     try:
-        _new_assignment()
         show_archived = st.session_state.get("assign__archived", False)
         existing = records.assignments(archived=show_archived)
-        st.markdown("### Assignments")
+        with st.expander("New assignment", expanded=not existing or st.session_state.get("assign__drafting", False),
+                         icon=":material/add:"):
+            _new_assignment()
+        existing = records.assignments(archived=show_archived)  # with the one just created
+        st.markdown("### Your assignments")
         st.toggle("Show archived assignments", key="assign__archived")
         if not existing:
             st.markdown("No assignments yet." if not show_archived else "No assignments.")
