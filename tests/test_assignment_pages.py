@@ -64,6 +64,11 @@ def create(at: AppTest, roster: str = "label\ns01\ns02\n", before: bool = False,
     return at.button(key="assign__create").click().run()
 
 
+def widget(at: AppTest, prefix: str, suffix: str):
+    """The instructor page's widget whose key starts and ends so (the middle is the form's version)."""
+    return next(w for w in at.main if (k := getattr(w, "key", None) or "").startswith(prefix) and k.endswith(suffix))
+
+
 def gradebook_table(at: AppTest):
     return next(t.value for t in at.table if "student" in t.value.columns)
 
@@ -297,8 +302,8 @@ def test_a_title_naming_another_problem_is_flagged(course):
 def test_the_instructor_edits_closes_reopens_extends_and_undoes(course):
     aid, s, (ann, bob) = one_assignment()
     book = instructor()
-    book.number_input(key=f"assign__edit{aid}_attempts").set_value(5)
-    book.checkbox(key=f"assign__edit{aid}_hints").uncheck()
+    widget(book, f"assign__edit{aid}_", "_attempts").set_value(5)
+    widget(book, f"assign__edit{aid}_", "_hints").uncheck()
     book.button[[b.label for b in book.button].index("Save the changes")].click().run()
     assert any("attempts per answer 3 → 5" in m.value for m in book.success)
     assert records.assignment(aid).attempts_allowed == 5 and not records.assignment(aid).hints
@@ -309,14 +314,15 @@ def test_the_instructor_edits_closes_reopens_extends_and_undoes(course):
     assert any("closed" in w.value for w in page.warning) and records.attempt_count(aid) == 0
     book.button(key=f"assign__status_open_{aid}").click().run()
     assert records.assignment(aid).status == "open"
+    assert widget(instructor(), f"assign__edit{aid}_", "_attempts").value == 5
 
     # Bob: a day's extension and one extra attempt, from the page
     records.edit(aid, records.replace(records.assignment(aid), due=records.now() - dt.timedelta(hours=1)))
     book = instructor()
     book.selectbox(key=f"assign__grant{aid}_who").select("s02").run()
-    book.checkbox(key=f"assign__grant{aid}_extend_s02").check()
-    book.date_input(key=f"assign__grant{aid}_s02_due_day").set_value(dt.date.today() + dt.timedelta(days=2))
-    book.number_input(key=f"assign__grant{aid}_extra_s02").set_value(1)
+    widget(book, f"assign__grant{aid}_", "_extend_s02").check()
+    widget(book, f"assign__grant{aid}_", "_s02_due_day").set_value(dt.date.today() + dt.timedelta(days=2))
+    widget(book, f"assign__grant{aid}_", "_extra_s02").set_value(1)
     book.button[[b.label for b in book.button].index("Save for this student")].click().run()
     assert not book.exception
     standing = records.standing(bob)
@@ -335,6 +341,7 @@ def test_the_instructor_edits_closes_reopens_extends_and_undoes(course):
     assert not book.exception and any("Undone" in m.value for m in book.success)
     back = records.assignment(aid)
     assert back.attempts_allowed == 3 and back.hints and records.standing(bob).allowed == 4
+    assert widget(book, f"assign__edit{aid}_", "_attempts").value == 3  # the form shows what is stored
     closed = next(e for e in history if e.action == "closed")  # reopened since: refused, in words
     book.selectbox(key=f"assign__undo_pick{aid}").select(closed.id).run()
     book.button(key=f"assign__undo{aid}").click().run()

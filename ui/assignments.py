@@ -10,6 +10,7 @@ slip's name, a label) passes through ``literal``, and text through ``plain``."""
 from __future__ import annotations
 
 import datetime as dt
+import hashlib
 import re
 import urllib.parse
 import zoneinfo
@@ -544,8 +545,14 @@ def _status_actions(aid: int, s: records.Settings) -> None:
             st.rerun()
 
 
+def _version(*values) -> str:
+    """A short digest of what a form starts from: its widgets' keys carry it, so a form shown after
+    a change (an undo, another tab's edit) starts from the stored values, not from stale inputs."""
+    return hashlib.sha256(repr(values).encode()).hexdigest()[:8]
+
+
 def _edit(aid: int, s: records.Settings) -> None:
-    p = f"assign__edit{aid}_"
+    p = f"assign__edit{aid}_{_version(s)}_"
     with st.expander("Edit: due time, attempts, tolerance, late work, feedback, points"):
         with st.form(f"{p}form"):
             title = st.text_input("Title", s.title, max_chars=120, key=f"{p}title")
@@ -586,14 +593,14 @@ def _edit(aid: int, s: records.Settings) -> None:
 
 def _per_student(aid: int, book: records.Gradebook) -> None:
     s = book.settings
-    p = f"assign__grant{aid}_"
     labels = [st_.label for st_ in book.students if st_.seed >= 0]
     with st.expander("One student: an extension or extra attempts"):
         if not labels:
             st.markdown("No students yet.")
             return
-        who = st.selectbox("Student", labels, key=f"{p}who")
+        who = st.selectbox("Student", labels, key=f"assign__grant{aid}_who")
         grant = book.grants.get(who, records.Grant())
+        p = f"assign__grant{aid}_{_version(grant)}_"
         with st.form(f"{p}form"):
             extend = st.checkbox("An extension: a later due time for this student", grant.extended_due is not None,
                                  key=f"{p}extend_{who}")
