@@ -16,7 +16,7 @@ import os
 import sqlite3
 from pathlib import Path
 
-from sqlalchemy import (JSON, Boolean, DateTime, Float, ForeignKey, Integer, String, UniqueConstraint,
+from sqlalchemy import (JSON, Boolean, DateTime, Float, ForeignKey, Index, Integer, String, UniqueConstraint,
                         create_engine, event, make_url)
 from sqlalchemy.engine import Engine
 from sqlalchemy.pool import QueuePool
@@ -49,49 +49,82 @@ class Base(DeclarativeBase):
 
 class Assignment(Base):
     __tablename__ = "assignment"
+    __table_args__ = (Index("uq_assignment_fingerprint", "fingerprint", unique=True),)
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     title: Mapped[str] = mapped_column(String(120))
-    problem: Mapped[str] = mapped_column(String(40))
-    answers: Mapped[list] = mapped_column(JSON)  # the answer names that count, in the page's order
+    # The problems, in order: [{"problem": id, "answers": [name, ...], "weights": [number, ...]}]
+    parts: Mapped[list] = mapped_column(JSON)
     tolerance: Mapped[float] = mapped_column(Float)  # relative, for numbers
     due: Mapped[dt.datetime] = mapped_column(UTCDateTime)
     attempts_allowed: Mapped[int] = mapped_column(Integer)  # per answer
     solution_before_due: Mapped[bool] = mapped_column(Boolean)
     created: Mapped[dt.datetime] = mapped_column(UTCDateTime)
+    timezone: Mapped[str] = mapped_column(String(64), default="UTC")  # the instructor's, for times shown
+    status: Mapped[str] = mapped_column(String(16), default="open")  # open, closed, archived
+    late_policy: Mapped[str] = mapped_column(String(16), default="none")  # none, per_day, fixed
+    late_value: Mapped[float] = mapped_column(Float, default=0.0)  # the penalty per day, or the fraction kept
+    hints: Mapped[bool] = mapped_column(Boolean, default=True)  # a slip's hint shown to the student
+    slip_names: Mapped[bool] = mapped_column(Boolean, default=True)  # a slip named (without its hint)
+    answer_after_last: Mapped[bool] = mapped_column(Boolean, default=False)  # the value once attempts run out
+    # What makes a repeated "Create" the same assignment (title, problems, due): unique.
+    fingerprint: Mapped[str | None] = mapped_column(String(64), nullable=True)
 
 
 class Student(Base):
-    """One roster line: a label (the instructor's opaque code) and its variant."""
+    """One roster line: a label (the instructor's opaque code), its variant, and what the
+    instructor granted this student alone."""
     __tablename__ = "student"
     __table_args__ = (UniqueConstraint("assignment_id", "label"),)
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
     label: Mapped[str] = mapped_column(String(40))
     seed: Mapped[int] = mapped_column(Integer)
+    extended_due: Mapped[dt.datetime | None] = mapped_column(UTCDateTime, nullable=True)  # an extension
+    extra_attempts: Mapped[int] = mapped_column(Integer, default=0)  # per answer, on top of the rule
 
 
 class Attempt(Base):
+    """An answer the judge could read (a typo is never one), as the student gave it."""
     __tablename__ = "attempt"
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
     label: Mapped[str] = mapped_column(String(40))
+    problem: Mapped[str] = mapped_column(String(40))
     answer: Mapped[str] = mapped_column(String(40))
     typed: Mapped[str] = mapped_column(String(400))
     correct: Mapped[bool] = mapped_column(Boolean)
     message: Mapped[str] = mapped_column(String(1000))  # what the student was told
     slip: Mapped[str] = mapped_column(String(400), default="")  # the slip named, if any
     at: Mapped[dt.datetime] = mapped_column(UTCDateTime)
-    late: Mapped[bool] = mapped_column(Boolean)  # after the due time: kept, does not count
-    solution_shown: Mapped[bool] = mapped_column(Boolean)  # the student had seen the solution
+    # After the due time in force when it was made. What counts is decided when reading, against
+    # the due time and the student's extension as they are then (an extension applies to the past).
+    late: Mapped[bool] = mapped_column(Boolean)
+    solution_shown: Mapped[bool] = mapped_column(Boolean)  # the student had seen this problem's solution
 
 
 class Reveal(Base):
-    """A student asked for the solution (attempts after it are marked)."""
+    """A student asked for a problem's solution (their attempts at it after that are marked)."""
     __tablename__ = "reveal"
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
     label: Mapped[str] = mapped_column(String(40))
+    problem: Mapped[str] = mapped_column(String(40))
     at: Mapped[dt.datetime] = mapped_column(UTCDateTime)
+
+
+class Change(Base):
+    """Every change an instructor made to an assignment, with its time: what it was before and
+    after (so it can be undone), kept for the gradebook's history."""
+    __tablename__ = "assignment_change"
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
+    at: Mapped[dt.datetime] = mapped_column(UTCDateTime)
+    action: Mapped[str] = mapped_column(String(40))  # created, edited, closed, reopened, archived, extension, ...
+    label: Mapped[str] = mapped_column(String(40), default="")  # the student, for a per-student change
+    summary: Mapped[str] = mapped_column(String(1000))  # in plain words
+    before: Mapped[dict] = mapped_column(JSON)
+    after: Mapped[dict] = mapped_column(JSON)
+    undoes: Mapped[int | None] = mapped_column(Integer, nullable=True)  # the change this one undid
 
 
 def database_url() -> str:

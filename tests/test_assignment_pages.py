@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import csv
 import io
+import datetime as dt
 import math
 from pathlib import Path
 
@@ -46,13 +47,30 @@ def instructor(*, key: bool = True) -> AppTest:
     return at
 
 
-def create(at: AppTest, roster: str = "label\ns01\ns02\n", before: bool = False) -> AppTest:
-    at.selectbox(key="assign__problem").select("pendulum_rebound").run()
-    at.text_input(key="assign__title").input("Week 9: the bounce")
+def create(at: AppTest, roster: str = "label\ns01\ns02\n", before: bool = False, title: str = "Week 9: the bounce",
+           problems=("pendulum_rebound",), **settings) -> AppTest:
+    """Fill in the new assignment (the problems first, as an instructor would) and press Create."""
+    at.multiselect(key="assign__problems").set_value(list(problems)).run()
+    at.text_input(key="assign__title").input(title)
     at.text_area(key="assign__roster").input(roster)
     if before:
         at.checkbox(key="assign__before").check()
-    return next(b for b in at.button if b.label.startswith("Create the assignment")).click().run()
+    at.run()
+    for key, value in settings.items():  # one at a time: a choice may bring the next input
+        widget = next(w for w in at.main if getattr(w, "key", None) == f"assign__{key}")
+        widget.set_value(value).run()
+    if at.button(key="assign__create").disabled:  # flagged: the test reads why
+        return at
+    return at.button(key="assign__create").click().run()
+
+
+def widget(at: AppTest, prefix: str, suffix: str):
+    """The instructor page's widget whose key starts and ends so (the middle is the form's version)."""
+    return next(w for w in at.main if (k := getattr(w, "key", None) or "").startswith(prefix) and k.endswith(suffix))
+
+
+def gradebook_table(at: AppTest):
+    return next(t.value for t in at.table if "student" in t.value.columns)
 
 
 def student(query: dict) -> AppTest:
@@ -92,11 +110,11 @@ def test_an_assignment_end_to_end(course):
     assert not page.exception and "Week 9: the bounce" in page.info[0].value
     assert "Fixed by your assignment link" in page.sidebar.markdown[-1].value
     assert not any(b.label == "Show the solution" for b in page.button)  # not before the due time
-    assert any("opens at the due time" in m.value for m in page.markdown)
+    assert any("opens at your due time" in m.value for m in page.markdown)
     answer(page, "theta_rebound", "1")
     assert any("Recorded: attempt 1 of 3" in i.value for i in page.info)
     answer(page, "theta_rebound", rebound_in_degrees(ann))
-    assert any("attempt 2 of 3" in i.value and "it counts" in i.value for i in page.info)
+    assert any("attempt 2 of 3" in i.value and "it counts" in i.value for i in page.success)
     table = page.table[-1].value
     assert list(table["#"]) == [1, 2] and list(table["counts"]) == ["no", "yes"]
 
@@ -107,11 +125,11 @@ def test_an_assignment_end_to_end(course):
 
     # The gradebook, on screen and as CSV.
     book = instructor()
-    shown = book.table[-1].value
+    shown = gradebook_table(book)
     assert list(shown["student"]) == ["s01", "s02"] and list(shown["score"]) == ["1 / 6", "0 / 6"]
     assert records.attempt_count(aid) == 2
     rows = list(csv.DictReader(io.StringIO(records.gradebook_csv(records.gradebook(aid)))))
-    assert rows[0]["theta_rebound:first_right_attempt"] == "2" and rows[1]["theta_rebound:attempts"] == "0"
+    assert rows[0]["theta_rebound:earned_at_attempt"] == "2" and rows[1]["theta_rebound:attempts_used"] == "0"
 
 
 def test_a_link_cannot_change_the_numbers_it_was_issued_with(course):
@@ -141,15 +159,16 @@ def test_with_the_database_down_practice_works_unrecorded(course, monkeypatch):
 
 def test_what_a_student_typed_is_shown_as_plain_text(course):
     """st.table renders its cells as Markdown: a typed image or link would load or be clickable on
-    the page of whoever opens the link. The cell holds every punctuation mark escaped (typed here)."""
+    the page of whoever opens the link. Such text is unreadable, so never recorded; what is recorded
+    (a readable answer, here with Markdown's emphasis marks) is shown with every mark escaped."""
     create(instructor())
     ann = records.roster(records.assignments()[0][0])[0]
     page = answer(student(link_query(ann)), "theta_rebound",
                   "![x](https://attacker.example/p.png) [**click**](https://evil.example)")
-    assert not page.exception
+    assert not page.exception and not page.table and records.attempt_count(ann.assignment_id) == 0
+    page = answer(page, "theta_rebound", "1*2*3")
     typed = page.table[-1].value["you typed"].iloc[-1]
-    assert typed == (r"\!\[x\]\(https\:\/\/attacker\.example\/p\.png\) "
-                     r"\[\*\*click\*\*\]\(https\:\/\/evil\.example\)")
+    assert typed == r"1\*2\*3"
 
 
 def givens(page: AppTest) -> list[str]:
@@ -169,3 +188,222 @@ def test_a_plain_variant_link_is_not_the_assignment(course):
     assert len(givens(signed)) == len(givens(plain_link)) > 3
     assert givens(signed) != givens(plain_link)
     assert str(ann.seed) not in "".join(m.value for m in signed.sidebar.markdown)  # no number to reuse
+
+
+# -- issue 26: typos cost nothing, late work is visible, every slip is undoable
+
+def one_assignment(**settings):
+    """An assignment created on the instructor's page; its id, settings and roster."""
+    create(instructor(), **settings)
+    aid, s = records.assignments()[0]
+    return aid, s, records.roster(aid)
+
+
+def page_text(at: AppTest) -> str:
+    return "\n".join(e.value for kind in (at.markdown, at.info, at.warning, at.error, at.success)
+                     for e in kind if isinstance(e.value, str)).replace("\\", "")  # Markdown's escapes
+
+
+def test_a_typo_costs_no_attempt_and_the_icon_matches_the_verdict(course):
+    """``hello``, ``w`` for ω and an unclosed bracket were each "Recorded: attempt n of 3" under a
+    check-mark: they are explained, never recorded, and the right answer after them is attempt 1."""
+    aid, _, (ann, _) = one_assignment()
+    page = student(link_query(ann))
+    for typo in ("hello", "w", "(1 + 2", "3 kg"):
+        page = answer(page, "theta_rebound", typo)
+        assert not page.exception
+        assert any("not counted as an attempt" in w.value for w in page.warning), typo
+        assert not any("Recorded" in e.value for kind in (page.info, page.success, page.warning) for e in kind)
+    assert records.attempt_count(aid) == 0
+    page = answer(page, "theta_rebound", "1")
+    recorded = next(i for i in page.info if "Recorded: attempt 1 of 3" in i.value)
+    assert recorded.icon == ":material/cancel:" and page.error[0].icon == ":material/cancel:"
+    page = answer(page, "theta_rebound", "1")  # the same answer again: not a second attempt
+    assert any("not counted again" in i.value for i in page.info) and records.attempt_count(aid) == 1
+    page = answer(page, "theta_rebound", rebound_in_degrees(ann))
+    right = next(s for s in page.success if "Recorded: attempt 2 of 3" in s.value)
+    assert "it counts" in right.value and right.icon == ":material/task_alt:"
+    assert "Highest angle after the bounce done (right)" in page.info[0].value.replace("\\", "")
+
+
+def test_the_banner_tells_one_story(course):
+    """Graded, what counts, attempts left, the due time, when the solution opens; and no "Practice,
+    not a proctored assessment … hidden until you ask" under it."""
+    _, s, (ann, _) = one_assignment()
+    page = student(link_query(ann))
+    banner = page.info[0].value
+    for said in ("Graded assignment: Week 9: the bounce", "What counts", "costs no attempt", "Attempts left",
+                 f"Due {records.when_text(s.due, 'UTC')}", "The solution** opens at your due time",
+                 "earns no points"):
+        assert said in banner, said
+    assert "not a proctored assessment" not in page_text(page)
+    assert "until you ask for it" not in page_text(page)
+
+
+def test_right_but_late_reads_as_right_but_late_everywhere(course):
+    aid, s, (ann, bob) = one_assignment()
+    records.edit(aid, records.replace(s, due=records.now() - dt.timedelta(hours=2)))
+    page = answer(student(link_query(ann)), "theta_rebound", rebound_in_degrees(ann))
+    said = next(w.value for w in page.warning if "Recorded" in w.value)
+    assert "Right, but it earns no points" in said and "right but late" in said
+    assert "has passed" in page.info[0].value or "has passed" in page.warning[0].value
+    mine = "\n".join(m.value for m in page.markdown).replace("\\", "")
+    assert "right but 2 h late (attempt 1): no credit" in mine  # was "not yet right; 2 of 3 attempts left"
+    book = instructor()
+    row = gradebook_table(book).iloc[0]
+    assert row["Highest angle after the bounce"].startswith("right but") and row["score"] == "0 / 6"
+    assert "got it right after the due time (no late credit)" in page_text(book)  # was "0 of 1 got it right"
+
+
+def test_late_credit_is_set_on_the_page_and_explained(course):
+    aid, s, (ann, _) = one_assignment(late_policy="per_day", late_per_day=25.0)
+    assert s.late_policy == "per_day" and s.late_value == 0.25
+    records.edit(aid, records.replace(s, due=records.now() - dt.timedelta(hours=30)))
+    page = answer(student(link_query(ann)), "theta_rebound", rebound_in_degrees(ann))
+    assert any("earns 50 % of its points (late credit)" in w.value for w in page.warning)
+    row = gradebook_table(instructor()).iloc[0]
+    assert row["score"] == "0.5 / 6" and row["how"] == "Highest angle after the bounce 1 × 50 % (late) = 0.5 of 6"
+
+
+def test_create_twice_or_after_a_reload_makes_one_assignment(course):
+    at = create(instructor())
+    at.button(key="assign__create").click().run()  # a second click
+    assert any("already created" in i.value for i in at.info)
+    again = create(instructor())  # a reload: a new session, the same form
+    assert any("exists already" in i.value for i in again.info)
+    assert len(records.assignments()) == 1
+
+
+@pytest.mark.parametrize("change, flagged", [
+    ({"roster": "s01\ns02\ns01\n"}, "Repeated label: s01 (lines 1 and 3)"),
+    ({"roster": "s01\n" + "x" * 140_000 + "\n"}, "too long"),
+    ({"roster": 's01\n"' + "x" * 140_000}, "too long"),
+    ({"roster": "s01\nJane Doe\n"}, "Line 2"),
+    ({"due_day": dt.date(2020, 1, 1)}, "is already past"),
+    ({"roster": ""}, "Paste or upload a roster"),
+])
+def test_bad_input_is_flagged_before_creating(course, change, flagged):
+    at = create(instructor(), **change)
+    assert not at.exception
+    assert any(flagged in e.value.replace("\\", "") for e in at.error), [e.value for e in at.error]
+    assert at.button(key="assign__create").disabled and records.assignments() == []
+
+
+def test_a_title_naming_another_problem_is_flagged(course):
+    """"Week 13: ladder" became a disk assignment (the picker sat outside the form)."""
+    at = create(instructor(), title="Week 13: ladder", problems=("disk_wall",))
+    assert any("“ladder”" in w.value and "Ladder sliding" in w.value for w in at.warning)
+    assert at.button(key="assign__create").disabled and records.assignments() == []
+    at.checkbox(key="assign__confirm").check().run()
+    at.button(key="assign__create").click().run()
+    assert records.assignments()[0][1].problems == ("disk_wall",)
+
+
+def test_the_instructor_edits_closes_reopens_extends_and_undoes(course):
+    aid, s, (ann, bob) = one_assignment()
+    book = instructor()
+    widget(book, f"assign__edit{aid}_", "_attempts").set_value(5)
+    widget(book, f"assign__edit{aid}_", "_hints").uncheck()
+    book.button[[b.label for b in book.button].index("Save the changes")].click().run()
+    assert any("attempts per answer 3 → 5" in m.value for m in book.success)
+    assert records.assignment(aid).attempts_allowed == 5 and not records.assignment(aid).hints
+
+    book.button(key=f"assign__status_closed_{aid}").click().run()
+    assert records.assignment(aid).status == "closed"
+    page = answer(student(link_query(ann)), "theta_rebound", "1")
+    assert any("closed" in w.value for w in page.warning) and records.attempt_count(aid) == 0
+    book.button(key=f"assign__status_open_{aid}").click().run()
+    assert records.assignment(aid).status == "open"
+    assert widget(instructor(), f"assign__edit{aid}_", "_attempts").value == 5
+
+    # Bob: a day's extension and one extra attempt, from the page
+    records.edit(aid, records.replace(records.assignment(aid), due=records.now() - dt.timedelta(hours=1)))
+    book = instructor()
+    book.selectbox(key=f"assign__grant{aid}_who").select("s02").run()
+    widget(book, f"assign__grant{aid}_", "_extend_s02").check()
+    widget(book, f"assign__grant{aid}_", "_s02_due_day").set_value(dt.date.today() + dt.timedelta(days=2))
+    widget(book, f"assign__grant{aid}_", "_extra_s02").set_value(1)
+    book.button[[b.label for b in book.button].index("Save for this student")].click().run()
+    assert not book.exception
+    standing = records.standing(bob)
+    assert standing.allowed == 6 and standing.due > records.now()
+    page = answer(student(link_query(bob)), "theta_rebound", rebound_in_degrees(bob))
+    assert any("it counts" in m.value for m in page.success) and "(your extension)" in page.info[0].value
+
+    history = records.history(aid)
+    assert [e.action for e in history][:4] == ["student", "edited", "reopened", "closed"]
+    book = instructor()
+    shown = next(t.value for t in book.table if "change" in t.value.columns)
+    assert len(shown) == len(history) and "s02" in shown["what"].iloc[0]
+    first_edit = history[-2]  # attempts 3 → 5, hints off
+    book.selectbox(key=f"assign__undo_pick{aid}").select(first_edit.id).run()
+    book.button(key=f"assign__undo{aid}").click().run()
+    assert not book.exception and any("Undone" in m.value for m in book.success)
+    back = records.assignment(aid)
+    assert back.attempts_allowed == 3 and back.hints and records.standing(bob).allowed == 4
+    assert widget(book, f"assign__edit{aid}_", "_attempts").value == 3  # the form shows what is stored
+    closed = next(e for e in history if e.action == "closed")  # reopened since: refused, in words
+    book.selectbox(key=f"assign__undo_pick{aid}").select(closed.id).run()
+    book.button(key=f"assign__undo{aid}").click().run()
+    assert any("changed since" in e.value for e in book.error) and records.assignment(aid).status == "open"
+
+
+def slip_value(params: dict) -> str:
+    """The rebound angle (degrees) that the e-for-e² slip gives at these givens."""
+    from practice.judge import Judge
+
+    slip = next(m for m in pendulum_rebound.MISTAKES if m.answer == "theta_rebound")
+    solution = pendulum_rebound.solve(**params)
+    judge = Judge(solution, pendulum_rebound.derivation_of(solution), pendulum_rebound.ANSWERS)
+    return f"{math.degrees(judge._value_of(slip.wrong(dict(solution.params)))):.5f}"
+
+
+def test_feedback_policy_per_assignment_and_practice_keeps_its_hints(course):
+    from tests.test_records import E_FOR_E2
+
+    aid, s, (ann, _) = one_assignment()
+    typed = slip_value(parameters(ann, pendulum_rebound, "pendulum_rebound"))
+    page = answer(student(link_query(ann)), "theta_rebound", typed)
+    assert E_FOR_E2 in page.error[0].value  # hints on: as in Practice
+    records.edit(aid, records.replace(s, hints=False))
+    page = answer(student(link_query(ann)), "theta_rebound", typed[:-1])
+    said = page.error[0].value.replace("\\", "")
+    assert E_FOR_E2.split(":")[1].strip()[:20] not in said and "e where e² belongs" in said  # named, no hint
+    records.edit(aid, records.replace(records.assignment(aid), slip_names=False))
+    page = answer(student(link_query(ann)), "theta_rebound", typed[:-2])
+    assert page.error[0].value.startswith("Not right. Check each step")
+    practice = AppTest.from_file(str(ROOT / "pages" / "pendulum_rebound.py"), default_timeout=60)
+    practice.query_params.update({"practice": "1"})
+    practice = answer(practice.run(), "theta_rebound", slip_value(pendulum_rebound.solve().params))
+    assert E_FOR_E2 in practice.error[0].value  # Practice keeps today's feedback
+
+
+def test_the_answer_after_the_last_attempt(course):
+    aid, s, (ann, _) = one_assignment()
+    records.edit(aid, records.replace(s, attempts_allowed=1, answer_after_last=True))
+    page = answer(student(link_query(ann)), "theta_rebound", "1")
+    expected = units.format_quantity(pendulum_rebound.solve(**parameters(ann, pendulum_rebound, "pendulum_rebound"))
+                                     .answers["theta_rebound"], "angle")
+    assert any("used every attempt" in i.value and expected in i.value for i in page.info)
+
+
+def test_a_problem_set_is_one_assignment_with_one_score(course):
+    from solvers import disk_wall
+
+    aid, s, (ann, _) = one_assignment(problems=("pendulum_rebound", "disk_wall"), title="Week 9: two impacts")
+    assert s.problems == ("pendulum_rebound", "disk_wall") and s.out_of == 6 + 7
+    page = student(link_query(ann))
+    assert "This assignment has 2 problems" in page_text(page)
+    other = AppTest.from_file(str(ROOT / "pages" / "disk_wall.py"), default_timeout=60)
+    other.query_params.update(link_query(ann))
+    other.run()
+    assert not other.exception and "Graded assignment" in other.info[0].value
+    value = disk_wall.solve(**parameters(ann, disk_wall, "disk_wall")).answers["v1x"]
+    names = [a.name for a in disk_wall.ANSWERS]
+    other.selectbox(key="disk_wall__attempt_answer").select_index(names.index("v1x"))
+    other.text_input(key="disk_wall__attempt").input(f"{units.to_display(value, 'speed'):.6g}")
+    other.button(key="disk_wall__check").click().run()
+    assert any("it counts" in m.value for m in other.success)
+    answer(page, "theta_rebound", rebound_in_degrees(ann))
+    row = gradebook_table(instructor()).iloc[0]
+    assert row["score"] == "2 / 13"

@@ -1,17 +1,27 @@
-"""Assignments in Chromium, as an instructor and two students meet them: the instructor enters the
-key, creates an assignment from a roster and downloads the links; two students open their links
-(one on a phone), answer and see each attempt recorded; a tampered link is refused; the gradebook
-shows both and downloads as CSV. axe-core finds no serious or critical WCAG 2.1 A/AA issue on
-either page, and each is shot at 1400×1000, 1280×720 and 390×844 into screenshots/assignments/."""
+"""Assignments in Chromium, end to end, as an instructor and three students meet them (issue 26).
+
+The instructor enters the key, creates an assignment for three students (the disk and the wall,
+a penalty of 20 % per day late), presses Create a second time (nothing is added), downloads the
+links. Ann (a phone, in Tokyo) makes two typos, which cost nothing, then answers right, on time.
+Bea (Berlin) answers wrong, then the same wrong answer again (counted once). The instructor then
+moves the due time to a minute ago and gives Cem an extension; Bea answers right, late (80 %);
+Cem (New York) makes a typo and answers right within his extension (full points). Each student's
+banner shows the due time in their own time zone; the gradebook, its CSV, the Canvas CSV, the
+attempts CSV and each student's own page agree. A tampered link is refused. axe-core finds no
+serious or critical WCAG 2.1 A/AA issue on either page, and each is shot at 1400×1000, 1280×720
+and 390×844 into screenshots/assignments/."""
 from __future__ import annotations
 
 import csv
+import datetime as dt
 import io
 import os
+import re
 from pathlib import Path
 
 import pytest
 
+from assignments import records
 from scripts.live_app import CHROMIUM, running_app, wait_until_idle
 from solvers import disk_wall
 from practice.variants import ASSIGNMENT, variant
@@ -21,6 +31,7 @@ pytestmark = pytest.mark.browser
 SHOTS = Path(__file__).resolve().parent.parent / "screenshots" / "assignments"
 KEY, SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
 SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844)}
+TITLE = "Week 6: the disk and the wall"
 
 if not Path(CHROMIUM).exists():
     if os.environ.get("CI"):
@@ -50,8 +61,17 @@ def no_sideways_scroll(page) -> bool:
     return page.evaluate("document.documentElement.scrollWidth <= window.innerWidth + 1")
 
 
-def at_size(browser, url: str, size: str):
-    return open_page(browser, url, *SIZES[size], phone=size == "phone")
+def open_at(browser, url: str, size: str, zone: str):
+    """A fresh context at this viewport and time zone, the page opened and idle, and its script errors."""
+    width, height = SIZES[size]
+    extra = {"is_mobile": True, "has_touch": True, "device_scale_factor": 2} if size == "phone" else {}
+    context = browser.new_context(viewport={"width": width, "height": height}, timezone_id=zone, **extra)
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    page.goto(url)
+    wait_until_idle(page)
+    return context, page, errors
 
 
 def wait_for_text(page, text: str) -> None:
@@ -59,76 +79,193 @@ def wait_for_text(page, text: str) -> None:
     wait_until_idle(page)
 
 
-def check(page, typed: str) -> None:
+def main_text(page) -> str:
+    return page.locator("[data-testid='stMain']").inner_text()
+
+
+def check(page, typed: str, expect: str) -> str:
+    """Type an answer, press Check, wait for ``expect``; the page's main text."""
     page.get_by_label("Your answer", exact=True).fill(typed)
     page.get_by_role("button", name="Check").click()
-    wait_for_text(page, "Recorded: attempt")
+    wait_for_text(page, expect)
+    return main_text(page)
 
 
-def test_an_assignment_in_the_browser(browser, course_url):
-    # The instructor: key, new assignment (the disk and the wall, two students), the links as CSV.
-    context, page, errors = at_size(browser, f"{course_url}/gradebook", "laptop")
+def v1x(row: dict, sign: float = 1.0) -> str:
+    value = disk_wall.solve(**variant(disk_wall, "disk_wall", int(row["seed"]), ASSIGNMENT)).answers["v1x"]
+    return f"{sign * units.to_display(value, 'speed'):.5g}"
+
+
+def enter_key(page) -> None:
     page.get_by_label("Instructor key", exact=True).fill(KEY)
     page.get_by_label("Instructor key", exact=True).press("Enter")
-    wait_for_text(page, "New assignment")
-    page.get_by_label("Title", exact=True).fill("Week 6: the disk and the wall")
-    page.get_by_label("Roster: one student label per line").fill("s01\ns02")
-    page.get_by_role("button", name="Create the assignment and its links").click()
-    wait_for_text(page, "created for 2 students")
-    with page.expect_download() as download:
-        page.get_by_role("button", name="Download the links (CSV)").click()
-    links = list(csv.DictReader(io.StringIO(Path(download.value.path()).read_text())))
-    assert [row["label"] for row in links] == ["s01", "s02"]
-    assert all(row["link"].startswith(f"{course_url}/disk_wall?assignment=") for row in links)
+    wait_until_idle(page)
 
-    # Two students: the first on a phone (right), the second on a laptop (a slip).
-    for row, size, right in ((links[0], "phone", True), (links[1], "laptop", False)):
-        sctx, spage, serrors = at_size(browser, row["link"], size)
-        wait_for_text(spage, "Week 6: the disk and the wall")
-        value = disk_wall.solve(**variant(disk_wall, "disk_wall", int(row["seed"]), ASSIGNMENT)).answers["v1x"]
-        typed = f"{units.to_display(value, 'speed'):.5g}" if right else f"{-units.to_display(value, 'speed'):.5g}"
-        check(spage, typed)
-        assert ("and it counts" in spage.inner_text("body")) == right
-        wait_for_text(spage, "Your attempts")
-        assert no_sideways_scroll(spage), size
-        if right:
-            for name in SIZES:
-                spage.set_viewport_size(dict(zip(("width", "height"), SIZES[name])))
-                spage.wait_for_timeout(400)
-                spage.get_by_text("Recorded: attempt").first.scroll_into_view_if_needed()
-                shoot(spage, f"student-{name}")
-            spage.set_viewport_size(dict(zip(("width", "height"), SIZES[size])))
-        assert serious_violations(spage) == [], size
-        assert not serrors
-        sctx.close()
+
+def choose(page, label: str, option: str) -> None:
+    """Pick an option of a Streamlit selectbox or multiselect by typing it."""
+    page.get_by_role("combobox", name=label).first.click()
+    page.keyboard.type(option)
+    page.get_by_role("option", name=option, exact=True).first.click()
+    page.keyboard.press("Escape")
+    wait_until_idle(page)
+
+
+def segment(scope, label: str, digits: str) -> None:
+    """Type into one segment of a date or time field (year, month, day; hour, minute)."""
+    box = scope.get_by_role("spinbutton", name=label, exact=True)
+    box.click()
+    box.page.keyboard.type(digits)
+
+
+def download(page, button: str) -> str:
+    with page.expect_download() as done:
+        page.get_by_role("button", name=button).click()
+    return Path(done.value.path()).read_text()
+
+
+def banner(page) -> str:
+    return page.locator("[data-testid='stAlert']").filter(has_text="Graded assignment").first.inner_text()
+
+
+def test_an_assignment_end_to_end(browser, course_url):
+    # The instructor (New York): the key, a new assignment in UTC, 20 % per day late, three students.
+    context, page, errors = open_at(browser, f"{course_url}/gradebook", "laptop", "America/New_York")
+    enter_key(page)
+    wait_for_text(page, "New assignment")
+    page.get_by_label("Title", exact=True).fill(TITLE)
+    page.get_by_label("Title", exact=True).press("Enter")
+    wait_until_idle(page)
+    choose(page, "Problems (one, or several", "Spinning disk hits a rough wall")
+    choose(page, "Time zone for the due time", "UTC")
+    page.get_by_text("A penalty per day late").click()
+    wait_until_idle(page)
+    page.get_by_label("Penalty per started day late (%)").fill("20")
+    page.get_by_label("Penalty per started day late (%)").press("Enter")
+    page.get_by_label("Roster: one student label per line").fill("s01\ns02\ns03\ns02")
+    page.get_by_label("Roster: one student label per line").press("Control+Enter")
+    wait_for_text(page, "Repeated label: s02 (lines 2 and 4)")  # flagged before creating
+    assert page.get_by_role("button", name="Create the assignment and its links").is_disabled()
+    page.get_by_label("Roster: one student label per line").fill("s01\ns02\ns03")
+    page.get_by_label("Roster: one student label per line").press("Control+Enter")
+    wait_for_text(page, "3 students")
+    page.get_by_role("button", name="Create the assignment and its links").click()
+    wait_for_text(page, "created for 3 students")
+    page.get_by_role("button", name="Create the assignment and its links").click()  # a second click
+    wait_for_text(page, "was already created")
+    assert len(records_of(page)) == 1
+    links = list(csv.DictReader(io.StringIO(download(page, "Download the links (CSV)"))))
+    assert [row["label"] for row in links] == ["s01", "s02", "s03"]
+    assert all(row["link"].startswith(f"{course_url}/disk_wall?assignment=") for row in links)
+    ann, bea, cem = links
+    due_text = re.search(r"Due (\w{3} \d+ \w{3} \d{4}, \d\d:\d\d UTC)", main_text(page)).group(1)
+    due = dt.datetime.strptime(due_text, "%a %d %b %Y, %H:%M UTC").replace(tzinfo=dt.timezone.utc)
+
+    # Ann, on a phone in Tokyo: two typos cost nothing, then right, on time.
+    actx, apage, aerrors = open_at(browser, ann["link"], "phone", "Asia/Tokyo")
+    wait_for_text(apage, "Graded assignment")
+    assert f"Due {records.when_text(due, 'Asia/Tokyo')}" in banner(apage) and "your time zone" in banner(apage)
+    assert "not a proctored assessment" not in main_text(apage)
+    for typo in ("hello", "w"):
+        text = check(apage, typo, "This is not counted as an attempt")
+        assert "Recorded" not in text
+    text = check(apage, v1x(ann), "Right, and it counts")
+    assert "attempt 1 of 3" in text and "Velocity after, along the wall done (right)" in banner(apage)
+    for name in SIZES:
+        apage.set_viewport_size(dict(zip(("width", "height"), SIZES[name])))
+        apage.wait_for_timeout(400)
+        apage.get_by_text("Right, and it counts").first.scroll_into_view_if_needed()
+        shoot(apage, f"student-{name}")
+    apage.set_viewport_size(dict(zip(("width", "height"), SIZES["phone"])))
+    assert no_sideways_scroll(apage)
+    assert serious_violations(apage) == []
+
+    # Bea, in Berlin: wrong (the sign), the same again (counted once).
+    bctx, bpage, berrors = open_at(browser, bea["link"], "laptop", "Europe/Berlin")
+    wait_for_text(bpage, "Graded assignment")
+    assert f"Due {records.when_text(due, 'Europe/Berlin')}" in banner(bpage)
+    check(bpage, v1x(bea, -1), "Recorded: attempt 1 of 3")
+    check(bpage, v1x(bea, -1), "not counted again")
+
+    # The instructor moves the due time to the start of this minute (after Ann's answer), and gives
+    # Cem an extension of two days.
+    page.wait_for_timeout(max(0, 61 - dt.datetime.now(dt.timezone.utc).second) * 1000)
+    moment = dt.datetime.now(dt.timezone.utc).replace(second=0, microsecond=0)
+    page.get_by_text("Edit: due time, attempts").click()
+    edit = page.locator("[data-testid='stExpander']").filter(has_text="Save the changes")
+    for part, value in (("year", "%Y"), ("month", "%m"), ("day", "%d")):
+        segment(edit, f"{part}, Due date (UTC)", moment.strftime(value))
+    for part, value in (("hour", "%H"), ("minute", "%M")):
+        segment(edit, f"{part}, Due time (UTC)", moment.strftime(value))
+    page.get_by_role("button", name="Save the changes").click()
+    wait_for_text(page, "Saved: due time")
+    page.get_by_text("One student: an extension or extra attempts").click()
+    choose(page, "Student", "s03")
+    page.get_by_text("An extension: a later due time for this student").click()
+    page.get_by_role("button", name="Save for this student").click()
+    wait_for_text(page, "Saved: s03")
+
+    # Bea: right, late: 80 % (one started day, 20 %).
+    bpage.reload()
+    wait_for_text(bpage, "Graded assignment")
+    assert "has passed" in banner(bpage)
+    text = check(bpage, v1x(bea), "late credit")
+    assert "earns 80 % of its points" in text
+    assert "Your score so far: 0.8 of 7 points" in banner(bpage)
+
+    # Cem, in New York: a typo, then right within his extension.
+    cctx, cpage, cerrors = open_at(browser, cem["link"], "laptop", "America/New_York")
+    wait_for_text(cpage, "Graded assignment")
+    assert "(your extension)" in banner(cpage) and "has passed" not in banner(cpage)
+    check(cpage, "(1 + 2", "This is not counted as an attempt")
+    text = check(cpage, v1x(cem), "Right, and it counts")
+    assert "attempt 1 of 3" in text
 
     # A tampered link (another variant): refused, in plain words.
-    tampered = links[1]["link"].replace(f"seed={links[1]['seed']}", f"seed={links[0]['seed']}")
-    tctx, tpage, _ = at_size(browser, tampered, "laptop")
+    tampered = bea["link"].replace(f"seed={bea['seed']}", f"seed={ann['seed']}")
+    tctx, tpage, _ = open_at(browser, tampered, "laptop", "UTC")
     wait_for_text(tpage, "changed since your instructor issued it")
     assert tpage.get_by_role("button", name="Check").count() == 0
     tctx.close()
 
-    # The gradebook, then its CSV.
-    page.reload()  # a new session: the key is asked again
-    page.get_by_label("Instructor key", exact=True).fill(KEY)
-    page.get_by_label("Instructor key", exact=True).press("Enter")
-    wait_until_idle(page)
+    # The gradebook, its CSVs and each student's page agree.
+    page.reload()
+    enter_key(page)
     page.get_by_role("button", name="Download the gradebook (CSV)").wait_for(timeout=60_000)
-    body = page.inner_text("body")
-    assert "1 / 7" in body and "0 / 7" in body and "named the slip" in body
-    with page.expect_download() as download:
-        page.get_by_role("button", name="Download the gradebook (CSV)").click()
-    book = list(csv.DictReader(io.StringIO(Path(download.value.path()).read_text())))
-    assert [(r["label"], r["score"]) for r in book] == [("s01", "1"), ("s02", "0")]
+    body = main_text(page)
+    assert "right at attempt 1" in body and "late (attempt 1): 80 % credit" in body
+    assert "Velocity after, along the wall 1 × 80 % (late) = 0.8 of 7" in body  # how the score was computed
+    assert "Reading the gradebook" in body and "History" in body
+    book = list(csv.DictReader(io.StringIO(download(page, "Download the gradebook (CSV)"))))
+    assert [(r["label"], r["score"], r["v1x:points"]) for r in book] == [("s01", "1", "1"), ("s02", "0.8", "0.8"),
+                                                                           ("s03", "1", "1")]
+    assert book[1]["late_answers"] == "1" and book[2]["extension_until_utc"]
+    canvas = list(csv.reader(io.StringIO(download(page, "Grades for Canvas (CSV)"))))
+    assert canvas[1][0] == "Points Possible" and canvas[1][-1] == "7"
+    assert [(r[2], r[-1]) for r in canvas[2:]] == [("s01", "1"), ("s02", "0.8"), ("s03", "1")]
+    attempts = list(csv.DictReader(io.StringIO(download(page, "Download every attempt (CSV)"))))
+    assert len(attempts) == 4  # no typo, no repeat: Ann 1, Bea 2, Cem 1
+    assert float(attempts[1]["typed"]) < 0  # a typed number opens as a number (it was '-1.2)
+    for student_page, score in ((apage, "1 of 7"), (bpage, "0.8 of 7"), (cpage, "1 of 7")):
+        student_page.reload()
+        wait_for_text(student_page, "Graded assignment")
+        assert f"Your score so far: {score} points" in banner(student_page)
     assert serious_violations(page) == []
     for name in SIZES:
         page.set_viewport_size(dict(zip(("width", "height"), SIZES[name])))
         page.wait_for_timeout(400)
         assert no_sideways_scroll(page), name
+        page.get_by_text("Reading the gradebook").first.scroll_into_view_if_needed()
         shoot(page, f"instructor-{name}")
-    assert not errors
-    context.close()
+    assert not errors and not aerrors and not berrors and not cerrors
+    for c in (context, actx, bctx, cctx):
+        c.close()
+
+
+def records_of(page) -> list[str]:
+    """The assignments the page lists (its selectbox's current choice and the 'created' notes)."""
+    text = main_text(page)
+    return sorted(set(re.findall(r"Assignment (\d+) (?:created|was already created)", text)))
 
 
 def test_an_instructor_link_leaves_the_address_bar_on_every_page(browser, course_url):

@@ -33,7 +33,7 @@ def course_secret(monkeypatch):
 def submit_while(engine, sabotage) -> tuple[int, int, list]:
     """Four students submit SUBMISSIONS attempts between them; after SABOTAGE_AFTER are recorded,
     ``sabotage()`` runs. Returns (told "Recorded", the assignment's id, what the others were told)."""
-    settings = records.Settings(title="Gone", problem="pendulum_rebound", answers=("theta_rebound",), tolerance=5e-3,
+    settings = records.Settings.of(title="Gone", problem="pendulum_rebound", answers=("theta_rebound",), tolerance=5e-3,
                                 due=DUE, attempts_allowed=100, solution_before_due=False)
     aid = records.create_assignment(settings, engine)
     students = records.enrol(aid, ["s1", "s2", "s3", "s4"], engine)

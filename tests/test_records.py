@@ -9,6 +9,7 @@ import csv
 import datetime as dt
 import io
 import threading
+from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 from hypothesis import given
@@ -23,8 +24,9 @@ from solvers import registry
 from scripts.live_app import free_port
 
 UTC = dt.timezone.utc
-DUE = dt.datetime(2026, 12, 1, 12, 0, tzinfo=UTC)
+DUE = (dt.datetime.now(UTC) + dt.timedelta(days=30)).replace(hour=12, minute=0, second=0, microsecond=0)
 BEFORE, AFTER = DUE - dt.timedelta(days=1), DUE + dt.timedelta(minutes=1)
+THETA = ("pendulum_rebound", "theta_rebound")
 E_FOR_E2 = next(m.feedback for m in registry.solver("pendulum_rebound").MISTAKES if m.answer == "theta_rebound")
 
 
@@ -37,16 +39,21 @@ def course_secret(monkeypatch):
 
 
 def settings(**changes) -> records.Settings:
-    base = records.Settings("Bounce", "pendulum_rebound", ("theta_rebound", "I_O"), 5e-3, DUE, 3, False)
-    return records.Settings(**{**base.__dict__, **changes})
+    base = records.Settings.of("Bounce", "pendulum_rebound", ("theta_rebound", "I_O"), 5e-3, DUE, 3, False)
+    return records.replace(base, **changes)
 
 
 def new_assignment(database, labels=("s01", "s02"), **changes) -> tuple[int, list[StudentIdentity]]:
-    aid = records.create_assignment(settings(**changes), database)
-    return aid, records.enrol(aid, labels, database)
+    aid = records.create(settings(**changes), labels, database).id
+    return aid, records.roster(aid, database)
 
 
-def attempt(database, who, answer="theta_rebound", correct=False, slip="", when=BEFORE, typed="1"):
+_typed = iter(range(10**6))
+
+
+def attempt(database, who, answer="theta_rebound", correct=False, slip="", when=BEFORE, typed=None):
+    """One readable attempt; a different text each time unless ``typed`` is given."""
+    typed = f"{next(_typed)}.5" if typed is None else typed
     return records.record_attempt(who, answer, typed, correct, "message", slip, database, when)
 
 
@@ -86,10 +93,10 @@ def test_attempts_are_kept_numbered_and_marked(database):
     assert records.attempt_count(aid, database) == 5
 
     book = records.gradebook(aid, database)
-    cell = book.cells[("s01", "theta_rebound")]
+    cell = book.cell("s01", THETA)
     assert (cell.first_right, cell.attempts, cell.marked, cell.slips) == (2, 3, 1, ["e where e² belongs"])
     assert book.score("s01") == 1 and book.score("s02") == 0
-    assert book.cells[("s02", "theta_rebound")].first_right is None
+    assert book.cell("s02", THETA).first_right is None
 
 
 def test_the_gradebooks_statistics_name_the_slips(database):
@@ -103,10 +110,10 @@ def test_the_gradebooks_statistics_name_the_slips(database):
     attempt(database, students[3], correct=True)
     attempt(database, students[4])
     lines = records.gradebook(aid, database).statistics()
-    assert lines["theta_rebound"] == ["3 of 5 students who tried it (60 %) got it right within the rules.",
-                                      "40 % named the slip “e where e² belongs” (2 of 5).",
-                                      "20 % named the slip “the sign” (1 of 5)."]
-    assert lines["I_O"] == ["Nobody has tried it yet."]
+    assert lines[THETA] == ["3 of 5 students who tried it (60 %) got it right in time.",
+                            "40 % named the slip “e where e² belongs” (2 of 5).",
+                            "20 % named the slip “the sign” (1 of 5)."]
+    assert lines[("pendulum_rebound", "I_O")] == ["Nobody has tried it yet."]
 
 
 def test_two_hundred_concurrent_submissions_are_all_recorded(database):
@@ -131,7 +138,7 @@ def test_two_hundred_concurrent_submissions_are_all_recorded(database):
     assert not failures and len(outcomes) == 200
     assert records.attempt_count(aid, database) == 200
     rows = list(csv.DictReader(io.StringIO(records.attempts_csv(aid, database))))
-    assert sorted(r["typed"] for r in rows) == labels and sum(r["counts"] == "True" for r in rows) == 20
+    assert sorted(r["typed"] for r in rows) == labels and sum(r["credit"] == "1" for r in rows) == 20
 
 
 def test_a_failed_commit_is_never_reported_recorded(database):
@@ -184,11 +191,13 @@ def test_the_exports_neutralise_formula_cells(database, prefix):
     lambda first: hst.text(max_size=30).map(lambda rest: first + rest)) | hst.just(""))
 def test_safe_cell_neutralises_exactly_the_formula_starts(text):
     safe = records.safe_cell(text)
-    if text[:1] in FORMULA_PREFIXES:
+    if text[:1] in FORMULA_PREFIXES and not records.PLAIN_NUMBER.fullmatch(text):
         assert safe == "'" + text
     else:
         assert safe == text
     assert records.safe_cell(-1.5) == -1.5  # numbers stay numbers
+    for number in ("-1.2", "+3", "-.5e-3"):  # typed numbers open as numbers, not as the text '-1.2
+        assert records.safe_cell(number) == number
 
 
 def test_control_characters_are_stored_the_same_on_both_backends(database):
@@ -204,7 +213,9 @@ def test_control_characters_are_stored_the_same_on_both_backends(database):
 
 
 def test_rosters_are_opaque_labels_with_bad_lines_named():
-    assert records.parse_roster("label\ns01\ns02\n\ns01\n") == ["s01", "s02"]
+    assert records.parse_roster("label\ns01\ns02\n\ns03\n") == ["s01", "s02", "s03"]
+    with pytest.raises(ValueError, match=r"Repeated label: s01 \(lines 2 and 5\)"):  # was dropped silently
+        records.parse_roster("label\ns01\ns02\n\ns01\n")
     with pytest.raises(ValueError, match="Lines 2, 3: .*no names"):
         records.parse_roster("s01\nJane Doe\n=cmd()\n")
     with pytest.raises(ValueError, match="no labels"):
@@ -235,7 +246,13 @@ def test_a_variant_number_needs_the_course_secret(monkeypatch):
 
 def test_settings_are_checked_in_plain_words(database):
     with pytest.raises(ValueError, match="at least one answer"):
-        records.create_assignment(settings(answers=()), database)
+        records.create_assignment(settings(parts=(records.Part("pendulum_rebound", ()),)), database)
+    with pytest.raises(ValueError, match="already past"):  # was accepted silently
+        records.create_assignment(settings(due=dt.datetime.now(UTC) - dt.timedelta(minutes=5)), database)
+    with pytest.raises(ValueError, match="not a time zone"):
+        records.create_assignment(settings(timezone="Mars/Olympus"), database)
+    with pytest.raises(ValueError, match="penalty per day"):
+        records.create_assignment(settings(late_policy="per_day", late_value=0), database)
     with pytest.raises(ValueError, match="1 to 100 attempts"):
         records.create_assignment(settings(attempts_allowed=0), database)
 
@@ -267,3 +284,249 @@ def test_replicas_starting_together_migrate_one_at_a_time(database):
     with ThreadPoolExecutor(4) as pool:
         list(pool.map(lambda _: migrate.upgrade(database), range(4)))  # raises if any replica failed
     assert records.create_assignment(settings(), database) == 1
+
+
+# -- issue 26: typos cost nothing, late work is visible, every slip is undoable
+
+def test_an_unreadable_answer_is_never_an_attempt(database):
+    """The judge's unreadable verdicts (a syntax error, an unknown name, a unit of another
+    dimension) are explained and never recorded or counted; two typos then the right answer is
+    attempt 1, and counts."""
+    from practice.judge import Judge
+    from solvers import pendulum_rebound
+    from assignments.identity import parameters
+
+    aid, (ann, _) = new_assignment(database, attempts_allowed=1)
+    solution = pendulum_rebound.solve(**parameters(ann, pendulum_rebound, "pendulum_rebound"))
+    answer = next(a for a in pendulum_rebound.ANSWERS if a.name == "theta_rebound")
+    judge = Judge(solution, pendulum_rebound.derivation_of(solution), [answer])
+    for typo in ("hello", "w", "(1 + 2", "3 kg", "sqrt(-1)"):
+        verdict = judge.check(answer, typo)
+        assert not verdict.readable and not verdict.correct and verdict.message, typo
+        assert records.record_checked(ann, "pendulum_rebound", "theta_rebound", typo, verdict, database, BEFORE) is None
+    assert records.attempt_count(aid, database) == 0
+    right = f"{solution.answers['theta_rebound'] * 180 / 3.141592653589793:.4f}"
+    verdict = judge.check(answer, right)
+    assert verdict.readable and verdict.correct
+    kept = records.record_checked(ann, "pendulum_rebound", "theta_rebound", right, verdict, database, BEFORE)
+    assert kept.number == 1 and kept.counts and records.gradebook(aid, database).score("s01") == 1
+    wrong = judge.check(answer, "1")
+    assert wrong.readable and not wrong.correct  # a readable wrong answer is an attempt
+
+
+def test_the_same_answer_twice_in_a_row_counts_once(database):
+    aid, (ann, _) = new_assignment(database)
+    first = attempt(database, ann, typed="12.5")
+    again = attempt(database, ann, typed=" 12.5 ")  # a second click, or the same text re-sent
+    assert again.repeated and again.id == first.id and again.number == 1
+    other = attempt(database, ann, typed="13")
+    back = attempt(database, ann, typed="12.5")  # not in a row: a new attempt
+    assert (other.number, back.number, back.repeated) == (2, 3, False)
+    elsewhere = attempt(database, ann, answer="I_O", typed="13")  # another answer: its own count
+    assert elsewhere.number == 1 and not elsewhere.repeated
+    assert records.attempt_count(aid, database) == 4
+
+
+def test_right_but_late_is_visible_everywhere(database):
+    """A right answer after the due time: the student's attempt, the gradebook's cell, its
+    statistics and the CSVs all say right-but-late (no late credit by default)."""
+    aid, (ann, bob) = new_assignment(database)
+    late = attempt(database, ann, correct=True, when=DUE + dt.timedelta(hours=3, minutes=5))
+    assert late.late and late.correct and not late.counts and late.credit == 0
+    attempt(database, bob, correct=True)
+    book = records.gradebook(aid, database)
+    assert book.cell("s01", THETA).status(book.settings) == "right but 3 h 5 min late (attempt 1): no credit"
+    assert book.cell("s02", THETA).status(book.settings) == "right at attempt 1"
+    assert book.statistics()[THETA][:2] == ["1 of 2 students who tried it (50 %) got it right in time.",
+                                            "1 more (50 %) got it right after the due time (no late credit)."]
+    assert book.late_right("s01") == 1 and book.late_right("s02") == 0
+    row = next(csv.DictReader(io.StringIO(records.gradebook_csv(book))))
+    assert row["theta_rebound:status"].startswith("right but 3 h 5 min late") and row["late_answers"] == "1"
+
+
+@pytest.mark.parametrize("policy, value, late_by, credit", [
+    ("per_day", 0.2, dt.timedelta(hours=1), 0.8),  # a started day
+    ("per_day", 0.2, dt.timedelta(days=1, hours=1), 0.6),
+    ("per_day", 0.3, dt.timedelta(days=5), 0.0),
+    ("fixed", 0.5, dt.timedelta(days=9), 0.5),
+    ("none", 0.0, dt.timedelta(minutes=1), 0.0),
+])
+def test_late_credit_and_how_the_score_was_computed(database, policy, value, late_by, credit):
+    aid, (ann, _) = new_assignment(database, late_policy=policy, late_value=value)
+    attempt(database, ann, answer="I_O", correct=True)
+    kept = attempt(database, ann, correct=True, when=DUE + late_by)
+    assert kept.credit == pytest.approx(credit)
+    book = records.gradebook(aid, database)
+    assert book.score("s01") == pytest.approx(1 + credit)
+    how = book.how("s01")
+    assert how.endswith(f"= {1 + credit:g} of 2") and "I_O 1" in how
+    assert ("late" in how) == (credit > 0)
+
+
+def test_an_extension_and_extra_attempts_apply_to_one_student(database):
+    aid, (ann, bob) = new_assignment(database, attempts_allowed=1)
+    attempt(database, ann)  # wrong: her one attempt is used
+    over = attempt(database, ann, correct=True)
+    assert over.over_limit and not over.counts
+    late = attempt(database, bob, correct=True, when=DUE + dt.timedelta(days=1))
+    assert late.late and not late.counts
+    said = records.grant(aid, "s01", extra_attempts=1, bound=database)
+    assert "extra attempts 0 → 1" in said
+    records.grant(aid, "s02", extended_due=DUE + dt.timedelta(days=2), bound=database)
+    book = records.gradebook(aid, database)  # the past is read under the new grants
+    assert book.score("s01") == 1 and book.score("s02") == 1
+    assert book.cell("s01", THETA).allowed == 2 and book.cell("s02", ("pendulum_rebound", "I_O")).allowed == 1
+    standing = records.standing(bob, database)
+    assert standing.due == DUE + dt.timedelta(days=2) and standing.allowed == 1
+    with pytest.raises(ValueError, match="not on this assignment's roster"):
+        records.grant(aid, "s99", extra_attempts=1, bound=database)
+
+
+def test_creating_twice_makes_one_assignment(database):
+    """A repeated click or a reload: the same title, problems and due time find the one created."""
+    first = records.create(settings(), ["s01", "s02"], database)
+    again = records.create(settings(title="  bounce "), ["s01", "s02"], database)
+    assert first.new and not again.new and again.id == first.id and again.students == 2
+    assert records.find(settings(), database).id == first.id
+    assert len(records.assignments(database)) == 1
+    other = records.create(settings(due=DUE + dt.timedelta(days=7)), ["s01"], database)
+    assert other.new and other.id != first.id
+    with ThreadPoolExecutor(4) as pool:  # four clicks at once
+        made = list(pool.map(lambda _: records.create(settings(title="Race"), ["s01"], database), range(4)))
+    assert len({m.id for m in made}) == 1 and sum(m.new for m in made) == 1
+
+
+def test_edits_close_reopen_archive_are_logged_and_undone(database):
+    aid, (ann, _) = new_assignment(database)
+    base = records.assignment(aid, database)
+    later = DUE + dt.timedelta(days=3)
+    said = records.edit(aid, records.replace(base, due=later, attempts_allowed=5, tolerance=0.01, hints=False),
+                        database)
+    assert len(said) == 4 and any(s.startswith("attempts per answer 3 → 5") for s in said)
+    assert records.edit(aid, records.assignment(aid, database), database) == []  # nothing changed, nothing logged
+    records.set_status(aid, "closed", database)
+    with pytest.raises(records.NotAccepted, match="closed"):
+        attempt(database, ann, correct=True)
+    assert records.attempt_count(aid, database) == 0
+    records.set_status(aid, "open", database)
+    attempt(database, ann, correct=True)
+    records.set_status(aid, "archived", database)
+    assert records.assignments(database, archived=False) == []
+    log = records.history(aid, database)
+    assert [e.action for e in log] == ["archived", "reopened", "closed", "edited", "created"]
+    assert all(e.at.tzinfo for e in log)
+
+    records.undo(aid, log[0].id, database)  # unarchive
+    assert records.assignment(aid, database).status == "open"
+    edited = next(e for e in log if e.action == "edited")
+    records.undo(aid, edited.id, database)
+    back = records.assignment(aid, database)
+    assert (back.due, back.attempts_allowed, back.tolerance, back.hints) == (DUE, 3, 5e-3, True)
+    log = records.history(aid, database)
+    assert log[0].action == "undo" and log[0].undoes == edited.id and next(e for e in log if e.id == edited.id).undone
+    with pytest.raises(ValueError, match="archive the assignment instead"):
+        records.undo(aid, log[-1].id, database)
+    csv_rows = list(csv.DictReader(io.StringIO(records.history_csv(log))))
+    assert csv_rows[0]["action"] == "created" and len(csv_rows) == len(log)
+
+
+def test_a_student_grant_is_logged_and_undone(database):
+    aid, _ = new_assignment(database)
+    records.grant(aid, "s02", extended_due=DUE + dt.timedelta(days=1), extra_attempts=2, bound=database)
+    change = records.history(aid, database)[0]
+    assert change.label == "s02" and "extension" in change.summary and "extra attempts 0 → 2" in change.summary
+    records.undo(aid, change.id, database)
+    standing = records.standing(StudentIdentity(aid, "s02", 0), database)
+    assert standing.grant == records.Grant() and standing.due == DUE
+
+
+def test_a_problem_set_with_weights_gives_one_score(database):
+    parts = (records.Part("pendulum_rebound", ("theta_rebound", "I_O"), (2, 1)),
+             records.Part("disk_wall", ("v1x",), (3,)))
+    aid, (ann, bob) = new_assignment(database, parts=parts, late_policy="fixed", late_value=0.5)
+    attempt(database, ann, correct=True)
+    records.record_attempt(ann, "v1x", "2.5", True, "m", "", database, DUE + dt.timedelta(hours=1), "disk_wall")
+    records.record_attempt(bob, "v1x", "2.5", False, "m", "", database, BEFORE, "disk_wall")
+    with pytest.raises(ValueError, match="not an answer this assignment counts"):
+        records.record_attempt(bob, "v1y", "2.5", False, "m", "", database, BEFORE, "disk_wall")
+    book = records.gradebook(aid, database)
+    assert book.settings.out_of == 6 and book.score("s01") == 2 + 1.5 and book.score("s02") == 0
+    assert book.how("s01") == "theta_rebound 2 + v1x 3 × 50 % (late) = 3.5 of 6"
+    rows = list(csv.DictReader(io.StringIO(records.gradebook_csv(book))))
+    assert rows[0]["disk_wall/v1x:points"] == "1.5" and rows[0]["score"] == "3.5" and rows[0]["out_of"] == "6"
+    # a reveal on one problem marks only that problem's later attempts
+    records.record_reveal(bob, database, BEFORE, problem="disk_wall")
+    shown = records.record_attempt(bob, "v1x", "3", True, "m", "", database, BEFORE, "disk_wall")
+    fine = attempt(database, bob, correct=True)
+    assert shown.solution_shown and not fine.solution_shown and fine.counts
+    assert records.solution_shown(bob, database, "disk_wall") and not records.solution_shown(bob, database, "pendulum_rebound")
+
+
+def test_the_csvs_open_as_numbers_and_import_into_an_lms(database):
+    aid, (ann, bob) = new_assignment(database, title="Week 9, the bounce")
+    attempt(database, ann, typed="-1.2")
+    attempt(database, ann, correct=True)
+    book = records.gradebook(aid, database)
+    attempts = list(csv.reader(io.StringIO(records.attempts_csv(aid, database))))
+    assert attempts[1][4] == "-1.2"  # a typed number stays a number (it was '-1.2)
+    canvas = list(csv.reader(io.StringIO(records.lms_csv(book, "canvas"))))
+    assert canvas[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Week 9, the bounce"]
+    assert canvas[1] == ["Points Possible", "", "", "", "", "2"]
+    assert canvas[2] == ["s01", "", "s01", "s01", "", "1"] and canvas[3][-1] == "0"
+    moodle = list(csv.reader(io.StringIO(records.lms_csv(book, "moodle"))))
+    assert moodle == [["ID number", "Week 9, the bounce"], ["s01", "1"], ["s02", "0"]]
+    row = next(csv.DictReader(io.StringIO(records.gradebook_csv(book))))
+    assert (row["score"], row["percent"], row["theta_rebound:points"], row["theta_rebound:attempts_used"]) == \
+        ("1", "50", "1", "2")
+
+
+@pytest.mark.parametrize("text, message", [
+    ("s01\n" + "x" * 200_000 + "\n", "too long"),
+    ('s01\n"' + "x" * 140_000 + "\n", "too long"),
+    ('s01\n"' + "y" * 10 + '\n' + "z" * 140_000 + "\n", "cannot be read as CSV|too long"),
+    ("s01\ns02\ns01\ns02\n", r"Repeated labels: s01 \(lines 1 and 3\), s02 \(lines 2 and 4\)"),
+    ("s01\x00\ns02\n", None),
+])
+def test_a_bad_roster_gets_a_plain_message(text, message):
+    """A CSV with one very long line raised an uncaught csv.Error (field larger than field limit)."""
+    if message is None:
+        assert records.parse_roster(text) == ["s01", "s02"]
+        return
+    with pytest.raises(ValueError, match=message):
+        records.parse_roster(text)
+
+
+def test_feedback_follows_the_assignments_policy():
+    hint = E_FOR_E2
+    said = f"Not quite. {hint}"
+    assert records.feedback(said, False, hint, None) == said  # Practice: every hint
+    assert records.feedback(said, False, hint, settings()) == said  # hints on
+    named = records.feedback(said, False, hint, settings(hints=False))
+    assert "e where e² belongs" in named and hint not in named
+    bare = records.feedback(said, False, hint, settings(hints=False, slip_names=False))
+    assert bare == "Not right. Check each step, then try again."
+    assert records.feedback("Right: 3 m/s.", True, "", settings(hints=False)) == "Right: 3 m/s."
+
+
+def test_the_upgrade_keeps_an_assignment_made_before_problem_sets(database):
+    """Revision 0001's assignment (one problem, its answers) and its attempts survive 0002."""
+    from alembic import command
+    from sqlalchemy import text
+
+    cfg = migrate.config()
+    with database.begin() as connection:
+        cfg.attributes["connection"] = connection
+        command.downgrade(cfg, "0001")
+    with database.begin() as c:
+        c.execute(text("INSERT INTO assignment (id, title, problem, answers, tolerance, due, attempts_allowed, "
+                       "solution_before_due, created) VALUES (7, 'Old', 'disk_wall', :answers, 0.005, :due, 2, "
+                       "false, :due)"), {"answers": '["v1x", "v1y"]', "due": DUE})
+        c.execute(text("INSERT INTO student (assignment_id, label, seed) VALUES (7, 's01', 5)"))
+        c.execute(text("INSERT INTO attempt (assignment_id, label, answer, typed, correct, message, slip, at, late, "
+                       "solution_shown) VALUES (7, 's01', 'v1x', '2', true, 'Right', '', :at, false, false)"),
+                  {"at": BEFORE})
+    migrate.upgrade(database)
+    old = records.assignment(7, database)
+    assert old.parts == (records.Part("disk_wall", ("v1x", "v1y")),) and old.status == "open" and old.hints
+    assert records.gradebook(7, database).score("s01") == 1
+    assert records.attempts_of(StudentIdentity(7, "s01", 5), database)[0].problem == "disk_wall"

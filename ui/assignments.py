@@ -1,6 +1,8 @@
 """Assignments on screen: a student's signed link on a problem page (``student_link``, then
-``recording`` and ``your_attempts``), and the instructor's page (``instructor_page``: create an
-assignment from a roster, hand out the links, read the gradebook, download it as CSV).
+``assignment_heading``, ``recording`` and ``your_attempts``), and the instructor's page
+(``instructor_page``: create an assignment (one problem or a set) from a roster, hand out the
+links, edit, close, reopen or archive it, give one student an extension or extra attempts, undo
+any change, read the gradebook and download it).
 
 Everything stored goes through ``assignments.records``; nothing a student typed is rendered as
 Markdown: st.table renders its cells as Markdown, so a stored string in a cell (what was typed, a
@@ -8,14 +10,18 @@ slip's name, a label) passes through ``literal``, and text through ``plain``."""
 from __future__ import annotations
 
 import datetime as dt
+import hashlib
+import re
 import urllib.parse
-from dataclasses import dataclass
+import zoneinfo
+from dataclasses import dataclass, replace
 
 import streamlit as st
 
 from assignments import migrate, records, signing
 from assignments.identity import LinkRefused, StudentIdentity, from_link, is_assignment_link, link_query
-from practice.judge import RELATIVE_TOLERANCE
+from practice.judge import RELATIVE_TOLERANCE, Verdict
+from solvers import units
 from ui.catalog import BY_ID, PROBLEMS, Problem
 from ui.practice import Recording, answer_label, instructor_key_entry
 from ui.results import literal, plain
@@ -35,8 +41,41 @@ def _schema_ready() -> bool:
     return True
 
 
-def _when(moment: dt.datetime) -> str:
-    return moment.astimezone(UTC).strftime("%d %b %Y, %H:%M UTC")
+def _browser_zone() -> str | None:
+    """The viewer's own time zone, as their browser reports it (None when it does not, or names
+    one this server does not know)."""
+    try:
+        zone = st.context.timezone
+        zoneinfo.ZoneInfo(zone)
+        return zone
+    except Exception:  # noqa: BLE001  (no browser, as in AppTest; an unknown name)
+        return None
+
+
+def _title(problem_id: str) -> str:
+    return BY_ID[problem_id].title if problem_id in BY_ID else problem_id
+
+
+def _answers_of(problem: Problem):
+    solver = problem.solver
+    picker = getattr(solver, "answers_for", None)
+    return picker(solver.solve().regime) if picker else solver.ANSWERS
+
+
+def _answer_labels(settings: records.Settings) -> dict[tuple[str, str], str]:
+    """Each question's label as the pages write it ("Highest angle after the bounce"), with its
+    problem's title in a problem set."""
+    out = {}
+    for part in settings.parts:
+        problem = BY_ID.get(part.problem)
+        every = {}
+        if problem is not None:
+            every = {a.name: answer_label(a) for a in problem.solver.ANSWERS}
+            every |= {a.name: answer_label(a) for a in _answers_of(problem)}
+        for name in part.answers:
+            label = every.get(name, name)
+            out[(part.problem, name)] = label if len(settings.parts) == 1 else f"{_title(part.problem)}: {label}"
+    return out
 
 
 # -- the student's side
@@ -48,6 +87,7 @@ class StudentLink:
     refused: str = ""  # the link is refused: say this, show nothing else
     settings: records.Settings | None = None  # None: practice unrecorded (see ``notice``)
     notice: str = ""
+    problem: str = ""  # the page's problem
 
 
 def student_link(problem: Problem) -> StudentLink | None:
@@ -59,7 +99,7 @@ def student_link(problem: Problem) -> StudentLink | None:
         identity = from_link(query)
     except LinkRefused as refusal:
         return StudentLink(refused=str(refusal))
-    unrecorded = StudentLink(identity, notice=records.UNAVAILABLE)
+    unrecorded = StudentLink(identity, notice=records.UNAVAILABLE, problem=problem.id)
     if not _schema_ready():
         return unrecorded
     try:
@@ -70,88 +110,219 @@ def student_link(problem: Problem) -> StudentLink | None:
     if settings is None or not enrolled:
         return StudentLink(refused="This assignment link is not in the course's records (the assignment or "
                                    "your code is not on its roster). Ask your instructor for a new link.")
-    if settings.problem != problem.id:
-        right = BY_ID[settings.problem].title if settings.problem in BY_ID else settings.problem
-        return StudentLink(refused=f"This assignment link belongs to the page “{right}”, not this one. Open the "
+    if problem.id not in settings.problems:
+        right = " or ".join(f"“{_title(p)}”" for p in settings.problems)
+        return StudentLink(refused=f"This assignment link belongs to the page {right}, not this one. Open the "
                                    "link exactly as you received it.")
-    return StudentLink(identity, settings=settings)
+    return StudentLink(identity, settings=settings, problem=problem.id)
 
 
-def recording(link: StudentLink) -> Recording:
-    """Record each checked answer and the solution being shown, under the assignment's rules."""
-    identity, settings = link.identity, link.settings
+def _standing(link: StudentLink) -> records.Standing | None:
     try:
-        revealed = records.solution_shown(identity)
+        return records.standing(link.identity)
+    except records.RecordingUnavailable:
+        return None
+
+
+def _zone(link: StudentLink) -> tuple[str, str]:
+    """The zone to show the student's times in, and how it was chosen."""
+    mine = _browser_zone()
+    if mine:
+        return mine, "your time zone"
+    return link.settings.timezone, "the course's time zone"
+
+
+def _solution_opens(settings: records.Settings, due: dt.datetime) -> dt.datetime | None:
+    """When the student may open the solution (None: now)."""
+    return None if settings.solution_before_due else due
+
+
+def recording(link: StudentLink, solution=None, system: str = "si") -> Recording:
+    """Record each readable answer and the solution being shown, under the assignment's rules;
+    the verdict's message under its feedback policy."""
+    identity, settings, problem = link.identity, link.settings, link.problem
+    try:
+        revealed = records.solution_shown(identity, problem=problem)
     except records.RecordingUnavailable:
         revealed = False
+    standing = _standing(link)
+    due = standing.due if standing else settings.due
+    zone, _ = _zone(link)
     blocked = ""
-    if not settings.solution_before_due and records.now() < settings.due:
-        blocked = f"The solution opens at the due time, {_when(settings.due)}."
+    opens = _solution_opens(settings, due)
+    if opens is not None and records.now() < opens:
+        blocked = f"The solution opens at your due time, {records.when_text(opens, zone)}."
+    labels = _answer_labels(settings)
 
-    def on_verdict(answer, typed: str, verdict) -> None:
-        if not typed.strip():
-            return  # "Type an answer first." is not an attempt
+    def say(verdict: Verdict) -> str:
+        return records.feedback(verdict.message, verdict.correct, verdict.mistake, settings)
+
+    def on_verdict(answer, typed: str, verdict: Verdict) -> None:
+        if not verdict.readable or not typed.strip():
+            return  # explained above; not an attempt
         try:
-            kept = records.record_attempt(identity, answer.name, typed, verdict.correct, verdict.message,
-                                          verdict.mistake)
+            kept = records.record_checked(identity, problem, answer.name, typed,
+                                          replace(verdict, message=say(verdict)))
+        except records.NotAccepted as error:
+            st.warning(str(error), icon=":material/lock:")
+            return
         except records.RecordingUnavailable as error:
             st.error(str(error), icon=":material/cloud_off:")
             return
-        what = f"Recorded: attempt {kept.number} of {settings.attempts_allowed} at {answer_label(answer).lower()}"
-        if kept.marks():
-            st.warning(f"{what}, kept but it does not count ({', '.join(kept.marks())}).", icon=":material/schedule:")
-        else:
-            st.info(f"{what}{', and it counts' if kept.counts else ''}.", icon=":material/task_alt:")
+        _said_recorded(kept, labels.get((problem, answer.name), answer_label(answer)), link, solution, answer, system)
 
     def on_reveal() -> bool:
         try:
-            records.record_reveal(identity)
+            records.record_reveal(identity, problem=problem)
             return True
         except records.RecordingUnavailable as error:
             st.error(f"{error} The solution stays hidden until it can be recorded.")
             return False
 
-    return Recording(settings.tolerance, on_verdict, on_reveal, revealed, blocked)
+    return Recording(settings.tolerance, on_verdict, on_reveal, revealed, blocked, say)
+
+
+def _said_recorded(kept: records.Recorded, label: str, link: StudentLink, solution, answer, system: str) -> None:
+    """The recorded attempt in words, under an icon that matches what it earned."""
+    standing = _standing(link)
+    allowed = standing.allowed if standing else link.settings.attempts_allowed
+    what = f"attempt {kept.number} of {allowed} at {label.lower()}"
+    if kept.repeated:
+        st.info(f"The same as your last attempt at {label.lower()}: not counted again (it stays {what}).",
+                icon=":material/repeat:")
+        return
+    if kept.over_limit:
+        st.warning(f"Recorded: attempt {kept.number} at {label.lower()}, over your limit of {allowed}: "
+                   f"it is kept, but it cannot count.", icon=":material/block:")
+    elif kept.correct and kept.credit >= 1:
+        st.success(f"Recorded: {what}. Right, and it counts.", icon=":material/task_alt:")
+    elif kept.correct and kept.credit > 0:
+        st.warning(f"Recorded: {what}. Right, {records.duration_text(kept.late_by)} after your due time: it "
+                   f"earns {kept.credit * 100:g} % of its points (late credit).", icon=":material/schedule:")
+    elif kept.correct:
+        why = ("you had opened the solution" if kept.solution_shown else
+               f"it is {records.duration_text(kept.late_by)} after your due time, and this assignment gives no "
+               "late credit")
+        st.warning(f"Recorded: {what}. Right, but it earns no points: {why}. It is kept, and your instructor "
+                   "sees it as right but late." if kept.late else f"Recorded: {what}. Right, but it earns no "
+                   f"points: {why}.", icon=":material/schedule:")
+    else:
+        left = max(allowed - kept.number, 0)
+        st.info(f"Recorded: {what}. Not right; {left} attempt{'s' if left != 1 else ''} left at this answer.",
+                icon=":material/cancel:")
+        if left == 0 and link.settings.answer_after_last and solution is not None:
+            _show_answer(answer, solution, system, label)
+
+
+def _show_answer(answer, solution, system: str, label: str) -> None:
+    value = solution.answers.get(answer.name)
+    if isinstance(value, (int, float)):
+        st.info(f"You have used every attempt at {label.lower()}. The answer: "
+                f"{units.format_quantity(value, answer.dimension, system)}.", icon=":material/lightbulb:")
+
+
+def _problem_links(link: StudentLink) -> str:
+    """The set's problems, each a link with the same signed query (the signature covers the
+    assignment, variant and label, not the page)."""
+    query = urllib.parse.urlencode(link_query(link.identity))
+    items = []
+    for n, pid in enumerate(link.settings.problems, start=1):
+        name = plain(_title(pid))
+        items.append(f"{n}. **{name}** (this page)" if pid == link.problem else f"{n}. [{name}]({pid}?{query})")  # beside this page
+    return "\n".join(items)
 
 
 def assignment_heading(link: StudentLink) -> None:
-    """Who and what: the assignment's rules, or why nothing is recorded."""
+    """The banner: that it is graded, what counts, the attempts left, the due time in the
+    student's own time zone, when the solution opens; or why nothing is recorded."""
     if link.settings is None:
         st.warning(link.notice, icon=":material/cloud_off:")
         return
     s = link.settings
-    late = " The due time has passed: attempts are still kept, marked late." if records.now() > s.due else ""
-    st.info(f"**{plain(s.title)}**, for student {literal(link.identity.label)}: due {_when(s.due)}. An attempt counts "
-            f"if it is right (numbers within ±{s.tolerance * 100:g} %), made before the due time, within "
-            f"{s.attempts_allowed} attempts per answer, and before you open the solution.{late}",
-            icon=":material/assignment:")
+    standing = _standing(link)
+    due = standing.due if standing else s.due
+    allowed = standing.allowed if standing else s.attempts_allowed
+    zone, whose = _zone(link)
+    now = records.now()
+    lines = [f"**Graded assignment: {plain(s.title)}**, for student {literal(link.identity.label)}."]
+    if not s.accepting:
+        lines.append(f"**Closed by your instructor**: answers are checked but no longer recorded.")
+    extended = " (your extension)" if standing and standing.grant.extended_due and due > s.due else ""
+    if now > due:
+        lines.append(f"**Due {records.when_text(due, zone)}**{extended}, {whose}: that has passed "
+                     f"{records.duration_text(now - due)} ago. Answers are still recorded: "
+                     f"{s.late_rule()}.")
+    else:
+        lines.append(f"**Due {records.when_text(due, zone)}**{extended}, {whose} ({records.duration_text(due - now)} "
+                     f"from now). After it, {s.late_rule()}.")
+    lines.append(f"**What counts**: a right answer (numbers within ±{s.tolerance * 100:g} %), within {allowed} "
+                 f"attempts per answer, before you open the solution. An answer the page cannot read (a typo, "
+                 f"an unknown name, a unit of another kind) is explained and costs no attempt; the same answer "
+                 f"twice in a row counts once. Feedback: {s.feedback_rule()}.")
+    if standing:
+        labels = _answer_labels(s)
+        part = s.part(link.problem)
+        left = [f"{plain(labels[(link.problem, a)].split(': ')[-1])} "
+                + ("done (right)" if standing.cells[(link.problem, a)].credit >= 1
+                   else f"{standing.left((link.problem, a))} of {allowed}") for a in part.answers]
+        lines.append("**Attempts left**: " + " · ".join(left) + ".")
+        lines.append(f"**Your score so far**: {records._number(standing.score())} of {records._number(s.out_of)} "
+                     "points.")
+    opens = _solution_opens(s, due)
+    if opens is None:
+        lines.append("**The solution**: you may open it now; answers you give after opening it do not count.")
+    elif now < opens:
+        lines.append(f"**The solution** opens at your due time, {records.when_text(opens, zone)}.")
+    else:
+        lines.append("**The solution** is open; answers you give after opening it do not count.")
+    (st.info if s.accepting else st.warning)("\n\n".join(lines), icon=":material/assignment:")
+    if len(s.problems) > 1:
+        st.markdown(f"**This assignment has {len(s.problems)} problems**, each with its own page:\n\n"
+                    + _problem_links(link))
 
 
-def your_attempts(link: StudentLink, answers) -> None:
-    """The student's own attempts, and for each answer what counts so far."""
+def your_attempts(link: StudentLink, answers, solution=None, system: str = "si") -> None:
+    """The student's own attempts at this page's problem, and for each answer where it stands."""
     if link.settings is None:
         return
     try:
-        mine = records.attempts_of(link.identity)
+        standing = records.standing(link.identity)
     except records.RecordingUnavailable as error:
         st.warning(str(error))
         return
+    if standing is None:
+        return
+    s = standing.settings
+    zone, _ = _zone(link)
     st.markdown("### Your attempts")
     labels = {a.name: answer_label(a) for a in answers}
+    by_name = {a.name: a for a in answers}
     lines = []
-    for name in link.settings.answers:
-        tried = [a for a in mine if a.answer == name]
-        counted = next((a for a in tried if a.counts), None)
-        left = max(link.settings.attempts_allowed - len(tried), 0)
-        lines.append(f"- {plain(labels.get(name, name))}: " + (
-            f"right at attempt {counted.number} (counts)" if counted else
-            f"not yet right; {left} of {link.settings.attempts_allowed} attempts left"))
+    part = s.part(link.problem)
+    for name in part.answers:
+        cell = standing.cells[(link.problem, name)]
+        lines.append(f"- {plain(labels.get(name, name))}: {plain(cell.status(s))}"
+                     f" ({records._number(part.weight(name) * cell.credit)} of {records._number(part.weight(name))} "
+                     f"point{'s' if part.weight(name) != 1 else ''})")
+        if (s.answer_after_last and cell.first_right is None and cell.attempts >= cell.allowed
+                and solution is not None and name in by_name):
+            value = solution.answers.get(name)
+            if isinstance(value, (int, float)):
+                lines.append(f"  - every attempt used; the answer: "
+                             f"{plain(units.format_quantity(value, by_name[name].dimension, system))}")
     st.markdown("\n".join(lines))
+    mine = [a for a in standing.attempts if a.problem == link.problem]
     if mine:
+        def earned(a: records.Recorded) -> str:
+            if a.credit >= 1:
+                return "yes"
+            if a.credit > 0:
+                return f"{a.credit * 100:g} % (late)"
+            return "no: " + ", ".join(a.marks()) if a.marks() else "no"
+
         st.table([{"#": a.number, "answer": labels.get(a.answer, a.answer), "you typed": literal(a.typed),
                    "verdict": "right" if a.correct else "not right", "slip": literal(records.slip_name(a.slip)),
-                   "time": a.at.strftime("%d %b %H:%M:%S UTC"), "counts": "yes" if a.counts else
-                   ("no: " + ", ".join(a.marks()) if a.marks() else "no")} for a in mine])
+                   "time": records.when_text(a.at, zone), "counts": earned(a)} for a in mine])
 
 
 # -- the instructor's page
@@ -173,99 +344,404 @@ def _links_csv(base: str, problem: str, students: list[StudentIdentity]) -> str:
     return records.safe_csv(["label", "seed", "link"], ([s.label, s.seed, student_url(base, problem, s)] for s in students))
 
 
-def _answers_of(problem: Problem):
-    solver = problem.solver
-    picker = getattr(solver, "answers_for", None)
-    return picker(solver.solve().regime) if picker else solver.ANSWERS
+ZONES = sorted({z for z in zoneinfo.available_timezones() if "/" in z and not z.startswith(("posix/", "right/", "Etc/"))}
+               | {"UTC"})
+
+
+def _zone_picker(key: str, current: str | None = None) -> str:
+    default = current or _browser_zone() or "UTC"
+    if default not in ZONES:
+        default = "UTC"
+    if key not in st.session_state:
+        st.session_state[key] = default
+    return st.selectbox("Time zone for the due time", ZONES, key=key,
+                        help="Due times are entered and shown in this zone (students see theirs in their own).")
+
+
+def _late_inputs(prefix: str, policy: str = "none", value: float = 0.0) -> tuple[str, float]:
+    names = {"none": "No late credit (late answers shown, worth nothing)", "per_day": "A penalty per day late",
+             "fixed": "A fixed fraction of the points"}
+    c1, c2 = st.columns([3, 2])
+    chosen = c1.radio("Late work", list(names), index=list(names).index(policy), format_func=names.get,
+                      key=f"{prefix}late_policy")
+    if chosen == "per_day":
+        pct = c2.number_input("Penalty per started day late (%)", 1.0, 100.0, value * 100 if value else 10.0, 1.0,
+                              key=f"{prefix}late_per_day")
+    elif chosen == "fixed":
+        pct = c2.number_input("Fraction of the points a late right answer earns (%)", 0.0, 100.0,
+                              value * 100 if policy == "fixed" else 50.0, 5.0, key=f"{prefix}late_fixed")
+    else:
+        pct = 0.0
+    return chosen, pct / 100
+
+
+def _feedback_inputs(prefix: str, s: records.Settings | None = None) -> tuple[bool, bool, bool, bool]:
+    c1, c2 = st.columns(2)
+    hints = c1.checkbox("Hints: a known slip is named with its hint (as in Practice)",
+                        s.hints if s else True, key=f"{prefix}hints")
+    names = c1.checkbox("Named slips (with hints off: the slip's name, no hint)",
+                        s.slip_names if s else True, key=f"{prefix}slip_names", disabled=hints)
+    after = c2.checkbox("Show the answer after an answer's last attempt",
+                        s.answer_after_last if s else False, key=f"{prefix}answer_after_last")
+    before = c2.checkbox("Students may open the solution before the due time",
+                         s.solution_before_due if s else False, key=f"{prefix}before")
+    return hints, names if not hints else True, after, before
+
+
+def _due_inputs(prefix: str, zone: str, current: dt.datetime | None = None) -> dt.datetime:
+    local = records.in_zone(current or records.now() + dt.timedelta(days=7), zone)
+    c1, c2 = st.columns(2)
+    day = c1.date_input(f"Due date ({zone})", local.date(), key=f"{prefix}due_day")
+    time = c2.time_input(f"Due time ({zone})", local.time().replace(second=0, microsecond=0) if current
+                         else dt.time(23, 59), key=f"{prefix}due_time", step=60)
+    return dt.datetime.combine(day, time, zoneinfo.ZoneInfo(zone))
+
+
+# Words that name a problem in a title (its id's words): "Week 13: ladder" with the disk chosen is flagged.
+PROBLEM_WORDS = {p.id: set(re.split(r"[_\s]+", p.id.replace("eulers", "euler"))) for p in PROBLEMS}
+
+
+def title_mismatch(title: str, chosen: list[str]) -> list[str]:
+    """Words of the title that name a problem that is not chosen (and no chosen one)."""
+    words = set(re.findall(r"[a-z]+", title.lower().replace("euler's", "euler")))
+    mine = set().union(*(PROBLEM_WORDS.get(p, set()) for p in chosen)) if chosen else set()
+    found = []
+    for pid, named in PROBLEM_WORDS.items():
+        if pid in chosen:
+            continue
+        for word in sorted((named & words) - mine):
+            found.append(f"the title says “{word}”, but “{_title(pid)}” is not among the chosen problems")
+    return found
+
+
+def _roster_text(prefix: str) -> tuple[str, str]:
+    """The roster as text (pasted, or the uploaded file's), and an error in plain words."""
+    text = st.text_area("Roster: one student label per line (your own codes, no names)", key=f"{prefix}roster",
+                        placeholder="s001\ns002\ns003")
+    upload = st.file_uploader("…or a roster CSV (labels in the first column)", type=["csv", "txt"],
+                              key=f"{prefix}roster_file")
+    if upload is None:
+        return text, ""
+    data = upload.getvalue()
+    if len(data) > records.MAX_ROSTER_TEXT * 4:
+        return "", f"The roster file is too large ({len(data):,} bytes): one short label per line."
+    try:
+        return data.decode("utf-8-sig"), ""
+    except UnicodeDecodeError:
+        return "", "The roster file is not UTF-8 text: save it as CSV UTF-8 and upload it again."
 
 
 def _new_assignment() -> None:
-    st.markdown("### New assignment")
-    problem = BY_ID[st.selectbox("Problem", [p.id for p in PROBLEMS], format_func=lambda i: BY_ID[i].title,
-                                 key="assign__problem")]
-    answers = {a.name: a for a in _answers_of(problem)}
-    with st.form("assign__form"):
-        title = st.text_input("Title", max_chars=120, key="assign__title", placeholder="Week 9: the bouncing pendulum")
-        counted = st.multiselect("Answers that count", list(answers), default=list(answers),
-                                 format_func=lambda name: answer_label(answers[name]), key=f"assign__answers_{problem.id}")
-        c1, c2 = st.columns(2)
-        tolerance = c1.number_input("Tolerance for numbers (%)", 0.01, 10.0, RELATIVE_TOLERANCE * 100, 0.1,
-                                    key="assign__tolerance")
-        attempts = c2.number_input("Attempts allowed per answer", 1, 100, 3, key="assign__attempts")
-        c3, c4 = st.columns(2)
-        in_a_week = records.now() + dt.timedelta(days=7)
-        due_day = c3.date_input("Due date (UTC)", in_a_week.date(), key="assign__due_day")
-        due_time = c4.time_input("Due time (UTC)", dt.time(23, 59), key="assign__due_time")
-        before = st.checkbox("Students may open the solution before the due time", key="assign__before")
-        roster_text = st.text_area("Roster: one student label per line (your own codes, no names)",
-                                   key="assign__roster", placeholder="s001\ns002\ns003")
-        roster_file = st.file_uploader("…or a roster CSV (labels in the first column)", type=["csv", "txt"],
-                                       key="assign__roster_file")
-        create = st.form_submit_button("Create the assignment and its links", type="primary")
-    if not create:
+    st.markdown("Nothing is created until you press **Create**; the check above the button lists what "
+                "would be wrong first.")
+    p = "assign__"
+    title = st.text_input("Title", max_chars=120, key=f"{p}title", placeholder="Week 9: the bouncing pendulum")
+    chosen = st.multiselect("Problems (one, or several for a problem set; in this order)", [q.id for q in PROBLEMS],
+                            format_func=_title, key=f"{p}problems")
+    parts = []
+    for pid in chosen:
+        problem = BY_ID[pid]
+        answers = {a.name: a for a in _answers_of(problem)}
+        with st.container(border=True):
+            st.markdown(f"**{plain(problem.title)}**")
+            counted = st.multiselect("Answers that count", list(answers), default=list(answers),
+                                     format_func=lambda name, answers=answers: answer_label(answers[name]),
+                                     key=f"{p}answers_{pid}")
+            weights = []
+            columns = st.columns(4)
+            for n, name in enumerate(counted):
+                weights.append(columns[n % 4].number_input(f"Points: {answer_label(answers[name])}", 0.1, 1000.0,
+                                                           1.0, 0.5, key=f"{p}weight_{pid}_{name}"))
+        parts.append(records.Part(pid, tuple(counted), tuple(weights)))
+    c1, c2 = st.columns(2)
+    tolerance = c1.number_input("Tolerance for numbers (%)", 0.01, 10.0, RELATIVE_TOLERANCE * 100, 0.1,
+                                key=f"{p}tolerance")
+    attempts = c2.number_input("Attempts allowed per answer", 1, 100, 3, key=f"{p}attempts")
+    zone = _zone_picker(f"{p}zone")
+    due = _due_inputs(p, zone)
+    policy, value = _late_inputs(p)
+    hints, names, after, before = _feedback_inputs(p)
+    text, file_error = _roster_text(p)
+
+    settings = records.Settings(title, tuple(parts), tolerance / 100, due.astimezone(UTC), int(attempts), before,
+                                policy, value, hints, names, after, zone)
+    problems = list(settings.errors(creating=True))
+    if file_error:
+        problems.append(file_error)
+    labels: list[str] = []
+    if text.strip() and not file_error:
+        try:
+            labels = records.parse_roster(text)
+        except ValueError as error:
+            problems.append(str(error))
+    elif not file_error:
+        problems.append("Paste or upload a roster: one student label per line.")
+    warnings = [w[0].upper() + w[1:] + "." for w in title_mismatch(title, chosen)]
+    existing = None
+    if not settings.errors():
+        try:
+            existing = records.find(settings)
+        except records.RecordingUnavailable:
+            pass
+
+    st.markdown("#### Check before creating")
+    if parts:
+        summary = "; ".join(f"{_title(part.problem)} ({len(part.answers)} answers, "
+                            f"{records._number(sum(part.weights))} points)" for part in parts)
+        st.markdown(f"“{plain(title.strip() or '(no title)')}”: {plain(summary)}; due "
+                    f"{records.when_text(due, zone)}; {int(attempts)} attempts per answer; "
+                    f"{len(labels)} students; late: {plain(settings.late_rule())}; feedback: {settings.feedback_rule()}.")
+    st.session_state["assign__drafting"] = bool(title.strip() or chosen or text.strip())
+    if not (title.strip() or chosen or text.strip()):  # a fresh form: what it needs, not errors
+        st.markdown("To create an assignment: a title, at least one problem, a due time in the future and a roster.")
+        st.button("Create the assignment and its links", type="primary", key=f"{p}create", disabled=True)
         return
-    try:
-        text = roster_file.getvalue().decode("utf-8-sig") if roster_file else roster_text
-        labels = records.parse_roster(text)
-        settings = records.Settings(title, problem.id, tuple(counted), tolerance / 100,
-                                    dt.datetime.combine(due_day, due_time, UTC), int(attempts), before)
-        if settings.errors():
-            raise ValueError(" ".join(settings.errors()))
-        aid = records.create_assignment(settings)
-        records.enrol(aid, labels)
-    except UnicodeDecodeError:
-        st.error("The roster file is not UTF-8 text.")
-        return
-    except (ValueError, records.RecordingUnavailable) as error:
-        st.error(plain(str(error)))
-        return
-    st.session_state["assign__chosen"] = aid
-    st.success(f"Assignment {aid} created for {len(labels)} students: its links are below.")
+    for problem in problems:
+        st.error(plain(problem), icon=":material/error:")
+    for warning in warnings:
+        st.warning(plain(warning), icon=":material/warning:")
+    if existing is not None:
+        st.info(f"This assignment exists already (number {existing.id}, created "
+                f"{records.when_text(existing.created_at, zone)}): pressing Create again adds nothing.",
+                icon=":material/content_copy:")
+    confirmed = True
+    if warnings and not problems:
+        confirmed = st.checkbox("That is right: create it as it is", key=f"{p}confirm")
+    if st.button("Create the assignment and its links", type="primary", key=f"{p}create",
+                 disabled=bool(problems) or not confirmed):
+        try:
+            made = records.create(settings, labels)
+        except ValueError as error:
+            st.error(plain(str(error)))
+            return
+        st.session_state[f"{p}chosen"] = made.id
+        if made.new:
+            st.success(f"Assignment {made.id} created for {made.students} students: its links are below.")
+        else:
+            st.info(f"Assignment {made.id} was already created ({records.when_text(made.created_at, zone)}), "
+                    f"for {made.students} students: nothing was added. Its links are below.")
 
 
 def _assignment_choice(existing) -> int | None:
     ids = [aid for aid, _ in existing]
-    titles = {aid: f"{aid}: {s.title} ({BY_ID[s.problem].title if s.problem in BY_ID else s.problem})"
+    status = {"open": "", "closed": " · closed", "archived": " · archived"}
+    titles = {aid: f"{aid}: {s.title} ({', '.join(_title(p) for p in s.problems)}){status[s.status]}"
               for aid, s in existing}
     if st.session_state.get("assign__chosen") not in ids:
         st.session_state["assign__chosen"] = ids[0]
     return st.selectbox("Assignment", ids, format_func=titles.get, key="assign__chosen")
 
 
+def _status_actions(aid: int, s: records.Settings) -> None:
+    actions = {"open": [("Close (answers no longer recorded)", "closed"), ("Archive", "archived")],
+               "closed": [("Reopen", "open"), ("Archive", "archived")],
+               "archived": [("Unarchive (reopen)", "open")]}[s.status]
+    columns = st.columns(len(actions) + 1)
+    columns[0].markdown(f"Status: **{s.status}**")
+    for column, (label, status) in zip(columns[1:], actions):
+        if column.button(label, key=f"assign__status_{status}_{aid}"):
+            said = records.set_status(aid, status)
+            st.session_state["assign__said"] = f"Assignment {aid}: " + "; ".join(said) + "."
+            st.rerun()
+
+
+def _version(*values) -> str:
+    """A short digest of what a form starts from: its widgets' keys carry it, so a form shown after
+    a change (an undo, another tab's edit) starts from the stored values, not from stale inputs."""
+    return hashlib.sha256(repr(values).encode()).hexdigest()[:8]
+
+
+def _edit(aid: int, s: records.Settings) -> None:
+    p = f"assign__edit{aid}_{_version(s)}_"
+    with st.expander("Edit: due time, attempts, tolerance, late work, feedback, points"):
+        with st.form(f"{p}form"):
+            title = st.text_input("Title", s.title, max_chars=120, key=f"{p}title")
+            c1, c2 = st.columns(2)
+            tolerance = c1.number_input("Tolerance for numbers (%)", 0.01, 10.0, s.tolerance * 100, 0.1,
+                                        key=f"{p}tolerance")
+            attempts = c2.number_input("Attempts allowed per answer", 1, 100, s.attempts_allowed, key=f"{p}attempts")
+            zone = _zone_picker(f"{p}zone", s.timezone)
+            due = _due_inputs(p, zone, s.due)
+            policy, value = _late_inputs(p, s.late_policy, s.late_value)
+            hints, names, after, before = _feedback_inputs(p, s)
+            labels = _answer_labels(s)
+            parts = []
+            columns = st.columns(4)
+            n = 0
+            for part in s.parts:
+                weights = []
+                for name in part.answers:
+                    weights.append(columns[n % 4].number_input(f"Points: {labels[(part.problem, name)]}", 0.1, 1000.0,
+                                                               part.weight(name), 0.5, key=f"{p}w_{part.problem}_{name}"))
+                    n += 1
+                parts.append(replace(part, weights=tuple(weights)))
+            save = st.form_submit_button("Save the changes")
+        if save:
+            new = replace(s, title=title, tolerance=tolerance / 100, attempts_allowed=int(attempts),
+                          due=due.astimezone(UTC), late_policy=policy, late_value=value, hints=hints,
+                          slip_names=names, answer_after_last=after, solution_before_due=before, timezone=zone,
+                          parts=tuple(parts))
+            if new.errors():
+                for problem in new.errors():
+                    st.error(plain(problem))
+                return
+            warn = " The due time is in the past: late answers from now on." if new.due < records.now() <= s.due else ""
+            said = records.edit(aid, new)
+            st.session_state["assign__said"] = (f"Saved: {'; '.join(said)}.{warn}" if said else "Nothing changed.")
+            st.rerun()
+
+
+def _per_student(aid: int, book: records.Gradebook) -> None:
+    s = book.settings
+    labels = [st_.label for st_ in book.students if st_.seed >= 0]
+    with st.expander("One student: an extension or extra attempts"):
+        if not labels:
+            st.markdown("No students yet.")
+            return
+        who = st.selectbox("Student", labels, key=f"assign__grant{aid}_who")
+        grant = book.grants.get(who, records.Grant())
+        p = f"assign__grant{aid}_{_version(grant)}_"
+        with st.form(f"{p}form"):
+            extend = st.checkbox("An extension: a later due time for this student", grant.extended_due is not None,
+                                 key=f"{p}extend_{who}")
+            due = _due_inputs(f"{p}{who}_", s.timezone, grant.extended_due or s.due + dt.timedelta(days=2))
+            extra = st.number_input("Extra attempts per answer", 0, 100, grant.extra_attempts, key=f"{p}extra_{who}")
+            save = st.form_submit_button("Save for this student")
+        if save:
+            if extend and due <= s.due:
+                st.error(f"The extension must be after the assignment's due time, {records.when_text(s.due, s.timezone)}.")
+                return
+            try:
+                said = records.grant(aid, who, extended_due=due.astimezone(UTC) if extend else None,
+                                     extra_attempts=int(extra))
+            except ValueError as error:
+                st.error(plain(str(error)))
+                return
+            st.session_state["assign__said"] = f"Saved: {said}." if said else "Nothing changed."
+            st.rerun()
+
+
+def _add_students(aid: int) -> None:
+    p = f"assign__more{aid}_"
+    with st.expander("Add students to the roster"):
+        text, file_error = _roster_text(p)
+        if st.button("Add these students", key=f"{p}add"):
+            if file_error:
+                st.error(file_error)
+                return
+            try:
+                labels = records.parse_roster(text)
+            except ValueError as error:
+                st.error(plain(str(error)))
+                return
+            before = {s.label for s in records.roster(aid)}
+            records.enrol(aid, labels)
+            new = [l for l in labels if l not in before]
+            st.session_state["assign__said"] = (f"Added {len(new)} students; {len(labels) - len(new)} were on the "
+                                                "roster already (their links are unchanged).")
+            st.rerun()
+
+
+LEGEND = ("**Reading the gradebook.** Each answer's cell says where the student stands, in words: *right at "
+          "attempt 2* (on time, full points); *right 3 h late (attempt 1): 80 % credit* (after the student's due "
+          "time, with the late credit you set); *right but 1 day late: no credit* (no late credit set; kept so you "
+          "can decide); *right but over the limit* or *after the solution* (no credit); *not right yet: 1 of 3 "
+          "attempts used*; *not tried*. **Score** is the points earned out of the points possible (each answer's "
+          "points × the credit it earned); **how** shows the sum. An answer the page could not read (a typo) is "
+          "never an attempt; the same answer twice in a row counts once. Slips are the known mistakes a student's "
+          "wrong answers matched.")
+
+
 def _gradebook(aid: int) -> None:
     book = records.gradebook(aid)
     s = book.settings
-    problem = BY_ID.get(s.problem)
-    labels = {a.name: answer_label(a) for a in _answers_of(problem)} if problem else {}
+    labels = _answer_labels(s)
     base = _app_base()
-    st.markdown(f"Due {_when(s.due)} · {s.attempts_allowed} attempts per answer · numbers within "
-                f"±{s.tolerance * 100:g} % · solution before the due time: {'yes' if s.solution_before_due else 'no'}")
+    said = st.session_state.pop("assign__said", "")
+    slot = st.empty()  # always there, so the expanders below keep their place (and stay open)
+    if said:
+        slot.success(plain(said))
+    st.markdown(f"Due {records.when_text(s.due, s.timezone)} · {s.attempts_allowed} attempts per answer · numbers "
+                f"within ±{s.tolerance * 100:g} % · late: {plain(s.late_rule())} · feedback: {s.feedback_rule()}"
+                f"{'; the answer after the last attempt' if s.answer_after_last else ''} · solution before the due "
+                f"time: {'yes' if s.solution_before_due else 'no'} · {records._number(s.out_of)} points")
+    _status_actions(aid, s)
+    _edit(aid, s)
+    _per_student(aid, book)
+    _add_students(aid)
+
     st.markdown("#### Links, one per student")
     st.markdown("Send each student their own link (by your course's messaging, not in a public place): it opens "
-                "their variant, and a changed link is refused.")
+                "their variant, and a changed link is refused."
+                + (" A link opens the first problem; the page lists the others." if len(s.parts) > 1 else ""))
     st.download_button("Download the links (CSV)", _links_csv(base, s.problem, book.students),
                        file_name=f"assignment-{aid}-links.csv", mime="text/csv", key="assign__links_csv")
     with st.expander(f"The links ({len(book.students)})"):
         st.table([{"label": literal(st_.label), "link": student_url(base, s.problem, st_)} for st_ in book.students])
+
     st.markdown("#### Gradebook")
     rows = []
     for student in book.students:
-        row = {"student": literal(student.label), "score": f"{book.score(student.label)} / {len(s.answers)}"}
-        for a in s.answers:
-            c = book.cells.get((student.label, a), records.Cell())
-            right = f"at {c.first_right}" if c.first_right else "—"
-            slips = f"; slips: {', '.join(map(literal, c.slips))}" if c.slips else ""
-            row[labels.get(a, a)] = f"{right}; {c.attempts} used{slips}"
+        grant = book.grants.get(student.label, records.Grant())
+        row = {"student": literal(student.label),
+               "score": f"{records._number(book.score(student.label))} / {records._number(s.out_of)}"}
+        for q in s.questions:
+            c = book.cell(student.label, q)
+            words = c.status(s)
+            if c.slips:
+                words += "; slips: " + ", ".join(map(literal, c.slips))
+            row[labels[q]] = words
+        granted = []
+        if grant.extended_due:
+            granted.append(f"due {records.when_text(grant.extended_due, s.timezone)}")
+        if grant.extra_attempts:
+            granted.append(f"+{grant.extra_attempts} attempts")
+        row["extension"] = ", ".join(granted) or "—"
+        row["how"] = book.how(student.label, labels)
         rows.append(row)
     st.table(rows)
+    st.markdown(LEGEND)
     c1, c2 = st.columns(2)
     c1.download_button("Download the gradebook (CSV)", records.gradebook_csv(book),
                        file_name=f"assignment-{aid}-gradebook.csv", mime="text/csv", key="assign__book_csv")
     c2.download_button("Download every attempt (CSV)", records.attempts_csv(aid),
                        file_name=f"assignment-{aid}-attempts.csv", mime="text/csv", key="assign__attempts_csv")
+    c3, c4 = st.columns(2)
+    c3.download_button("Grades for Canvas (CSV)", records.lms_csv(book, "canvas"),
+                       file_name=f"assignment-{aid}-canvas.csv", mime="text/csv", key="assign__canvas_csv",
+                       help="Canvas: Grades › Import. Your labels go in the SIS User ID and SIS Login ID columns, "
+                            "so use your students' SIS ids as labels.")
+    c4.download_button("Grades for Moodle (CSV)", records.lms_csv(book, "moodle"),
+                       file_name=f"assignment-{aid}-moodle.csv", mime="text/csv", key="assign__moodle_csv",
+                       help="Moodle: Grades › Import › CSV file; map “ID number” to the user's ID number.")
     st.markdown("#### Per answer")
-    st.markdown("\n".join(f"- **{plain(labels.get(a, a))}**: " + " ".join(plain(line) for line in lines)
-                          for a, lines in book.statistics().items()))
+    st.markdown("\n".join(f"- **{plain(labels[q])}**: " + " ".join(plain(line) for line in lines)
+                          for q, lines in book.statistics().items()))
+    _history(aid, s)
+
+
+def _history(aid: int, s: records.Settings) -> None:
+    entries = records.history(aid)
+    st.markdown("#### History")
+    st.markdown("Every change to this assignment, newest first, with its time. Undoing a change is itself a "
+                "change, kept here.")
+    st.table([{"#": e.id, "time": records.when_text(e.at, s.timezone), "change": e.action,
+               "what": plain(e.summary) + (" (undone)" if e.undone else "")} for e in entries])
+    undoable = [e for e in entries if e.action not in ("created", "roster") and not e.undone]
+    c1, c2, c3 = st.columns([3, 1, 2])
+    if undoable:
+        chosen = c1.selectbox("Undo a change", [e.id for e in undoable], key=f"assign__undo_pick{aid}",
+                              format_func=lambda i: f"#{i}: " + next(e.summary for e in undoable if e.id == i)[:80])
+        if c2.button("Undo", key=f"assign__undo{aid}"):
+            try:
+                said = records.undo(aid, chosen)
+            except ValueError as error:
+                st.error(plain(str(error)))
+                return
+            st.session_state["assign__said"] = f"Undone: {said}." if said else "Nothing to undo."
+            st.rerun()
+    c3.download_button("Download the history (CSV)", records.history_csv(entries),
+                       file_name=f"assignment-{aid}-history.csv", mime="text/csv", key="assign__history_csv")
 
 
 def instructor_page() -> None:
@@ -284,12 +760,17 @@ def instructor_page() -> None:
                  "Practice pages still work. (Admin: check DL_DATABASE_URL and the database server.)")
         return
     try:
-        _new_assignment()
-        existing = records.assignments()
+        show_archived = st.session_state.get("assign__archived", False)
+        existing = records.assignments(archived=show_archived)
+        with st.expander("New assignment", expanded=not existing or st.session_state.get("assign__drafting", False),
+                         icon=":material/add:"):
+            _new_assignment()
+        existing = records.assignments(archived=show_archived)  # with the one just created
+        st.markdown("### Your assignments")
+        st.toggle("Show archived assignments", key="assign__archived")
         if not existing:
-            st.markdown("No assignments yet.")
+            st.markdown("No assignments yet." if not show_archived else "No assignments.")
             return
-        st.markdown("### Assignments")
         _gradebook(_assignment_choice(existing))
     except records.RecordingUnavailable as error:
         st.error(str(error))

@@ -219,17 +219,20 @@ def _assignment(problem: Problem, link, system: str) -> None:
     st.sidebar.markdown("### Parameters\nFixed by your assignment link.")  # no number a ?seed link could reuse
     keep = {k: st.query_params.get(k) for k in ("assignment", "seed", "student", "sig")}
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "", **keep}, params)
-    assignments.assignment_heading(link)
+    banner = st.container()  # filled last, so it counts the attempt this run records
     solution, figures = _solve_and_draw(problem, params, system)
     answers = _answers_for(problem.solver, solution)
     if link.settings is not None:
-        answers = tuple(a for a in answers if a.name in link.settings.answers)
-    recording = assignments.recording(link) if link.settings is not None else None
+        part = link.settings.part(problem.id)
+        answers = tuple(a for a in answers if a.name in part.answers)
+    recording = assignments.recording(link, solution, system) if link.settings is not None else None
     if practice_panel(problem, solution, answers, system, recording):
         results.answer_section(solution, answers, system)
         _figures(figures)
         _derivation(problem.solver, solution)
-    assignments.your_attempts(link, answers)
+    assignments.your_attempts(link, answers, solution, system)
+    with banner:
+        assignments.assignment_heading(link)
 
 
 def _beside_refusal(problem: Problem, params: dict, practice: bool = False) -> None:

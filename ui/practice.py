@@ -140,6 +140,7 @@ class Recording:
     on_reveal: Callable[[], bool]  # record "solution shown"; False if it could not be recorded
     revealed: bool = False  # the student has already seen the solution (recorded earlier)
     reveal_blocked: str = ""  # why "Show the solution" is not offered yet ("" when it is)
+    say: Callable[[Verdict], str] | None = None  # the verdict's message under the feedback policy
 
 
 def practice_panel(problem: Problem, solution: Solution, answers, system: str,
@@ -155,8 +156,9 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
     judge = Judge(solution, problem.solver.derivation_of(solution), answers, tolerance_value)
     revealed = st.session_state.get(revealed_key) == signature
     if not revealed:
-        st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
-                "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
+        if recording is None:  # an assignment's banner says what holds for it instead
+            st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
+                    "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
         st.markdown(statement(problem, solution, answers, system, judge))
         st.markdown(method(solution.steps[: solution.symbolic_steps], judge.derivation))
     with st.form(key=f"{problem.id}__practice"):
@@ -177,7 +179,14 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         if verdict.understood:
             st.markdown("Read as:")  # not st.caption: its grey fails AA contrast
             st.latex(verdict.understood)
-        (st.success if verdict.correct else st.error)(plain(verdict.message))
+        message = recording.say(verdict) if recording is not None and recording.say else verdict.message
+        if not verdict.readable:  # a typo, an unknown name, a unit of another kind: explained, not judged
+            st.warning(plain(message) + (" This is not counted as an attempt." if recording is not None else ""),
+                       icon=":material/edit_note:")
+        elif verdict.correct:
+            st.success(plain(message), icon=":material/check_circle:")
+        else:
+            st.error(plain(message), icon=":material/cancel:")
         if recording is not None:
             recording.on_verdict(answer, text or "", verdict)
     if not revealed and recording is not None and recording.reveal_blocked:
