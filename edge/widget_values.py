@@ -4,8 +4,8 @@ A browser sends each widget's value as one of the protobuf's typed fields. Strea
 field: a string sent for a slider, or a list of three numbers for one, made its deserializer raise
 before the page's script began, so the student saw Streamlit's generic error and the log got a full
 traceback on every rerun (issue 25: about 143 KB a second from one session). ``install()`` puts a
-check in front of that deserializer: a value sent in another field than the widget's own, one the
-deserializer refuses, or a number that is not finite, is treated as not sent (Streamlit then keeps
+check in front of that deserializer: a value sent in a field of another kind than the widget's
+(text for a number, a list for a box), one the deserializer refuses, or a number that is not finite, is treated as not sent (Streamlit then keeps
 the widget's last value, as for a widget it has no state for), the page says so in plain words
 (``take_refusals`` for app.py), and the log says it once per session and kind.
 """
@@ -27,6 +27,16 @@ def _session_id() -> str:
 
     ctx = get_script_run_ctx(suppress_warning=True)
     return ctx.session_id if ctx else "?"
+
+
+# Fields a browser may rightly send for a widget whose metadata names another of the same kind: a
+# number box sends int_value for whole numbers and double_value otherwise (Streamlit's metadata
+# follows whichever came last).
+SAME_KIND = [{"double_value", "int_value"}]
+
+
+def _compatible(sent: str | None, expected: str) -> bool:
+    return sent == expected or any(sent in kind and expected in kind for kind in SAME_KIND)
 
 
 def _not_finite(value) -> bool:
@@ -70,7 +80,7 @@ def install() -> None:
         if not isinstance(wstate, session_state.Serialized) or metadata is None:
             return original(self, k)
         sent = wstate.value.WhichOneof("value")
-        if metadata.value_type and sent != metadata.value_type:
+        if metadata.value_type and not _compatible(sent, metadata.value_type):
             refuse(f"{sent or 'nothing'} where {metadata.value_type} belongs")
             raise KeyError(k)  # as for a widget with no state: Streamlit keeps its last value
         try:

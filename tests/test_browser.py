@@ -27,10 +27,13 @@ if not Path(CHROMIUM).exists():
 playwright = pytest.importorskip("playwright.sync_api")
 
 
-def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: bool = False):
-    """A fresh context at this viewport (a phone: mobile, touch, 2× pixels), the page opened and idle,
-    and the list its script errors go to."""
+def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: bool = False,
+              zone: str | None = None):
+    """A fresh context at this viewport (a phone: mobile, touch, 2× pixels) and time zone, the page
+    opened and idle, and the list its script errors go to."""
     extra = {"is_mobile": True, "has_touch": True, "device_scale_factor": 2} if phone else {}
+    if zone:
+        extra["timezone_id"] = zone
     context = browser.new_context(viewport={"width": width, "height": height}, **extra)
     context.add_init_script(CSP_WATCH)
     page = context.new_page()
