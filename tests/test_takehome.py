@@ -19,6 +19,7 @@ from hypothesis import given, settings, strategies as hst
 
 from practice.variants import MAX_SEED, variant
 from solvers.core import Choice
+from tests.test_assignment_pages import course  # noqa: F401  (the fixture: a course with its database)
 from tests.test_pages import assert_clean, downloads_shown, run_page
 from ui import documents, notebook
 from ui.catalog import BY_ID, PROBLEMS
@@ -271,3 +272,33 @@ def test_the_study_page_offers_the_derivation_and_a_notebook_for_its_numbers(pid
     assert_same_answers(printed_answers(run_script(files[f"{pid}.py"])), solution)
     assert json.loads(files[f"{pid}.ipynb"])["nbformat"] == 4
     assert all(step.latex in files[f"{pid}-derivation.md"] for step in solution.steps)
+
+
+# -- no answer before "Show the solution" -----------------------------------------------------------
+
+def test_an_assignment_link_offers_only_the_exercise_until_the_solution_is_shown(course):
+    """A student's assignment link (the solution open before the due time here): before "Show the
+    solution" its downloads are the statement and the method with no answer in them; after, the
+    derivation and the notebook, which the same leak check finds the answers in."""
+    from assignments import records
+    from assignments.identity import link_query, parameters
+    from tests.test_assignment_pages import create, instructor, student
+    from tests.test_practice import leaks, setup
+
+    create(instructor(), before=True)
+    ann = records.roster(records.assignments()[0][0])[0]
+    page = student(link_query(ann))
+    assert_clean(page)
+    files = downloads_shown(page)
+    assert set(files) == {"pendulum_rebound-exercise.tex", "pendulum_rebound-exercise.md"}
+    _, solution, judge, answers = setup("pendulum_rebound", **parameters(ann, BY_ID["pendulum_rebound"].solver,
+                                                                         "pendulum_rebound"))
+    assert all(value in files["pendulum_rebound-exercise.md"] for _, _, value in
+               documents.givens(BY_ID["pendulum_rebound"], solution))  # the student's own givens
+    for name, text in files.items():
+        assert leaks(text, solution, answers.values(), judge) == [], name
+    page.button(key="pendulum_rebound__reveal").click().run()
+    files = downloads_shown(page)
+    assert "pendulum_rebound.ipynb" in files
+    for name, text in files.items():
+        assert leaks(text, solution, answers.values(), judge), name
