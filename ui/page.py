@@ -79,7 +79,7 @@ PRINT_CSS = """
     .dl-print-only { display: block; }
     .dl-print-link { font-size: 0.85rem; overflow-wrap: anywhere; }
     .dl-math, .katex-display, tr, li, [data-testid='stAlert'], [data-testid='stTable'] tr { break-inside: avoid; }
-    h1, h2, h3, h4, .dl-text p:has(+ .dl-math) { break-after: avoid; }
+    h1, h2, h3, h4, .dl-text .dl-caption, .dl-text p:has(+ .dl-math) { break-after: avoid; }
   }
 </style>
 """
