@@ -20,6 +20,7 @@ from scripts.live_app import CHROMIUM, wait_until_idle
 from ui.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
+KEY = "print-test-instructor-key"
 
 for tool, why in ((CHROMIUM, "apt-get install chromium"), ("pdftoppm", "apt-get install poppler-utils")):
     if not (Path(tool).exists() or shutil.which(tool)):
@@ -84,8 +85,10 @@ def screen_chrome(page) -> set[str]:
     return set(texts)
 
 
-def check_printout(browser, url: str, name: str, tmp_path: Path, wait_for: tuple[str, ...] = ()) -> str:
-    """Print ``url`` once ``wait_for`` (selectors) are drawn, and check it; returns the printed text."""
+def check_printout(browser, url: str, name: str, tmp_path: Path, wait_for: tuple[str, ...] = (),
+                   links: tuple[str, ...] | None = None) -> str:
+    """Print ``url`` once ``wait_for`` (selectors) are drawn, and check it; returns the printed text.
+    ``links``: the links it must print (by default the page's own address)."""
     context = browser.new_context(viewport={"width": 1400, "height": 1000})
     page = context.new_page()
     errors: list[str] = []
@@ -129,8 +132,18 @@ def check_printout(browser, url: str, name: str, tmp_path: Path, wait_for: tuple
         assert f"Page {n} of {len(images)}" in flat, f"{name}: page {n} is not numbered"
     left = sorted(c for c in chrome if c in text)
     assert not left, f"{name}: controls printed: {left}"
-    assert link.replace("http://", "") in flat.replace(" ", "") or link in flat, f"{name}: no link {link}"
+    for printed_link in (link,) if links is None else links:
+        assert printed_link in flat.replace(" ", ""), f"{name}: no link {printed_link}"
     return text
+
+
+@pytest.fixture(scope="module")
+def app_url():
+    """The app as shipped, with an instructor key (the handouts), on a free loopback port."""
+    from scripts.live_app import running_app
+
+    with running_app(env={"DL_INSTRUCTOR_KEY": KEY}) as url:
+        yield url
 
 
 def test_the_cut_check_sees_ink_on_an_edge():
@@ -153,3 +166,19 @@ def test_the_practice_view_prints_the_exercise(browser, app_url, tmp_path):
     text = check_printout(browser, f"{app_url}/disk_wall?seed=17", "practice", tmp_path,
                           ("[data-testid='stMarkdownContainer'] .katex",))
     assert "The problem" in text and "The method" in text and "Derivation, step by step" not in text
+
+
+@pytest.mark.parametrize("what", ["statements", "key"])
+def test_a_handout_prints_each_student_from_a_new_sheet(browser, app_url, what, tmp_path):
+    url = f"{app_url}/handouts?instructor={KEY}&problem=stick_ball&first=3&last=5&what={what}"
+    text = check_printout(browser, url, f"handout-{what}", tmp_path, ("[data-testid='stMarkdownContainer'] .katex",),
+                          links=tuple(f"/stick_ball?seed={seed}" for seed in (3, 4, 5)))
+    pages = text.split("\f")
+    starts = [n for n, page in enumerate(pages) for seed in (3, 4, 5) if page.lstrip().startswith(f"Variant {seed}")]
+    assert len(starts) == 3, [page.strip()[:40] for page in pages]  # each variant opens a sheet
+    assert all(page.split("Page")[0].strip() for page in pages if page.strip()), "a page left empty"
+    if what == "statements":
+        assert len([p for p in pages if p.strip()]) == 3, [p.strip()[:60] for p in pages]
+        assert "Your work" in text and "Answers" not in text
+    else:
+        assert text.count("Derivation, step by step") == 3

@@ -65,7 +65,7 @@ def tex_of(pid: str, params: dict, exercise: bool = False) -> str:
 # file is also compiled, which is the proof.
 DEFINED = set(r"""
 documentclass usepackage setlength textwidth oddsidemargin evensidemargin textheight topmargin parindent
-parskip pagestyle begin end section subsection noindent textit textbf texttt emph par item allowbreak
+parskip pagestyle begin end section subsection noindent textit textbf texttt emph par item allowbreak newpage vspace fill
 ensuremath textbackslash textless textgreater textbar ldots
 alpha beta gamma delta Delta theta tau mu pi sigma psi omega phi lambda rho Sigma ell infty int le ge approx
 cdot times circ to surd sqrt frac tfrac dfrac left right lvert rvert quad qquad Rightarrow iff limits

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 import unicodedata
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from solvers import units
 from solvers.core import Choice, Solution
@@ -38,6 +38,7 @@ class Document:
     slips: tuple[str, ...] = ()
     exercise: bool = False
     heading: str = ""  # a handout's line above the title ("Variant 17", a roster's label)
+    work_space: bool = False  # a student's sheet: room to work instead of the method
 
 
 def givens(problem: Problem, solution: Solution, system: str = "si") -> tuple[tuple[str, str, str], ...]:
@@ -89,9 +90,10 @@ def _cell(text: str) -> str:
 
 
 def markdown(doc: Document) -> str:
-    out = [f"*{doc.heading}*\n" if doc.heading else "", f"# {doc.title}", "", f"{doc.blurb} Source: {doc.source}.", ""]
+    heading = re.sub(r"([\\`*_])", r"\\\1", doc.heading)  # a roster's label as it is (s_01 is not emphasis)
+    out = [f"*{heading}*\n" if heading else "", f"# {doc.title}", "", f"{doc.blurb} Source: {doc.source}.", ""]
     if doc.link:
-        out += [f"This page, with these numbers: <{doc.link}>", ""]
+        out += [f"This page, with these numbers: [{doc.link}]({doc.link})", ""]
     out += ["## The problem", "", "| given | symbol | value |", "|---|---|---|"]
     out += [f"| {_cell(label)} | {f'${_cell(symbol)}$' if symbol else ''} | {_cell(value)} |"
             for label, symbol, value in doc.givens]
@@ -100,6 +102,8 @@ def markdown(doc: Document) -> str:
         out += ["## Answers", "", "| symbol | quantity | value |", "|---|---|---|"]
         out += [f"| ${_cell(symbol)}$ | {_cell(label)} | **{_cell(value)}** |" for symbol, label, value in doc.answers]
         out += [""] + [f"{note}\n" for note in doc.notes]
+    if doc.work_space:
+        return "\n".join(out + ["## Your work", ""]).lstrip("\n")
     out += ["## The method" if doc.exercise else "## Derivation, step by step", ""]
     if doc.exercise:
         out += ["The steps to take; equations that lead to a result come with the solution.", ""]
@@ -239,6 +243,8 @@ def tex_body(doc: Document) -> str:
         out += [f"${symbol}$ & {tex_text(label)} & \\textbf{{{tex_text(value)}}}\\\\" for symbol, label, value in doc.answers]
         out += [r"\end{tabular}", ""]
         out += [tex_text(note) + r"\par" for note in doc.notes]
+    if doc.work_space:
+        return "\n".join(out + [r"\subsection*{Your work}", r"\vspace*{\fill}"]) + "\n"
     out.append(r"\subsection*{" + ("The method" if doc.exercise else "Derivation, step by step") + "}")
     if doc.exercise:
         out.append(r"The steps to take; equations that lead to a result come with the solution.\par")
@@ -260,14 +266,32 @@ def latex(doc: Document) -> str:
     return PREAMBLE + "\\begin{document}\n" + tex_body(doc) + "\\end{document}\n"
 
 
-def file_stem(problem: Problem, solution: Solution, exercise: bool = False) -> str:
-    """A download's name: the problem, and "exercise" for a statement without the solution."""
-    return f"{problem.id}-{'exercise' if exercise else 'derivation'}"
-
-
 def ascii_only(text: str) -> bool:
     return all(ord(c) < 128 for c in text)
 
 
 def character_names(chars: set[str]) -> list[str]:
     return sorted(f"{c} ({unicodedata.name(c, hex(ord(c)))})" for c in chars)
+
+
+# ------------------------------------------------------------------------------------------------
+# Handouts: one file for a class, each variant on its own page(s)
+
+def statement_sheet(doc: Document) -> Document:
+    """A student's sheet: the statement with their givens, and room to work instead of the method."""
+    return replace(doc, steps=(), answers=(), notes=(), checks=(), slips=(), exercise=True, work_space=True)
+
+
+def key_sheet(doc: Document) -> Document:
+    """A variant's answer key: the answers, the notes and the derivation (without the page's checks
+    and the worked solution's slips)."""
+    return replace(doc, checks=(), slips=())
+
+
+def handout_latex(docs: list[Document]) -> str:
+    """Several sheets in one .tex, each from a new page; a statement ends with room to work."""
+    return PREAMBLE + "\\begin{document}\n" + "\\newpage\n".join(tex_body(doc) for doc in docs) + "\\end{document}\n"
+
+
+def handout_markdown(docs: list[Document]) -> str:
+    return "\n\n---\n\n".join(markdown(doc) for doc in docs)

@@ -74,11 +74,12 @@ PRINT_CSS = """
     [data-testid='stButtonGroup'], [data-testid='stRadio'], [data-testid='stPopover'] { display: none !important; }
     html, body, .stApp, [data-testid='stAppViewContainer'], [data-testid='stMain'], [data-testid='stAppScrollToBottomContainer'] {
       height: auto !important; min-height: 0 !important; overflow: visible !important; position: static !important; }
+    html { font-size: 13px !important; }  /* paper: about 10 pt where the screen has 16 px */
     .stMainBlockContainer { padding: 0 !important; max-width: none !important; }
     .stMainBlockContainer .katex-display { overflow: visible !important; }
     .dl-print-only { display: block; }
     .dl-print-link { font-size: 0.85rem; overflow-wrap: anywhere; }
-    .dl-math, .katex-display, tr, li, [data-testid='stAlert'], [data-testid='stTable'] tr { break-inside: avoid; }
+    .dl-math, .katex-display, table, tr, li, [data-testid='stAlert'] { break-inside: avoid; }
     h1, h2, h3, h4, .dl-text .dl-caption, .dl-text p:has(+ .dl-math) { break-after: avoid; }
   }
 </style>
