@@ -74,7 +74,7 @@ def roster_variants(problem: Problem, assignment_id: int) -> list[tuple[str, dic
 
 
 def _from_link() -> None:
-    """A handout's link (?problem=disk_wall&first=1&last=30&what=key) sets the choices once; a value
+    """A handout's link (?problem=<id>&first=1&last=30&what=key) sets the choices once; a value
     that is not one of them is ignored."""
     if st.session_state.get("handouts__linked"):
         return
