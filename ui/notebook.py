@@ -70,14 +70,18 @@ def _exact(value: float) -> str:
     """A given as exact sympy: its shortest decimal as a Rational (6.0 -> 6, 0.075 -> 3/40)."""
     if math.isinf(value):
         return "sp.oo" if value > 0 else "-sp.oo"
-    text = repr(float(value))
-    return f"sp.Rational({text!r})" if "e" in text or "." in text and not text.endswith(".0") else f"sp.Integer({int(value)})"
+    if float(value).is_integer() and abs(value) < 1e15:
+        return f"sp.Integer({int(value)})"
+    return f"sp.Rational({repr(float(value))!r})"
 
 
 def _angle(value: float) -> str:
-    """An angle the page shows in degrees (to 6 figures), as sympy radians: sp.rad(30) is pi/6."""
+    """An angle as the page shows it, in degrees, turned into radians by sympy (sp.rad(30) is pi/6);
+    an angle that is no such number of degrees (to 6 figures) as its radians."""
     degrees = float(f"{math.degrees(value):.6g}")
-    return f"sp.rad({_exact(degrees)})"
+    if math.isclose(math.radians(degrees), value, rel_tol=1e-13, abs_tol=1e-15):
+        return f"sp.rad({_exact(degrees)})"
+    return _exact(value)
 
 
 def _unit(dimension: str) -> str:

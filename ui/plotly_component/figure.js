@@ -210,7 +210,7 @@ class Figure {
     if (!this.Plotly || !this.graph.layout || on === this.printing) return;
     this.printing = on;
     if (on) {
-      this.playing = false;
+      if (this.playing) this.pause();
       this.shownFrame = this.frameIndex;
       this.showFrame(this.keyFrame);
       this.Plotly.relayout(this.graph, {width: PAPER_WIDTH});
