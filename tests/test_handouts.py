@@ -9,7 +9,6 @@ import re
 import subprocess
 from pathlib import Path
 
-import pytest
 from streamlit.testing.v1 import AppTest
 
 from assignments import records

@@ -12,7 +12,6 @@ import os
 import re
 import shutil
 import subprocess
-from pathlib import Path
 
 import pytest
 from hypothesis import given, settings, strategies as hst
@@ -26,11 +25,6 @@ from ui.catalog import BY_ID, PROBLEMS
 
 IDS = [p.id for p in PROBLEMS]
 PDFLATEX = shutil.which("pdflatex")
-
-
-def answers_of(problem, solution):
-    solver = problem.solver
-    return solver.answers_for(solution.regime) if hasattr(solver, "answers_for") else solver.ANSWERS
 
 
 def cases(pid: str) -> list[dict]:
@@ -47,7 +41,7 @@ def cases(pid: str) -> list[dict]:
 def solved(pid: str, params: dict):
     problem = BY_ID[pid]
     solution = problem.solver.solve(**params)
-    return problem, solution, answers_of(problem, solution)
+    return problem, solution, problem.answers_of(solution)
 
 
 LINK = "http://127.0.0.1:8501/{}?e=0.6&theta0=30&units=us&q=a_b%20c#x"

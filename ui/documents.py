@@ -15,6 +15,7 @@ from dataclasses import dataclass, replace
 
 from solvers import units
 from solvers.core import Choice, Solution
+from ui import results
 from ui.catalog import Problem
 from ui.equations import broken
 from ui.practice import answer_label, flat_latex, result_forms
@@ -69,16 +70,10 @@ def document(problem: Problem, solution: Solution, answers, system: str = "si", 
                   givens=givens(problem, solution, system), find=find, heading=heading)
     if exercise:
         return Document(**common, steps=exercise_steps(solution, problem.solver.derivation_of(solution)), exercise=True)
-    values = []
-    for a in answers:
-        value = units.format_quantity(solution.answers[a.name], a.dimension, system)
-        if a.dimension == "angle":
-            value += f" ({units.format_value(solution.answers[a.name])} rad)"
-        values.append((a.symbol, answer_label(a), value))
-    checks = tuple(f"{'agrees' if c.ok else 'DIFFERS'}: {c.name}: {units.format_value(c.closed_form, 8)} vs "
-                   f"{units.format_value(c.second_method, 8)}" + (f" ({c.explanation})" if c.explanation else "")
-                   for c in solution.checks)
-    return Document(**common, steps=tuple((s.title, s.latex) for s in solution.steps), answers=tuple(values),
+    checks = tuple(f"{'agrees' if ok else 'DIFFERS'}: {name}: {closed} vs {second}" + (f" ({why})" if why else "")
+                   for ok, name, closed, second, why in results.checks(solution))
+    return Document(**common, steps=tuple((s.title, s.latex) for s in solution.steps),
+                    answers=tuple(map(tuple, results.answer_rows(solution, answers, system))),
                     notes=tuple(solution.notes), checks=checks, slips=tuple(problem.solver.ERRATA))
 
 

@@ -38,8 +38,8 @@ SHEET_CSS = """
 
 
 def _answers(problem: Problem, solution, counted: tuple[str, ...] = ()):
-    solver = problem.solver
-    answers = solver.answers_for(solution.regime) if hasattr(solver, "answers_for") else solver.ANSWERS
+    """The answers a sheet asks for: an assignment's that count, else every one the page shows."""
+    answers = problem.answers_of(solution)
     return tuple(a for a in answers if a.name in counted) if counted else answers
 
 

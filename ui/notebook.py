@@ -142,7 +142,7 @@ def cells(problem: Problem, solution: Solution, link: str = "") -> list[tuple[st
         f"**{i}.** {step.title}\n\n$$\n{step.latex}\n$$" for i, step in enumerate(symbolic, start=1)))
     md("## The chain of results, in sympy\n\nEach result as the derivation gives it, in the givens and the "
        "results before it.")
-    answers = solver.answers_for(solution.regime) if hasattr(solver, "answers_for") else solver.ANSWERS
+    answers = problem.answers_of(solution)
     labels = {a.name: a.label for a in answers}
     for link_ in derivation.chain:
         label = labels.get(link_.name) or link_.title or link_.name

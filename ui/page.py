@@ -117,11 +117,6 @@ def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str
     return system, view
 
 
-def _answers_for(solver, solution):
-    picker = getattr(solver, "answers_for", None)
-    return picker(solution.regime) if picker else solver.ANSWERS
-
-
 @functools.lru_cache(maxsize=256)
 @within_model_range  # the drawing too: scales like b / (m g) overflow where the answers did not
 def _computed(problem_id: str, key: tuple, system: str):
@@ -227,7 +222,7 @@ def problem_page(problem_id: str) -> None:
             _beside_refusal(problem, params, practice)
         return
 
-    answers = _answers_for(solver, solution)
+    answers = problem.answers_of(solution)
     _heading(problem, heading, notices)
     if practice and not practice_panel(problem, solution, answers, system):
         takehome.downloads(problem, solution, answers, system, exercise=True)  # the statement and the method
@@ -254,7 +249,7 @@ def _assignment(problem: Problem, link, system: str) -> None:
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "", **keep}, params)
     assignments.assignment_heading(link)
     solution, figures = _solve_and_draw(problem, params, system)
-    answers = _answers_for(problem.solver, solution)
+    answers = problem.answers_of(solution)
     if link.settings is not None:
         answers = tuple(a for a in answers if a.name in link.settings.answers)
     recording = assignments.recording(link) if link.settings is not None else None
