@@ -21,5 +21,6 @@ for group in GROUPS:
     pages[group] = [st.Page(p.page_path, title=p.title, icon=p.icon, url_path=p.id)
                     for p in PROBLEMS if p.group == group]
 pages["For instructors"] = [st.Page("pages/gradebook.py", title="Assignments", icon=":material/assignment:",
-                                   url_path="gradebook")]
+                                   url_path="gradebook"),
+                            st.Page("pages/handouts.py", title="Handouts", icon=":material/print:", url_path="handouts")]
 st.navigation(pages).run()

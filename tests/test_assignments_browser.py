@@ -262,10 +262,10 @@ def records_of(page) -> list[str]:
 
 def test_an_instructor_link_leaves_the_address_bar_on_every_page(browser, course_url):
     """?instructor=KEY opens the instructor's side and is gone from the address bar at once, on
-    the home page, every problem and the Assignments page; no page meets a CSP violation."""
+    the home page, every problem, the Assignments and the Handouts page; no page meets a CSP violation."""
     from solvers import registry
 
-    for path in ["", *registry.PROBLEM_IDS, "gradebook"]:
+    for path in ["", *registry.PROBLEM_IDS, "gradebook", "handouts"]:
         context, page, errors = open_page(browser, f"{course_url}/{path}?instructor={KEY}")
         page.wait_for_function("() => !location.search.includes('instructor')", timeout=15_000)
         assert KEY not in page.url and KEY not in page.evaluate("document.body.innerText"), path

@@ -7,7 +7,8 @@ from pathlib import Path
 
 import orjson
 import pytest
-from streamlit.testing.v1 import AppTest
+from streamlit.runtime.media_file_manager import MediaFileManager
+from streamlit.testing.v1 import AppTest, app_test
 
 from ui.catalog import BY_ID, PROBLEMS
 from ui.figure import ANSWERS, DERIVATION
@@ -27,6 +28,30 @@ def shown(at: AppTest, component: str) -> list[dict]:
     """What the page sends to each of its elements named ``component`` (ui/results.py)."""
     return [orjson.loads(e.proto.bytes) for e in at.main if getattr(e, "type", None) == "bidi_component"
             and e.proto.component_name == component]
+
+
+class _KeptMediaFiles(MediaFileManager):
+    """AppTest's media files, kept after the run: a page's downloads are made on click (deferred),
+    and the tests make them as a click would, from the run's own registry."""
+    last: MediaFileManager | None = None
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        _KeptMediaFiles.last = self
+
+
+app_test.MediaFileManager = _KeptMediaFiles  # every AppTest run keeps its media files for downloads_shown
+
+
+def downloads_shown(at: AppTest) -> dict[str, str]:
+    """Every download the page offers after its last run, by file name, made as a click makes it."""
+    registry = _KeptMediaFiles.last._deferred_callables
+    files = {}
+    for button in at.get("download_button"):
+        entry = registry[button.proto.deferred_file_id]
+        data = entry["callable"]()
+        files[entry["filename"]] = data.decode() if isinstance(data, bytes) else data
+    return files
 
 
 def answers_shown(at: AppTest) -> dict | None:

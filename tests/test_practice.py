@@ -26,7 +26,8 @@ from solvers import registry
 from practice.variants import MAX_SEED, variant, variants_csv
 from solvers import units
 from tests import strategies
-from tests.test_pages import answer_section_text, answers_shown, answers_text, derivation_text, derivations_shown, shown
+from tests.test_pages import (answer_section_text, answers_shown, answers_text, derivation_text, derivations_shown,
+                              downloads_shown, shown)
 from ui.figure import ANSWERS
 from solvers.core import Answer
 from practice.worker import SimplifyWorker
@@ -402,6 +403,7 @@ def page_text(at) -> str:
                 parts += [str(o) for o in element.options]
     parts += [derivation_text(at, d) for d in derivations_shown(at)]  # the derivation's own element
     parts += [answer_section_text(section) for section in shown(at, ANSWERS)]  # and the answers'
+    parts += downloads_shown(at).values()  # and every file it offers to take home
     return "\n".join(parts)
 
 
@@ -458,9 +460,12 @@ def test_the_practice_page_gives_no_answer_away(pid, options):
     text = page_text(at)
     assert "### The problem" in text and "### The method" in text and not at.exception
     assert leaks(text, solution, answers.values(), judge) == []
+    assert set(downloads_shown(at)) == {f"{pid}-exercise.tex", f"{pid}-exercise.md"}  # no notebook: it prints them
     at.button(key=f"{pid}__reveal").click().run()
     assert leaks(page_text(at), solution, answers.values(), judge)  # the check can find them
     assert leaks(answer_section_text(answers_shown(at)), solution, answers.values(), judge)  # in the answers too
+    for name, text in downloads_shown(at).items():  # and in each download, once the solution is shown
+        assert leaks(text, solution, answers.values(), judge), name
 
 
 @pytest.mark.parametrize("pid, options, past_limit", [

@@ -1,5 +1,6 @@
-"""Figures as data: every animation has ≥ 30 frames, Play/Pause and a scrubbing slider, stays under
-300 KB of JSON, is byte-identical for equal inputs, and viz/ holds no physics."""
+"""Figures as data: every animation has ≥ 30 frames, Play/Pause and a scrubbing slider, a key instant
+for paper with its caption, stays under 300 KB of JSON, is byte-identical for equal inputs, and viz/
+holds no physics."""
 from __future__ import annotations
 
 import importlib
@@ -41,6 +42,8 @@ def check_figures(figures):
         anim = f.spec["animation"]  # compact: one row of coordinates per frame for each moving trace
         assert all(len(rows) == len(anim["times"]) for coords in anim["coords"] for rows in coords.values())
         assert len(anim["coords"]) == len(anim["traces"])
+        # On paper the animation is its key instant (ui/plotly_component/figure.js), said in words.
+        assert 0 <= f.key_frame < len(anim["times"]) and len(f.key_caption) > 10, (f.key, f.key_frame)
         sent = json.loads(f.json())["animation"]  # compacted: rebuilt, each row is the row drawn
         for coords, packed in zip(anim["coords"], sent["coords"]):
             rebuilt = unpacked(packed, len(anim["times"]))

@@ -22,6 +22,11 @@ class Problem(About):
     def page_path(self) -> str:
         return f"pages/{self.id}.py"
 
+    def answers_of(self, solution) -> tuple:
+        """The answers a solution shows: its regime's (``answers_for``), where the problem has them."""
+        picker = getattr(self.solver, "answers_for", None)
+        return picker(solution.regime) if picker else self.solver.ANSWERS
+
 
 PROBLEMS = tuple(Problem(**dataclasses.asdict(registry.solver(pid).ABOUT), id=pid) for pid in registry.PROBLEM_IDS)
 BY_ID = {p.id: p for p in PROBLEMS}

@@ -159,7 +159,8 @@ def payload(figure: Figure, bundle: str, style: dict | None) -> bytes:
     """What a run sends for one figure: one JSON object as bytes, the figure's cached JSON spliced
     in as it is (no second encoding of it)."""
     head = orjson.dumps({"height": figure.height, "title": figure.title, "description": figure.description,
-                         "bundle": bundle, "style": style})
+                         "bundle": bundle, "style": style, "key_frame": figure.key_frame,
+                         "key_caption": figure.key_caption})
     return head[:-1] + b',"spec":' + figure.json_bytes() + b"}"
 
 

@@ -10,7 +10,7 @@ import streamlit as st
 from assignments.identity import parameters
 from practice.variants import variant
 from solvers.core import PhysicalLimitError, Solution, within_model_range
-from ui import assignments, results
+from ui import assignments, results, takehome
 from ui.practice import instructor_export, is_instructor, practice_panel, seed_from_url
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
@@ -55,6 +55,37 @@ RUN_CSS = """
 """
 
 
+# Paper (the browser's Print): the page without Streamlit's frame and controls, flowing over A4 or
+# Letter pages numbered at the foot, no equation, table row, figure or alert cut across two pages,
+# the figures at their key instant (plotly_component/figure.js), and the link that reproduces the
+# page under its heading (ui/takehome.print_link). tests/test_print.py prints every page.
+PRINT_CSS = """
+<style>
+  .dl-print-only { display: none; }
+  @media print {
+    @page { margin: 14mm 12mm 16mm 12mm;
+      @bottom-center { content: "Page " counter(page) " of " counter(pages); font: 9pt sans-serif; color: #555; } }
+    [data-testid='stSidebar'], [data-testid='stSidebarCollapsedControl'], [data-testid='stHeader'],
+    [data-testid='stToolbar'], [data-testid='stDecoration'], [data-testid='stStatusWidget'],
+    [data-testid='stBottom'], [data-testid='stElementToolbar'], [data-testid='stSkeleton'],
+    [data-testid='stForm'], [data-testid='stButton'], [data-testid='stDownloadButton'],
+    [data-testid='stExpander'], [data-testid='stNumberInput'], [data-testid='stTextInput'],
+    [data-testid='stSelectbox'], [data-testid='stSlider'], [data-testid='stCheckbox'],
+    [data-testid='stButtonGroup'], [data-testid='stRadio'], [data-testid='stPopover'] { display: none !important; }
+    html, body, .stApp, [data-testid='stAppViewContainer'], [data-testid='stMain'], [data-testid='stAppScrollToBottomContainer'] {
+      height: auto !important; min-height: 0 !important; overflow: visible !important; position: static !important; }
+    html { font-size: 13px !important; }  /* paper: about 10 pt where the screen has 16 px */
+    .stMainBlockContainer { padding: 0 !important; max-width: none !important; }
+    .stMainBlockContainer .katex-display { overflow: visible !important; }
+    .dl-print-only { display: block; }
+    .dl-print-link { font-size: 0.85rem; overflow-wrap: anywhere; }
+    .dl-math, .katex-display, table, tr, li, [data-testid='stAlert'] { break-inside: avoid; }
+    h1, h2, h3, h4, .dl-text .dl-caption, .dl-text p:has(+ .dl-math) { break-after: avoid; }
+  }
+</style>
+"""
+
+
 VIEWS = ("Study", "Lecture", "Practice")
 VIEW_HELP = ("Study: answers, animation and derivation. Lecture: large type and the animation first, for "
              "a projector. Practice: the answers are hidden; type your own and get feedback.")
@@ -84,11 +115,6 @@ def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str
         return system, "Practice"
     view = st.sidebar.segmented_control("View", VIEWS, key=view_key, required=True, help=VIEW_HELP)
     return system, view
-
-
-def _answers_for(solver, solution):
-    picker = getattr(solver, "answers_for", None)
-    return picker(solution.regime) if picker else solver.ANSWERS
 
 
 @functools.lru_cache(maxsize=256)
@@ -170,10 +196,10 @@ def problem_page(problem_id: str) -> None:
     lecture, practice = view == "Lecture", view == "Practice"
     if lecture:  # the projector: the figure gets the screen, one click brings the controls back
         st.set_page_config(initial_sidebar_state="collapsed")
-    st.html(RUN_CSS + PHONE_CSS + (LECTURE_CSS if lecture else ""))
+    st.html(RUN_CSS + PHONE_CSS + PRINT_CSS + (LECTURE_CSS if lecture else ""))
     heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
     if link is not None:  # an assignment: its variant, fixed, and the link kept as it came
-        _heading(heading, [])
+        _heading(problem, heading, [])
         if link.refused:
             st.error(link.refused, icon=":material/link_off:")
             return
@@ -190,15 +216,16 @@ def problem_page(problem_id: str) -> None:
     try:
         solution, figures = _solve_and_draw(problem, params, system)
     except ValueError as error:
-        _heading(heading, notices)
+        _heading(problem, heading, notices)
         results.refused(error, system, solver.LIMIT_LABELS)
         if isinstance(error, PhysicalLimitError):
             _beside_refusal(problem, params, practice)
         return
 
-    answers = _answers_for(solver, solution)
-    _heading(heading, notices)
+    answers = problem.answers_of(solution)
+    _heading(problem, heading, notices)
     if practice and not practice_panel(problem, solution, answers, system):
+        takehome.downloads(problem, solution, answers, system, exercise=True)  # the statement and the method
         instructor_export(problem)  # the statement, the method and the answer box, nothing more
         return
     if lecture:
@@ -208,6 +235,7 @@ def problem_page(problem_id: str) -> None:
         _figures(figures)
     _on_request(problem, solution, figures)
     _derivation(solver, solution)
+    takehome.downloads(problem, solution, answers, system)
     if practice:
         instructor_export(problem)
 
@@ -221,7 +249,7 @@ def _assignment(problem: Problem, link, system: str) -> None:
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "", **keep}, params)
     banner = st.container()  # filled last, so it counts the attempt this run records
     solution, figures = _solve_and_draw(problem, params, system)
-    answers = _answers_for(problem.solver, solution)
+    answers = problem.answers_of(solution)
     if link.settings is not None:
         part = link.settings.part(problem.id)
         answers = tuple(a for a in answers if a.name in part.answers)
@@ -230,6 +258,9 @@ def _assignment(problem: Problem, link, system: str) -> None:
         results.answer_section(solution, answers, system)
         _figures(figures)
         _derivation(problem.solver, solution)
+        takehome.downloads(problem, solution, answers, system)
+    else:
+        takehome.downloads(problem, solution, answers, system, exercise=True)
     assignments.your_attempts(link, answers, solution, system)
     with banner:
         assignments.assignment_heading(link)
@@ -255,8 +286,10 @@ def _beside_refusal(problem: Problem, params: dict, practice: bool = False) -> N
                            slips=problem.solver.ERRATA)
 
 
-def _heading(heading: str, notices: list[str]) -> None:
-    st.markdown(heading)
+def _heading(problem: Problem, heading: str, notices: list[str]) -> None:
+    """The title and blurb, with the link that reproduces the page on paper (the page has mirrored
+    its state into the address by now)."""
+    st.markdown(heading + takehome.print_link(problem), unsafe_allow_html=True)
     for notice in notices:
         st.warning(notice, icon=":material/link_off:")
 

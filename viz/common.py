@@ -29,6 +29,10 @@ class Figure:
     animated: bool = True
     height: int = 520
     extra: dict = field(default_factory=dict)
+    # The instant that matters (the impact, the top leaving the wall), drawn on paper instead of the
+    # animation (ui/plotly_component/figure.js prints it, with this caption beneath).
+    key_frame: int = 0
+    key_caption: str = ""
 
     def json_bytes(self) -> bytes:
         """The figure as JSON, serialised once and kept (figures are shared between sessions); an

@@ -58,4 +58,5 @@ def figures(solution, system: str = "si") -> list[Figure]:
                    f"{n(p['omega'])} rad/s, strikes it at t = 0 and {regime}; {after}, spinning at "
                    f"{n(a['omega1'])} rad/s. The orange radius shows the spin, the green arrow the velocity, "
                    "the red arrow the wall's impulse.")
-    return [Figure("disk_wall_motion", "The impact, slowed down", spec, description, height=520)]
+    return [Figure("disk_wall_motion", "The impact, slowed down", spec, description, height=520,
+                   key_frame=int(m["impact_index"]), key_caption="the impact: the wall's impulse on the disk at B")]

@@ -65,7 +65,8 @@ def _animation(solution) -> Figure:
                    f"({p['drive']}-wheel drive) for {n(m['t'][-1], 2)} s. Purple arrows: the ground's normal force on "
                    f"each axle, {n(2 * a['N_rear'])} N at the rear and {n(2 * a['N_front'])} N at the front, drawn to "
                    "scale below the ground line; red: the traction. Acceleration moves load to the rear.")
-    return Figure("cart_motion", "Accelerating from rest (forces to scale)", spec, description, height=440)
+    return Figure("cart_motion", "Accelerating from rest (forces to scale)", spec, description, height=440,
+                  key_frame=frames - 1, key_caption="under way: the forces are the same at every instant")
 
 
 def _versus_mu(solution) -> Figure:

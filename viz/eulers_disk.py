@@ -80,7 +80,8 @@ def _animation(solution) -> Figure:
                    f"the marked radius turns only {turn:.1f}° relative to the table: the contact whirls, the disk "
                    "itself barely turns.")
     return Figure("eulers_disk_motion", f"One precession, slowed down {slow:.0f}×", spec, description,
-                  height=560, extra={"slow_motion": slow})
+                  height=560, extra={"slow_motion": slow},
+                  key_caption="the steady precession: every instant looks alike, turned about the vertical")
 
 
 def _versus_tilt(solution) -> Figure:

@@ -66,7 +66,9 @@ def figures(solution, system: str = "si") -> list[Figure]:
                    f"swings down and the sphere strikes the {p['surface']} at θ_I = "
                    f"{deg(a['theta_impact'])}, {_rebounds(p, a, solution.extras['bounce_peaks'])}. "
                    "Below: θ against time, with the impact angle dashed.")
-    return [Figure("pendulum_motion", "Release, bounce, rebound", spec, description, height=700)]
+    first_impact = int(np.argmin(np.abs(m["t"] - m["impact_times"][0]))) if m["impact_times"] else 0
+    return [Figure("pendulum_motion", "Release, bounce, rebound", spec, description, height=700,
+                   key_frame=first_impact, key_caption=f"the first impact, at θ_I = {deg(a['theta_impact'])}")]
 
 
 def _rebounds(p, a, peaks) -> str:

@@ -58,8 +58,10 @@ def figures(solution, system: str = "si") -> list[Figure]:
                    f"θ₂ = {deg(p['theta2'])} (dashed) at {n(a['omega2'])} rad/s, {_after(p, m)}. "
                    "Bars: kinetic, gravitational (zero hanging straight down) and spring energy; their sum stays "
                    "constant.")
+    at_theta2 = int(np.argmax(theta >= p["theta2"])) if (theta >= p["theta2"]).any() else len(theta) - 1
     return [Figure("rod_disk_spring_motion", "The fall and the swing back, with the energy", spec, description,
-                   height=700)]
+                   height=700, key_frame=at_theta2,
+                   key_caption=f"passing θ₂ = {deg(p['theta2'])}, where the speed is asked for")]
 
 
 def deg(angle: float) -> str:

@@ -72,7 +72,7 @@ def _animation(solution, m) -> Figure:
         f"G then drifts away from it at a constant {n(a['vx_leave'])} m/s while the ladder falls, landing flat at "
         f"t = {n(a['t_floor'])} s turning at {n(a['omega_floor'])} rad/s.")
     return Figure("sliding_ladder_motion", "Sliding down, leaving the wall, landing flat", spec, description,
-                  height=560)
+                  height=560, key_frame=k, key_caption="the top leaves the wall, at two-thirds of its initial height")
 
 
 def _reactions(solution, m) -> Figure:

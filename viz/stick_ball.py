@@ -37,7 +37,9 @@ def figures(solution, system: str = "si") -> list[Figure]:
     spec = animated([cm_path], moving_traces, m["t"], layout)
     description = (f"Top view. The ball slides at {n(p['v'])} m/s into the resting stick {n(p['s'])} m from its "
                    f"midpoint; {_after(p, a, m)}. Dotted: the trail of the stick's end.")
-    return [Figure("stick_ball_motion", "Impact, then free motion (top view)", spec, description, height=520)]
+    impact = int(np.argmin(np.abs(m["t"])))  # the impact is at t = 0
+    return [Figure("stick_ball_motion", "Impact, then free motion (top view)", spec, description, height=520,
+                   key_frame=impact, key_caption="the impact: the ball meets the stick")]
 
 
 def _after(p, a, m) -> str:

@@ -25,6 +25,12 @@ const CSS = `
 .dl-figure.dl-lecture .dl-controls button { font-size: 20px; padding: 6px 18px; }
 .dl-figure.dl-lecture .dl-hint, .dl-figure.dl-lecture .dl-description, .dl-figure.dl-lecture .dl-readout { font-size: 18px; }
 .dl-figure.dl-lecture h4.dl-title { font-size: 1.6rem; }
+.dl-figure .dl-key { display: none; font-size: 14px; font-style: italic; margin: 0.2rem 0; }
+@media print {
+  .dl-figure { break-inside: avoid; }
+  .dl-figure .dl-controls, .dl-figure .dl-hint { display: none !important; }
+  .dl-figure .dl-key:not(:empty) { display: block; }
+}
 `;
 
 const HTML = `
@@ -38,6 +44,7 @@ const HTML = `
   <span class="dl-hint">Space: play/pause · ← →: step</span>
 </div>
 <div class="dl-graph" role="img"></div>
+<p class="dl-key"></p>
 <p class="dl-description" aria-live="polite"></p>`;
 
 // ------------------------------------------------------------------ plotly.js, once per page load
@@ -78,6 +85,11 @@ class Figure {
     this.controls = $(".dl-controls");
     this.graph = $(".dl-graph");
     this.description = $(".dl-description");
+    this.keyCaption = $(".dl-key");
+    this.keyFrame = 0;
+    this.frames = [];
+    this.printing = false;
+    onPaper.add(this);
     // The time slider is an HTML range input, not plotly's slider: plotly draws a slider's every
     // step as SVG on each redraw (about half of a redraw's time for 100 frames), and a range input
     // scrubs by mouse, touch and keyboard (← →, Home, End, Page Up/Down) by itself.
@@ -164,12 +176,18 @@ class Figure {
     layout.autosize = true;
     const frames = unfold(spec.animation, spec.data);
     this.playing = false;
+    this.printing = false;
     // One update in place: data, layout and the frames replaced together (no new plot).
     await Plotly.react(this.graph, {data: spec.data, layout: layout, frames: frames,
                                     config: {displayModeBar: false, responsive: true}});
     if (seq !== this.seq) return;
     this.frameNames = frames.map(f => f.name);
+    this.frames = frames;
     this.times = spec.animation ? spec.animation.times : [];
+    this.keyFrame = Math.min(args.key_frame || 0, Math.max(0, frames.length - 1));
+    const t = this.times[this.keyFrame];
+    this.keyCaption.textContent = frames.length && args.key_caption
+      ? `Printed at t = ${t.toFixed(2)} s: ${args.key_caption}.` : "";
     this.scrub.max = String(Math.max(0, this.times.length - 1));
     this.scrub.setAttribute("aria-label", (args.title ? args.title + ": " : "") + "time");
     this.showTime(0);
@@ -184,6 +202,33 @@ class Figure {
       });
       this.graph.on("plotly_animated", () => { this.playing = false; });
     }
+  }
+
+  // On paper (the browser's Print, or print media): the animation's key instant, drawn at the
+  // paper's width, its caption beneath; the screen's frame and width come back after.
+  print(on) {
+    if (!this.Plotly || !this.graph.layout || on === this.printing) return;
+    this.printing = on;
+    if (on) {
+      if (this.playing) this.pause();
+      this.shownFrame = this.frameIndex;
+      this.showFrame(this.keyFrame);
+      this.Plotly.relayout(this.graph, {width: PAPER_WIDTH});
+    } else {
+      this.Plotly.relayout(this.graph, {width: null, autosize: true});
+      this.showFrame(this.shownFrame || 0);
+    }
+  }
+  // A frame drawn at once (restyle, not animate: a print is laid out right after the event).
+  showFrame(index) {
+    const frame = this.frames[index];
+    if (!frame) return;
+    const update = {};
+    for (const [n, d] of frame.data.entries())
+      for (const k of Object.keys(d)) if (k !== "type") (update[k] ??= frame.data.map(() => undefined))[n] = d[k];
+    this.Plotly.restyle(this.graph, update, frame.traces);
+    this.frameIndex = index;
+    this.showTime(index);
   }
 
   update(text, theme) {
@@ -306,6 +351,21 @@ function emphasised(data, layout, style) {
     return out;
   });
 }
+
+// ------------------------------------------------------------------ on paper
+// The width a figure is drawn at for print: an A4 or Letter page's text block (ui/page.py PRINT_CSS
+// sets 12 mm side margins) holds about 700 CSS px.
+const PAPER_WIDTH = 680;
+const onPaper = new Set();  // every Figure made on this page
+function printing(on) {
+  for (const figure of onPaper) {
+    if (figure.root.isConnected) figure.print(on); else onPaper.delete(figure);
+  }
+  document.documentElement.dataset.dlPrinting = on ? "1" : "";
+}
+window.addEventListener("beforeprint", () => printing(true));
+window.addEventListener("afterprint", () => printing(false));
+matchMedia("print").addEventListener("change", (e) => printing(e.matches));
 
 // ------------------------------------------------------------------ Streamlit's entry, every run
 const figures = new WeakMap();   // Streamlit's element for a mounted figure -> its Figure

@@ -1,0 +1,184 @@
+"""Every problem page printed from Chromium (``page.pdf``, which fires the browser's beforeprint and
+afterprint as a person's Print does), turned into images with pdftoppm and into text with pdftotext:
+no sidebar, control or button is left, every page is numbered, the link that reproduces the page is
+there, each animation is drawn at its key instant with its caption, and nothing is cut (no ink on
+the edges of a page's text block, no equation wider than its box). One server and one browser for
+the module. Skipped without Chromium or poppler-utils on a workstation; in CI their absence fails.
+"""
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from scripts.live_app import CHROMIUM, wait_until_idle
+from ui.catalog import PROBLEMS
+
+pytestmark = pytest.mark.browser
+KEY = "print-test-instructor-key"
+
+for tool, why in ((CHROMIUM, "apt-get install chromium"), ("pdftoppm", "apt-get install poppler-utils")):
+    if not (Path(tool).exists() or shutil.which(tool)):
+        if os.environ.get("CI"):
+            raise RuntimeError(f"CI needs {tool} (.ci/run installs it)")
+        pytest.skip(f"no {tool}: {why}", allow_module_level=True)
+
+DPI = 72  # one image pixel per point: enough to see ink at an edge, quick to make
+MM = DPI / 25.4
+A4 = (210 * MM, 297 * MM)
+MARGINS = {"top": 14 * MM, "right": 12 * MM, "bottom": 16 * MM, "left": 12 * MM}  # ui/page.py PRINT_CSS
+PAPER_TEXT_WIDTH = 703  # CSS px: 186 mm, the A4 text block the print layout fills
+INK = 200  # a pixel darker than this (0-255 grey) is ink
+
+
+def printed(page, path: Path) -> tuple[list[np.ndarray], str]:
+    """The page as A4 PDF: its pages as grey images, and its text."""
+    page.pdf(path=str(path), format="A4", prefer_css_page_size=True, print_background=True)
+    subprocess.run(["pdftoppm", "-r", str(DPI), "-gray", str(path), str(path.with_suffix(""))], check=True)
+    pages = sorted(path.parent.glob(f"{path.stem}-*.pgm"), key=lambda p: int(p.stem.rsplit("-", 1)[1]))
+    text = subprocess.run(["pdftotext", "-layout", str(path), "-"], capture_output=True, text=True, check=True).stdout
+    return [read_pgm(p) for p in pages], text
+
+
+def read_pgm(path: Path) -> np.ndarray:
+    data = path.read_bytes()
+    header = re.match(rb"P5\s+(\d+)\s+(\d+)\s+(\d+)\s", data)
+    width, height = int(header.group(1)), int(header.group(2))
+    return np.frombuffer(data[header.end():], dtype=np.uint8)[: width * height].reshape(height, width)
+
+
+def cut_edges(image: np.ndarray) -> list[str]:
+    """Where something runs on past the text block: ink on its top or bottom row (an element sliced
+    between two pages continues from the very edge), or in the side margins two pixels out (an
+    element wider than the page)."""
+    height, width = image.shape
+    top, bottom = round(MARGINS["top"]), height - round(MARGINS["bottom"]) - 1
+    left, right = round(MARGINS["left"]) - 2, width - round(MARGINS["right"]) + 1
+    edges = {"top": image[top, left:right], "bottom": image[bottom, left:right],
+             "left": image[top:bottom, left], "right": image[top:bottom, right]}
+    return [f"{name} ({int((row < INK).sum())} px)" for name, row in edges.items() if (row < INK).sum() > 0]
+
+
+def screen_chrome(page) -> set[str]:
+    """The texts of the page's controls as the screen shows them: the sidebar's lines, buttons,
+    labels of inputs, the figure's Play and Pause."""
+    texts = page.evaluate("""() => {
+      const seen = new Set();
+      const add = (t) => t && t.split('\\n').map(s => s.trim()).filter(s => s.length > 3 && /[A-Za-z]/.test(s))
+        .forEach(s => seen.add(s));
+      add(document.querySelector("[data-testid='stSidebar']")?.innerText);
+      for (const el of document.querySelectorAll("[data-testid='stMain'] button, [data-testid='stMain'] label, "
+                                                 + "[data-testid='stMain'] summary, .dl-hint"))
+        add(el.innerText);
+      // What the main area says besides its controls (a page's title is also its navigation link).
+      const content = [...document.querySelectorAll("[data-testid='stMain'] [data-testid='stMarkdownContainer'], "
+                                                   + ".dl-text, .dl-figure .dl-title, .dl-figure .dl-description, .dl-figure .dl-key")]
+        .map(el => el.innerText).join("\\n")
+        + [...document.querySelectorAll(".dl-graph text")].map(el => el.textContent).join("\\n");  // legends, axes
+      return [...seen].filter(s => !content.includes(s));
+    }""")
+    return set(texts)
+
+
+def check_printout(browser, url: str, name: str, tmp_path: Path, wait_for: tuple[str, ...] = (),
+                   links: tuple[str, ...] | None = None) -> str:
+    """Print ``url`` once ``wait_for`` (selectors) are drawn, and check it; returns the printed text.
+    ``links``: the links it must print (by default the page's own address)."""
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    page.goto(url)
+    wait_until_idle(page)
+    for drawn in wait_for:  # the page's own elements draw after the run (KaTeX, plotly.js load first)
+        page.locator(drawn).first.wait_for(timeout=30_000)
+    page.wait_for_load_state("networkidle")
+    page.wait_for_timeout(300)
+    chrome = screen_chrome(page)
+    assert chrome, "the screen shows controls"
+    link = page.evaluate("location.href")
+
+    # The print layout at the paper's width, as the browser's Print sets it (print media).
+    page.set_viewport_size({"width": PAPER_TEXT_WIDTH, "height": 1000})
+    page.emulate_media(media="print")
+    if page.locator(".dl-figure .js-plotly-plot").count():
+        page.wait_for_function("document.documentElement.dataset.dlPrinting === '1'", timeout=10_000)
+    clipped = page.evaluate("""() => [...document.querySelectorAll('.katex-display, .dl-text table, .dl-figure .main-svg, '
+                                      + "[data-testid='stMarkdownContainer'] table")]
+        .filter(el => el.getBoundingClientRect().width > 0)
+        .filter(el => el.scrollWidth > el.clientWidth + 1 || el.getBoundingClientRect().right > innerWidth + 1)
+        .map(el => el.className.baseVal ?? el.className)""")
+    assert not clipped, f"{name}: wider than the paper: {clipped}"
+    # Each animation drawn at its key instant: its time readout is the caption's time.
+    for figure in page.locator(".dl-figure").all():
+        caption = figure.locator(".dl-key").inner_text()
+        if caption:
+            shown = figure.locator(".dl-readout").text_content()
+            assert caption.startswith(f"Printed at {shown}:"), (name, caption, shown)
+
+    images, text = printed(page, tmp_path / f"{name}.pdf")
+    assert not errors, errors
+    context.close()
+
+    flat = re.sub(r"\s+", " ", text)
+    for n, image in enumerate(images, start=1):
+        assert image.shape[1] == pytest.approx(A4[0], abs=2) and image.shape[0] == pytest.approx(A4[1], abs=2)
+        assert not cut_edges(image), f"{name}, page {n}: ink on the text block's edge: {cut_edges(image)}"
+        assert f"Page {n} of {len(images)}" in flat, f"{name}: page {n} is not numbered"
+    left = sorted(c for c in chrome if c in text)
+    assert not left, f"{name}: controls printed: {left}"
+    for printed_link in (link,) if links is None else links:
+        assert printed_link in flat.replace(" ", ""), f"{name}: no link {printed_link}"
+    return text
+
+
+@pytest.fixture(scope="module")
+def app_url():
+    """The app as shipped, with an instructor key (the handouts), on a free loopback port."""
+    from scripts.live_app import running_app
+
+    with running_app(env={"DL_INSTRUCTOR_KEY": KEY}) as url:
+        yield url
+
+
+def test_the_cut_check_sees_ink_on_an_edge():
+    """Positive control: an image with a stroke through the bottom edge of the text block."""
+    image = np.full((round(A4[1]), round(A4[0])), 255, dtype=np.uint8)
+    assert cut_edges(image) == []
+    image[-round(MARGINS["bottom"]) - 3: -round(MARGINS["bottom"]) + 3, 100:120] = 0
+    assert cut_edges(image) == ["bottom (20 px)"]
+
+
+@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
+def test_every_page_prints_cleanly(browser, app_url, problem, tmp_path):
+    text = check_printout(browser, f"{app_url}/{problem.id}", problem.id, tmp_path,
+                          (".dl-answers .katex", ".dl-derivation .katex-display", ".dl-figure .main-svg"))
+    assert problem.title in re.sub(r"\s+", " ", text)
+    assert "Derivation, step by step" in text and "Printed at t =" in text
+
+
+def test_the_practice_view_prints_the_exercise(browser, app_url, tmp_path):
+    text = check_printout(browser, f"{app_url}/disk_wall?seed=17", "practice", tmp_path,
+                          ("[data-testid='stMarkdownContainer'] .katex",))
+    assert "The problem" in text and "The method" in text and "Derivation, step by step" not in text
+
+
+@pytest.mark.parametrize("what", ["statements", "key"])
+def test_a_handout_prints_each_student_from_a_new_sheet(browser, app_url, what, tmp_path):
+    url = f"{app_url}/handouts?instructor={KEY}&problem=stick_ball&first=3&last=5&what={what}"
+    text = check_printout(browser, url, f"handout-{what}", tmp_path, ("[data-testid='stMarkdownContainer'] .katex",),
+                          links=tuple(f"/stick_ball?seed={seed}" for seed in (3, 4, 5)))
+    pages = text.split("\f")
+    starts = [n for n, page in enumerate(pages) for seed in (3, 4, 5) if page.lstrip().startswith(f"Variant {seed}")]
+    assert len(starts) == 3, [page.strip()[:40] for page in pages]  # each variant opens a sheet
+    assert all(page.split("Page")[0].strip() for page in pages if page.strip()), "a page left empty"
+    if what == "statements":
+        assert len([p for p in pages if p.strip()]) == 3, [p.strip()[:60] for p in pages]
+        assert "Your work" in text and "Answers" not in text
+    else:
+        assert text.count("Derivation, step by step") == 3

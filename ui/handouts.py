@@ -1,0 +1,162 @@
+"""Handouts for a class (instructor key): for a problem and a range of variants, or an assignment's
+roster, each student's statement with their givens and room to work, and a separate answer key with
+each variant's answers and derivation. A printable page (the browser's Print: one sheet per student,
+ui/page.py PRINT_CSS) and the same as one LaTeX file or Markdown.
+
+Students are named only by what the instructor's roster gives (its opaque labels); a range of
+variants is labelled by variant number, with the ``?seed=N`` link that opens it. Assignments are read
+through ``assignments.records``' public reads only (``assignments``, ``roster``)."""
+from __future__ import annotations
+
+import re
+
+import streamlit as st
+
+from assignments import records
+from assignments.identity import parameters
+from practice.variants import MAX_SEED, variant
+from ui import documents
+from ui.catalog import BY_ID, PROBLEMS, Problem
+from ui.page import PRINT_CSS, _leave_legacy_pages_mode
+from ui.practice import instructor_key_entry
+
+MAX_SHEETS = 60  # per handout: a longer class is printed in parts (each sheet is typeset in the page)
+RANGE, ROSTER = "A range of variants", "An assignment's roster"
+STATEMENTS, KEY = "Statements, for the students", "Answer key"
+# On paper each sheet starts a page and a statement's page is left blank below "Your work" (on
+# screen a dashed box stands for it); the page's own heading and choices are not printed.
+SHEET_CSS = """
+<style>
+  .dl-sheet-break { break-after: page; height: 0; }
+  .dl-work { border: 1px dashed rgba(128, 128, 128, 0.6); border-radius: 4px; height: 6rem; margin: 0.5rem 0 1.5rem; }
+  @media print {
+    .dl-work { display: none; }
+    [data-testid='stElementContainer']:has(.dl-screen-only) { display: none !important; }
+  }
+</style>
+"""
+
+
+def _answers(problem: Problem, solution, counted: tuple[str, ...] = ()):
+    """The answers a sheet asks for: an assignment's that count, else every one the page shows."""
+    answers = problem.answers_of(solution)
+    return tuple(a for a in answers if a.name in counted) if counted else answers
+
+
+def sheets(problem: Problem, who: list[tuple[str, dict, str]], key: bool,
+           counted: tuple[str, ...] = ()) -> list[documents.Document]:
+    """One document per student: ``who`` is (heading, parameters, link); ``key``: the answer key."""
+    out = []
+    for heading, params, link in who:
+        solution = problem.solver.solve(**params)
+        doc = documents.document(problem, solution, _answers(problem, solution, counted), link=link, heading=heading)
+        out.append(documents.key_sheet(doc) if key else documents.statement_sheet(doc))
+    return out
+
+
+def app_base() -> str:
+    """The app's address as the browser reached this page, without the page's own path."""
+    url = (st.context.url or "").split("?")[0].rstrip("/")
+    return url[: -len("/handouts")] if url.endswith("/handouts") else url
+
+
+def variant_range(problem: Problem, first: int, last: int, base: str = "") -> list[tuple[str, dict, str]]:
+    """Variants first..last of ``?seed=N``: labelled by number, with the link that opens each."""
+    return [(f"Variant {seed}", variant(problem.solver, problem.id, seed), f"{base}/{problem.id}?seed={seed}")
+            for seed in range(first, last + 1)]
+
+
+def roster_variants(problem: Problem, assignment_id: int) -> list[tuple[str, dict, str]]:
+    """An assignment's students, by the roster's labels, with their assignment givens (no link: each
+    student's signed link is theirs, sent by the instructor)."""
+    return [(f"Student {s.label}", parameters(s, problem.solver, problem.id), "")
+            for s in records.roster(assignment_id)]
+
+
+def _from_link() -> None:
+    """A handout's link (?problem=<id>&first=1&last=30&what=key) sets the choices once; a value
+    that is not one of them is ignored."""
+    if st.session_state.get("handouts__linked"):
+        return
+    st.session_state["handouts__linked"] = True
+    query = st.query_params
+    if query.get("problem") in BY_ID:
+        st.session_state["handouts__problem"] = query["problem"]
+    for name in ("first", "last"):
+        if re.fullmatch(r"\d{1,10}", query.get(name, "")) and int(query[name]) <= MAX_SEED:
+            st.session_state[f"handouts__{name}"] = int(query[name])
+    if query.get("what") == "key":
+        st.session_state["handouts__what"] = KEY
+
+
+def _whose() -> tuple[Problem, list[tuple[str, dict, str]], tuple[str, ...], str] | None:
+    """The problem, the students, the answers that count and a file name's stem, as chosen."""
+    source = st.radio("Whose numbers", (RANGE, ROSTER), horizontal=True, key="handouts__source")
+    if source == RANGE:
+        problem = BY_ID[st.selectbox("Problem", [p.id for p in PROBLEMS], format_func=lambda i: BY_ID[i].title,
+                                     key="handouts__problem")]
+        c1, c2 = st.columns(2)
+        first = int(c1.number_input("First variant", 0, MAX_SEED, 1, key="handouts__first"))
+        last = int(c2.number_input("Last variant", 0, MAX_SEED, 30, key="handouts__last"))
+        if not first <= last < first + MAX_SHEETS:
+            st.error(f"Choose from 1 to {MAX_SHEETS} variants, the first no later than the last.")
+            return None
+        return problem, variant_range(problem, first, last, app_base()), (), f"{problem.id}-variants-{first}-{last}"
+    try:
+        existing = records.assignments()
+    except records.RecordingUnavailable as error:
+        st.error(str(error))
+        return None
+    if not existing:
+        st.markdown("No assignments yet: create one on the Assignments page.")
+        return None
+    chosen = st.selectbox("Assignment", existing, key="handouts__assignment",
+                          format_func=lambda a: f"{a[1].title} ({BY_ID[a[1].problem].title if a[1].problem in BY_ID else a[1].problem})")
+    assignment_id, settings = chosen
+    if settings.problem not in BY_ID:
+        st.error("This assignment's problem is no longer in the app.")
+        return None
+    problem = BY_ID[settings.problem]
+    try:
+        who = roster_variants(problem, assignment_id)
+    except records.RecordingUnavailable as error:
+        st.error(str(error))
+        return None
+    if len(who) > MAX_SHEETS:
+        part = st.number_input(f"Part (of {MAX_SHEETS} students each)", 1, -(-len(who) // MAX_SHEETS), 1,
+                               key="handouts__part_number")
+        who = who[(part - 1) * MAX_SHEETS: part * MAX_SHEETS]
+    return problem, who, settings.answers, f"{problem.id}-assignment-{assignment_id}"
+
+
+def handouts_page() -> None:
+    _leave_legacy_pages_mode()
+    st.html(PRINT_CSS + SHEET_CSS)
+    st.markdown("# Handouts\n:gray[Printable sheets for a class: each student's givens with room to work, and a "
+                "separate answer key. Print with the browser (one student per sheet), or download LaTeX or "
+                'Markdown.]<span class="dl-screen-only"></span>', unsafe_allow_html=True)
+    if not instructor_key_entry("handouts__instructor_key", "the handouts and their answer keys"):
+        return
+    st.query_params.pop("instructor", None)  # an instructor link's key leaves the address bar
+    _from_link()
+    chosen = _whose()
+    if chosen is None:
+        return
+    problem, who, counted, stem = chosen
+    part = st.radio("Print", (STATEMENTS, KEY), horizontal=True, key="handouts__what")
+    key = part == KEY
+    docs = sheets(problem, who, key, counted)
+    name = f"{stem}-{'key' if key else 'statements'}"
+    row = st.container(horizontal=True)
+    row.download_button("One LaTeX file", lambda: documents.handout_latex(docs), file_name=f"{name}.tex",
+                        mime="application/x-tex", on_click="ignore", icon=":material/download:", key="handouts__tex")
+    row.download_button("Markdown", lambda: documents.handout_markdown(docs), file_name=f"{name}.md",
+                        mime="text/markdown", on_click="ignore", icon=":material/download:", key="handouts__md")
+    st.markdown(f"{len(docs)} {'answer keys' if key else 'statements'} below, each from a new sheet when printed."
+                '<span class="dl-screen-only"></span>', unsafe_allow_html=True)
+    for n, doc in enumerate(docs):
+        st.markdown(documents.markdown(doc))
+        if doc.work_space:
+            st.html('<div class="dl-work"></div>')
+        if n < len(docs) - 1:
+            st.html('<div class="dl-sheet-break"></div>')
