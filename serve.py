@@ -204,8 +204,9 @@ def run(script: Path, argv: list[str]) -> None:
 
 def settings_problems() -> list[str]:
     """What in the admin's settings cannot work, in words that say how to mend it. Assignments are
-    on when either secret is set, and then both must be (Compose's empty defaults had left them
-    silently closed); a key or secret too short to resist guessing is refused, not ignored."""
+    on when the course secret is set, and then the instructor key must be too (the key alone opens
+    the answer keys and handouts of a practice site); a key or secret too short to resist guessing
+    is refused, not ignored (it used to be treated as unset, closing everything in silence)."""
     from assignments import migrate as schema, signing
     from edge.headers import SettingError, frame_ancestors
     from practice import instructor
@@ -220,9 +221,9 @@ def settings_problems() -> list[str]:
                                      (signing.SECRET_ENV, secret, signing.MIN_SECRET, "openssl rand -hex 32")):
         if value and len(value) < least:
             problems.append(f"{name} has {len(value)} characters; it needs at least {least} (make one with: {make}).")
-    if bool(key) != bool(secret):
-        given, missing = ((instructor.KEY_ENV, signing.SECRET_ENV) if key else (signing.SECRET_ENV, instructor.KEY_ENV))
-        problems.append(f"{given} is set but {missing} is not: assignments need both (README: Deploy).")
+    if secret and not key:
+        problems.append(f"{signing.SECRET_ENV} is set (assignments are on) but {instructor.KEY_ENV} is not: "
+                        "nobody could create or read an assignment (README: Deploy).")
     if os.environ.get(schema.EXPECT_ENV, "") not in ("", "0", "1"):
         problems.append(f"{schema.EXPECT_ENV} is 1 (the database must exist) or unset.")
     return problems

@@ -107,7 +107,7 @@ def check_printout(browser, url: str, name: str, tmp_path: Path, wait_for: tuple
     page.set_viewport_size({"width": PAPER_TEXT_WIDTH, "height": 1000})
     page.emulate_media(media="print")
     if page.locator(".dl-figure .js-plotly-plot").count():
-        page.wait_for_function("document.documentElement.dataset.dlPrinting === '1'", timeout=10_000)
+        page.wait_for_function("() => document.documentElement.dataset.dlPrinting === '1'", timeout=10_000)  # (a function: a bare expression is eval'd, which the app's CSP forbids)
     clipped = page.evaluate("""() => [...document.querySelectorAll('.katex-display, .dl-text table, .dl-figure .main-svg, '
                                       + "[data-testid='stMarkdownContainer'] table")]
         .filter(el => el.getBoundingClientRect().width > 0)
