@@ -158,6 +158,19 @@ class StaticGzip:
         await send({"type": "http.response.body", "body": packed})
 
 
+TRUSTED_PROXIES_ENV = "DL_TRUSTED_PROXIES"
+
+
+def trust_only_named_proxies() -> None:
+    """uvicorn takes a client's address from X-Forwarded-For when the connection comes from one of
+    FORWARDED_ALLOW_IPS, by default 127.0.0.1 and ::1: anyone on this machine (or any proxy there)
+    could then name any address, and walk round the instructor key's throttle per address. Here it
+    trusts exactly the proxies the admin names in DL_TRUSTED_PROXIES (addresses or networks, comma-
+    separated; '*' where only the proxy can reach the app, as in Compose and Kubernetes), none when
+    unset (``make run``, a one-machine ``docker run``)."""
+    os.environ["FORWARDED_ALLOW_IPS"] = os.environ.get(TRUSTED_PROXIES_ENV, "").strip()
+
+
 def install_middleware() -> None:
     """Put our middlewares in front of Streamlit, after its path-security check and before its gzip:
     ``SecurityHeaders`` (the headers a course site expects, metrics closed: edge/headers.py),
@@ -188,6 +201,7 @@ def run(script: Path, argv: list[str]) -> None:
     """``streamlit run script *argv`` in this process, with Nagle off, static files gzipped once, the
     figure bundles cached by browsers, our middlewares and the warmed heap frozen."""
     accept_without_nagle()
+    trust_only_named_proxies()
     install_middleware()
     from edge import widget_values
 

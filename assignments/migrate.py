@@ -4,7 +4,10 @@ This is the one place a database is created, and it refuses to create one where 
 expected: an empty database in place of a course's gradebook is an error, not a fresh start. The
 evidence it reads: ``DL_EXPECT_DATABASE=1`` (the admin's word that this deployment already has
 its data; README, the admin's checklist), and, for SQLite, the marker file it leaves beside the
-database it created (so a database file deleted from its directory is not silently replaced).
+database it created (so a database file deleted from its directory, or replaced by an empty one,
+is not silently taken for a new course), and, within a running process, the database it has
+already brought up (a data directory removed under the server is not made anew by the next page).
+A directory removed with its marker and the server restarted is found only by DL_EXPECT_DATABASE.
 With neither, as on a fresh machine's ``make run``, it creates the database as before."""
 from __future__ import annotations
 
@@ -22,6 +25,9 @@ SCRIPTS = db.ROOT / "migrations"
 MIGRATION_LOCK = 18_0001  # a PostgreSQL advisory lock's key: replicas starting together migrate one at a time
 EXPECT_ENV = "DL_EXPECT_DATABASE"
 MARKER = ".dynamics-lab-database"  # beside a SQLite file this module created
+
+
+_created_here: dict[str, bool] = {}  # the databases this process has brought up: never created again
 
 
 class DatabaseMissing(RuntimeError):
@@ -46,8 +52,18 @@ def _has_schema(engine: Engine) -> bool:
 def check_expected(url: str) -> None:
     """Raise DatabaseMissing, in words an admin can act on, where an earlier database should be."""
     path = db.sqlite_path(url)
+    if path is not None and path.exists() and (path.parent / MARKER).exists():
+        engine = db.make_engine(url, create=False)
+        try:
+            empty = not _has_schema(engine)
+        finally:
+            engine.dispose()
+        if empty:
+            raise DatabaseMissing(
+                f"The database file {path} has no tables, but this directory held a database (the marker "
+                f"{MARKER} is there): it was replaced by an empty one. Restore it from a backup.")
     if path is not None and not path.exists():
-        if (path.parent / MARKER).exists():
+        if _created_here.get(url) or (path.parent / MARKER).exists():
             raise DatabaseMissing(
                 f"The database file {path} is missing, but this directory held one (the marker {MARKER} "
                 "is there). Restore it from a backup (README: Backing up); to start an empty gradebook on "
@@ -85,6 +101,7 @@ def upgrade(bound: Engine | None = None, revision: str = "head") -> None:
         _upgrade(engine, revision)
     finally:
         engine.dispose()
+    _created_here[url] = True
     if created:
         (path.parent / MARKER).write_text(
             f"Dynamics Lab created {path.name} here at {dt.datetime.now(dt.timezone.utc):%Y-%m-%d %H:%M} UTC.\n"

@@ -7,9 +7,11 @@ reruns a second, and every other session in the process then waits behind them (
 change took 27 s). So each connection gets a token bucket: ``RATE`` messages a second, bursts of
 ``BURST``. A message beyond it is held until a token comes, and while it is held a newer rerun
 replaces an older one (each rerun carries every widget's value, so the latest is the state the
-person sees; a rerun that carries a button's click is never replaced). A connection held back
+person sees; a rerun that carries a button's click is never replaced). Every connection from one
+client address also draws on that address's bucket (``ADDRESS_RATE``, a lecture hall's NAT), so a
+script cannot multiply its share by opening many tabs. A connection held back
 continuously for ``DROP_AFTER`` seconds is closed (1008, policy violation), and so is one with
-more than ``MAX_HELD`` messages that cannot be merged. Nothing here touches another connection,
+more than ``MAX_HELD`` messages, or ``MAX_HELD_BYTES``, waiting that cannot be merged. Nothing here touches another address's connections,
 and a person at a person's pace never meets the limit.
 
 The browser's own reconnect brings a dropped session back at the person's pace; the log says once
@@ -26,8 +28,12 @@ from streamlit.proto.BackMsg_pb2 import BackMsg
 
 RATE = 10.0        # messages a second, sustained: more than a person can send
 BURST = 30         # a quick series of changes (a held arrow key) passes untouched
+ADDRESS_RATE = 60.0  # every session of one client address together: a lecture hall's NAT (200
+ADDRESS_BURST = 300  #   students changing a control every 5 s is 40 a second), not a script's 400 tabs
 DROP_AFTER = 15.0  # seconds held back without a break: no person does that
-MAX_HELD = 64      # messages waiting that cannot be merged (clicks): a bound on memory
+MAX_HELD = 64      # messages waiting that cannot be merged (clicks): a bound on memory...
+MAX_HELD_BYTES = 1 << 20  # ... and on their size (a rerun is a few hundred bytes)
+MAX_ADDRESSES = 10_000  # addresses remembered at most (the least recently seen forgotten)
 STREAM_PATH = "/_stcore/stream"
 ONE_SHOT = {"trigger_value", "string_trigger_value", "json_trigger_value", "chat_input_value"}
 
@@ -70,12 +76,13 @@ def mergeable(message: dict) -> bool:
 
 
 class SessionBudget:
-    """The receive side of one websocket connection, metered."""
+    """The receive side of one websocket connection, metered by its own bucket and its address's."""
 
-    def __init__(self, receive, send, who: str, clock=time.monotonic):
+    def __init__(self, receive, send, who: str, clock=time.monotonic, shared: TokenBucket | None = None):
         self.inner, self.send, self.who, self.clock = receive, send, who, clock
-        self.bucket = TokenBucket(clock=clock)
-        self.held: collections.deque[dict] = collections.deque()
+        self.buckets = (TokenBucket(clock=clock), shared or TokenBucket(ADDRESS_RATE, ADDRESS_BURST, clock))
+        self.held: collections.deque[tuple[dict, bool]] = collections.deque()  # (message, mergeable)
+        self.held_bytes = 0
         self.reader: asyncio.Future | None = None
         self.over_since: float | None = None  # held back since, without a message passing at once
         self.slowed = self.closed = False
@@ -85,30 +92,40 @@ class SessionBudget:
         if not self.closed:
             await self.send(message)
 
+    def _wait(self) -> float:
+        return max(bucket.wait() for bucket in self.buckets)
+
+    def _take(self) -> None:
+        for bucket in self.buckets:
+            bucket.take()
+
     async def receive(self) -> dict:
         while True:
-            if self.held and self.bucket.wait() == 0:
-                self.bucket.take()
-                return self.held.popleft()
+            if self.held and self._wait() == 0:
+                self._take()
+                message, _ = self.held.popleft()
+                self.held_bytes -= len(message.get("bytes") or b"")
+                return message
             if self.held and self.clock() - self.over_since > DROP_AFTER:
                 return await self._drop(f"held back for {DROP_AFTER:.0f} s")
             if self.reader is None:
                 self.reader = asyncio.ensure_future(self.inner())
-            timeout = self.bucket.wait() if self.held else None
+            timeout = self._wait() if self.held else None
             done, _ = await asyncio.wait({self.reader}, timeout=timeout)
             if not done:
                 continue
             message, self.reader = self.reader.result(), None
             if message["type"] != "websocket.receive":
                 self.held.clear()  # a disconnect needs no rerun before it
+                self.held_bytes = 0
                 return message
-            if not self.held and self.bucket.wait() == 0:  # the usual case: at a person's pace
-                self.bucket.take()
+            if not self.held and self._wait() == 0:  # the usual case: at a person's pace
+                self._take()
                 self.over_since = None
                 return message
             self._hold(message)
-            if len(self.held) > MAX_HELD:
-                return await self._drop(f"{MAX_HELD} messages waiting")
+            if len(self.held) > MAX_HELD or self.held_bytes > MAX_HELD_BYTES:
+                return await self._drop("too many messages waiting")
 
     def _hold(self, message: dict) -> None:
         if not self.slowed:
@@ -116,14 +133,16 @@ class SessionBudget:
             log.warning("session from %s sends more than %g messages a second: slowed", self.who, RATE)
         if self.over_since is None:
             self.over_since = self.clock()
-        if self.held and mergeable(self.held[-1]) and mergeable(message):
-            self.held[-1] = message
-        else:
-            self.held.append(message)
+        merges = mergeable(message)
+        if self.held and self.held[-1][1] and merges:
+            self.held_bytes -= len(self.held.pop()[0].get("bytes") or b"")
+        self.held.append((message, merges))
+        self.held_bytes += len(message.get("bytes") or b"")
 
     async def _drop(self, why: str) -> dict:
         log.warning("session from %s dropped (%s)", self.who, why)
         self.held.clear()
+        self.held_bytes = 0
         if self.reader is not None:
             self.reader.cancel()
         self.closed = True
@@ -139,12 +158,20 @@ class FairShare:
 
     def __init__(self, app):
         self.app = app
+        self.addresses: collections.OrderedDict[str, TokenBucket] = collections.OrderedDict()
+
+    def address_bucket(self, address: str) -> TokenBucket:
+        bucket = self.addresses.pop(address, None) or TokenBucket(ADDRESS_RATE, ADDRESS_BURST)
+        while len(self.addresses) >= MAX_ADDRESSES:
+            self.addresses.popitem(last=False)
+        self.addresses[address] = bucket
+        return bucket
 
     async def __call__(self, scope, receive, send):
         if scope["type"] != "websocket" or not scope["path"].endswith(STREAM_PATH):
             return await self.app(scope, receive, send)
-        client = scope.get("client") or ("?", 0)
-        budget = SessionBudget(receive, send, f"{client[0]}")
+        address = (scope.get("client") or ("?", 0))[0]  # as uvicorn gives it: DL_TRUSTED_PROXIES (serve.py)
+        budget = SessionBudget(receive, send, address, shared=self.address_bucket(address))
         try:
             await self.app(scope, budget.receive, budget.send_to_client)
         finally:

@@ -80,6 +80,8 @@ def install() -> None:
         if not isinstance(wstate, session_state.Serialized) or metadata is None:
             return original(self, k)
         sent = wstate.value.WhichOneof("value")
+        if sent is None:  # no field: Streamlit's way of saying a widget was cleared
+            return original(self, k)
         if metadata.value_type and not _compatible(sent, metadata.value_type):
             refuse(f"{sent or 'nothing'} where {metadata.value_type} belongs")
             raise KeyError(k)  # as for a widget with no state: Streamlit keeps its last value

@@ -14,6 +14,7 @@ own (README: Security).
 """
 from __future__ import annotations
 
+import collections
 import dataclasses
 import hmac
 import logging
@@ -84,16 +85,19 @@ class Verdict:
 class Throttle:
     def __init__(self, clock=time.monotonic):
         self.clock = clock
-        self.records: dict[tuple[str, str], Record] = {}
+        self.records: collections.OrderedDict[tuple[str, str], Record] = collections.OrderedDict()
         self.lock = threading.Lock()
 
     def _record(self, kind: str, who: str, now: float) -> Record:
-        record = self.records.get((kind, who))
+        """The record of ``who``, most recently used last; the least recently used other one is
+        forgotten when the table is full (never the one asked for, so a full table still throttles)."""
+        key = (kind, who)
+        record = self.records.pop(key, None)
         if record is None or (now - record.last > FORGET_AFTER and now >= record.next_try):
-            record = self.records[(kind, who)] = Record()
-            if len(self.records) > MAX_TRACKED:
-                oldest = min(self.records, key=lambda k: self.records[k].last)
-                del self.records[oldest]
+            record = Record(last=now)
+            while len(self.records) >= MAX_TRACKED:
+                self.records.popitem(last=False)
+        self.records[key] = record
         return record
 
     def try_key(self, candidate: object, session: str, address: str) -> Verdict:

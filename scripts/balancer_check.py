@@ -32,7 +32,8 @@ DEADLINE = time.monotonic() + 600  # the whole check stops by itself
 
 
 def start_replica(port: int, secret: str) -> subprocess.Popen:
-    env = {**os.environ, "STREAMLIT_SERVER_COOKIE_SECRET": secret, "STREAMLIT_LOGGER_HIDE_WELCOME_MESSAGE": "true"}
+    env = {**os.environ, "STREAMLIT_SERVER_COOKIE_SECRET": secret, "STREAMLIT_LOGGER_HIDE_WELCOME_MESSAGE": "true",
+           "DL_TRUSTED_PROXIES": "127.0.0.1"}  # nginx on this machine names the client
     return subprocess.Popen([sys.executable, str(ROOT / "serve.py"), "--server.port", str(port),
                              "--server.address", "127.0.0.1", "--server.headless", "true"],
                             cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

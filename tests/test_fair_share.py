@@ -9,7 +9,8 @@ import pytest
 from streamlit.proto.BackMsg_pb2 import BackMsg
 
 from edge import fair_share
-from edge.fair_share import BURST, RATE, FairShare, SessionBudget, TokenBucket, mergeable
+from edge.fair_share import (ADDRESS_BURST, ADDRESS_RATE, BURST, MAX_HELD_BYTES, RATE, FairShare, SessionBudget,
+                             TokenBucket, mergeable)
 
 
 def rerun(value: float, click: bool = False) -> dict:
@@ -172,3 +173,39 @@ def test_other_routes_and_http_are_not_metered():
     own = asyncio.run(scenario())
     assert seen[0][1] is own and seen[1][1] is own
     assert seen[2][1] is not own  # the stream gets the metered receive
+
+
+def test_many_tabs_of_one_address_share_its_budget():
+    """A script that opens many connections gets its address's share, not many sessions' shares."""
+    tabs = 20
+
+    async def scenario():
+        shared = TokenBucket(ADDRESS_RATE, ADDRESS_BURST)
+        budgets = [SessionBudget(Browser([rerun(v, click=True) for v in range(60)]).receive, None, "tab", shared=shared)
+                   for _ in range(tabs)]
+        got = await asyncio.gather(*(drain(b, 1.0) for b in budgets))
+        return sum(len(g) for g in got)
+
+    delivered = asyncio.run(scenario())
+    assert tabs * BURST > ADDRESS_BURST + ADDRESS_RATE  # (else the test would prove nothing)
+    assert delivered <= ADDRESS_BURST + ADDRESS_RATE * 1.0 + tabs
+
+
+def test_held_messages_are_bounded_in_bytes():
+    """Clicks are never merged away, so what waits is bounded by its size too: 40 reruns with a
+    click and 64 KB of text each are more than MAX_HELD_BYTES, and the connection is closed."""
+    padded = [rerun(v, click=True) for v in range(BURST)]
+    for v in range(40):
+        msg = BackMsg()
+        msg.ParseFromString(rerun(v, click=True)["bytes"])
+        msg.rerun_script.widget_states.widgets.add(id="text").string_value = "x" * 65536
+        padded.append({"type": "websocket.receive", "bytes": msg.SerializeToString()})
+
+    async def scenario():
+        browser = Browser(padded)
+        return await drain(SessionBudget(browser.receive, browser.send, "test"), 1.0), browser.sent
+
+    got, sent = asyncio.run(scenario())
+    assert got[-1] == {"type": "websocket.disconnect", "code": 1008}
+    assert sent and sent[0]["code"] == 1008
+    assert 40 * 65536 > MAX_HELD_BYTES  # (the flood is larger than the bound)

@@ -93,14 +93,16 @@ def test_quiet_for_an_hour_starts_the_count_again():
     assert throttle.try_key("wrong", "s", "a").wait == 1
 
 
-def test_memory_is_bounded(monkeypatch):
+def test_memory_is_bounded_and_a_full_table_still_throttles(monkeypatch):
     monkeypatch.setattr(instructor, "MAX_TRACKED", 50)
     clock = Clock()
     throttle = Throttle(clock)
-    for i in range(200):
+    for i in range(200):  # many sessions and addresses fill the table
         throttle.try_key("wrong", f"s{i}", f"a{i}")
         clock.now += 0.001
-    assert len(throttle.records) <= 51
+    assert len(throttle.records) <= 50
+    # ... and one client guessing as fast as it may still gets at most ten keys looked at in a minute
+    assert guesses_in(throttle, clock, 60, sessions=32, address="203.0.113.99") <= 10
 
 
 @settings(max_examples=50)

@@ -257,3 +257,24 @@ def test_settings_that_work_pass():
         assert serve.settings_problems() == []  # a fresh machine's make run
         patch.setenv("DL_INSTRUCTOR_KEY", "k" * 24)
         assert serve.settings_problems() == []  # a practice site with answer keys and handouts
+
+
+def test_a_running_server_never_makes_its_database_anew(tmp_path, monkeypatch):
+    """The data directory removed under a running process: the next page's migration (the
+    Assignments page runs one) refuses, where it had made an empty gradebook in its place."""
+    data = tmp_path / "data"
+    monkeypatch.delenv(db.URL_ENV, raising=False)
+    monkeypatch.setenv(db.DATA_ENV, str(data))
+    migrate.upgrade()  # serve.py at start-up
+    shutil.rmtree(data)
+    with pytest.raises(migrate.DatabaseMissing):
+        migrate.upgrade()
+    assert not data.exists()
+
+
+def test_an_empty_file_in_place_of_the_database_stops_the_start(tmp_path):
+    data = tmp_path / "data"
+    assert migrate_command({db.DATA_ENV: str(data)}).returncode == 0
+    (data / "dynamics-lab.sqlite").write_bytes(b"")  # a restore gone wrong, a volume swapped
+    refused = migrate_command({db.DATA_ENV: str(data)})
+    assert refused.returncode != 0 and "has no tables" in refused.stderr

@@ -60,3 +60,9 @@ def test_a_value_that_cannot_be_read_is_not_sent_and_said_once(field, value):
     assert len(widget_values.take_refusals()) == 1
     assert widget_values.take_refusals() == set()  # said once, then forgotten
     assert len(widget_values._logged) == 1
+
+
+def test_a_cleared_value_passes_as_streamlit_reads_it():
+    """A WidgetState with no field set is a widget cleared (value=None): not refused."""
+    assert number_box(WidgetState(id="box"))["box"] is None
+    assert widget_values.take_refusals() == set()

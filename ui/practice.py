@@ -36,19 +36,19 @@ def seed_from_url() -> tuple[int | None, str | None]:
 
 
 def client() -> tuple[str, str]:
-    """(this browser session's id, the client's address). Behind the project's nginx the peer is the
-    proxy on this machine or a private network, and the client is the last X-Forwarded-For entry
-    (the one nginx added); otherwise the peer itself (Streamlit says None for loopback)."""
+    """(this browser session's id, the client's address as the server knows it). The server takes
+    X-Forwarded-For only from the proxies the admin names in DL_TRUSTED_PROXIES (serve.py hands
+    them to uvicorn), so a client cannot name another address for itself; an IPv6 client counts by
+    its /64 network (one host holds a whole /64). Streamlit says None for loopback."""
     ctx = get_script_run_ctx()
     peer = st.context.ip_address
-    peer = peer if isinstance(peer, str) else None
-    forwarded = st.context.headers.get("X-Forwarded-For")
-    forwarded = forwarded.split(",")[-1].strip() if isinstance(forwarded, str) else ""
+    address = peer if isinstance(peer, str) and peer else "127.0.0.1"
     try:
-        behind_proxy = peer is None or ipaddress.ip_address(peer).is_private
+        ip = ipaddress.ip_address(address)
+        if ip.version == 6:
+            address = str(ipaddress.ip_network(f"{ip}/64", strict=False))
     except ValueError:
-        behind_proxy = False
-    address = forwarded if forwarded and behind_proxy else (peer or "127.0.0.1")
+        pass
     return (ctx.session_id if ctx else "?"), address[:64]
 
 
