@@ -15,7 +15,7 @@ from ui.practice import instructor_export, is_instructor, practice_panel, seed_f
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
 from ui.figure import show as show_figure
-from ui.params import mirror_to_url, parameter_panel
+from ui.params import fixed_parameters, mirror_to_url, parameter_panel
 
 LECTURE_CSS = """
 <style>
@@ -179,9 +179,13 @@ def problem_page(problem_id: str) -> None:
             return
         _assignment(problem, link, system)
         return
-    base = variant(solver, problem.id, seed) if seed is not None else {}
-    st.sidebar.markdown("### Parameters" + (f" · variant {seed}" if seed is not None else ""))
-    params, warnings = parameter_panel(problem, system, base)
+    if seed is None:
+        base = {}
+        st.sidebar.markdown("### Parameters")
+        params, warnings = parameter_panel(problem, system)
+    else:  # a variant's givens are fixed, as on an assignment link: a nudged control would be another problem
+        base = variant(solver, problem.id, seed)
+        params, warnings = fixed_parameters(problem, system, base, seed)
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "",
                                             "lecture": "1" if lecture else "", "practice": "1" if practice else "",
                                             "seed": str(seed) if seed is not None else "",
