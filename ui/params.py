@@ -141,10 +141,29 @@ def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
 
 
 def _label(p: Any, system: str) -> str:
+    """A control's label in plain text (θ₀ — release angle above the horizontal (°)): Streamlit
+    gives it to screen readers as it is, so TeX there would be read out as dollars and backslashes."""
     if isinstance(p, Choice):
         return p.label.capitalize()
     u = units.unit(p.dimension, system)
-    return f"${p.symbol}$ — {p.label}" + (f" ({u})" if u else "")
+    return f"{symbol_text(p.symbol)} — {p.label}" + (f" ({u})" if u else "")
+
+
+# Streamlit names a slider's thumb twice: its aria-label, and an aria-labelledby that lists the thumb
+# and its group, which carries the same aria-label ("θ₀ — release angle … θ₀ — release angle …").
+# Without the aria-labelledby a screen reader reads the label once. Installed once per page load; it
+# follows every slider Streamlit draws later.
+SLIDER_NAMES = """<script>
+(() => {
+  if (window.dlSliderNames) return;
+  window.dlSliderNames = true;
+  const once = () => document.querySelectorAll("[data-testid='stSlider'] input[type='range'][aria-labelledby]")
+    .forEach((thumb) => thumb.removeAttribute("aria-labelledby"));
+  new MutationObserver(once).observe(document.body, {childList: true, subtree: true, attributes: true,
+                                                     attributeFilter: ["aria-labelledby"]});
+  once();
+})();
+</script>"""
 
 
 def _control(p: Any, problem: Problem, system: str, container) -> Any:
@@ -154,7 +173,7 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
                                help=p.help or None)
     if p.allow_inf:
         value = st.session_state[key]
-        no_slip = container.toggle(f"No slip at the contact (${p.symbol} = \\infty$)",
+        no_slip = container.toggle(f"No slip at the contact ({symbol_text(p.symbol)} = ∞)",
                                    value=math.isinf(value), key=key + "__inf")
         if no_slip:
             return math.inf
@@ -239,6 +258,7 @@ def parameter_panel(problem: Problem, system: str, base: dict | None = None,
                 values[p.name] = stored[p.name]
     values = {p.name: values[p.name] for p in params}  # the solver's order
     st.session_state[f"{problem.id}__si"] = dict(values)
+    container.html(SLIDER_NAMES, unsafe_allow_javascript=True)
     return values, warnings
 
 

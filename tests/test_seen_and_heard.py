@@ -1,0 +1,100 @@
+"""What a student sees and hears, as a second trial found it (issue 29): in Debian's Chromium, the
+names a screen reader reads from the accessibility tree, numbers and words never broken inside on a
+phone, the figures' width, titles and axis titles kept whole, and an animation that keeps its
+stated duration without a GPU. One server and one browser serve the whole module.
+"""
+from __future__ import annotations
+
+import os
+import re
+import statistics
+from pathlib import Path
+
+import pytest
+
+from scripts.live_app import CHROMIUM, wait_until_idle
+from tests.test_browser import open_page
+from ui.catalog import PROBLEMS
+
+pytestmark = pytest.mark.browser
+
+if not Path(CHROMIUM).exists():
+    if os.environ.get("CI"):
+        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
+    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
+
+playwright = pytest.importorskip("playwright.sync_api")
+
+SIZES = [(1400, 1000), (1280, 720), (390, 844)]
+PHONES = [(390, 844), (360, 740)]
+CONTROL_ROLES = {"slider", "spinbutton", "button", "combobox", "switch", "checkbox", "radio", "textbox",
+                 "listbox", "option", "tab", "link", "menuitem", "searchbox"}
+
+
+def is_phone(size) -> bool:
+    return size[0] < 500
+
+
+def open_sized(browser, url: str, size):
+    return open_page(browser, url, *size, phone=is_phone(size))
+
+
+def show_sidebar(page) -> None:
+    """The sidebar's controls are the page's too: open it where it starts collapsed (a phone, the
+    lecture view)."""
+    expand = page.locator("[data-testid='stExpandSidebarButton']")
+    if expand.count() and expand.is_visible():
+        expand.click()
+        page.wait_for_function("() => document.querySelector(\"[data-testid='stSidebar']\")"
+                               ".getAttribute('data-collapsed') !== 'true'", timeout=10_000)
+        page.wait_for_timeout(500)
+
+
+def control_names(page) -> list[tuple[str, str]]:
+    """(role, accessible name) of every control in Chromium's accessibility tree: what a screen
+    reader announces for it."""
+    cdp = page.context.new_cdp_session(page)
+    try:
+        nodes = cdp.send("Accessibility.getFullAXTree")["nodes"]
+    finally:
+        cdp.detach()
+    found = []
+    for node in nodes:
+        role = (node.get("role") or {}).get("value")
+        if node.get("ignored") or role not in CONTROL_ROLES:
+            continue
+        found.append((role, str((node.get("name") or {}).get("value", ""))))
+    return found
+
+
+def doubled(name: str) -> bool:
+    """"A A": the same words said twice in a row."""
+    words = name.split()
+    half = len(words) // 2
+    return len(words) >= 2 and len(words) % 2 == 0 and words[:half] == words[half:]
+
+
+NAMED_PATHS = ["", "gradebook", *(p.id for p in PROBLEMS), *(f"{p.id}?seed=7" for p in PROBLEMS),
+               "pendulum_rebound?units=us&practice=1"]
+
+
+@pytest.mark.parametrize("size", SIZES, ids=[f"{w}x{h}" for w, h in SIZES])
+def test_every_control_is_announced_in_words_once(browser, app_url, size):
+    """Every control's accessible name (sliders, number boxes, help buttons, selects, toggles), on
+    every page: no TeX ($, \\) and never the same words twice (a slider was announced as
+    "$\\theta_0$ — release angle … $\\theta_0$ — release angle …")."""
+    bad = {}
+    context, page, errors = open_sized(browser, f"{app_url}/", size)
+    for path in NAMED_PATHS:
+        page.goto(f"{app_url}/{path}")
+        wait_until_idle(page)
+        show_sidebar(page)
+        names = control_names(page)
+        if path not in ("", "gradebook"):  # the tree was read with the page's controls in it
+            assert any(role in ("slider", "spinbutton", "textbox") for role, _ in names), (path, names)
+        wrong = [(role, name) for role, name in names if "$" in name or "\\" in name or doubled(name)]
+        if wrong:
+            bad[path] = wrong
+    assert bad == {}
+    assert not errors, errors
+    context.close()
