@@ -98,3 +98,53 @@ def test_every_control_is_announced_in_words_once(browser, app_url, size):
     assert bad == {}
     assert not errors, errors
     context.close()
+
+
+# --- a phone: no value, unit or word broken inside ---------------------------------------------
+
+# Every run of characters between spaces (a number with its grouping, a unit, a word) that the page
+# lays out over more than one line; a hyphenated word may break after its hyphen.
+BROKEN = """() => {
+  const root = document.querySelector("[data-testid='stMain']");
+  const walker = document.createTreeWalker(root, NodeFilter.SHOW_TEXT);
+  const range = document.createRange(), broken = [];
+  for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+    const el = node.parentElement;
+    if (!el || el.closest(".katex, .dl-graph, svg, style, script, .dl-sr") || !el.getClientRects().length) continue;
+    for (const m of node.textContent.matchAll(/[^ \\n\\t-]+-?/g)) {
+      range.setStart(node, m.index);
+      range.setEnd(node, m.index + m[0].length);
+      const lines = new Set([...range.getClientRects()].filter(r => r.width > 0).map(r => Math.round(r.bottom)));
+      if (lines.size > 1) broken.push(m[0]);
+    }
+  }
+  return broken;
+}"""
+
+PHONE_PATHS = ["", *(p.id for p in PROBLEMS), *(f"{p.id}?practice=1" for p in PROBLEMS),
+               "pendulum_rebound?units=us", "disk_wall?seed=7"]
+
+
+@pytest.mark.parametrize("size", PHONES, ids=[f"{w}px" for w, _ in PHONES])
+def test_on_a_phone_no_value_unit_or_word_breaks_inside(browser, app_url, size):
+    """At 390 and 360 px: the answers, the ledger, the checks, the notes, the problem's givens and
+    the captions break only between words (a ledger's "0.943 / 2 N·s", "befor / e" and "kg·m²/ / s"
+    were broken inside), and the page still never scrolls sideways."""
+    width = size[0]
+    context, page, errors = open_sized(browser, f"{app_url}/", size)
+    found = {}
+    for path in PHONE_PATHS:
+        page.goto(f"{app_url}/{path}")
+        wait_until_idle(page)
+        if path:
+            page.locator(".dl-answers table, [data-testid='stMain'] table").first.wait_for(timeout=30_000)
+        page.wait_for_timeout(500)
+        broken = page.evaluate(BROKEN)
+        if broken:
+            found[path] = broken
+        assert page.evaluate("document.documentElement.scrollWidth") <= width, path
+        main = page.locator("[data-testid='stMain']")
+        assert main.evaluate("m => m.scrollWidth <= m.clientWidth"), path
+    assert found == {}
+    assert not errors, errors
+    context.close()

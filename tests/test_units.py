@@ -17,10 +17,10 @@ SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻", "0123456789-")
 
 def read_back(shown: str, dimension: str) -> float:
     """A quantity as format_quantity writes it, read the way a student's typed answer is: the number
-    (thin-space groups, a true minus, × 10ⁿ) and then the unit by its spelling."""
-    match = re.fullmatch(r"(−?[\d\u2009.]+)(?: × 10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))? ?(.*)", shown)
+    (no-break-space groups, a true minus, × 10ⁿ) and then the unit by its spelling."""
+    match = re.fullmatch(r"(−?\d+(?:\u202f\d{3})*(?:\.\d+)?)(?:\u202f×\u202f10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))? ?(.*)", shown)
     assert match, shown
-    number = float(match.group(1).replace("\u2009", "").replace("−", "-"))
+    number = float(match.group(1).replace("\u202f", "").replace("−", "-"))
     if match.group(2):
         number *= 10.0 ** int(match.group(2).translate(SUPERSCRIPTS))
     label = match.group(3)

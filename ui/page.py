@@ -30,14 +30,14 @@ LECTURE_CSS = """
 
 
 # Phones: display equations a step smaller (ui/equations.py breaks a long one over rows that fit
-# this size), and tables (the ledger has four columns) in smaller type whose cells may wrap
-# anywhere, so that nothing pushes the page sideways.
+# this size), and tables (the ledger has four columns) in smaller type and tighter cells, which wrap
+# between words only: a number, a unit and a word are never broken inside ("0.943 / 2 N·s").
 PHONE_CSS = """
 <style>
   @media (max-width: 640px) {
     .stMainBlockContainer .katex-display { font-size: 0.9em; }
     .stMainBlockContainer table { font-size: 0.85rem; }
-    .stMainBlockContainer th, .stMainBlockContainer td { padding: 0.3rem 0.35rem; overflow-wrap: anywhere; }
+    .stMainBlockContainer th, .stMainBlockContainer td { padding: 0.3rem 0.35rem; }
   }
 </style>
 """

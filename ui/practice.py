@@ -17,7 +17,7 @@ from practice.variants import MAX_SEED, variants_csv
 from solvers.core import Choice, Derivation, Solution
 from solvers import units
 from ui.catalog import Problem
-from ui.results import plain
+from ui.results import plain, plain_with_math
 
 INSTRUCTOR = "dl_instructor"  # session flag: the key was entered (once per session, for every page)
 
@@ -88,7 +88,7 @@ def method(steps, derivation: Derivation) -> str:
     forms = result_forms(derivation)
     blocks = []
     for i, step in enumerate(steps, start=1):
-        blocks.append(f"**{i}.** {plain(step.title)}")
+        blocks.append(f"**{i}.** {plain_with_math(step.title)}")
         flat = flat_latex(step.latex)
         if not any(form in flat for form in forms):
             blocks.append(f"$$\n{step.latex}\n$$")
