@@ -14,6 +14,7 @@ import math
 import re
 
 import numpy as np
+import sympy as sp
 import pytest
 
 from solvers.core import Choice, Number, plain_fixed, plain_number
@@ -214,3 +215,17 @@ def test_symbols_beside_the_equations_are_typeset_not_plain_notation(pid, option
         texts += [step.title for step in method(dict(solution.params))]
     plain = [t for t in texts if PLAIN_NOTATION.search(re.sub(r"\$[^$]*\$", "", t))]
     assert plain == []
+
+
+@pytest.mark.parametrize("pid, options", OPTIONS)
+def test_a_sum_with_numbers_puts_its_positive_terms_first(pid, options):
+    """ΔT = T⁻ − T⁺ with the numbers in reads 2.062 − 2.021 = 0.04167 J, not −2.021 + 2.062: a
+    substituted sum opens with a minus only when every term of it is negative."""
+    solver = importlib.import_module(f"solvers.{pid}")
+    solution = solver.solve(**options)
+    derivation = solver.derivation_of(solution)
+    values = derivation.evaluate(dict(solution.params) | dict(solution.extras.get("chain_inputs", {})))
+    for link, step in zip(derivation.chain, derivation.numeric_steps(values)):
+        substituted = step.latex.split(" = ", 1)[1]
+        if isinstance(link.expr, sp.Add) and substituted.startswith("-"):
+            assert all(term.could_extract_minus_sign() for term in link.expr.args), step.latex
