@@ -8,6 +8,15 @@ from ui.home import home
 # fonts.gstatic.com, which a lecture-hall network or a course site's policy may not reach.
 st.set_page_config(page_title="Dynamics Lab", page_icon="🔄", layout="wide")
 
+# A problem's title wraps instead of ending in "…" (Streamlit cuts page links and the navigation's
+# entries to one line: "Rod-and-sphere pendulum bounces off the floo…").
+st.html("""<style>
+  [data-testid='stSidebarNavLink'] span[label], [data-testid='stSidebarNavLink'] span[label] *,
+  [data-testid='stPageLink-NavLink'] > span:last-child, [data-testid='stPageLink-NavLink'] > span:last-child * {
+    white-space: normal; overflow: visible; text-overflow: clip; height: auto;
+  }
+</style>""")
+
 pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True)]}
 for group in GROUPS:
     pages[group] = [st.Page(p.page_path, title=p.title, icon=p.icon, url_path=p.id)

@@ -148,3 +148,106 @@ def test_on_a_phone_no_value_unit_or_word_breaks_inside(browser, app_url, size):
     assert found == {}
     assert not errors, errors
     context.close()
+
+
+# --- the figures ------------------------------------------------------------------------------
+
+def first_figure(page):
+    figure = page.locator(".dl-figure").first
+    figure.locator(".dl-graph .main-svg").first.wait_for(timeout=30_000)
+    page.wait_for_timeout(500)
+    return figure
+
+
+# The shown frames of a Play, by the time readout the component writes for each one it draws.
+RECORD_PLAY = """(figure) => {
+  window.dlShown = [];
+  const readout = figure.querySelector('.dl-readout'), scrub = figure.querySelector('.dl-scrub');
+  new MutationObserver(() => window.dlShown.push([performance.now(), Number(scrub.value)]))
+    .observe(readout, {childList: true, characterData: true, subtree: true});
+  window.dlStart = performance.now();
+}"""
+
+
+@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
+def test_play_keeps_the_stated_duration_without_a_gpu(browser, app_url, problem):
+    """Chromium with --disable-gpu, as on many school laptops: Play lasts the frames × frame time the
+    figure states (Euler's disk's caption says 4 s; it took 6.5), dropping frames rather than time,
+    and shows most of its frames (the 3-D scene is redrawn in place, not replotted)."""
+    import importlib
+    import json
+
+    spec = json.loads(importlib.import_module(f"viz.{problem.id}").figures(problem.solver.solve(), "si")[0].json())
+    frames, frame_ms = len(spec["animation"]["times"]), spec["animation"]["frame_ms"]
+    stated = (frames - 1) * frame_ms
+    context, page, errors = open_page(browser, f"{app_url}/{problem.id}", 1400, 1000)
+    figure = first_figure(page)
+    page.wait_for_timeout(1000)
+    figure.evaluate(RECORD_PLAY)
+    figure.get_by_role("button", name="Play the animation").click()
+    page.wait_for_function(f"() => window.dlShown.length && window.dlShown.at(-1)[1] === {frames - 1}",
+                           timeout=stated * 4 + 10_000)
+    shown = page.evaluate("window.dlShown")
+    took = shown[-1][0] - shown[0][0]
+    assert stated * 0.9 <= took <= stated * 1.1 + 150, (problem.id, round(took), stated)
+    distinct = len({index for _, index in shown})
+    assert distinct >= 0.6 * frames, (problem.id, distinct, frames)
+    if problem.id == "eulers_disk":
+        caption = figure.locator(".dl-description").inner_text()
+        assert f"{stated / 1000:.0f} s on screen" in caption or "4 s on screen" in caption
+    assert not errors, errors
+    context.close()
+
+
+def test_figures_widen_when_the_sidebar_is_collapsed(browser, app_url):
+    context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound", 1400, 1000)
+    figure = first_figure(page)
+    before = figure.locator(".main-svg").first.bounding_box()["width"]
+    page.locator("[data-testid='stSidebar']").hover()  # the collapse button shows on hover
+    page.locator("[data-testid='stSidebar'] [data-testid='stSidebarCollapseButton'] button").click()
+    page.wait_for_function("() => document.querySelector(\"[data-testid='stSidebar']\")"
+                           ".getAttribute('data-collapsed') === 'true'", timeout=10_000)
+    page.wait_for_timeout(1000)
+    room = figure.bounding_box()["width"]
+    after = figure.locator(".main-svg").first.bounding_box()["width"]
+    assert room > before + 100 and after >= room - 2, (before, after, room)
+    assert not errors, errors
+    context.close()
+
+
+@pytest.mark.parametrize("size", [(1400, 1000), *PHONES], ids=["1400", "390", "360"])
+def test_euler_s_disk_s_axis_titles_are_inside_its_figure(browser, app_url, size):
+    """The 3-D scene's axis titles were drawn by WebGL, where a phone cut the z-axis's off ("z (mm)"
+    absent, "y (mm" cut): they are the scene's own annotations, kept inside the graph."""
+    context, page, errors = open_sized(browser, f"{app_url}/eulers_disk", size)
+    figure = first_figure(page)
+    page.wait_for_timeout(1000)
+    graph = figure.locator(".dl-graph").bounding_box()
+    titles = {}
+    for text in figure.locator(".dl-graph svg text").all():
+        if text.text_content() in ("x (mm)", "y (mm)", "z (mm)"):
+            titles[text.text_content()] = text.bounding_box()
+    assert set(titles) == {"x (mm)", "y (mm)", "z (mm)"}, titles
+    for title, box in titles.items():
+        assert graph["x"] <= box["x"] and box["x"] + box["width"] <= graph["x"] + graph["width"], (title, box, graph)
+    assert not errors, errors
+    context.close()
+
+
+# --- titles are never cut ----------------------------------------------------------------------
+
+CUT = """() => [...document.querySelectorAll("[data-testid='stPageLink'] span, [data-testid='stSidebarNav'] span")]
+  .filter(e => e.offsetParent !== null && e.textContent.trim() && e.scrollWidth > e.clientWidth + 1)
+  .map(e => e.textContent.trim())"""
+
+
+@pytest.mark.parametrize("size", [*SIZES, (1024, 768), (360, 740)], ids=["1400", "1280", "390", "1024", "360"])
+def test_no_page_title_is_cut_on_the_home_page_or_in_the_navigation(browser, app_url, size):
+    """A home card's title read "…off the floo" and the navigation's "Rod-and-sphere pendulum
+    bou…": titles wrap instead."""
+    context, page, errors = open_sized(browser, f"{app_url}/", size)
+    page.locator("[data-testid='stPageLink']").first.wait_for()
+    show_sidebar(page)
+    assert page.evaluate(CUT) == []
+    assert not errors, errors
+    context.close()
