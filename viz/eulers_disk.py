@@ -79,7 +79,7 @@ def _animation(solution) -> Figure:
                        "xanchor": "left", "yanchor": "bottom", "xshift": 4}]},
     }
     # 3-D traces need redraw; the frame duration sets the slow motion.
-    frame_ms = int(1000 * PLAY_SECONDS / len(m["t"]))
+    frame_ms = round(1000 * PLAY_SECONDS / (len(m["t"]) - 1))  # from the first frame to the last
     spec = animated([table, G], moving_traces, m["t"], layout, frame_ms=frame_ms, redraw=True)
     turn = math.degrees(solution.extras["turn_per_precession"])
     description = (f"Slowed down {slow:.0f}×: one precession takes {n(a['period'] * 1000, 3)} ms in reality and "
