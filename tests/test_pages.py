@@ -423,3 +423,20 @@ def test_a_links_out_of_range_value_is_named_in_the_controls_unit(query, says, n
     assert_clean(at)
     (warning,) = [w.value for w in at.warning]
     assert says in warning and never not in warning, warning
+
+
+@pytest.mark.parametrize("query, name, value, says, never", [
+    ({"units": "us"}, "L", -1.0, "from 0.002 ft to 2000 ft", " m "),
+    ({"units": "us"}, "m_s", 1e7, "10 000 lb", " kg"),
+    ({}, "m_s", 1e7, "4536 kg", "rad"),
+])
+def test_a_box_out_of_range_is_named_in_its_own_unit(query, name, value, says, never):
+    """A value typed in a box beyond its range is refused in the unit the box shows (the solver's
+    own message is in SI: 'L = -0.3048 is out of range' for −1 ft)."""
+    pid = "pendulum_rebound"
+    at = show_more(run_page(pid, query), pid)
+    at.number_input(key=f"{pid}__{query.get('units', 'si')}__{name}").set_value(value).run()
+    assert_clean(at)
+    message = " ".join(e.value for e in at.error)
+    says = says.replace("10 000", units.format_value(10000.0))
+    assert says in message and never not in message, message

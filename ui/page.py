@@ -15,7 +15,7 @@ from ui.practice import instructor_export, is_instructor, practice_panel, seed_f
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
 from ui.figure import show as show_figure
-from ui.params import fixed_parameters, mirror_to_url, parameter_panel
+from ui.params import check_in_range, fixed_parameters, mirror_to_url, parameter_panel
 
 LECTURE_CSS = """
 <style>
@@ -192,6 +192,7 @@ def problem_page(problem_id: str) -> None:
                                             **_on_request_flag(problem)}, base)
     notices = [w for w in (seed_warning, *warnings) if w]
     try:
+        check_in_range(problem, params, system)
         solution, figures = _solve_and_draw(problem, params, system)
     except ValueError as error:
         _heading(heading, notices)

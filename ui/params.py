@@ -106,6 +106,20 @@ def shown_range(p: Number, system: str) -> str:
     return text + (", or inf" if p.allow_inf else "")
 
 
+def check_in_range(problem: Problem, values: dict, system: str) -> None:
+    """Raise ParameterError, in the units the controls show, for a value beyond its range (the
+    solver's own message is in SI: "L = -0.3048 is out of range" for a box showing −1 ft)."""
+    for p in problem.solver.PARAMS:
+        value = values[p.name]
+        if isinstance(p, Choice) or isinstance(value, str) or math.isnan(value):
+            continue  # an option is checked against its list; an emptied box gets the solver's message
+        try:
+            p.validate(value)
+        except ParameterError:
+            raise ParameterError(f"{symbol_text(p.symbol)} ({p.label}) = {units.format_quantity(value, p.dimension, system)} "
+                                 f"is out of range: it must be {shown_range(p, system)}.") from None
+
+
 def _url_warning(p: Any, raw: str, why: str) -> str:
     shown = raw if len(raw) <= MAX_URL_VALUE else raw[:MAX_URL_VALUE] + "…"
     return f"The link's value for **{p.name}** ({p.label}), “{shown}”, {why}; using the default instead."
