@@ -7,6 +7,7 @@ slip's hint, which never states the right value."""
 from __future__ import annotations
 
 import difflib
+import functools
 import importlib
 import math
 import re
@@ -111,6 +112,19 @@ def _in_calculator_mode(expr: sp.Expr, mode: str) -> sp.Expr:
     if mode == "degree":
         wrong = wrong.replace(lambda f: isinstance(f, _INVERSE_TRIG), lambda f: f * 180 / sp.pi)
     return wrong
+
+
+@functools.lru_cache(maxsize=512)
+def _calculator_function(derivation: Derivation, name: str, mode: str):
+    """(its symbols, a compiled function) for answer ``name`` as a calculator in the other angle
+    mode computes it, once per process (the page's numbers change, the expression does not); None
+    for an answer with no sin, cos or tan in it."""
+    expr = derivation.expression_of(name)
+    if not any(isinstance(f, _FORWARD_TRIG) for f in sp.preorder_traversal(expr)):
+        return None
+    wrong = _in_calculator_mode(expr, mode)
+    symbols = tuple(sorted(wrong.free_symbols, key=lambda s: s.name))
+    return symbols, sp.lambdify(symbols, wrong, modules="math")
 
 
 # Degrees where radians belong, or the reverse: (dimension, what was read as what, a unit typed?)
@@ -372,13 +386,17 @@ class Judge:
     def _calculator_values(self, answer) -> list[tuple[str, float]]:
         """The answer as a calculator in radian mode gives it from the page's degrees, and as one in
         degree mode from angles in radians: (mode, SI value as the page would read the number)."""
-        expr = self.derivation.expression_of(answer.name)
-        if not any(isinstance(f, _FORWARD_TRIG) for f in sp.preorder_traversal(expr)):
-            return []
         found = []
         for mode in ("radian", "degree"):
-            wrong = self._value_of(_in_calculator_mode(expr, mode))
-            if wrong is not None:
+            compiled = _calculator_function(self.derivation, answer.name, mode)
+            if compiled is None:
+                return []
+            symbols, function = compiled
+            try:
+                wrong = float(function(*(self.by_symbol[s] for s in symbols)))
+            except (ValueError, ZeroDivisionError, OverflowError, TypeError, KeyError):
+                continue
+            if math.isfinite(wrong):
                 found.append((mode, math.radians(wrong) if answer.dimension == "angle" else wrong))
         return found
 
