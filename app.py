@@ -10,6 +10,15 @@ from ui.practice import take_instructor_link
 # fonts.gstatic.com, which a lecture-hall network or a course site's policy may not reach.
 st.set_page_config(page_title="Dynamics Lab", page_icon="🔄", layout="wide")
 
+# A problem's title wraps instead of ending in "…" (Streamlit cuts page links and the navigation's
+# entries to one line: "Rod-and-sphere pendulum bounces off the floo…").
+st.html("""<style>
+  [data-testid='stSidebarNavLink'] span[label], [data-testid='stSidebarNavLink'] span[label] *,
+  [data-testid='stPageLink-NavLink'] > span:last-child, [data-testid='stPageLink-NavLink'] > span:last-child * {
+    white-space: normal; overflow: visible; text-overflow: clip; height: auto;
+  }
+</style>""")
+
 widget_values.install()  # (serve.py installs it before the first session; this covers `streamlit run`)
 take_instructor_link()  # ?instructor=KEY leaves the address bar on every page, the home page too
 if widget_values.take_refusals():

@@ -7,6 +7,7 @@ slip's hint, which never states the right value."""
 from __future__ import annotations
 
 import difflib
+import functools
 import importlib
 import math
 import re
@@ -49,9 +50,10 @@ def unreadable(message: str, understood: str = "") -> Verdict:
     return Verdict(False, message, understood, readable=False)
 
 
-def _number_in_si(text: str, answer: Answer, system: str) -> tuple[float, str] | None:
-    """(value in SI, how it was read) if ``text`` is a number alone or with a unit of this answer;
-    else None (perhaps an expression such as 2/3*V, or a unit the caller explains)."""
+def _number_in_si(text: str, answer: Answer, system: str) -> tuple[float, str, str] | None:
+    """(value in SI, how it was read, the unit typed or "") if ``text`` is a number alone or with a
+    unit of this answer; else None (perhaps an expression such as 2/3*V, or a unit the caller
+    explains)."""
     match = _NUMBER_WITH_UNIT.match(text)
     if not match:
         return None
@@ -60,12 +62,101 @@ def _number_in_si(text: str, answer: Answer, system: str) -> tuple[float, str] |
         raise ValueError("That number is too large.")
     unit_text = (match.group(2) or "").strip()
     if not unit_text:
-        shown = units.unit(answer.dimension, system)
-        return units.to_si(value, answer.dimension, system), (f"read in {shown}" if shown else "")
+        return _in_unit_shown(value, answer, system) + ("",)
     factor = units.si_per_unit(unit_text, answer.dimension)
     if factor is None:
         return None
-    return value * factor, f"read as {unit_text[:20]}"
+    return value * factor, f"read as {unit_text[:20]}", unit_text
+
+
+def _in_unit_shown(value: float, answer: Answer, system: str) -> tuple[float, str]:
+    """A number typed without a unit: (in SI, how it was read), read in the unit the page shows."""
+    shown = units.unit(answer.dimension, system)
+    return units.to_si(value, answer.dimension, system), (f"read in {shown}" if shown else "")
+
+
+def _trailing_units(text: str):
+    """Each way ``text`` ends in a space and a unit of some dimension (``… m/s``, ``… kg m^2``):
+    (what comes before, the unit), the longest unit first."""
+    for space in re.finditer(r"\s+", text):
+        head, unit = text[:space.start()], text[space.end():].strip()
+        if head.strip() and _UNIT_LIKE.fullmatch(unit) and units.dimensions_of(unit):
+            yield head, unit
+
+
+_FORWARD_TRIG = (sp.sin, sp.cos, sp.tan)
+_INVERSE_TRIG = (sp.asin, sp.acos, sp.atan)
+
+
+def _trig_of_a_number(expr: sp.Expr) -> list[sp.Expr]:
+    """The sin, cos and tan calls in ``expr`` whose argument is a bare number (no °, no π): sin(50)."""
+    return [f for f in sp.preorder_traversal(expr) if isinstance(f, _FORWARD_TRIG)
+            and not f.args[0].free_symbols and not f.args[0].has(sp.pi)]
+
+
+def _trig_in_degrees(expr: sp.Expr) -> tuple[sp.Expr, str] | None:
+    """``expr`` with every sin(50), cos(50), tan(50) read as degrees, and the hint that names them;
+    None if it has none."""
+    calls = sorted(set(_trig_of_a_number(expr)), key=sp.default_sort_key)
+    if not calls:
+        return None
+    typed = []
+    for call in calls:
+        argument = call.args[0]
+        typed.append((type(call).__name__, f"{float(argument):.6g}" if argument.is_number else sp.sstr(argument)))
+    written = ", ".join(f"{f}({a})" for f, a in typed)
+    meant = ", ".join(f"{f}({a}°)" for f, a in typed)
+    takes = f"takes {typed[0][1]}" if len(typed) == 1 else "take their numbers"
+    hint = f"{written} {takes} in radians: for degrees write {meant}."
+    return expr.xreplace({call: type(call)(call.args[0] * sp.pi / 180) for call in calls}), hint
+
+
+def _in_calculator_mode(expr: sp.Expr, mode: str) -> sp.Expr:
+    """``expr`` as a calculator left in the other angle mode computes it: in radian mode from the
+    page's angles in degrees (sin 30 taken as 30 rad), in degree mode from angles in radians (and
+    asin's result in degrees)."""
+    to = 180 / sp.pi if mode == "radian" else sp.pi / 180
+    wrong = expr.replace(lambda f: isinstance(f, _FORWARD_TRIG), lambda f: type(f)(f.args[0] * to))
+    if mode == "degree":
+        wrong = wrong.replace(lambda f: isinstance(f, _INVERSE_TRIG), lambda f: f * 180 / sp.pi)
+    return wrong
+
+
+@functools.lru_cache(maxsize=512)
+def _calculator_function(derivation: Derivation, name: str, mode: str):
+    """(its symbols, a compiled function) for answer ``name`` as a calculator in the other angle
+    mode computes it, once per process (the page's numbers change, the expression does not); None
+    for an answer with no sin, cos or tan in it."""
+    expr = derivation.expression_of(name)
+    if not any(isinstance(f, _FORWARD_TRIG) for f in sp.preorder_traversal(expr)):
+        return None
+    wrong = _in_calculator_mode(expr, mode)
+    symbols = tuple(sorted(wrong.free_symbols, key=lambda s: s.name))
+    return symbols, sp.lambdify(symbols, wrong, modules="math")
+
+
+# Degrees where radians belong, or the reverse: (dimension, what was read as what, a unit typed?)
+DEGREE_HINTS = {
+    ("angle", "degrees as radians", True): "That is the angle in degrees with 'rad' after it: write it "
+                                           "with ° (or deg), or convert it to radians.",
+    ("angle", "radians as degrees", False): "That looks like the value in radians read as degrees: write "
+                                            "it with 'rad', or give degrees.",
+    ("angle", "radians as degrees", True): "That is the angle in radians with a degree sign: write it with "
+                                           "'rad', or give degrees.",
+    ("angular_speed", "degrees as radians", False): "That looks like degrees per second, deg/s: a number "
+                                                    "alone is read in rad/s. Write deg/s after it, or "
+                                                    "convert to rad/s.",
+    ("angular_speed", "degrees as radians", True): "That looks like degrees per second, deg/s, labelled "
+                                                   "rad/s: write deg/s after it, or convert to rad/s.",
+    ("angular_speed", "radians as degrees", True): "That looks like rad/s labelled deg/s: write rad/s "
+                                                   "after it, or convert to deg/s.",
+}
+CALCULATOR_HINTS = {
+    "radian": "Your calculator seems to be in radian mode: the page gives its angles in degrees. Switch "
+              "it to degrees, or convert each angle to radians first.",
+    "degree": "Your calculator seems to be in degree mode while the angles you used are in radians. "
+              "Switch it to radians, or use the angles in degrees as the page gives them.",
+}
 
 
 def _unit_message(text: str, answer: Answer, system: str) -> str | None:
@@ -75,6 +166,12 @@ def _unit_message(text: str, answer: Answer, system: str) -> str | None:
     unit_text = (match.group(2) or "").strip() if match else ""
     if not unit_text or not _UNIT_LIKE.fullmatch(unit_text):
         return None
+    return _unit_text_message(unit_text, answer, system)
+
+
+def _unit_text_message(unit_text: str, answer: Answer, system: str) -> str:
+    """What is wrong with ``unit_text``, written as this answer's unit: a unit of another
+    dimension, a unit in the wrong case, or no unit at all."""
     shown, si = units.unit(answer.dimension, system), units.unit(answer.dimension, "si")
     example = " or ".join(dict.fromkeys(u for u in (shown, si) if u)) or "no unit (a pure number)"
     elsewhere = units.dimensions_of(unit_text)
@@ -154,9 +251,10 @@ class Judge:
                     if result in self.answer_names else "an intermediate result of the derivation")
             return f"{name!r} is not a given: it is {what}. Write the answer in the givens only. {givens}"
         typeable = _symbol_table(list(self.givens.values()))
-        for function in FUNCTIONS:
-            if name.startswith(function) and name[len(function):] in typeable:
-                return f"Write {function}({name[len(function):]}) with brackets. {givens}"
+        for function in sorted(FUNCTIONS, key=len, reverse=True):  # asin before sin
+            argument = re.fullmatch(rf"{function}([\d.]*)(\w+)", name)
+            if argument and argument.group(2) in typeable:  # sin2θ
+                return f"Write {function}({argument.group(1)}{argument.group(2)}) with brackets. {givens}"
         if name in LOOKALIKES and any(LOOKALIKES[name] == n.split("_")[0] for n in self.typeable_symbols()):
             return f"Unknown name {name!r}: did you mean {LOOKALIKES[name]} ({GREEK[LOOKALIKES[name]]})? {givens}"
         if name == "e":
@@ -185,23 +283,64 @@ class Judge:
         except ValueError as error:
             return unreadable(str(error))
         if as_number is not None:
-            return self._judge_number(answer, as_number[0], as_number[1], correct, system)
+            value, how, unit = as_number
+            return self._judge_number(answer, value, how, correct, system, unit=unit)
         try:
-            expr = self.parse(text, answer.name)
+            expr, unit = self._read(text, answer, system)
         except ValueError as error:
-            return unreadable(_unit_message(text, answer, system) or str(error))
+            return unreadable(str(error))  # (_read names a unit of another dimension itself)
         if not expr.free_symbols:
-            value = complex(sp.N(expr, 15))
-            if abs(value.imag) > 1e-12 or not math.isfinite(value.real):
-                return unreadable("That evaluates to a number that is not real and finite.", sp.latex(expr))
-            shown = units.unit(answer.dimension, system)
-            return self._judge_number(answer, units.to_si(value.real, answer.dimension, system),
-                                      f"read in {shown}" if shown else "", correct, system, sp.latex(expr))
+            return self._judge_numeric_expression(answer, expr, unit, correct, system)
         return self._judge_expression(answer, expr, system)
 
-    def _judge_number(self, answer, value, how, correct, system, understood="") -> Verdict:
+    def _read(self, text: str, answer: Answer, system: str) -> tuple[sp.Expr, str]:
+        """(the expression, the unit written after it or "") for typed text. A unit of this answer
+        after a space ends the expression (``(2V sin θ + Rω)/3 m/s``); a unit of another dimension
+        is named as such; anything else that does not parse says why."""
+        own = [(head, unit) for head, unit in _trailing_units(text) if units.si_per_unit(unit, answer.dimension)]
+        for head, unit in own:
+            try:
+                return self.parse(head, answer.name), unit
+            except ValueError:
+                continue
+        try:
+            return self.parse(text, answer.name), ""
+        except ValueError as error:
+            for head, unit in _trailing_units(text):
+                try:
+                    self.parse(head, answer.name)
+                except ValueError:
+                    continue
+                raise ValueError(_unit_text_message(unit, answer, system)) from None
+            raise ValueError(_unit_message(text, answer, system) or str(error)) from None
+
+    def _judge_numeric_expression(self, answer: Answer, expr: sp.Expr, unit: str, correct: float,
+                                  system: str) -> Verdict:
+        """An expression with no givens is a number: read in the unit after it, else in the unit the
+        page shows; an angle with ° or asin, acos, atan in it also in radians (what they give)."""
+        value = complex(sp.N(expr, 15))
+        understood = sp.latex(expr)
+        if abs(value.imag) > 1e-12 or not math.isfinite(value.real):
+            return unreadable("That evaluates to a number that is not real and finite.", understood)
+        if unit:
+            si, how = value.real * units.si_per_unit(unit, answer.dimension), f"read as {unit[:20]}"
+        else:
+            si, how = _in_unit_shown(value.real, answer, system)
+        scale = self._scale()
+        if (not unit and answer.dimension == "angle" and not self._close(si, correct, scale)
+                and (expr.has(sp.pi) or any(isinstance(f, _INVERSE_TRIG) for f in sp.preorder_traversal(expr)))
+                and self._close(value.real, correct, scale)):
+            si, how = value.real, "read in radians, as ° and asin, acos, atan give them"
+        return self._judge_number(answer, si, how, correct, system, understood, unit=unit, expr=expr)
+
+    def _scale(self) -> float:
+        return max(abs(v) for v in self.values.values() if math.isfinite(v)) or 1.0
+
+    def _judge_number(self, answer, value, how, correct, system, understood="", unit="", expr=None) -> Verdict:
+        """A number (SI) as read (``how``; ``unit`` as typed, "" for none; ``expr``: the expression
+        it came from, if any)."""
         shown = units.format_quantity(value, answer.dimension, system)
-        scale = max(abs(v) for v in self.values.values() if math.isfinite(v)) or 1.0
+        scale = self._scale()
         known = [(m, self._value_of(m.wrong(dict(self.solution.params))))
                  for m in mistakes_for(self.solution.problem, answer.name, dict(self.solution.params))]
         known = [(m, w) for m, w in known if w is not None and abs(w - correct) > 1e-12 * max(abs(correct), 1)]
@@ -212,7 +351,8 @@ class Judge:
                 return Verdict(False, f"Not quite. {mistake.feedback}", understood, mistake.feedback)
         if self._close(value, correct, scale):
             return Verdict(True, f"Right: {shown}" + (f" ({how})." if how else "."), understood)
-        generic = self._generic_number_mistake(answer, value, correct, scale)
+        generic = (self._degree_slip(answer, value, correct, scale, unit, expr, system)
+                   or self._generic_number_mistake(answer, value, correct, scale))
         message = f"Not right: you gave {shown}" + (f" ({how})" if how else "") + "."
         if generic:
             return Verdict(False, f"{message} {generic}", understood, generic)
@@ -221,30 +361,59 @@ class Judge:
     def _close(self, a: float, b: float, scale: float) -> bool:
         return abs(a - b) <= self.tolerance * max(abs(b), 1e-9 * scale)
 
+    def _degree_slip(self, answer, value, correct, scale, unit, expr, system) -> str:
+        """The hint for degrees where radians belong (or the reverse), in the form this number
+        shows it: an angle's or an angular speed's number in the other unit (with no unit, or with
+        the wrong one), sin(50) meaning degrees inside an expression, a calculator in the other
+        angle mode. "" if the number is no such slip."""
+        distinct = abs(math.degrees(correct) - correct) > self.tolerance * abs(correct)  # not at 0
+        if answer.dimension in ("angle", "angular_speed") and distinct:
+            for slip, wrong in (("degrees as radians", math.degrees(correct)),
+                                ("radians as degrees", math.radians(correct))):
+                hint = DEGREE_HINTS.get((answer.dimension, slip, bool(unit)))
+                if hint and self._close(value, wrong, scale):
+                    return hint
+        meant = _trig_in_degrees(expr) if expr is not None else None
+        if meant is not None:
+            readings = self._readings(answer, complex(sp.N(meant[0], 15)).real, unit, system)
+            if any(self._close(v, correct, scale) for v in readings):
+                return meant[1]
+        for mode, wrong in self._calculator_values(answer):
+            if not self._close(wrong, correct, scale) and self._close(value, wrong, scale):
+                return CALCULATOR_HINTS[mode]
+        return ""
+
+    def _readings(self, answer, number: float, unit: str, system: str) -> list[float]:
+        """What a number typed as an expression may mean, in SI: in its unit (or the one shown),
+        and for an angle also in radians."""
+        if unit:
+            return [number * units.si_per_unit(unit, answer.dimension)]
+        shown = units.to_si(number, answer.dimension, system)
+        return [shown, number] if answer.dimension == "angle" else [shown]
+
+    def _calculator_values(self, answer) -> list[tuple[str, float]]:
+        """The answer as a calculator in radian mode gives it from the page's degrees, and as one in
+        degree mode from angles in radians: (mode, SI value as the page would read the number)."""
+        found = []
+        for mode in ("radian", "degree"):
+            compiled = _calculator_function(self.derivation, answer.name, mode)
+            if compiled is None:
+                return []
+            symbols, function = compiled
+            try:
+                wrong = float(function(*(self.by_symbol[s] for s in symbols)))
+            except (ValueError, ZeroDivisionError, OverflowError, TypeError, KeyError):
+                continue
+            if math.isfinite(wrong):
+                found.append((mode, math.radians(wrong) if answer.dimension == "angle" else wrong))
+        return found
+
     def _generic_number_mistake(self, answer, value, correct, scale) -> str:
         if correct != 0 and self._close(value, -correct, scale):
             return "The size is right but the sign is not: check the direction you took as positive."
-        if answer.dimension == "angle" and self._close(value, math.radians(correct), scale):
-            return "That looks like the value in radians read as degrees: write it with 'rad', or give degrees."
-        wrong_mode = self._value_with_degree_calculator(answer)
-        if (wrong_mode is not None and not self._close(wrong_mode, correct, scale)
-                and self._close(value, wrong_mode, scale)):
-            return "Your calculator seems to be in the wrong angle mode (degrees vs radians)."
         if correct != 0 and (self._close(value, 2 * correct, scale) or self._close(value, correct / 2, scale)):
             return "Off by a factor of 2: check a ½ (kinetic energy, ½ m R², L/2)."
         return ""
-
-    def _value_with_degree_calculator(self, answer) -> float | None:
-        """The answer as a calculator in degree mode would give it from the radian values."""
-        expr = self.derivation.expression_of(answer.name)
-        trig = {f: (lambda x, f=f: f(x * sp.pi / 180)) for f in (sp.sin, sp.cos, sp.tan)}
-        try:
-            wrong = expr.replace(sp.sin, trig[sp.sin]).replace(sp.cos, trig[sp.cos]).replace(sp.tan, trig[sp.tan])
-        except Exception:  # noqa: BLE001
-            return None
-        if wrong == expr:
-            return None
-        return self._value_of(wrong)
 
     def _value_of(self, expr: sp.Expr) -> float | None:
         expr = self.derivation.in_parameters(expr)
@@ -271,6 +440,9 @@ class Judge:
             wrong = self.derivation.in_parameters(mistake.wrong(dict(self.solution.params)))
             if not self._numerically_same(wrong, correct) and self._numerically_same(expr, wrong):
                 return Verdict(False, f"Not quite. {mistake.feedback}", understood, mistake.feedback)
+        meant = _trig_in_degrees(expr)
+        if meant is not None and self._same_here(meant[0], correct):
+            return Verdict(False, f"Not quite. {meant[1]}", understood, meant[1])
         if self._numerically_same(expr, -correct):
             return Verdict(False, "The size is right but the sign is not: check the direction you took as "
                            "positive.", understood, "sign")

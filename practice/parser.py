@@ -9,6 +9,11 @@ a number or a closing bracket times what follows may omit the * (2V, 2(a+b), (a)
 Unicode minus, × and · are understood. The problem's own symbols come first: where a problem has a
 restitution coefficient, e is that coefficient; Euler's number is exp(1).
 
+Written as by hand, a run of givens and functions is their product, each function taking the given
+after it (Rω is R·ω, 2Vsinθ is 2·V·sin θ, Vsin(θ) is V·sin θ), and an exponent belongs to the last
+letter (Rω^2 is R·ω²); sinθ^2 is refused as ambiguous. Two numbers side by side are refused, not
+multiplied: 1.0.8 is a typo, 3 4 two numbers, 1,5 a decimal comma.
+
 Everything is bounded so that no input can take long: its length, its number of tokens, its
 nesting depth, the size of every number, and every exponent (which must be a constant of
 modest size, checked before sympy can evaluate anything). Any refusal is a ValueError whose
@@ -16,6 +21,7 @@ message points at the problem.
 """
 from __future__ import annotations
 
+import functools
 import math
 import re
 from dataclasses import dataclass
@@ -86,6 +92,9 @@ def tokenize(text: str) -> list[Token]:
         if not match or match.end() == position:
             bad = text[position:].lstrip()[:1]
             where = len(text) - len(text[position:].lstrip())
+            if bad == "." and tokens and tokens[-1].kind == "number" and where == position:
+                raise ValueError(f"{tokens[-1].text + '.'!r} {_where(text, tokens[-1].position)} is not a "
+                                 "number: a number has one decimal point.")
             raise ValueError(f"The character {bad!r} (U+{ord(bad):04X}) {_where(text, where)} is not "
                              "allowed: use numbers, the problem's symbols, + − * / ^ ( ) and "
                              "sin cos tan asin acos atan sqrt exp log abs.")
@@ -97,7 +106,27 @@ def tokenize(text: str) -> list[Token]:
             raise ValueError(f"The answer has too many parts (more than {MAX_TOKENS}).")
         position = match.end()
     tokens.append(Token("end", "", len(text)))
+    _no_numbers_side_by_side(text, tokens)
     return tokens
+
+
+def _no_numbers_side_by_side(text: str, tokens: list[Token]) -> None:
+    """Refuse a number followed by another number (1.0.8, 3 4) or by a comma and a number (1,5):
+    read as a product they would give a confident wrong value."""
+    for before, after in zip(tokens, tokens[1:]):
+        if before.kind != "number":
+            continue
+        if after.kind == "number":
+            end = after.position + len(after.text)
+            run = text[before.position:end]
+            if after.position == before.position + len(before.text) and "." in before.text + after.text:
+                raise ValueError(f"{run!r} {_where(text, before.position)} is not a number: a number has one "
+                                 "decimal point.")
+            raise ValueError(f"Two numbers side by side {_where(text, before.position)} ({run!r}): put an "
+                             "operator (+ − * /) between them.")
+        if after.kind == "op" and after.text == "," and re.match(r"\s*\d", text[after.position + 1:]):
+            raise ValueError(f"A decimal comma {_where(text, after.position)}: write decimals with a point "
+                             "(1.5, not 1,5).")
 
 
 def _symbol_table(allowed_symbols: Iterable[sp.Symbol]) -> dict[str, sp.Symbol]:
@@ -219,17 +248,27 @@ class _Parser:
         return self.power()
 
     def power(self) -> sp.Expr:
-        base = self.primary()
+        lead, bare = sp.Integer(1), None
+        if self.token.kind == "name":  # Rω, 2Vsinθ: the exponent and ° belong to the last factor
+            lead, base, bare = self.name_run()
+        else:
+            base = self.primary()
         while self.is_op("°"):  # 30° is 30·π/180: angles in the answer's trig read as degrees
             self.advance()
             base = base * sp.pi / 180
         if self.is_op("^", "**"):
+            if bare is not None:
+                function, argument = bare
+                raise ValueError(f"{function}{argument}^… {_where(self.text, self.token.position)} is ambiguous: "
+                                 f"write {function}({argument})^2 or {function}({argument}^2).")
             position = self.advance().position
             self.enter()
             exponent = self.unary()  # right-associative: a^b^c = a^(b^c); a^-1 allowed
             self.leave()
-            return self.checked_power(base, exponent, position)
-        return base
+            base = self.checked_power(base, exponent, position)
+        result = lead * base
+        self.check(result)
+        return result
 
     def checked_power(self, base: sp.Expr, exponent: sp.Expr, position: int) -> sp.Expr:
         if exponent.free_symbols:
@@ -252,9 +291,6 @@ class _Parser:
         if token.kind == "number":
             self.advance()
             return self.number(token)
-        if token.kind == "name":
-            self.advance()
-            return self.name(token)
         if self.is_op("("):
             self.advance()
             self.enter()
@@ -279,47 +315,82 @@ class _Parser:
         self.check(value)
         return value
 
-    def name(self, token: Token) -> sp.Expr:
+    def name_run(self) -> tuple[sp.Expr, sp.Expr, tuple[str, str] | None]:
+        """A name token as the student meant it: (the product of all factors but the last, the
+        last factor, and (function, argument) if that last factor is a function written without
+        brackets). Each factor is a given, pi, or a function applied to the given after it or to
+        the bracket after the name."""
+        token = self.advance()
         text = token.text
-        if text in self.symbols:  # the problem's own symbols come first (e is restitution);
-            return self.symbols[text]  # R(…) then reads as R times (…)
-        split = self.split_into_symbols(text)
-        if split is not None:  # Rω, mgr: adjacent symbols, multiplied
-            return sp.Mul(*split)
-        if text in FUNCTIONS:
-            function = FUNCTIONS[text]
-            if not self.is_op("("):
+        pieces = self.pieces(text, bracket_follows=self.is_op("("))
+        if pieces is None:
+            if text in FUNCTIONS:
                 raise ValueError(f"{text} needs brackets: {text}(…) {_where(self.text, token.position)}.")
-            self.advance()
+            hint = " (Euler's number is written exp(1))" if text == "e" else ""
+            known = ", ".join(sorted({s.name for s in self.symbols.values()}))
+            raise UnknownName(f"Unknown name {text!r} {_where(self.text, token.position)}{hint}. "
+                              f"This problem's symbols: {known}.", text)
+        factors: list[sp.Expr] = []
+        bare = None
+        i = 0
+        while i < len(pieces):
+            spelling, value = pieces[i]
+            if value is not None:
+                factors.append(value)
+                bare = None
+                i += 1
+                continue
+            if i + 1 < len(pieces):  # sinθ: the function takes the given after it
+                argument_spelling, argument = pieces[i + 1]
+                factors.append(self.call(spelling, argument, token))
+                bare = (spelling, argument_spelling)
+                i += 2
+                continue
+            self.advance()  # the bracket after the name holds the argument
             self.enter()
             argument = self.sum()
             self.leave()
             self.expect(")")
-            if function is sp.exp and argument.is_number and abs(complex(sp.N(argument, 15))) > MAX_EXP_ARGUMENT:
-                raise ValueError(f"exp of a number that large {_where(self.text, token.position)} is out of range.")
-            result = function(argument)
-            self.check(result)
-            return result
-        if text in ("pi", "π"):
-            return sp.pi
-        hint = " (Euler's number is written exp(1))" if text == "e" else ""
-        known = ", ".join(sorted({s.name for s in self.symbols.values()}))
-        raise UnknownName(f"Unknown name {text!r} {_where(self.text, token.position)}{hint}. "
-                          f"This problem's symbols: {known}.", text)
+            factors.append(self.call(spelling, argument, token))
+            bare = None
+            i += 1
+        return sp.Mul(*factors[:-1]), factors[-1], bare
 
-    def split_into_symbols(self, text: str) -> list[sp.Symbol] | None:
-        """``text`` as a run of the problem's symbol names (longest names first), if it is one."""
-        if text in FUNCTIONS or text in ("pi", "π"):
-            return None
-        best: dict[int, list[sp.Symbol]] = {0: []}
-        for start in range(len(text)):
-            if start not in best:
-                continue
-            for end in range(len(text), start, -1):
+    def call(self, function_name: str, argument: sp.Expr, token: Token) -> sp.Expr:
+        function = FUNCTIONS[function_name]
+        if function is sp.exp and argument.is_number and abs(complex(sp.N(argument, 15))) > MAX_EXP_ARGUMENT:
+            raise ValueError(f"exp of a number that large {_where(self.text, token.position)} is out of range.")
+        result = function(argument)
+        self.check(result)
+        return result
+
+    def pieces(self, text: str, bracket_follows: bool) -> list[tuple[str, sp.Expr | None]] | None:
+        """``text`` as a run of the problem's symbols, pi and functions (value None), in the fewest
+        pieces: every function followed by a given (its argument) or, last, by the bracket after
+        the name. None if it is no such run."""
+        vocabulary: dict[str, sp.Expr | None] = {**{f: None for f in FUNCTIONS}, "pi": sp.pi, "π": sp.pi,
+                                                 **self.symbols}  # the problem's own names come first
+        longest = max(map(len, vocabulary))
+
+        @functools.cache
+        def best(start: int, needs_argument: bool) -> tuple | None:
+            if start == len(text):
+                return () if not needs_argument or bracket_follows else None
+            found = None
+            for end in range(min(len(text), start + longest), start, -1):
                 piece = text[start:end]
-                if piece in self.symbols and end not in best:
-                    best[end] = best[start] + [self.symbols[piece]]
-        return best.get(len(text)) if len(text) in best and len(best[len(text)]) > 1 else None
+                if piece not in vocabulary:
+                    continue
+                is_function = vocabulary[piece] is None
+                if needs_argument and is_function:
+                    continue
+                rest = best(end, is_function)
+                if rest is not None and (found is None or len(rest) + 1 < len(found)):
+                    found = ((piece, vocabulary[piece]), *rest)
+            return found
+
+        found = best(0, False)
+        return list(found) if found else None
 
     def check(self, expr: sp.Expr) -> None:
         for atom in expr.atoms(sp.Number):

@@ -10,6 +10,7 @@ from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
+from sympy.printing.latex import LatexPrinter
 
 from .formatting import latex_number
 from .solution import Step
@@ -17,6 +18,17 @@ from .units import latex_quantity
 
 
 _DOUBLE_PARENS = re.compile(r"\\left\(\\left\(([^()]*)\\right\) \\right\)")
+
+
+class _PositiveTermsFirst(LatexPrinter):
+    """sympy's LaTeX with a sum's positive terms first: with numbers put in, ΔT = T⁻ − T⁺ reads
+    2.062 − 2.021, as a person writes it, not −2.021 + 2.062."""
+
+    def _as_ordered_terms(self, expr, order=None):
+        terms = super()._as_ordered_terms(expr, order=order)
+        if not isinstance(expr, sp.Add):
+            return terms
+        return sorted(terms, key=lambda term: term.could_extract_minus_sign())  # stable: sympy's order kept
 
 
 def latex_eq(lhs: sp.Expr, rhs: sp.Expr, **kw) -> str:
@@ -81,7 +93,7 @@ class Derivation:
             func = sp.lambdify(free, link.expr, modules="math")
             self._compiled.append((link.name, func, arg_names))
             names = {s: self._PLACEHOLDER.format(i) for i, s in enumerate(free)}
-            template = sp.latex(link.expr, symbol_names=names, mul_symbol="dot")
+            template = _PositiveTermsFirst({"symbol_names": names, "mul_symbol": "dot"}).doprint(link.expr)
             slots = tuple(
                 (names[s], known[s], _only_inside_trig(link.expr, s)) for s in free
             )

@@ -119,26 +119,26 @@ def derivation(regime: str) -> Derivation:
     steps = [
         Step("Velocity of the centre before impact",
              sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_C^-"), v_before[:2, :], evaluate=False))),
-        Step("Velocity of the contact point B = C + R E_y: v_B = v_C + ω E_z × R E_y",
+        Step(r"Velocity of the contact point $B = C + R\,\mathbf{E}_y$: $\mathbf{v}_B = \mathbf{v}_C + \omega\mathbf{E}_z \times R\,\mathbf{E}_y$",
              sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_B^-"), v_B_before[:2, :], evaluate=False))),
         Step("Linear impulse–momentum (the impulse P acts at B)",
              r" \qquad ".join(sp.latex(eq) for eq in linear)),
-        Step(r"Angular impulse–momentum about C, with I_C = ½ m R² and (R E_y × P)·E_z = −R P_t",
+        Step(r"Angular impulse–momentum about C, with $I_C = \tfrac12 m R^2$ and $(R\,\mathbf{E}_y \times \mathbf{P})\cdot\mathbf{E}_z = -R P_t$",
              sp.latex(angular)),
         Step("Newton's restitution on the normal velocity (the normal component reverses)",
              sp.latex(restitution)),
     ]
     if regime == "stick":
-        steps.append(Step("No slip at B at the end of the impact: v_B⁺ · E_x = 0",
+        steps.append(Step(r"No slip at B at the end of the impact: $\mathbf{v}_B^+ \cdot \mathbf{E}_x = 0$",
                           sp.latex(tangential)))
     else:
         steps.append(Step(
-            "B slides throughout: friction is at its limit μ|P_n| and opposes the slip "
+            r"B slides throughout: friction is at its limit $\mu\lvert P_n\rvert$ and opposes the slip "
             "(σ = sign of the slip velocity of B before impact)", sp.latex(tangential)))
     steps.append(Step("Solve the five linear equations",
                       r" ,\quad ".join(latex_eq(k, solved[k]) for k in (v1x, omega1, P_t, P_n))))
     if regime == "stick":
-        steps.append(Step("Friction must supply this: no slip is possible only while |P_t| ≤ μ|P_n|",
+        steps.append(Step(r"Friction must supply this: no slip is possible only while $\lvert P_t\rvert \le \mu\lvert P_n\rvert$",
                           r"\left|P_t\right| \le \mu \left|P_n\right|"))
     steps.append(Step("Angular momentum about the contact point B is conserved (the impulse has "
                       "no moment about B); the worked solution's route",
@@ -184,12 +184,12 @@ def _ledger(p, v) -> tuple[LedgerRow, ...]:
     m_ = p["m"]
     vx0, vy0 = p["V"] * math.sin(p["theta"]), p["V"] * math.cos(p["theta"])
     return (
-        LedgerRow("momentum along the wall, m v_x", m_ * vx0, m_ * v["v1x"], "impulse",
-                  "changed by the friction impulse P_t" if v["impulse_t"] else "no friction impulse"),
-        LedgerRow("momentum into the wall, m v_y", m_ * vy0, m_ * v["v1y"], "impulse",
+        LedgerRow("momentum along the wall, $m v_x$", m_ * vx0, m_ * v["v1x"], "impulse",
+                  "changed by the friction impulse $P_t$" if v["impulse_t"] else "no friction impulse"),
+        LedgerRow("momentum into the wall, $m v_y$", m_ * vy0, m_ * v["v1y"], "impulse",
                   "reversed by the wall's normal impulse" if p["e"] > 0 else
                   "stopped by the wall's normal impulse (e = 0: no rebound)"),
-        LedgerRow("angular momentum about B, I ω + m R v_x", _H_B(p, p["omega"], vx0),
+        LedgerRow(r"angular momentum about B, $I\omega + m R v_x$", _H_B(p, p["omega"], vx0),
                   _H_B(p, v["omega1"], v["v1x"]), "angular_momentum", "the whole impulse acts at B"),
         LedgerRow("kinetic energy", v["T_before"], v["T_after"], "energy", _energy_reason(p, v)),
     )

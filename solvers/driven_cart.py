@@ -116,11 +116,11 @@ def derivation(drive: str) -> Derivation:
     names = ("x", "y", "z")
     steps = [
         Step("Wheel contact points relative to the CM (1 rear-left, 2 front-left, 3 front-right, "
-             "4 rear-right); driven wheels push with F_i = μ N_i",
+             r"4 rear-right); driven wheels push with $F_i = \mu N_i$",
              r",\;".join(rf"\mathbf{{r}}_{i + 1} = {sp.latex(sp.Matrix(w).T)}" for i, w in enumerate(WHEELS))),
-        Step("Balance of linear momentum, ΣF = m ẍ_C E_x (three components)",
+        Step(r"Balance of linear momentum, $\sum\mathbf{F} = m\ddot{x}_C\mathbf{E}_x$ (three components)",
              r"\\ ".join(sp.latex(eq) for eq in equations[:3])),
-        Step("Balance of angular momentum about the CM, ΣM_C = 0 (the cart translates)",
+        Step(r"Balance of angular momentum about the CM, $\sum\mathbf{M}_C = 0$ (the cart translates)",
              r"\\ ".join(rf"{names[i]}:\; " + sp.latex(eq) for i, eq in enumerate(equations[3:]))),
         Step("Nine unknowns, six equations: take the lateral forces as zero and the loads symmetric "
              "left to right (the worked solution's assumption)",
@@ -130,7 +130,7 @@ def derivation(drive: str) -> Derivation:
         Step("Solve", r",\quad ".join(latex_eq(k, solved[k]) for k in (xdd, N_front, N_rear))),
     ]
     if drive != "front":
-        steps.append(Step("The front wheels stay down only while N_front > 0",
+        steps.append(Step(r"The front wheels stay down only while $N_\mathrm{front} > 0$",
                           sp.latex(sp.Gt(solved[N_front], 0)) + r"\iff \mu a < b"))
     chain = [
         Result("N_front", N_front, solved[N_front], "force"),
@@ -164,7 +164,7 @@ def solve(**params) -> Solution:
     answers = {a_.name: values[a_.name] for a_ in ANSWERS}
     steps = list(d_.steps) + d_.numeric_steps(values)
     notes = ("Acceleration moves load to the rear axle: "
-             f"N_rear − N_front = {plain_number(answers['N_rear'] - answers['N_front'])} N per wheel.",)
+             rf"$N_\mathrm{{rear}} - N_\mathrm{{front}}$ = {plain_number(answers['N_rear'] - answers['N_front'])} N per wheel.",)
     return Solution("driven_cart", p, answers, tuple(steps), _checks(p, answers), p["drive"], notes)
 
 
@@ -177,11 +177,11 @@ def _checks(p, ans) -> tuple[Check, ...]:
                               np.array(rhs(*args), dtype=float).ravel(), rcond=None)
     weight = p["m"] * p["g"]
     return (
-        Check("ẍ_C from the linear solve of all six equations", ans["accel"], sol[8],
+        Check(r"$\ddot{x}_C$ from the linear solve of all six equations", ans["accel"], sol[8],
               relative_tolerance(p["g"], 1e-9), "ΣF = m ẍ with the traction of the driven wheels"),
-        Check("N_front (wheels 2, 3)", ans["N_front"], sol[1], relative_tolerance(weight, 1e-9),
+        Check(r"$N_\mathrm{front}$ (wheels 2, 3)", ans["N_front"], sol[1], relative_tolerance(weight, 1e-9),
               "moments about the CM balance: no pitching"),
-        Check("N_rear (wheels 1, 4)", ans["N_rear"], sol[0], relative_tolerance(weight, 1e-9),
+        Check(r"$N_\mathrm{rear}$ (wheels 1, 4)", ans["N_rear"], sol[0], relative_tolerance(weight, 1e-9),
               "the four normal forces carry the weight"),
     )
 

@@ -110,7 +110,7 @@ def derivation() -> Derivation:
     energy_closed = presentable(energy.subs(w_p, w_p_shown), sp.Rational(3, 2) * m * g * r * sp.sin(theta))
 
     steps = [
-        Step("Angular velocity: spin ψ̇ about the normal n plus the precession −ω_p E_z",
+        Step(r"Angular velocity: spin $\dot\psi$ about the normal $\mathbf{n}$ plus the precession $-\omega_p\mathbf{E}_z$",
              rf"\boldsymbol\omega = \dot\psi\,\mathbf{{n}} - \omega_p \mathbf{{E}}_z = {_vec_latex(omega)}"),
         Step("Rolling without slip with G at rest: the contact point A has zero velocity",
              rf"\mathbf{{v}}_A = \boldsymbol\omega \times \mathbf{{r}}_{{A/G}} = {_vec_latex(rolling)} = 0"
@@ -119,13 +119,13 @@ def derivation() -> Derivation:
              rf"\boldsymbol\omega = {_vec_latex(omega_rolled)},\quad {latex_eq(w_tot, magnitude)}"),
         Step("Angular momentum about G: ½ m r² along n, ¼ m r² across it",
              rf"\mathbf{{H}}_G = {_vec_latex(H_rolled)}"),
-        Step("θ, ω_s, ω_p constant: H_G is fixed in the precessing frame, so dH_G/dt = −ω_p E_z × H_G; "
-             "a_G = 0 gives N = mg and no friction",
+        Step(r"$\theta$, $\omega_s$, $\omega_p$ constant: $\mathbf{H}_G$ is fixed in the precessing frame, so "
+             r"$d\mathbf{H}_G/dt = -\omega_p\mathbf{E}_z \times \mathbf{H}_G$; $\mathbf{a}_G = 0$ gives $N = mg$ and no friction",
              rf"\dot{{\mathbf{{H}}}}_G = {_vec_latex(dHdt)},\quad \mathbf{{M}}_G = \mathbf{{r}}_{{A/G}}\times mg\mathbf{{E}}_z = "
              + _vec_latex(torque.subs(N_, m * g))),
-        Step("Balance of angular momentum about G, e_x component", sp.latex(moment_eq)
+        Step(r"Balance of angular momentum about G, $\mathbf{e}_x$ component", sp.latex(moment_eq)
              + rf"\;\Rightarrow\; {latex_eq(w_p, w_p_shown)}"),
-        Step("Energy: potential m g r sin θ plus kinetic ½ ω·H_G (G at rest)",
+        Step(r"Energy: potential $m g r\sin\theta$ plus kinetic $\tfrac12\boldsymbol\omega\cdot\mathbf{H}_G$ (G at rest)",
              latex_eq(E, energy) + " = " + sp.latex(energy_closed)),
     ]
     chain = [
@@ -180,18 +180,18 @@ def _checks(p, a) -> tuple[Check, ...]:
     scale = p["m"] * p["g"] * p["r"]
     steady = dynamics.integrate_steady(p, a["omega_p"], periods=1.0)
     return (
-        Check("|ω|: ω_p sin θ vs |ω_s n − ω_p E_z|", a["omega_total"], float(np.linalg.norm(omega)),
+        Check(r"$\lvert\boldsymbol\omega\rvert$: $\omega_p\sin\theta$ vs $\lvert\omega_s\mathbf{n} - \omega_p\mathbf{E}_z\rvert$", a["omega_total"], float(np.linalg.norm(omega)),
               relative_tolerance(a["omega_total"], 1e-9),
-              "rolling without slip: ω points along G→A, whose share of ω is ω_p sin θ whatever ω_s"),
+              r"rolling without slip: $\boldsymbol\omega$ points along G→A, whose share of $\boldsymbol\omega$ is $\omega_p\sin\theta$ whatever $\omega_s$"),
         Check("energy: mgr sin θ + ½ ω·Iω", a["energy"], potential + kinetic,
               relative_tolerance(a["energy"], 1e-9), "the steady state conserves energy"),
-        Check("M_G vs dH_G/dt (finite difference), along M_G", float(np.linalg.norm(torque)),
+        Check(r"$\mathbf{M}_G$ vs $d\mathbf{H}_G/dt$ (finite difference), along $\mathbf{M}_G$", float(np.linalg.norm(torque)),
               float(dHdt @ torque) / max(float(np.linalg.norm(torque)), 1e-300), 1e-5 * scale,
               "balance of angular momentum about G (the other components vanish in both)"),
         Check("tilt after one precession, Kane's equations integrated", p["theta"], p["theta"] + steady["tilt_drift"],
               1e-8, "the full rolling-disk equations keep the steady state steady"),
         Check("precession rate from Kane's equations", a["omega_p"], abs(steady["precession"][-1]),
-              relative_tolerance(a["omega_p"], 1e-7), "the same ω_p from the general equations of motion"),
+              relative_tolerance(a["omega_p"], 1e-7), r"the same $\omega_p$ from the general equations of motion"),
     )
 
 

@@ -10,8 +10,9 @@ GROUPED_BELOW = 1e6  # up to here a number is written out in full, in groups of 
 
 def plain_number(x: float, sig: int = 4) -> str:
     """Plain-text number with ``sig`` significant figures and a true minus sign: digits grouped by
-    thin spaces from ten thousand (30 490), a typeset power of ten from a million (3.049 × 10⁷) and
-    below 10⁻⁴, and a value that rounds to zero written 0, never −0."""
+    narrow no-break spaces from ten thousand (30 490), a typeset power of ten from a million
+    (3.049 × 10⁷, its spaces no-break too) and below 10⁻⁴, and a value that rounds to zero written 0,
+    never −0. No line breaks inside it."""
     if math.isinf(x):
         return "∞" if x > 0 else "−∞"
     rounded = float(f"{x:.{sig}g}")
@@ -21,10 +22,10 @@ def plain_number(x: float, sig: int = 4) -> str:
     if size >= GROUPED_BELOW or size < 1e-4:
         mantissa, exponent = f"{rounded:.{sig - 1}e}".split("e")
         mantissa = mantissa.rstrip("0").rstrip(".") if "." in mantissa else mantissa
-        text = f"{mantissa} × 10{str(int(exponent)).translate(_SUPERSCRIPT)}"
+        text = f"{mantissa}\u202f×\u202f10{str(int(exponent)).translate(_SUPERSCRIPT)}"
     elif size >= 1e4:
         text = f"{rounded:,.{max(0, sig - len(str(int(size))))}f}"
-        text = (text.rstrip("0").rstrip(".") if "." in text else text).replace(",", "\u2009")
+        text = (text.rstrip("0").rstrip(".") if "." in text else text).replace(",", "\u202f")
     else:
         text = f"{rounded:.{sig}g}"
     return text.replace("-", "−")

@@ -153,7 +153,7 @@ def derivation(sphere: str, surface: str) -> Derivation:
         Step("Normal velocity of the contact point is proportional to θ̇; restitution reverses it",
              latex_eq(sp.Symbol("v_n"), v_n) + r"\quad\Rightarrow\quad "
              + latex_eq(w_plus, -e * w_minus)),
-        Step("Energy after the bounce up to the highest angle θ_f (θ̇ = 0 there)",
+        Step(r"Energy after the bounce up to the highest angle $\theta_f$ ($\dot\theta = 0$ there)",
              sp.latex(rebound)),
         Step("Hence, whatever the masses",
              latex_eq(sp.sin(theta_f) - sp.sin(theta_I), sin_rebound - sp.sin(theta_I))),
@@ -200,7 +200,7 @@ def solve(**params) -> Solution:
              "impact height.",)
     I = answers["I_O"]
     ledger = (
-        LedgerRow("angular momentum about O, I_O θ̇", I * answers["omega_impact"], I * answers["omega_after"],
+        LedgerRow(r"angular momentum about O, $I_O\dot\theta$", I * answers["omega_impact"], I * answers["omega_after"],
                   "angular_momentum", f"the {p['surface']}'s impulse has a moment about O"),
         LedgerRow("kinetic energy", 0.5 * I * answers["omega_impact"] ** 2, 0.5 * I * answers["omega_after"] ** 2,
                   "energy", "elastic: e = 1" if p["e"] == 1 else "a fraction e² is kept" if p["e"] > 0 else
@@ -303,7 +303,7 @@ def _checks(p, a) -> tuple[Check, ...]:
                     relative_tolerance(a["omega_impact"], 1e-7),
                     "the fall conserves energy: the pivot does no work")]
     if len(legs) > 1:
-        checks.append(Check("rebound angle θ_f (energy vs. integrating θ̈)", a["theta_rebound"],
+        checks.append(Check(r"rebound angle $\theta_f$ (energy vs. integrating $\ddot\theta$)", a["theta_rebound"],
                             legs[1].end[1], 1e-7,
                             "after the bounce energy is again conserved up to the peak"))
     # Not (1 − e²) ½ I θ̇⁻²: that is energy_loss's own definition rearranged. Here the kinetic energy
@@ -311,7 +311,7 @@ def _checks(p, a) -> tuple[Check, ...]:
     # θ_f (the rise turns it all into Q (sin θ_f − sin θ_I)); with e = 0 nothing is left.
     T_before = 0.5 * a["I_O"] * impacts[0][1] ** 2
     T_after = moment_coefficient(p) * (math.sin(legs[1].end[1]) - math.sin(a["theta_impact"])) if len(legs) > 1 else 0.0
-    checks.append(Check("energy lost: ½ I_O θ̇⁻² − Q (sin θ_f − sin θ_I), θ̇⁻ and θ_f integrated",
+    checks.append(Check(r"energy lost: $\tfrac12 I_O (\dot\theta^-)^2 - Q (\sin\theta_f - \sin\theta_I)$, $\dot\theta^-$ and $\theta_f$ integrated",
                         a["energy_loss"], T_before - T_after,
                         relative_tolerance(T_before, 1e-6) + moment_coefficient(p) * 1e-7,
                         "the bounce is the only place energy goes; the swing conserves it"))

@@ -129,14 +129,14 @@ def derivation(disk: str) -> Derivation:
              r"\mathbf{x}_1 = " + sp.latex(x1.T) + r",\quad \mathbf{x}_2 = " + sp.latex(x2.T)),
         Step("Kinetic energy: translation of each centre plus rotation about it"
              + (" (the disk turns with the rod)" if disk == "welded" else
-                " (the pinned disk does not rotate: no ½ I_G θ̇² for it)"),
+                r" (the pinned disk does not rotate: no $\tfrac12 I_G\dot\theta^2$ for it)"),
              latex_eq(sp.Symbol("T"), T) + r" = \tfrac12 I_O \dot\theta^2"),
         Step("Hence the moment of inertia about O", latex_eq(I_O, inertia)),
         Step("Work of gravity from θ₁ to θ₂: ∫ F·dx for each weight",
              latex_eq(U_g, work_gravity)),
         Step("Work of the torsional spring (moment −kθ)",
              latex_eq(U_s, sp.Integral(-k * theta, (theta, theta1, theta2))) + " = " + sp.latex(work_spring)),
-        Step("Work–energy from rest: T₂ − 0 = U_g + U_s", latex_eq(T2, U_g + U_s)
+        Step(r"Work–energy from rest: $T_2 - 0 = U_g + U_s$", latex_eq(T2, U_g + U_s)
              + r"\;\Rightarrow\;" + latex_eq(w2, speed)),
     ]
     chain = [
@@ -287,13 +287,13 @@ def _checks(p, a) -> tuple[Check, ...]:
     # T = ½ I_O θ̇² moves by I_O θ̇ δθ̇ when θ̇ is off by δθ̇ (plus the nudge's own ½ I_O NUDGE²)
     energy_tolerance = a["I_O"] * (abs(a["omega2"]) + rate_tolerance) * rate_tolerance + relative_tolerance(work, 1e-12)
     return (
-        Check(f"θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ (start nudge {plain_number(NUDGE)} rad/s)"
-              if omega0 else "θ̇ at θ₂ by integrating I_O θ̈ = Q sin θ − kθ",
+        Check(rf"$\dot\theta$ at $\theta_2$ by integrating $I_O\ddot\theta = Q\sin\theta - k\theta$ (start nudge {plain_number(NUDGE)} rad/s)"
+              if omega0 else r"$\dot\theta$ at $\theta_2$ by integrating $I_O\ddot\theta = Q\sin\theta - k\theta$",
               a["omega2"], integrated, rate_tolerance,
               "work–energy is the first integral of the equation of motion"),
         # Not T₂ against U_g + U_s: T₂ is defined as that sum. The kinetic energy here comes from the
         # integrated θ̇, the work from the positions of the weights and the spring's moment.
-        Check("energy: U_g + U_s vs ½ I_O θ̇² with θ̇ integrated", work, 0.5 * a["I_O"] * integrated**2,
+        Check(r"energy: $U_g + U_s$ vs $\tfrac12 I_O\dot\theta^2$ with $\dot\theta$ integrated", work, 0.5 * a["I_O"] * integrated**2,
               energy_tolerance, "the pivot does no work"),
     )
 

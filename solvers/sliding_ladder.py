@@ -142,7 +142,7 @@ def derivation() -> tuple[Derivation, dict]:
     steps = [
         Step("Both contacts hold: G moves on a circle of radius L/2 about the corner",
              r"x_G = " + sp.latex(x_G.subs(q, theta)) + r",\quad y_G = " + sp.latex(y_G.subs(q, theta))),
-        Step("Kinetic energy: G's motion plus the turning about G (I_G = mL²/12); the ladder turns about "
+        Step(r"Kinetic energy: G's motion plus the turning about G ($I_G = mL^2/12$); the ladder turns about "
              "its instantaneous centre C, L/2 from G",
              r"T = \tfrac12 m v_G^2 + \tfrac12 I_G \dot\theta^2 = " + sp.latex(T1)
              + r" = \tfrac12 I_C \dot\theta^2,\quad I_C = " + sp.latex(I_C)),
@@ -150,21 +150,21 @@ def derivation() -> tuple[Derivation, dict]:
              sp.latex(energy1, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate_sq, order="rev-lex")),
         Step("Its rate of change, d(θ̇²)/dt = 2θ̇θ̈, gives the angular acceleration",
              latex_eq(thetaddot, accel)),
-        Step("The wall's push is the only horizontal force: N_A = m ẍ_G",
+        Step(r"The wall's push is the only horizontal force: $N_A = m\ddot x_G$",
              r"N_A = m\,\ddot x_G = " + sp.latex(sp.factor(m * x_acc)) + " = " + sp.latex(wall)),
-        Step("The floor carries the weight and G's vertical acceleration: N_B = m (ÿ_G + g)",
+        Step(r"The floor carries the weight and G's vertical acceleration: $N_B = m(\ddot y_G + g)$",
              r"N_B = " + sp.latex(floor)),
         Step("Just after release (θ = θ₀, θ̇ = 0)",
              latex_eq(N_A0, wall_0) + r",\quad " + latex_eq(N_B0, floor_0)),
-        Step("The wall cannot pull: N_A reaches zero, and the top leaves the wall, at two-thirds of its "
+        Step("The wall cannot pull: $N_A$ reaches zero, and the top leaves the wall, at two-thirds of its "
              "initial height", r"N_A = 0 \;\Rightarrow\; \sin\theta_\ell = " + sp.latex(leaving_sin)
              + r",\quad " + latex_eq(w_l, omega_l.subs(th_l, leave_angle).simplify())),
         Step("G's speed away from the wall then (θ̇ < 0 while it falls)",
              latex_eq(v_l, speed_l)),
         Step("Time to leave: dt = dθ / |θ̇|, in units of √(L/g) (an elliptic integral, by quadrature)",
              latex_eq(tau_1, time_1, order="rev-lex") + r",\quad t_\ell = \tau_1 \sqrt{L/g}"),
-        Step("After leaving no horizontal force acts: ẋ_G stays at its value; the foot stays on the floor, "
-             "so y_G = (L/2) sin θ still; energy from the moment of leaving",
+        Step(r"After leaving no horizontal force acts: $\dot x_G$ stays at its value; the foot stays on the floor, "
+             r"so $y_G = (L/2)\sin\theta$ still; energy from the moment of leaving",
              sp.latex(energy2, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate2_sq, order="rev-lex")),
         Step("Flat on the floor, θ = 0", latex_eq(w_f, omega_f)),
         Step("Time from leaving to the floor, in units of √(L/g) with ω̂₂ = |θ̇| √(L/g) from the energy "
@@ -356,20 +356,20 @@ def _checks(p, a) -> tuple[Check, ...]:
                                 p["m"] * p["g"])
     rel = 1e-6
     pairs = [
-        ("θ_ℓ: θ at the event N_A = 0, integrating m a_G = ΣF, I_G θ̈ = ΣM_G", "theta_leave", run["leave"][2], 1.0),
-        ("|θ̇_ℓ| at that event", "omega_leave", -run["leave"][5], rate),
-        ("ẋ_G at that event", "vx_leave", run["leave"][3], speed),
-        ("t_ℓ: the time of that event", "t_leave", run["t_leave"], time),
-        ("|θ̇_f|: integrating on with the floor alone to θ = 0", "omega_floor", -run["floor"][5], rate),
-        ("t_f: the time at θ = 0", "t_floor", run["t_floor"], time),
-        ("N_A0: the force and moment balance at release, solved as one linear system", "N_wall0", run["N_wall0"], force),
-        ("N_B0: the same linear system", "N_floor0", run["N_floor0"], force),
+        (r"$\theta_\ell$: $\theta$ at the event $N_A = 0$, integrating $m\mathbf{a}_G = \sum\mathbf{F}$, $I_G\ddot\theta = \sum M_G$", "theta_leave", run["leave"][2], 1.0),
+        (r"$\lvert\dot\theta_\ell\rvert$ at that event", "omega_leave", -run["leave"][5], rate),
+        (r"$\dot x_G$ at that event", "vx_leave", run["leave"][3], speed),
+        (r"$t_\ell$: the time of that event", "t_leave", run["t_leave"], time),
+        (r"$\lvert\dot\theta_f\rvert$: integrating on with the floor alone to $\theta = 0$", "omega_floor", -run["floor"][5], rate),
+        (r"$t_f$: the time at $\theta = 0$", "t_floor", run["t_floor"], time),
+        (r"$N_{A0}$: the force and moment balance at release, solved as one linear system", "N_wall0", run["N_wall0"], force),
+        (r"$N_{B0}$: the same linear system", "N_floor0", run["N_floor0"], force),
     ]
     checks = [Check(label, a[name], value * scale, relative_tolerance(a[name], rel))
               for label, name, value, scale in pairs]
     released = p["m"] * p["g"] * p["L"] / 2 * math.sin(p["theta0"])
     landed = p["m"] * a["vx_leave"] ** 2 / 2 + p["m"] * p["L"] ** 2 * a["omega_floor"] ** 2 / 6
-    checks.append(Check("energy: ½ m ẋ_G² + ½ (mL²/4 + mL²/12) θ̇_f² on landing vs m g (L/2) sin θ₀ released",
+    checks.append(Check(r"energy: $\tfrac12 m\dot x_G^2 + \tfrac12 (mL^2/4 + mL^2/12)\,\dot\theta_f^2$ on landing vs $m g (L/2)\sin\theta_0$ released",
                         landed, released, relative_tolerance(released, 1e-9),
                         "the smooth wall and floor do no work"))
     return tuple(checks)

@@ -119,7 +119,7 @@ def derivation(mode: str) -> Derivation:
             Step("Moment of inertia about the combined CM (parallel-axis theorem for the stick, "
                  "point mass for the ball)", sp.latex(inertia)),
             Step("Angular momentum about the combined CM is conserved; before impact only the ball "
-                 "carries it (arm s − d_cm)", sp.latex(angular) + r"\;\Rightarrow\;" + latex_eq(w, solved_w)),
+                 r"carries it (arm $s - d_{cm}$)", sp.latex(angular) + r"\;\Rightarrow\;" + latex_eq(w, solved_w)),
             Step("Kinetic energy before and after (the impact is perfectly plastic, e = 0)",
                  latex_eq(T_i, T_before) + r",\quad " + latex_eq(T_f, T_after)),
             Step("Distance the CM travels while the body turns once", latex_eq(x_rev, v_cm * 2 * sp.pi / w)),
@@ -226,9 +226,9 @@ def _checks(p, a) -> tuple[Check, ...]:
               "the table exerts no horizontal impulse"),
         Check("angular momentum about the stick's midpoint", H_before, H_after,
               relative_tolerance(H_before, 1e-9), "no external moment either"),
-        Check("energy lost: T_i − T_f vs ½ (1 − e²) m* v²", a["energy_loss"], 0.5 * (1 - e_**2) * m_star * p["v"] ** 2,
+        Check(r"energy lost: $T_i - T_f$ vs $\tfrac12 (1 - e^2)\, m^* v^2$", a["energy_loss"], 0.5 * (1 - e_**2) * m_star * p["v"] ** 2,
               relative_tolerance(a["T_before"], 1e-9),
-              "m* is the effective mass at the contact, 1/m* = 1/m_b + 1/m_s + s²/I; "
+              r"$m^*$ is the effective mass at the contact, $1/m^* = 1/m_b + 1/m_s + s^2/I$; "
               + ("attaching is e = 0" if p["mode"] == "stick" else "restitution keeps e² of the approach's share")),
     )
 

@@ -116,6 +116,26 @@ def to_si(x: float, dimension: str, system: str = "si") -> float:
     return x / SYSTEMS[system][dimension][1]
 
 
+# The solvers keep a textbook's values to four figures in SI (4.536 kg for 10 lb, 1.814 kg for
+# 4 lb): converted back, they differ from the round value by up to half a unit in the fourth figure.
+CONVERSION_NOISE = 5e-4  # relative
+
+
+def shown_value(x: float, dimension: str, system: str = "si") -> float:
+    """``x`` (SI) as a control shows it in ``system``: where a conversion happens, the shortest
+    decimal within ``CONVERSION_NOISE`` of the converted value (10 lb, not 10.0002 lb; 32.2 ft/s²,
+    not 32.185), so a unit switch shows the quantity a person would type; unconverted, as it is."""
+    factor = SYSTEMS[system][dimension][1]
+    shown = x * factor
+    if factor == 1.0 or not math.isfinite(shown) or shown == 0:
+        return shown
+    for figures in range(1, 7):
+        rounded = float(f"{shown:.{figures}g}")
+        if abs(rounded - shown) <= CONVERSION_NOISE * abs(shown):
+            return rounded
+    return shown
+
+
 format_value = plain_number  # one formatting of numbers for every page
 
 

@@ -10,6 +10,7 @@ import pytest
 from streamlit.runtime.media_file_manager import MediaFileManager
 from streamlit.testing.v1 import AppTest, app_test
 
+from solvers import units
 from ui.catalog import BY_ID, PROBLEMS
 from ui.figure import ANSWERS, DERIVATION
 
@@ -382,3 +383,85 @@ def test_a_link_that_changes_a_hidden_parameter_opens_more_parameters():
     assert at.toggle(key="pendulum_rebound__more").value is True
     assert at.number_input(key="pendulum_rebound__si__m_s").value == pytest.approx(3.0)
     assert run_page("pendulum_rebound").toggle(key="pendulum_rebound__more").value is False
+
+
+# -- a variant link, US units and a link's range (issue 29) ------------------------------------
+
+def _control_keys(at: AppTest, pid: str) -> set[str]:
+    """The keys of the controls of the page's givens (pid__si__name or pid__us__name)."""
+    return {w.key for w in [*at.number_input, *at.slider, *at.radio, *at.toggle, *at.selectbox]
+            if w.key and len(w.key.split("__")) >= 3 and w.key.split("__")[1] in ("si", "us")}
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_a_variant_links_givens_cannot_change_and_the_page_says_whose_they_are(pid):
+    """At ?seed=7 nothing can move a given: a student who nudges a control would work another
+    problem under the variant's name. The sidebar says they are fixed and lists them; the link
+    stays as it came, with the student's views and the instructor's alike."""
+    from practice.variants import variant
+
+    at = run_page(pid, {"seed": "7", "practice": "1"})
+    assert_clean(at)
+    assert _control_keys(at, pid) == set(), _control_keys(at, pid)
+    sidebar = "\n".join(m.value for m in at.sidebar.markdown)
+    assert "variant 7" in sidebar and "Fixed by the variant link" in sidebar, sidebar
+    params = variant(BY_ID[pid].solver, pid, 7)
+    for p in BY_ID[pid].solver.PARAMS:
+        if p.name in params:
+            assert units.format_quantity(params[p.name], p.dimension) in sidebar, (p.name, sidebar)
+    assert dict(at.query_params) == {"seed": "7", "practice": "1"}
+    at.run()
+    assert dict(at.query_params) == {"seed": "7", "practice": "1"}
+
+
+def test_a_variant_link_with_a_given_of_its_own_says_so(monkeypatch):
+    monkeypatch.setenv("DL_INSTRUCTOR_KEY", "test-instructor-key-15")
+    at = run_page("pendulum_rebound", {"seed": "7", "theta0": "40", "instructor": "test-instructor-key-15"})
+    assert_clean(at)
+    assert _control_keys(at, "pendulum_rebound") == set()  # the instructor's Study view too
+    sidebar = "\n".join(m.value for m in at.sidebar.markdown)
+    assert "variant 7" in sidebar and "θ₀ = 40°" in sidebar and "from the link" in sidebar, sidebar
+    assert dict(at.query_params) == {"seed": "7", "theta0": "40"}
+
+
+def test_us_units_show_the_textbooks_round_values():
+    """The textbook's 10 lb sphere, 4 lb rod, 2 ft and 0.3 ft, g = 32.2 ft/s²: not 10.0002 lb or
+    3.99919 lb, converted back from the SI defaults' four figures; a switch back to SI gives the
+    same SI values as before."""
+    at = show_more(run_page("pendulum_rebound", {"units": "us"}), "pendulum_rebound")
+    shown = {w.key.split("__")[-1]: w.value for w in at.number_input}
+    assert shown == {"m_s": 10, "m_r": 4, "L": 2, "r": 0.3, "d": 1.64, "g": 32.2}, shown
+    assert at.query_params.get("units") == "us" and set(at.query_params) == {"units"}
+    at.toggle(key="pendulum_rebound__us").set_value(False).run()
+    shown = {w.key.split("__")[-1]: w.value for w in at.number_input}
+    assert shown == {"m_s": 4.536, "m_r": 1.814, "L": 0.6096, "r": 0.09144, "d": 0.5, "g": 9.81}, shown
+
+
+@pytest.mark.parametrize("query, says, never", [
+    ({"theta0": "100"}, "less than 90°", "rad"),
+    ({"theta0": "-100"}, "greater than −90°", "rad"),
+    ({"units": "us", "m_s": "1e9"}, units.format_quantity(4536, "mass", "us"), " kg"),
+    ({"units": "us", "L": "-3"}, "ft", " m "),
+])
+def test_a_links_out_of_range_value_is_named_in_the_controls_unit(query, says, never):
+    at = run_page("pendulum_rebound", query)
+    assert_clean(at)
+    (warning,) = [w.value for w in at.warning]
+    assert says in warning and never not in warning, warning
+
+
+@pytest.mark.parametrize("query, name, value, says, never", [
+    ({"units": "us"}, "L", -1.0, "from 0.002 ft to 2000 ft", " m "),
+    ({"units": "us"}, "m_s", 1e7, "10 000 lb", " kg"),
+    ({}, "m_s", 1e7, "4536 kg", "rad"),
+])
+def test_a_box_out_of_range_is_named_in_its_own_unit(query, name, value, says, never):
+    """A value typed in a box beyond its range is refused in the unit the box shows (the solver's
+    own message is in SI: 'L = -0.3048 is out of range' for −1 ft)."""
+    pid = "pendulum_rebound"
+    at = show_more(run_page(pid, query), pid)
+    at.number_input(key=f"{pid}__{query.get('units', 'si')}__{name}").set_value(value).run()
+    assert_clean(at)
+    message = " ".join(e.value for e in at.error)
+    says = says.replace("10 000", units.format_value(10000.0))
+    assert says in message and never not in message, message

@@ -206,3 +206,51 @@ def test_errors_point_at_the_problem():
         parse_expression("2*x", SYMBOLS)
     with pytest.raises(ValueError, match="Euler"):
         parse_expression("e", [V])
+
+
+# -- how students write by hand (issue 29)
+
+@pytest.mark.parametrize("text", ["1.0.8", "2.5.1", "1..5", "0.8.", "3 4", "2 .5", "1,5", "1.0.8*V"])
+def test_a_number_written_twice_or_with_a_comma_is_refused_not_multiplied(text):
+    """1.0.8 is a typo, not 1.0 × 0.8; 3 4 is two numbers, not 12; 1,5 is a decimal comma."""
+    with pytest.raises(ValueError) as err:
+        parse_expression(text, SYMBOLS)
+    message = str(err.value)
+    assert "decimal point" in message or "side by side" in message or "comma" in message, message
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("(Rω+2Vsinθ)/3", (R * omega + 2 * V * sp.sin(theta)) / 3),
+    ("2Vsin(θ)/3 + Rω/3", 2 * V * sp.sin(theta) / 3 + R * omega / 3),
+    ("Vsintheta", V * sp.sin(theta)),
+    ("Vcosθ", V * sp.cos(theta)),
+    ("sinθcosθ", sp.sin(theta) * sp.cos(theta)),
+    ("2πR", 2 * sp.pi * R),
+    ("Rω^2", R * omega**2),
+    ("m_sL^2", m_s * L**2),
+    ("Vsqrt(R)", V * sp.sqrt(R)),
+    ("sinθ", sp.sin(theta)),
+    ("eVcosθ", e * V * sp.cos(theta)),
+])
+def test_juxtaposed_givens_and_functions_read_as_a_product(text, expected):
+    """What a student writes by hand: R·ω, V·sin θ, the exponent on the last letter only."""
+    assert sp.simplify(parse_expression(text, SYMBOLS) - expected) == 0
+
+
+@pytest.mark.parametrize("text", ["sinθ^2", "Vsinθ^2"])
+def test_a_power_after_a_bracketless_function_is_asked_about(text):
+    with pytest.raises(ValueError, match=r"sin\(θ\)\^2 or sin\(θ\^2\)"):
+        parse_expression(text, SYMBOLS)
+
+
+NAMES = [("V", V), ("R", R), ("θ", theta), ("ω", omega), ("e", e), ("L", L)]
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from([None, "sin", "cos", "tan", "sqrt"]), st.sampled_from(NAMES)),
+                min_size=2, max_size=5))
+def test_any_run_of_givens_and_bracketless_functions_is_their_product(run):
+    text = "".join((f or "") + name for f, (name, _) in run)
+    functions = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "sqrt": sp.sqrt}
+    expected = sp.Mul(*(functions[f](sym) if f else sym for f, (_, sym) in run))
+    assert parse_expression(text, SYMBOLS) == expected, text

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import math
 import os
 import re
 import signal
@@ -22,6 +23,7 @@ from streamlit.testing.v1 import AppTest
 from hypothesis import given, settings, strategies as hst
 
 from practice.judge import Judge, _number_in_si
+from practice.parser import MAX_LENGTH, MAX_TOKENS, tokenize
 from solvers import registry
 from practice.variants import MAX_SEED, variant, variants_csv
 from solvers import units
@@ -227,7 +229,11 @@ def test_generic_slips_sign_units_and_angle_mode():
     ("(V + R*omega", "not closed"),
     ("V)", "no matching '('"),
     ("2/3*V*sin(theta) + w*R/3", "did you mean omega"),
-    ("2/3*V*sinθ + R*omega/3", "sin(θ) with brackets"),
+    ("2/3*V*sinθ^2 + R*omega/3", "ambiguous"),
+    ("2/3*V*sin2θ + R*omega/3", "sin(2θ) with brackets"),
+    ("1.0.8", "one decimal point"),
+    ("0,83", "decimal comma"),
+    ("2/3*V*sin(theta) + R*omega/3 kg", "is a unit of mass"),
     ("2/3*V*sin(thet) + R*omega/3", "did you mean theta"),
     ("0.8 J", "unit of energy"),
     ("0.8 M/s", "Unknown unit 'M/s'"),
@@ -240,6 +246,26 @@ def test_messages_say_what_is_actually_wrong(text, says):
     verdict = judge.check(answers["v1x"], text)
     assert not verdict.correct and says in verdict.message, verdict.message
     assert "v_{1x}" not in verdict.message and "sigma" not in verdict.message
+    assert "you gave" not in verdict.message  # nothing was misread as a number
+
+
+@pytest.mark.parametrize("text", ["(Rω+2Vsinθ)/3", "2/3 Vsinθ + Rω/3", "(R*omega + 2*V*sin(theta))/3 m/s",
+                                  "2/3*V*sinθ + R*omega/3", "(2Vsin(θ) + Rω)/3 m/s"])
+def test_an_answer_written_by_hand_is_read_as_meant(text):
+    """Juxtaposed givens are a product (R·ω, V·sin θ) and a unit after an expression is its unit."""
+    _, _, judge, answers = setup("disk_wall")
+    verdict = judge.check(answers["v1x"], text)
+    assert verdict.correct and "not the general answer" not in verdict.message, verdict.message
+
+
+def test_a_unit_after_a_numeric_expression_is_read_with_it():
+    _, solution, judge, answers = setup("disk_wall")  # v1x = (Rω + 2V sin θ)/3 = 0.8333 m/s
+    verdict = judge.check(answers["v1x"], "(0.1*5 + 2*2*sin(30°))/3 m/s")
+    assert verdict.correct and "m/s" in verdict.message, verdict.message
+    in_feet = solution.answers["v1x"] / 0.3048
+    assert judge.check(answers["v1x"], f"{in_feet:.5g}*1 ft/s").correct
+    verdict = judge.check(answers["v1x"], "(0.1*5 + 2*2*sin(30°))/3 mm/s")
+    assert not verdict.correct and "mm/s" in verdict.message, verdict.message
 
 
 def test_degrees_sign_is_read_as_degrees():
@@ -589,3 +615,129 @@ def test_with_mu_infinite_a_term_that_vanishes_there_is_not_the_general_answer(e
     verdict = judge.check(answers["v1x"], f"{right} + {extra}")
     assert verdict.correct and "not the general answer" in verdict.message, verdict.message
     assert "μ = ∞" in verdict.message, verdict.message
+
+
+# -- degrees for radians, in every form a student writes it (issue 29) --------------------------
+
+def _forward_trig_of_angles(expr: sp.Expr, angles: set) -> bool:
+    return any(isinstance(f, (sp.sin, sp.cos, sp.tan)) and f.free_symbols & angles
+               for f in sp.preorder_traversal(expr))
+
+
+def _typed_with_numbers(expr: sp.Expr, judge: Judge, params: dict, degrees_in_trig: bool) -> str:
+    """``expr`` (in the givens) typed with the page's numbers (six figures, as the boxes show them);
+    an angle inside sin, cos or tan as its number of degrees with no ° (sin(50)) when
+    ``degrees_in_trig``, else in radians."""
+    givens = {sym: name for name, sym in judge.givens.items()}
+    spec = {p.name: p for p in registry.solver(judge.solution.problem).PARAMS}
+    holders, numbers = {}, {}
+    for sym, name in givens.items():
+        value = params[name]
+        holders[sym] = sp.Symbol(f"Q{len(holders)}Q")
+        numbers[holders[sym].name] = f"{value:.6g}"
+        if degrees_in_trig and getattr(spec[name], "dimension", "") == "angle":
+            inside = sp.Symbol(f"Q{len(holders)}D")
+            numbers[inside.name] = f"{math.degrees(value):.6g}"
+            expr = expr.replace(lambda f: isinstance(f, (sp.sin, sp.cos, sp.tan)),
+                                lambda f, s=sym, d=inside: type(f)(f.args[0].subs(s, d)))
+    text = sp.sstr(expr.subs(holders))
+    for holder, number in sorted(numbers.items(), key=lambda kv: -len(kv[0])):
+        text = text.replace(holder, f"({number})" if number.startswith("-") else number)
+    return text.replace("Abs(", "abs(")
+
+
+def degree_slips(pid: str, params: dict) -> list[tuple[str, str, tuple]]:
+    """(answer, what the student types, words the hint must say) for every degree-for-radian slip a
+    student can make on page ``pid``: an angle's degrees labelled rad, its radians read as degrees,
+    deg/s typed with no unit or labelled rad/s, rad/s labelled deg/s, sin(50) meaning degrees inside
+    an expression, and a calculator left in radian mode. A slip whose number cannot be told from the
+    answer, from its sign or factor-2 twin or from a listed mistake at these numbers is left out."""
+    solver, solution, judge, answers = setup(pid, **params)
+    angles = {sym for name, sym in judge.givens.items()
+              if getattr(next(p for p in solver.PARAMS if p.name == name), "dimension", "") == "angle"}
+    slips = []
+    for name, answer in answers.items():
+        value = solution.answers[name]
+        known = [value, -value, 2 * value, value / 2]
+        known += [judge._value_of(judge.derivation.in_parameters(m.wrong(dict(solution.params))))
+                  for m in registry.solver(pid).MISTAKES if m.answer == name and m.applies(dict(solution.params))]
+
+        def distinct(wrong: float) -> bool:
+            return all(k is None or abs(wrong - k) > 0.03 * max(abs(k), abs(wrong), 1e-9) for k in known)
+
+        deg = math.degrees(value)
+        if answer.dimension == "angle" and distinct(deg):
+            slips.append((name, f"{deg:.4g} rad", ("degrees", "rad")))
+        if answer.dimension == "angle" and distinct(math.radians(value)):
+            slips.append((name, f"{value:.4g}", ("radians", "degrees")))
+        if answer.dimension == "angular_speed" and distinct(deg):
+            slips.append((name, f"{deg:.4g}", ("deg/s", "rad/s")))
+            slips.append((name, f"{deg:.4g} rad/s", ("deg/s", "rad/s")))
+        if answer.dimension == "angular_speed" and distinct(math.radians(value)):
+            slips.append((name, f"{value:.4g} deg/s", ("deg/s", "rad/s")))
+        expr = judge.derivation.expression_of(name)
+        if not _forward_trig_of_angles(expr, angles):
+            continue
+        radian_mode = expr.replace(lambda f: isinstance(f, (sp.sin, sp.cos, sp.tan)),
+                                   lambda f: type(f)(f.args[0] * 180 / sp.pi))
+        wrong = judge._value_of(radian_mode)
+        if wrong is None:
+            continue
+        if answer.dimension == "angle":
+            wrong = math.radians(wrong)  # the calculator's number, read as degrees
+        if answer.dimension in ("angle", "angular_speed"):  # else it is one of the slips above
+            known += [math.degrees(value), math.radians(value)]
+        if distinct(wrong):
+            slips.append((name, f"{units.to_display(wrong, answer.dimension):.4g}", ("calculator", "radian")))
+            text = _typed_with_numbers(expr, judge, dict(solution.params), degrees_in_trig=True)
+            if len(text) <= MAX_LENGTH and len(tokenize(text)) <= MAX_TOKENS:
+                # sympy writes sin(−6) as −sin(6): the hint may name either
+                calls = {f"{f}({m})" for f, n in re.findall(r"(sin|cos|tan)\(\(?([-\d.e]+)", text) if float(n)
+                         for m in (n, n.lstrip("-"))}
+                slips.append((name, text, (tuple(calls), "°", "in radians")))
+    return slips
+
+
+ANGULAR_PAGES = [pid for pid in IDS if degree_slips(pid, {})]
+
+
+def test_degree_slips_can_occur_on_every_page_with_an_angle():
+    for pid in IDS:
+        solver = registry.solver(pid)
+        angular = any(a.dimension in ("angle", "angular_speed") for a in solver.ANSWERS)
+        trig = any(p.dimension == "angle" for p in solver.PARAMS if hasattr(p, "dimension"))
+        assert (pid in ANGULAR_PAGES) == (angular or trig), pid
+
+
+def check_degree_slips(pid, params):
+    _, _, judge, answers = setup(pid, **params)
+    slips = degree_slips(pid, params)
+    for name, text, words in slips:
+        verdict = judge.check(answers[name], text)
+        assert not verdict.correct, (name, text, verdict.message)
+        # each word said (or, for a tuple of them, one of them: the sin(50) or cos(30) typed)
+        assert all(any(w in verdict.message for w in ((word,) if isinstance(word, str) else word))
+                   for word in words), (name, text, words, verdict.message)
+        assert verdict.mistake, (name, text, verdict.message)  # named as a slip (an assignment counts it)
+    return slips
+
+
+@pytest.mark.parametrize("pid", ANGULAR_PAGES)
+def test_every_degree_slip_is_named_at_the_textbooks_numbers(pid):
+    assert check_degree_slips(pid, mistake_params(pid, {}))
+
+
+@pytest.mark.parametrize("pid", ANGULAR_PAGES)
+@settings(max_examples=6, deadline=None)
+@given(seed=hst.integers(0, MAX_SEED))
+def test_every_degree_slip_is_named_for_any_variant(pid, seed):
+    check_degree_slips(pid, variant(importlib.import_module(f"solvers.{pid}"), pid, seed))
+
+
+def test_an_angle_written_with_degrees_inside_an_expression_is_read_in_radians():
+    """30° inside an expression and asin's result are radians: an angle answer typed as an
+    expression with them is right (the unit the page shows is for a number alone)."""
+    _, solution, judge, answers = setup("sliding_ladder")  # θ_ℓ = asin(2/3 sin 60°) = 35.26°
+    assert judge.check(answers["theta_leave"], "asin(2/3*sin(60°))").correct
+    assert judge.check(answers["theta_leave"], "asin(2/3*sin(60°))*180/pi").correct
+    assert judge.check(answers["theta_leave"], "(35 + 0.26)°").correct

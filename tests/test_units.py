@@ -6,7 +6,7 @@ import math
 import re
 
 import pytest
-from hypothesis import given, strategies as st
+from hypothesis import given, settings, strategies as st
 
 from solvers import registry, units
 from solvers.core import Number
@@ -17,10 +17,10 @@ SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻", "0123456789-")
 
 def read_back(shown: str, dimension: str) -> float:
     """A quantity as format_quantity writes it, read the way a student's typed answer is: the number
-    (thin-space groups, a true minus, × 10ⁿ) and then the unit by its spelling."""
-    match = re.fullmatch(r"(−?[\d\u2009.]+)(?: × 10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))? ?(.*)", shown)
+    (no-break-space groups, a true minus, × 10ⁿ) and then the unit by its spelling."""
+    match = re.fullmatch(r"(−?\d+(?:\u202f\d{3})*(?:\.\d+)?)(?:\u202f×\u202f10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))? ?(.*)", shown)
     assert match, shown
-    number = float(match.group(1).replace("\u2009", "").replace("−", "-"))
+    number = float(match.group(1).replace("\u202f", "").replace("−", "-"))
     if match.group(2):
         number *= 10.0 ** int(match.group(2).translate(SUPERSCRIPTS))
     label = match.group(3)
@@ -66,3 +66,16 @@ def test_every_dimension_a_problem_uses_is_in_the_table():
 def test_a_controls_range_is_in_its_display_unit():
     theta = Number("theta", math.radians(30), "an angle", "angle", r"\theta", ui_low=0, ui_high=89)
     assert theta.ui_unit == "°" and Number("L", 1.0, "a length", "length", "L").ui_unit == "m"
+
+
+@settings(max_examples=300, deadline=None)
+@given(dimension=st.sampled_from([d for d, dim in units.DIMENSIONS.items() if dim.us_label]),
+       digits=st.integers(1, 999), exponent=st.integers(-3, 3))
+def test_a_value_round_in_the_shown_unit_reads_back_round_after_four_figures_in_si(dimension, digits, exponent):
+    """A textbook's 10 lb or 0.3 ft, kept in SI to four figures (4.536 kg, 0.09144 m), shows as
+    10 lb and 0.3 ft again, not 10.0002 lb: conversion noise below the SI value's own rounding is
+    not shown."""
+    us = digits * 10.0**exponent
+    si = float(f"{units.to_si(us, dimension, 'us'):.4g}")
+    assert units.shown_value(si, dimension, "us") == pytest.approx(us, rel=1e-12)
+    assert units.shown_value(si, dimension, "si") == si  # nothing to convert: as it is

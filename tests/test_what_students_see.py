@@ -14,11 +14,13 @@ import math
 import re
 
 import numpy as np
+import sympy as sp
 import pytest
 
 from solvers.core import Choice, Number, plain_fixed, plain_number
 from tests.drawing import figures
 from tests.strategies import problem_tests
+from tests.test_practice import OPTIONS
 from tests.test_pages import (IDS, answer_section_text, answers_shown, assert_clean, derivation_shown, derivation_text,
                               derivations_shown, run_page, shown)
 from ui.figure import ANSWERS
@@ -64,9 +66,9 @@ MINUS_ZERO = re.compile(r"(?<![\d.}])[−-]0(?:\.0*)?(?![\d.^])")
 
 
 def test_the_formatter_never_writes_minus_zero_and_groups_or_typesets_large_numbers():
-    assert plain_number(-0.0) == "0" and plain_number(-0.00001, 1) == "−1 × 10⁻⁵"
+    assert plain_number(-0.0) == "0" and plain_number(-0.00001, 1) == "−1\u202f×\u202f10⁻⁵"
     assert plain_number(-0.00004, 4) != "−0"
-    assert plain_number(30490.3) == "30\u2009490" and plain_number(3.049e7) == "3.049 × 10⁷"
+    assert plain_number(30490.3) == "30\u202f490" and plain_number(3.049e7) == "3.049\u202f×\u202f10⁷"
     assert plain_fixed(-0.04, 1) == "0.0" and plain_fixed(-35.62, 1) == "−35.6"
 
 
@@ -185,3 +187,45 @@ def test_a_physical_limit_keeps_the_method_and_what_shows_why(pid, query, figure
     assert sum(getattr(e, "type", None) == "bidi_component" for e in at.main) == figures_shown + 1  # figures, derivation
 
 
+
+
+# ----------------------------------------------------------------------------------------------
+# Symbols beside the typeset equations are typeset too (issue 29): no plain-text v_B or I_C
+
+
+PLAIN_NOTATION = re.compile(r"\w[\u0300-\u036f]*_\{?\w|\^")  # v_B, I_{cm}, θ̇_ℓ, R^2 outside $…$
+
+
+def words_beside_the_equations(solution) -> list[str]:
+    """The step titles, the ledger's rows, the checks and the notes: the text the answers and the
+    derivation show around their typeset equations."""
+    texts = [step.title for step in solution.steps] + list(solution.notes)
+    texts += [t for row in solution.ledger for t in (row.quantity, row.why)]
+    texts += [t for check in solution.checks for t in (check.name, check.explanation)]
+    return texts
+
+
+@pytest.mark.parametrize("pid, options", OPTIONS)
+def test_symbols_beside_the_equations_are_typeset_not_plain_notation(pid, options):
+    solver = importlib.import_module(f"solvers.{pid}")
+    solution = solver.solve(**options)
+    texts = words_beside_the_equations(solution)
+    method = getattr(solver, "method", None)
+    if method is not None:
+        texts += [step.title for step in method(dict(solution.params))]
+    plain = [t for t in texts if PLAIN_NOTATION.search(re.sub(r"\$[^$]*\$", "", t))]
+    assert plain == []
+
+
+@pytest.mark.parametrize("pid, options", OPTIONS)
+def test_a_sum_with_numbers_puts_its_positive_terms_first(pid, options):
+    """ΔT = T⁻ − T⁺ with the numbers in reads 2.062 − 2.021 = 0.04167 J, not −2.021 + 2.062: a
+    substituted sum opens with a minus only when every term of it is negative."""
+    solver = importlib.import_module(f"solvers.{pid}")
+    solution = solver.solve(**options)
+    derivation = solver.derivation_of(solution)
+    values = derivation.evaluate(dict(solution.params) | dict(solution.extras.get("chain_inputs", {})))
+    for link, step in zip(derivation.chain, derivation.numeric_steps(values)):
+        substituted = step.latex.split(" = ", 1)[1]
+        if isinstance(link.expr, sp.Add) and substituted.startswith("-"):
+            assert all(term.could_extract_minus_sign() for term in link.expr.args), step.latex

@@ -15,7 +15,7 @@ from ui.practice import instructor_export, is_instructor, practice_panel, seed_f
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
 from ui.figure import show as show_figure
-from ui.params import mirror_to_url, parameter_panel
+from ui.params import check_in_range, fixed_parameters, mirror_to_url, parameter_panel
 
 LECTURE_CSS = """
 <style>
@@ -30,14 +30,14 @@ LECTURE_CSS = """
 
 
 # Phones: display equations a step smaller (ui/equations.py breaks a long one over rows that fit
-# this size), and tables (the ledger has four columns) in smaller type whose cells may wrap
-# anywhere, so that nothing pushes the page sideways.
+# this size), and tables (the ledger has four columns) in smaller type and tighter cells, which wrap
+# between words only: a number, a unit and a word are never broken inside ("0.943 / 2 N·s").
 PHONE_CSS = """
 <style>
   @media (max-width: 640px) {
     .stMainBlockContainer .katex-display { font-size: 0.9em; }
     .stMainBlockContainer table { font-size: 0.85rem; }
-    .stMainBlockContainer th, .stMainBlockContainer td { padding: 0.3rem 0.35rem; overflow-wrap: anywhere; }
+    .stMainBlockContainer th, .stMainBlockContainer td { padding: 0.3rem 0.35rem; }
   }
 </style>
 """
@@ -205,15 +205,20 @@ def problem_page(problem_id: str) -> None:
             return
         _assignment(problem, link, system)
         return
-    base = variant(solver, problem.id, seed) if seed is not None else {}
-    st.sidebar.markdown("### Parameters" + (f" · variant {seed}" if seed is not None else ""))
-    params, warnings = parameter_panel(problem, system, base)
+    if seed is None:
+        base = {}
+        st.sidebar.markdown("### Parameters")
+        params, warnings = parameter_panel(problem, system)
+    else:  # a variant's givens are fixed, as on an assignment link: a nudged control would be another problem
+        base = variant(solver, problem.id, seed)
+        params, warnings = fixed_parameters(problem, system, base, seed)
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "",
                                             "lecture": "1" if lecture else "", "practice": "1" if practice else "",
                                             "seed": str(seed) if seed is not None else "",
                                             **_on_request_flag(problem)}, base)
     notices = [w for w in (seed_warning, *warnings) if w]
     try:
+        check_in_range(problem, params, system)
         solution, figures = _solve_and_draw(problem, params, system)
     except ValueError as error:
         _heading(problem, heading, notices)

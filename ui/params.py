@@ -8,6 +8,7 @@ out of range. Combinations are left to the solver, whose message the page shows.
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 import streamlit as st
@@ -15,12 +16,31 @@ import streamlit as st
 from solvers.core import Choice, Number, ParameterError
 from solvers import units
 from ui.catalog import Problem
+from ui.results import plain
 
 MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed
 
 
 def _key(problem: Problem, system: str, name: str) -> str:
     return f"{problem.id}__{system}__{name}"
+
+
+_GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "Delta": "Δ", "epsilon": "ε", "theta": "θ",
+          "lambda": "λ", "mu": "μ", "pi": "π", "rho": "ρ", "sigma": "σ", "tau": "τ", "phi": "φ", "psi": "ψ",
+          "omega": "ω", "Omega": "Ω", "ell": "ℓ", "infty": "∞"}
+_DIGIT_SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def symbol_text(latex: str) -> str:
+    """A parameter's LaTeX symbol as plain text for a label a screen reader reads: Greek letters
+    as themselves and a numeric subscript as subscript digits (\\theta_0 → θ₀, m_1 → m₁); a
+    letter subscript keeps its underscore, as the student types it (m_s)."""
+    text = re.sub(r"\\([A-Za-z]+)", lambda m: _GREEK.get(m.group(1), m.group(1)), latex)
+    text = re.sub(r"[{}\s]", "", text)
+    base, _, sub = text.partition("_")
+    if sub.isdigit():
+        return base + sub.translate(_DIGIT_SUBSCRIPTS)
+    return text
 
 
 def is_slider(p: Number) -> bool:
@@ -61,8 +81,48 @@ def _parse_url_value(p: Any, raw: str, system: str) -> tuple[Any, str | None]:
     try:
         p.validate(units.to_si(shown, p.dimension, system))
     except ParameterError:
-        return None, f"is out of range ({p.range_text()})"
+        return None, f"is out of range ({shown_range(p, system)})"
     return shown, None
+
+
+def shown_range(p: Number, system: str) -> str:
+    """The values a parameter may take, in the unit its control shows (degrees for an angle, lb in
+    US units): its physical range, narrowed to the magnitudes the model is meant for."""
+    def show(v: float) -> str:
+        return units.format_quantity(v, p.dimension, system)
+
+    bounds = p.model_bounds()
+    if bounds and p.low == 0 and not p.low_inclusive:  # strictly positive: a thousandth to a thousand times
+        text = f"from {show(bounds[0])} to {show(bounds[1])}"
+    else:
+        parts = []
+        if p.low is not None:
+            parts.append(("at least " if p.low_inclusive else "greater than ") + show(p.low))
+        if p.high is not None:
+            parts.append(("at most " if p.high_inclusive else "less than ") + show(p.high))
+        text = " and ".join(parts) if parts else "any number"
+        if bounds:
+            text += f", at most {show(bounds[1])} in size"
+    return text + (", or inf" if p.allow_inf else "")
+
+
+def check_in_range(problem: Problem, values: dict, system: str) -> None:
+    """Raise ParameterError, in the units the controls show, for a value beyond its range (the
+    solver's own message is in SI: "L = -0.3048 is out of range" for a box showing −1 ft)."""
+    for p in problem.solver.PARAMS:
+        value = values[p.name]
+        if isinstance(p, Choice) or isinstance(value, str) or math.isnan(value):
+            continue  # an option is checked against its list; an emptied box gets the solver's message
+        try:
+            p.validate(value)
+        except ParameterError:
+            raise ParameterError(f"{symbol_text(p.symbol)} ({p.label}) = {units.format_quantity(value, p.dimension, system)} "
+                                 f"is out of range: it must be {shown_range(p, system)}.") from None
+
+
+def _url_warning(p: Any, raw: str, why: str) -> str:
+    shown = raw if len(raw) <= MAX_URL_VALUE else raw[:MAX_URL_VALUE] + "…"
+    return f"The link's value for **{p.name}** ({p.label}), “{shown}”, {why}; using the default instead."
 
 
 def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
@@ -78,10 +138,10 @@ def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
         if p.name in remembered:
             value = remembered[p.name]
             st.session_state[key] = value if isinstance(p, Choice) else (
-                units.to_display(value, p.dimension, system))
+                units.shown_value(value, p.dimension, system))
             continue
         start = base.get(p.name, p.default)
-        default = start if isinstance(p, Choice) else units.to_display(start, p.dimension, system)
+        default = start if isinstance(p, Choice) else units.shown_value(start, p.dimension, system)
         raw = st.query_params.get(p.name)
         value = default
         if raw is not None:
@@ -89,18 +149,35 @@ def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
             if why is None:
                 value = parsed
             else:
-                shown = raw if len(raw) <= MAX_URL_VALUE else raw[:MAX_URL_VALUE] + "…"
-                warnings.append(f"The link's value for **{p.name}** ({p.label}), “{shown}”, {why}; "
-                                f"using the default instead.")
+                warnings.append(_url_warning(p, raw, why))
         st.session_state[key] = value
     return warnings
 
 
 def _label(p: Any, system: str) -> str:
+    """A control's label in plain text (θ₀ — release angle above the horizontal (°)): Streamlit
+    gives it to screen readers as it is, so TeX there would be read out as dollars and backslashes."""
     if isinstance(p, Choice):
         return p.label.capitalize()
     u = units.unit(p.dimension, system)
-    return f"${p.symbol}$ — {p.label}" + (f" ({u})" if u else "")
+    return f"{symbol_text(p.symbol)} — {p.label}" + (f" ({u})" if u else "")
+
+
+# Streamlit names a slider's thumb twice: its aria-label, and an aria-labelledby that lists the thumb
+# and its group, which carries the same aria-label ("θ₀ — release angle … θ₀ — release angle …").
+# Without the aria-labelledby a screen reader reads the label once. Installed once per page load; it
+# follows every slider Streamlit draws later.
+SLIDER_NAMES = """<script>
+(() => {
+  if (window.dlSliderNames) return;
+  window.dlSliderNames = true;
+  const once = () => document.querySelectorAll("[data-testid='stSlider'] input[type='range'][aria-labelledby]")
+    .forEach((thumb) => thumb.removeAttribute("aria-labelledby"));
+  new MutationObserver(once).observe(document.body, {childList: true, subtree: true, attributes: true,
+                                                     attributeFilter: ["aria-labelledby"]});
+  once();
+})();
+</script>"""
 
 
 def _control(p: Any, problem: Problem, system: str, container) -> Any:
@@ -110,7 +187,7 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
                                help=p.help or None)
     if p.allow_inf:
         value = st.session_state[key]
-        no_slip = container.toggle(f"No slip at the contact (${p.symbol} = \\infty$)",
+        no_slip = container.toggle(f"No slip at the contact ({symbol_text(p.symbol)} = ∞)",
                                    value=math.isinf(value), key=key + "__inf")
         if no_slip:
             return math.inf
@@ -131,22 +208,34 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
                                   help=p.help or None)
 
 
-def _in_si(p: Any, shown: Any, system: str) -> Any:
+def _in_si(p: Any, shown: Any, system: str, known: Any = None) -> Any:
+    """A control's value in SI. ``known``: the SI value it started from (this session's, the
+    variant's or the default); while the control still shows it, it stands for that very value, so
+    a unit switch changes no number the physics uses (10 lb on show is still the 4.536 kg sphere)."""
     if isinstance(p, Choice):
         return shown
     if shown is None:  # an emptied number box
         return math.nan
+    if isinstance(known, (int, float)) and math.isfinite(known) and shown == units.shown_value(known, p.dimension, system):
+        return known
     return units.to_si(float(shown), p.dimension, system)
 
 
-def _differs(p: Any, value: Any, base: dict) -> bool:
-    """Whether ``value`` (SI) is not the starting value (the variant's, else the default)."""
+def _shown(p: Number, value: float, system: str) -> str:
+    """``value`` (SI) as its control writes it (and the URL copies it): L=2.29659, 10 lb."""
+    shown = units.shown_value(value, p.dimension, system)
+    return "inf" if math.isinf(shown) else f"{as_shown(p, shown):g}"
+
+
+def _differs(p: Any, value: Any, base: dict, system: str) -> bool:
+    """Whether ``value`` (SI) is not the starting value (the variant's, else the default) as the
+    control shows them: 10 lb is the textbook's 4.536 kg sphere."""
     start = base.get(p.name, p.default)
     if isinstance(p, Choice) or isinstance(value, str):
         return value != start
     if math.isnan(value):
         return False
-    return not math.isclose(value, start, rel_tol=1e-12, abs_tol=1e-12)
+    return _shown(p, value, system) != _shown(p, start, system)
 
 
 def parameter_panel(problem: Problem, system: str, base: dict | None = None,
@@ -158,21 +247,24 @@ def parameter_panel(problem: Problem, system: str, base: dict | None = None,
     a mass shows it). A hidden parameter keeps its value."""
     container = container or st.sidebar
     base = base or {}
+    remembered = st.session_state.get(f"{problem.id}__si", {})
     warnings = _initial_values(problem, system, base)
     params = problem.solver.PARAMS
+    known = {p.name: remembered.get(p.name, base.get(p.name, p.default)) for p in params}
     first = [p for p in params if p.name in problem.primary] or list(params)
     rest = [p for p in params if p not in first]
-    values = {p.name: _in_si(p, _control(p, problem, system, container), system) for p in first}
+    values = {p.name: _in_si(p, _control(p, problem, system, container), system, known[p.name]) for p in first}
     if rest:
         more_key = f"{problem.id}__more"
-        stored = {p.name: _in_si(p, st.session_state[_key(problem, system, p.name)], system) for p in rest}
+        stored = {p.name: _in_si(p, st.session_state[_key(problem, system, p.name)], system, known[p.name])
+                  for p in rest}
         if more_key not in st.session_state:
-            st.session_state[more_key] = any(_differs(p, stored[p.name], base) for p in rest)
+            st.session_state[more_key] = any(_differs(p, stored[p.name], base, system) for p in rest)
         more = container.toggle("More parameters", key=more_key,
                                 help=", ".join(p.label for p in rest).capitalize() + ".")
         for p in rest:
             if more:
-                values[p.name] = _in_si(p, _control(p, problem, system, container), system)
+                values[p.name] = _in_si(p, _control(p, problem, system, container), system, known[p.name])
             else:
                 # Re-set it as a plain value: Streamlit drops the state of a widget not drawn in a run.
                 key = _key(problem, system, p.name)
@@ -180,6 +272,33 @@ def parameter_panel(problem: Problem, system: str, base: dict | None = None,
                 values[p.name] = stored[p.name]
     values = {p.name: values[p.name] for p in params}  # the solver's order
     st.session_state[f"{problem.id}__si"] = dict(values)
+    container.html(SLIDER_NAMES, unsafe_allow_javascript=True)
+    return values, warnings
+
+
+def fixed_parameters(problem: Problem, system: str, base: dict, seed: int,
+                     container=None) -> tuple[dict, list[str]]:
+    """A variant link's givens (SI), which nothing on the page can change: the variant's, or a
+    value the link sets itself; listed where the controls would be, as fixed. Return (parameters,
+    warnings about the URL)."""
+    container = container or st.sidebar
+    values, warnings, lines = {}, [], []
+    for p in problem.solver.PARAMS:
+        value, own = base.get(p.name, p.default), False
+        raw = st.query_params.get(p.name)
+        if raw is not None:
+            parsed, why = _parse_url_value(p, raw, system)
+            if why is None:
+                value = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
+                own = _differs(p, value, base, system)
+            else:
+                warnings.append(_url_warning(p, raw, why))
+        values[p.name] = value
+        shown = (f"{p.label.capitalize()}: {p.label_of(value)}" if isinstance(p, Choice) else
+                 f"{symbol_text(p.symbol)} = {units.format_quantity(value, p.dimension, system)}")
+        lines.append(f"- {plain(shown)}" + (" *(from the link)*" if own else ""))
+    container.markdown(f"### Parameters · variant {seed}\n**Fixed by the variant link**: the numbers of your "
+                       "problem. For other numbers, open the problem from the navigation.\n\n" + "\n".join(lines))
     return values, warnings
 
 
@@ -191,14 +310,8 @@ def mirror_to_url(problem: Problem, values: dict, system: str, flags: dict[str, 
     base = base or {}
     for p in problem.solver.PARAMS:
         v = values[p.name]
-        if not _differs(p, v, base):
-            continue
-        if isinstance(p, Choice):
-            wanted[p.name] = v
-        else:
-            shown = units.to_display(v, p.dimension, system)
-            # What the control shows, no more: a link says L=2.29659, not L=2.296587927.
-            wanted[p.name] = "inf" if math.isinf(shown) else f"{as_shown(p, shown):g}"
+        if _differs(p, v, base, system):  # what the control shows, no more: L=2.29659, not L=2.296587927
+            wanted[p.name] = v if isinstance(p, Choice) else _shown(p, v, system)
     wanted.update({k: v for k, v in flags.items() if v})
     current = {k: st.query_params.get(k) for k in st.query_params.keys()}
     if current != wanted:

@@ -19,7 +19,7 @@ from practice.variants import MAX_SEED, variants_csv
 from solvers.core import Choice, Derivation, Solution
 from solvers import units
 from ui.catalog import Problem
-from ui.results import plain
+from ui.results import plain, plain_with_math
 
 INSTRUCTOR = "dl_instructor"  # session flag: the key was entered (once per session, for every page)
 KEY_MESSAGE = "dl_instructor_message"  # what the last try of the key was told
@@ -124,7 +124,7 @@ def method(steps, derivation: Derivation) -> str:
     forms = result_forms(derivation)
     blocks = []
     for i, step in enumerate(steps, start=1):
-        blocks.append(f"**{i}.** {plain(step.title)}")
+        blocks.append(f"**{i}.** {plain_with_math(step.title)}")
         flat = flat_latex(step.latex)
         if not any(form in flat for form in forms):
             blocks.append(f"$$\n{step.latex}\n$$")
@@ -168,8 +168,9 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         text = box.text_input("Your answer", max_chars=200, key=f"{problem.id}__attempt",
                               help="A number, with a unit (mm, kN, ft/s, slug·ft² …; units are case-sensitive) "
                                    "or read in the unit the page shows, degrees for angles; or an expression in "
-                                   f"the givens: {judge.givens_text()}. Write powers as ^ or **, e.g. "
-                                   "(a + b)^2/3, sqrt(x), sin(θ), or 30° inside sin.")
+                                   f"the givens: {judge.givens_text()}, written as by hand (2V sinθ/3 is "
+                                   "2·V·sin θ/3), with a unit after it if you like. Write powers as ^ or **, "
+                                   "e.g. (a + b)^2/3, sqrt(x), sin(θ), or 30° inside sin.")
         tolerance.markdown(f"within {tolerance_text(tolerance_value)}", help="A number counts as right within this relative "
                            "tolerance, unless it is nearer a known slip's value. An expression must equal "
                            "the answer.")

@@ -46,6 +46,12 @@ def plain(text: str) -> str:
     return _MARKDOWN_SPECIAL.sub(r"\\\1", text)
 
 
+def plain_with_math(text: str) -> str:
+    """A solver's text (a step's title) in Streamlit's Markdown: its $inline math$ typeset, every
+    other character shown literally."""
+    return "".join(part if part.startswith("$") else plain(part) for part in re.split(r"(\$[^$]+\$)", text))
+
+
 _ASCII_PUNCTUATION = re.compile(r"([!-/:-@\[-`{-~])")
 
 

@@ -59,20 +59,27 @@ def _animation(solution) -> Figure:
                *xyz(m["contact"][:, None, :])),
     ]
     span = 1.15 * rad
-    axis = lambda title, lo, hi, ticks: {"range": r([lo, hi]), "title": {"text": title}, "nticks": ticks}  # noqa: E731
+    axis = lambda lo, hi, ticks: {"range": r([lo, hi]), "title": {"text": ""}, "nticks": ticks}  # noqa: E731
     layout = {
         "height": 560, "margin": {"l": 0, "r": 0, "t": 10, "b": 90},
         "legend": {"orientation": "h", "y": 1.0, "x": 0},
         # In mm, with short tick labels ("20", not "0.02"), few ticks, and the camera further off and
-        # aimed a little left of centre: a 360-px phone then shows the z-axis title (labels keep their
-        # pixel size and offset, so only distance makes room for them).
-        "scene": {"xaxis": axis("x (mm)", -span, span, 5), "yaxis": axis("y (mm)", -span, span, 5),
-                  "zaxis": axis("z (mm)", 0, span, 3), "aspectmode": "manual",
+        # aimed a little left of centre. The axis titles are the scene's annotations, not WebGL's
+        # titles, which a phone cut off at the graph's edge ("z (mm)" gone, "y (mm" cut): each is
+        # anchored at its axis (x and y at the middle of the edge that carries their ticks, beyond
+        # the tick labels; z above its top), text the page lays out and keeps inside the graph.
+        "scene": {"xaxis": axis(-span, span, 5), "yaxis": axis(-span, span, 5),
+                  "zaxis": axis(0, span, 3), "aspectmode": "manual",
                   "aspectratio": {"x": 1, "y": 1, "z": 0.5},
-                  "camera": {"eye": {"x": 2.05, "y": -2.05, "z": 1.25}, "center": {"x": -0.06, "y": -0.06, "z": 0.0}}},
+                  "camera": {"eye": {"x": 2.05, "y": -2.05, "z": 1.25}, "center": {"x": -0.06, "y": -0.06, "z": 0.0}},
+                  "annotations": [
+                      {"x": 0, "y": r(-span), "z": 0, "text": "x (mm)", "showarrow": False, "xshift": -40, "yshift": -42},
+                      {"x": r(span), "y": 0, "z": 0, "text": "y (mm)", "showarrow": False, "xshift": 40, "yshift": -42},
+                      {"x": r(-span), "y": r(-span), "z": r(span), "text": "z (mm)", "showarrow": False,
+                       "xanchor": "left", "yanchor": "bottom", "xshift": 4}]},
     }
     # 3-D traces need redraw; the frame duration sets the slow motion.
-    frame_ms = int(1000 * PLAY_SECONDS / len(m["t"]))
+    frame_ms = round(1000 * PLAY_SECONDS / (len(m["t"]) - 1))  # from the first frame to the last
     spec = animated([table, G], moving_traces, m["t"], layout, frame_ms=frame_ms, redraw=True)
     turn = math.degrees(solution.extras["turn_per_precession"])
     description = (f"Slowed down {slow:.0f}×: one precession takes {n(a['period'] * 1000, 3)} ms in reality and "

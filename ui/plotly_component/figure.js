@@ -99,10 +99,21 @@ class Figure {
     this.timeLabel = ["t = ", " s"];
     this.current = null;   // what is drawn now: the same text is not drawn again
     this.seq = 0;
+    this.frames = [];
     this.frameNames = [];
     this.frameIndex = 0;
     this.playing = false;
+    this.playSeq = 0;      // a Play loop stops when this moves on (Pause, a step, a new figure)
     this.Plotly = null;
+    // The graph follows its room: plotly.js listens to the window only, and the sidebar collapsing
+    // widens the main column without resizing the window.
+    this.width = 0;
+    new ResizeObserver(() => {
+      const width = this.root.clientWidth;
+      if (width === this.width || !this.Plotly || !this.graph.layout) return;
+      this.width = width;
+      quiet(this.Plotly.Plots.resize(this.graph));
+    }).observe(this.root);
     $(".dl-play").addEventListener("click", () => this.play());
     $(".dl-pause").addEventListener("click", () => this.pause());
     $(".dl-back").addEventListener("click", () => { this.pause(); this.goTo(this.frameIndex - 1); });
@@ -119,17 +130,59 @@ class Figure {
   needsRedraw() { return !!(this.graph.layout && this.graph.layout.scene); }
   goTo(index) {
     if (!this.frameNames.length) return;
-    this.frameIndex = (index + this.frameNames.length) % this.frameNames.length;
-    this.showTime(this.frameIndex);
-    quiet(this.Plotly.animate(this.graph, [this.frameNames[this.frameIndex]], {mode: "immediate",
-      frame: {duration: 0, redraw: this.needsRedraw()}, transition: {duration: 0}}));
+    quiet(this.show((index + this.frameNames.length) % this.frameNames.length));
   }
+  // One frame drawn, and its time shown. A 3-D scene's moving traces are updated in the scene in
+  // place (sceneFrame); anything else through plotly's animate, which for a 3-D scene would replot
+  // the whole scene (about 150 ms a frame in software rendering).
+  show(index) {
+    this.frameIndex = index;
+    this.showTime(index);
+    if (this.sceneFrame(index)) return Promise.resolve();
+    return this.Plotly.animate(this.graph, [this.frameNames[index]], {mode: "immediate",
+      frame: {duration: 0, redraw: this.needsRedraw()}, transition: {duration: 0}});
+  }
+  // A frame of a 3-D scene set on its traces' WebGL objects, which redraw on the scene's next
+  // animation frame; the graph's data follow, so a later redraw (a resize) shows the same frame.
+  // False where plotly.js's scene is not as expected: then plotly's own animate draws it.
+  sceneFrame(index) {
+    const scene = this.graph._fullLayout && this.graph._fullLayout.scene && this.graph._fullLayout.scene._scene;
+    const frame = this.frames[index];
+    if (!scene || !scene.glplot || !scene.traces || !frame) return false;
+    const targets = frame.traces.map((t) => {
+      const full = (this.graph._fullData || [])[t];
+      const object = full && scene.traces[full.uid];
+      return object && typeof object.update === "function" ? [t, full, object] : null;
+    });
+    if (targets.some((target) => !target)) return false;
+    targets.forEach(([t, full, object], n) => {
+      for (const k of ["x", "y", "z"]) if (frame.data[n][k]) full[k] = this.graph.data[t][k] = frame.data[n][k];
+      object.update(full);
+    });
+    scene.glplot.redraw();
+    return true;
+  }
+  // Play keeps the animation's stated time (frames × frame time): each animation frame of the
+  // browser draws the frame due at that moment, and a frame whose time has passed while the last
+  // one was drawn is skipped. A slow machine drops frames, not time.
   play() {
     if (!this.frameNames.length) return;
+    const last = this.frameNames.length - 1, frameMs = Number(this.graph.dataset.frameMs || 60);
+    const from = this.frameIndex >= last ? 0 : this.frameIndex;
+    const start = performance.now() - from * frameMs, seq = ++this.playSeq;
     this.playing = true;
-    const duration = Number(this.graph.dataset.frameMs || 60);
-    quiet(this.Plotly.animate(this.graph, null, {fromcurrent: true, mode: "immediate",
-      frame: {duration: duration, redraw: this.needsRedraw()}, transition: {duration: 0}}));
+    const tick = async () => {
+      if (seq !== this.playSeq) return;
+      const due = Math.min(last, Math.floor((performance.now() - start) / frameMs));
+      if (due !== this.frameIndex) {
+        try { await this.show(due); } catch (e) { /* a frame interrupted by a newer one */ }
+      }
+      if (seq !== this.playSeq) return;
+      if (due >= last) { this.playing = false; return; }
+      requestAnimationFrame(tick);
+    };
+    if (from !== this.frameIndex) quiet(this.show(from));
+    requestAnimationFrame(tick);
   }
   showTime(index) {
     this.scrub.value = String(index);
@@ -139,7 +192,7 @@ class Figure {
   }
   pause() {
     this.playing = false;
-    quiet(this.Plotly.animate(this.graph, [null], {mode: "immediate", frame: {duration: 0, redraw: false}, transition: {duration: 0}}));
+    this.playSeq++;
   }
 
   // The first figure of the lecture view fills what is left of the first screen below its top, so
@@ -175,14 +228,14 @@ class Figure {
     layout.height = style && style.fit_screen ? this.screenHeight(args.height) : args.height;
     layout.autosize = true;
     const frames = unfold(spec.animation, spec.data);
-    this.playing = false;
+    this.pause();
     this.printing = false;
     // One update in place: data, layout and the frames replaced together (no new plot).
     await Plotly.react(this.graph, {data: spec.data, layout: layout, frames: frames,
                                     config: {displayModeBar: false, responsive: true}});
     if (seq !== this.seq) return;
-    this.frameNames = frames.map(f => f.name);
     this.frames = frames;
+    this.frameNames = frames.map(f => f.name);
     this.times = spec.animation ? spec.animation.times : [];
     this.keyFrame = Math.min(args.key_frame || 0, Math.max(0, frames.length - 1));
     const t = this.times[this.keyFrame];
@@ -194,14 +247,7 @@ class Figure {
     this.graph.dataset.frameMs = (spec.animation && spec.animation.frame_ms) || 60;
     this.controls.hidden = !this.frameNames.length;
     this.frameIndex = 0;
-    if (!this.listening) {
-      this.listening = true;
-      this.graph.on("plotly_animatingframe", (ev) => {
-        this.frameIndex = Math.max(0, this.frameNames.indexOf(ev.name));
-        this.showTime(this.frameIndex);
-      });
-      this.graph.on("plotly_animated", () => { this.playing = false; });
-    }
+    this.width = this.root.clientWidth;
   }
 
   // On paper (the browser's Print, or print media): the animation's key instant, drawn at the

@@ -93,9 +93,11 @@ function children(parent, count, create) {
   return [...parent.children];
 }
 
-// A slip's text: plain text with $inline math$, **bold** and *emphasis*, as the solvers write them.
-function inline(katex, text, into) {
-  const parts = /\$([^$]+)\$|\*\*([^*]+)\*\*|\*([^*\s][^*]*)\*/g;
+// Text with $inline math$ typeset, as the solvers write their step titles, ledger, checks and
+// notes (the symbols beside the equations typeset like them); a slip's text also has **bold** and
+// *emphasis* (``marks``). Everything else is set as text.
+function inline(katex, text, into, marks = false) {
+  const parts = marks ? /\$([^$]+)\$|\*\*([^*]+)\*\*|\*([^*\s][^*]*)\*/g : /\$([^$]+)\$/g;
   let at = 0;
   for (const m of text.matchAll(parts)) {
     into.append(text.slice(at, m.index));
@@ -143,9 +145,12 @@ class Answers {
     this.ledgerHeading = heading("h4", "dl-sub");
     // What is conserved across the impact, what changes, and why.
     this.ledger = table(["quantity", "before", "after", unseen("conserved or not, and why")], (td, value, column) => {
+      td.replaceChildren();
+      if (column === 0) { inline(this.katex, value, td); return; }
       if (column < 3) { td.textContent = value; return; }
       const [conserved, why] = value;
-      td.replaceChildren(make("span", conserved ? "dl-good" : "dl-changes", conserved ? "conserved" : "changes"), `: ${why}`);
+      td.append(make("span", conserved ? "dl-good" : "dl-changes", conserved ? "conserved" : "changes"), ": ");
+      inline(this.katex, why, td);
     });
     this.checksHeading = heading("h4", "dl-sub");
     this.checks = make("ul");
@@ -156,7 +161,10 @@ class Answers {
     this.katex = katex;  // the table's cells typeset with this run's KaTeX
     this.heading.update(d.heading);
     this.table.update(d.answers);
-    children(this.notes, d.notes.length, () => make("p", "dl-muted")).forEach((p, i) => put(p, d.notes[i]));
+    children(this.notes, d.notes.length, () => make("p", "dl-muted")).forEach((p, i) => put(p, d.notes[i], (el, note) => {
+      el.replaceChildren();
+      inline(katex, note, el);
+    }));
     this.ledgerHeading.hidden = this.ledger.hidden = !d.ledger.length;
     this.ledgerHeading.update(d.ledger_heading);
     this.ledger.update(d.ledger.map(([quantity, before, after, conserved, why]) => [quantity, before, after, [conserved, why]]));
@@ -165,8 +173,11 @@ class Answers {
     children(this.checks, d.checks.length, () => make("li")).forEach((li, i) => put(li, d.checks[i], (el, [ok, name, closed, second, why]) => {
       const mark = make("span", `dl-mark ${ok ? "dl-good" : "dl-bad"}`, ok ? "✓" : "✗");
       mark.setAttribute("aria-hidden", "true");  // said in words: "agrees" to a screen reader, "differs" to all
-      el.replaceChildren(mark, ...(ok ? [unseen("agrees: ")] : [make("strong", "dl-bad", "differs"), " "]), make("strong", "", name),
-                         `: ${closed} vs ${second}`, make("br"), make("span", "dl-muted", why));
+      const title = make("strong"), reason = make("span", "dl-muted");
+      inline(katex, name, title);
+      inline(katex, why, reason);
+      el.replaceChildren(mark, ...(ok ? [unseen("agrees: ")] : [make("strong", "dl-bad", "differs"), " "]), title,
+                         `: ${closed} vs ${second}`, make("br"), reason);
     }));
   }
 }
@@ -187,14 +198,15 @@ class Derivation {
     children(this.steps, d.steps.length, () => {
       const step = make("div");
       const p = make("p");
-      p.append(make("strong"), document.createTextNode(""));
+      p.append(make("strong"), make("span"));
       step.append(p, make("div", "dl-math"));
       return step;
     }).forEach((step, i) => {
       const [title, tex] = d.steps[i];
       put(step.firstChild, [i, title], (p) => {
         p.firstChild.textContent = `${i + 1}.`;
-        p.lastChild.textContent = ` ${title}`;
+        p.lastChild.replaceChildren(" ");
+        inline(katex, title, p.lastChild);
       });
       put(step.lastChild, tex, (math) => { math.innerHTML = html(katex, tex, true); });
     });
@@ -204,7 +216,7 @@ class Derivation {
       const ul = make("ul");
       for (const note of d.slips) {
         const li = make("li");
-        inline(katex, note, li);
+        inline(katex, note, li, true);
         ul.append(li);
       }
       el.append(make("h4", "", d.slips_heading), ul);
