@@ -5,8 +5,8 @@ separated by spaces (an LMS such as ``https://canvas.example.edu``), ``'self'`` 
 same value goes into the Content-Security-Policy's ``frame-ancestors`` here and in the nginx
 templates (``deploy/``). The policy lets scripts come only from the app itself: its files, the
 blob: modules Streamlit's components v2 make in the page from the app's own code (the figure, the
-answers, the derivation), the hash of the one inline line in Streamlit's index.html (computed from
-the file at start-up), and WebAssembly compiled by the app's own scripts ('wasm-unsafe-eval'; no
+answers, the derivation), the hashes of the inline scripts (the one line in Streamlit's index.html,
+read from the file at start-up, and the app's own, ``ui.params.SLIDER_NAMES``), and WebAssembly compiled by the app's own scripts ('wasm-unsafe-eval'; no
 eval of strings). The page connects only to its own server. Styles allow inline ones (Streamlit and
 plotly.js write style attributes). A browser test opens every page under it and finds no violation.
 
@@ -42,13 +42,21 @@ def frame_ancestors(value: str | None = None) -> str:
     return " ".join(raw)
 
 
+def _inline_scripts(html: str) -> list[str]:
+    return re.findall(r"<script(?![^>]*\bsrc=)[^>]*>(.*?)</script>", html, flags=re.S)
+
+
 @functools.cache
 def inline_script_hashes() -> tuple[str, ...]:
-    """CSP hashes of the inline scripts in Streamlit's index.html (one line today)."""
+    """CSP hashes of the inline scripts the pages hold: the one line in Streamlit's index.html, and
+    the app's own (``ui.params.SLIDER_NAMES``, put in the page by ``st.html``), each allowed by its
+    exact text and nothing else."""
     import streamlit
 
+    from ui.params import SLIDER_NAMES
+
     html = (Path(streamlit.__file__).parent / "static" / "index.html").read_text(encoding="utf-8")
-    scripts = re.findall(r"<script(?![^>]*\bsrc=)[^>]*>(.*?)</script>", html, flags=re.S)
+    scripts = _inline_scripts(html) + _inline_scripts(SLIDER_NAMES)
     return tuple("'sha256-" + base64.b64encode(hashlib.sha256(s.encode()).digest()).decode() + "'"
                  for s in scripts)
 
