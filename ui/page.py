@@ -81,6 +81,8 @@ PRINT_CSS = """
     .dl-print-link { font-size: 0.85rem; overflow-wrap: anywhere; }
     .dl-math, .katex-display, table, tr, li, [data-testid='stAlert'] { break-inside: avoid; }
     h1, h2, h3, h4, .dl-text .dl-caption, .dl-text p:has(+ .dl-math) { break-after: avoid; }
+    /* a step's title may carry inline math taller than its line (½ m R²): room above it at a page's top */
+    .dl-text p:has(+ .dl-math) { padding-top: 6px; }
   }
 </style>
 """
