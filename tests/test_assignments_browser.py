@@ -98,7 +98,17 @@ def choose(page, label: str, option: str) -> None:
     """Pick an option of a Streamlit selectbox or multiselect by typing it."""
     page.get_by_role("combobox", name=label).first.click()
     page.keyboard.type(option)
-    page.get_by_role("option", name=option, exact=True).first.click()
+    # By keyboard, as a person would: a click on the list can wait on an option that the typed
+    # filter keeps redrawing (CI timed out on "element is not stable").
+    target = page.get_by_role("option", name=option, exact=True).first
+    target.wait_for()
+    for _ in range(40):
+        if target.get_attribute("data-focused") == "true":
+            break
+        page.keyboard.press("ArrowDown")
+    else:
+        raise AssertionError(f"the option {option!r} of {label!r} never took the keyboard's focus")
+    page.keyboard.press("Enter")
     page.keyboard.press("Escape")
     wait_until_idle(page)
 
