@@ -448,6 +448,9 @@ def _apply(s, row: db.Assignment, settings: Settings, when: dt.datetime, undoes:
     action = ("undo" if undoes else {"closed": "closed", "archived": "archived"}.get(new["status"], "reopened")
               if changed == ["status"] else "edited")
     _store(row, settings)
+    # Once changed (edited, closed, archived, undone) it is no longer what its first settings would
+    # create: a later "Create" with those settings makes a new assignment, not a find of this one.
+    row.fingerprint = None
     s.add(db.Change(assignment_id=row.id, at=when, action=action, label="",
                     summary=_storable("; ".join(said)[:1000], 1000), before={k: old[k] for k in changed},
                     after={k: new[k] for k in changed}, undoes=undoes))
@@ -732,6 +735,10 @@ def record_attempt(identity: StudentIdentity, answer: str, typed: str, correct: 
             if row is None:
                 raise RecordingUnavailable("This assignment is not in the course's database, so nothing can be "
                                            "recorded for it. Ask your instructor.")
+            # One student's attempts are written one at a time: on PostgreSQL two tabs sending the
+            # same text at once would each miss the other's row (SQLite's BEGIN IMMEDIATE serialises).
+            s.execute(select(db.Student.id).where(db.Student.assignment_id == identity.assignment_id,
+                                                  db.Student.label == identity.label).with_for_update())
             settings = _settings(row)
             if not settings.accepting:
                 raise NotAccepted(CLOSED)

@@ -327,6 +327,29 @@ def test_the_same_answer_twice_in_a_row_counts_once(database):
     assert records.attempt_count(aid, database) == 4
 
 
+def test_the_same_answer_from_many_tabs_at_once_counts_once(database):
+    """Eight tabs sending one text at the same moment: one attempt (PostgreSQL's READ COMMITTED let
+    each transaction miss the others' rows before the student's row was locked)."""
+    aid, (ann, _) = new_assignment(database)
+    with ThreadPoolExecutor(8) as pool:
+        kept = list(pool.map(lambda _: attempt(database, ann, typed="12.5"), range(8)))
+    assert records.attempt_count(aid, database) == 1
+    assert len({k.id for k in kept}) == 1 and sum(not k.repeated for k in kept) == 1
+
+
+def test_a_changed_assignment_is_not_found_by_its_first_settings(database):
+    """Created, then edited (or archived): the same Create again makes a new assignment, rather than
+    pointing at one that no longer has those settings."""
+    first = records.create(settings(), ["s01"], database)
+    records.edit(first.id, records.replace(records.assignment(first.id, database), attempts_allowed=5), database)
+    again = records.create(settings(), ["s01"], database)
+    assert again.new and again.id != first.id
+    records.set_status(again.id, "archived", database)
+    third = records.create(settings(), ["s01"], database)
+    assert third.new and third.id not in (first.id, again.id)
+    assert records.create(settings(), ["s01"], database).id == third.id  # a repeated click still finds it
+
+
 def test_right_but_late_is_visible_everywhere(database):
     """A right answer after the due time: the student's attempt, the gradebook's cell, its
     statistics and the CSVs all say right-but-late (no late credit by default)."""
