@@ -547,8 +547,14 @@ def history(assignment_id: int, bound: Engine | None = None) -> list[Logged]:
     with db.session(bound) as s:
         rows = s.scalars(select(db.Change).where(db.Change.assignment_id == assignment_id)
                          .order_by(db.Change.id.desc())).all()
-    undone = {r.undoes for r in rows if r.undoes}
-    return [Logged(r.id, r.at, r.action, r.label, r.summary, r.undoes, r.id in undone) for r in rows]
+    undoers: dict[int, list[int]] = {}
+    for r in rows:
+        if r.undoes:
+            undoers.setdefault(r.undoes, []).append(r.id)
+    undone: dict[int, bool] = {}
+    for r in rows:  # newest first: a change's undoers came after it, so are decided already
+        undone[r.id] = any(not undone[u] for u in undoers.get(r.id, ()))  # an undone undo undoes nothing
+    return [Logged(r.id, r.at, r.action, r.label, r.summary, r.undoes, undone[r.id]) for r in rows]
 
 
 # -- rosters

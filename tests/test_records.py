@@ -449,6 +449,13 @@ def test_edits_close_reopen_archive_are_logged_and_undone(database):
     assert log[0].action == "undo" and log[0].undoes == edited.id and next(e for e in log if e.id == edited.id).undone
     with pytest.raises(ValueError, match="archive the assignment instead"):
         records.undo(aid, log[-1].id, database)
+    records.undo(aid, log[0].id, database)  # undo the undo: the edit is back, and so not "undone"
+    assert records.assignment(aid, database).attempts_allowed == 5
+    log = records.history(aid, database)
+    marks = {e.id: e.undone for e in log}
+    assert marks[edited.id] is False and marks[log[1].id] is True and marks[log[0].id] is False
+    records.undo(aid, edited.id, database)  # and the edit can be undone again
+    assert records.assignment(aid, database).attempts_allowed == 3
     csv_rows = list(csv.DictReader(io.StringIO(records.history_csv(log))))
     assert csv_rows[0]["action"] == "created" and len(csv_rows) == len(log)
 
