@@ -308,6 +308,11 @@ def test_the_instructor_edits_closes_reopens_extends_and_undoes(course):
     assert any("attempts per answer 3 → 5" in m.value for m in book.success)
     assert records.assignment(aid).attempts_allowed == 5 and not records.assignment(aid).hints
 
+    due = records.assignment(aid).due
+    widget(book, f"assign__edit{aid}_", "_zone").set_value("Asia/Tokyo")  # a new zone alone
+    book.button[[b.label for b in book.button].index("Save the changes")].click().run()
+    assert records.assignment(aid).timezone == "Asia/Tokyo" and records.assignment(aid).due == due
+
     book.button(key=f"assign__status_closed_{aid}").click().run()
     assert records.assignment(aid).status == "closed"
     page = answer(student(link_query(ann)), "theta_rebound", "1")

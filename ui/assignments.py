@@ -561,7 +561,9 @@ def _edit(aid: int, s: records.Settings) -> None:
                                         key=f"{p}tolerance")
             attempts = c2.number_input("Attempts allowed per answer", 1, 100, s.attempts_allowed, key=f"{p}attempts")
             zone = _zone_picker(f"{p}zone", s.timezone)
-            due = _due_inputs(p, zone, s.due)
+            # The date and time fields read in the zone their labels name, the assignment's own: a
+            # new zone alone changes how times are shown, never the moment the work is due.
+            due = _due_inputs(p, s.timezone, s.due)
             policy, value = _late_inputs(p, s.late_policy, s.late_value)
             hints, names, after, before = _feedback_inputs(p, s)
             labels = _answer_labels(s)
