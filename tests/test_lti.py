@@ -14,7 +14,7 @@ import requests
 from starlette.responses import PlainTextResponse
 from starlette.testclient import TestClient
 
-from assignments import db, records, signing
+from assignments import db, migrate, records, signing
 from lti import launch as lti, passback, platforms, store
 from lti.routes import LtiRoutes
 from tests.lti_platform import (DEPLOYMENT, INSTRUCTOR, ISSUER, LEARNER, LEARNER_WITH_INSTITUTION_ROLE, LmsEmulator,
@@ -328,3 +328,23 @@ def test_the_best_score_wins_and_staff_are_never_sent(tool, lms):
     assert teacher["role"] == "instructor"
     staff = records.StudentIdentity(student.assignment_id, lti.label_of(ISSUER, "teacher-1"), 1, "lti")
     assert not passback.queue(staff, tool.database)
+
+
+def test_migration_0003_adds_the_lti_tables_in_place(database, monkeypatch):
+    """A course's database at 0002 (an assignment, a student, an attempt) gains the LTI tables, its
+    gradebook untouched, and comes back to 0002 without them."""
+    from alembic import command
+    from sqlalchemy import inspect
+
+    monkeypatch.setenv(signing.SECRET_ENV, SECRET)
+    aid = assignment(database)
+    signed = records.enrol(aid, ["s01"], database)[0]
+    records.record_attempt(signed, "theta_rebound", "1", True, "right", bound=database)
+    cfg = migrate.config()
+    with database.begin() as connection:
+        cfg.attributes["connection"] = connection
+        command.downgrade(cfg, "0002")
+    assert not {"lti_used", "lti_link", "lti_member", "lti_score"} & set(inspect(database).get_table_names())
+    migrate.upgrade(database)
+    assert {"lti_used", "lti_link", "lti_member", "lti_score"} <= set(inspect(database).get_table_names())
+    assert records.gradebook(aid, database).score("s01") == 1
