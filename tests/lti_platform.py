@@ -77,9 +77,9 @@ def _free_port() -> int:
 class LmsEmulator:
     """One platform registration, served on 127.0.0.1; each launch set up by ``login_url``."""
 
-    def __init__(self, tool_url: str, tool_jwks: dict | None = None):
+    def __init__(self, tool_url: str, tool_jwks: dict | None = None, host: str = "127.0.0.1"):
         self.port = _free_port()
-        self.url = f"http://127.0.0.1:{self.port}"
+        self.url = f"http://{host}:{self.port}"  # "localhost" makes it another site than a tool on 127.0.0.1
         self.private_key, self.public_key = _pem_pair()
         self.registration = (Registration().set_iss(ISSUER).set_client_id(CLIENT_ID).set_deployment_id(DEPLOYMENT)
                              .set_oidc_login_url(tool_url + "/lti/login").set_launch_url(tool_url + "/lti/launch")
@@ -181,8 +181,16 @@ class LmsEmulator:
         self.deep_links.append(items)
         return HTMLResponse("<p id='lms-got'>The LMS received: " + html.escape(items[0].get("title", "")) + "</p>")
 
+    async def _course(self, request: Request) -> Response:
+        """The LMS's course page: the tool in an iframe, started at the login URL it is given."""
+        start = html.escape(request.query_params["start"])
+        return HTMLResponse(f"<!doctype html><title>Dynamics 101</title><h1 style='font:16px sans-serif'>Dynamics 101 "
+                            f"(LMS emulator)</h1><iframe name='tool' src='{start}' title='Dynamics Lab' "
+                            "style='width:100%;height:90vh;border:1px solid #999'></iframe>")
+
     def app(self) -> Starlette:
         return Starlette(routes=[Route("/jwks", self._jwks), Route("/authorize", self._authorize),
+                                 Route("/course", self._course),
                                  Route("/token", self._token, methods=["POST"]),
                                  Route("/lineitems/{item}/scores", self._scores, methods=["POST"]),
                                  Route("/deep_link_return", self._deep_link_return, methods=["POST"])])
