@@ -30,7 +30,7 @@ TITLE = "Dynamics Lab"
 AUTO_SUBMIT = "document.forms[0].submit()"  # allowed by its hash in edge/headers.py's policy
 PAGE = """<!doctype html><html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width,initial-scale=1">
 <title>{title}</title><style>body{{font-family:system-ui,sans-serif;max-width:40rem;margin:1.5rem auto;padding:0 1rem;line-height:1.5}}
-label{{display:block;margin:.6rem 0 .2rem;font-weight:600}} input,select{{font-size:1rem;padding:.3rem}} .answers label{{font-weight:400;display:inline-block;margin-right:1rem}}
+label{{display:block;margin:.6rem 0 .2rem;font-weight:600}} input,select{{font-size:1rem;padding:.3rem}} .answers label{{font-weight:400;display:block;margin:.2rem 0}}
 button{{font-size:1rem;padding:.5rem 1rem;margin-top:1rem}} .refused{{border-left:4px solid #b3261e;padding-left:.8rem}}</style></head>
 <body>{body}</body></html>"""
 
@@ -66,8 +66,9 @@ def _after_launch(form: dict) -> Response:
     assignment = store.assignment_of(checked)
     base = platforms.public_url()
     if checked.staff:
+        roster = (checked.claims.get(lti.NRPS_CLAIM) or {}).get("context_memberships_url", "")
         token = lti.handoff({"role": "instructor", "iss": checked.platform.issuer, "ctx": context,
-                             "title": str(checked.context.get("title", ""))[:120], "a": assignment})
+                             "title": str(checked.context.get("title", ""))[:120], "a": assignment, "nrps": roster})
         return RedirectResponse(f"{base}/gradebook?lti={quote(token)}", status_code=303)
     if assignment is None:
         raise store.refuse_unplaced(checked)
@@ -94,6 +95,7 @@ DL_SECONDS = 1800
 
 def _picker(checked: Launch, problem: str = "", said: str = "") -> Response:
     from ui.catalog import BY_ID, PROBLEMS
+    from ui.practice import answer_label
 
     if not checked.staff:
         raise lti.refuse("deep-linking request from a non-staff role",
@@ -113,8 +115,8 @@ def _picker(checked: Launch, problem: str = "", said: str = "") -> Response:
                     f"name='problem'>{options}</select><br><button type='submit'>Next</button></form>")
     chosen = BY_ID[problem]
     answers = chosen.answers_of(chosen.solver.solve())
-    boxes = "".join(f"<label><input type='checkbox' name='answer' value='{a.name}' checked> {html.escape(a.name)}</label>"
-                    for a in answers)
+    boxes = "".join(f"<label><input type='checkbox' name='answer' value='{a.name}' checked> "
+                    f"{html.escape(answer_label(a))}</label>" for a in answers)
     due = (dt.datetime.now(dt.timezone.utc) + dt.timedelta(days=7)).strftime("%Y-%m-%dT%H:%M")
     return page("Add an assignment", f"""<h1>Add “{html.escape(chosen.title)}”</h1>{notice}
 <form method='post' action='/lti/deep_link'>{hidden}<input type='hidden' name='problem' value='{problem}'>

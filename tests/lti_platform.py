@@ -33,6 +33,7 @@ INSTRUCTOR = ["http://purl.imsglobal.org/vocab/lis/v2/membership#Instructor"]
 # a student whose institution calls them an instructor elsewhere: a learner in this course
 LEARNER_WITH_INSTITUTION_ROLE = LEARNER + ["http://purl.imsglobal.org/vocab/lis/v2/institution/person#Instructor"]
 SCORE_SCOPE = "https://purl.imsglobal.org/spec/lti-ags/scope/score"
+MEMBERSHIP_SCOPE = "https://purl.imsglobal.org/spec/lti-nrps/scope/contextmembership.readonly"
 
 
 def _pem_pair() -> tuple[str, str]:
@@ -93,6 +94,7 @@ class LmsEmulator:
         self.scores: list[dict] = []
         self.deep_links: list[list[dict]] = []
         self.fail_next: list[int] = []  # statuses the AGS endpoint answers first (429, 503, ...)
+        self.members: list[dict] = []  # the course roster its NRPS endpoint gives, two members a page
         self.server: uvicorn.Server | None = None
 
     # -- what the admin pastes into the tool's platform file
@@ -127,6 +129,7 @@ class LmsEmulator:
         else:
             launch.set_resource_link_claim(setup["resource_link"], title="Week 9")
             launch.set_ags(self.url + "/lineitems", setup["lineitem"])
+            launch.set_nrps(f"{self.url}/memberships/{setup['context']}")
             if setup["custom"]:
                 launch.set_custom_parameters_claim(setup["custom"])
         if claims:
@@ -174,6 +177,23 @@ class LmsEmulator:
         self.scores.append({"lineitem": request.path_params["item"], **(await request.json())})
         return JSONResponse({}, status_code=200)
 
+    async def _memberships(self, request: Request) -> Response:
+        config = _Config(registration=self.registration)
+        config.get_registration()
+        token = request.headers.get("authorization", "").removeprefix("Bearer ")
+        try:
+            ok = config.validate_token(token, allowed_scopes=[MEMBERSHIP_SCOPE])
+        except Exception:  # noqa: BLE001
+            ok = False
+        if not ok:
+            return JSONResponse({"error": "unauthorized"}, status_code=401)
+        start = int(request.query_params.get("page", "0"))
+        headers = {}
+        if start + 2 < len(self.members):
+            headers["Link"] = f'<{self.url}{request.url.path}?page={start + 2}>; rel="next"'
+        return JSONResponse({"id": str(request.url), "context": {"id": request.path_params["context"]},
+                             "members": self.members[start:start + 2]}, headers=headers)
+
     async def _deep_link_return(self, request: Request) -> Response:
         config = _Config(registration=self.registration)
         config.get_registration()
@@ -193,6 +213,7 @@ class LmsEmulator:
                                  Route("/course", self._course),
                                  Route("/token", self._token, methods=["POST"]),
                                  Route("/lineitems/{item}/scores", self._scores, methods=["POST"]),
+                                 Route("/memberships/{context}", self._memberships),
                                  Route("/deep_link_return", self._deep_link_return, methods=["POST"])])
 
     def __enter__(self) -> "LmsEmulator":

@@ -55,6 +55,8 @@ def tool(lms, database, tmp_path, monkeypatch):
 
 
 DUE = dt.datetime(2031, 1, 1, tzinfo=dt.timezone.utc)
+# What does not depend on the database runs once; what stores (nonces, links, students, scores) on both.
+SQLITE_ONLY = pytest.mark.parametrize("database", ["sqlite"], indirect=True)
 
 
 def assignment(database, title="Week 9") -> int:
@@ -119,6 +121,7 @@ def test_an_instructor_arrives_as_the_instructor_of_that_course_only(tool, lms):
     assert not records.roster(aid, tool.database)  # staff are not students
 
 
+@SQLITE_ONLY
 def test_an_institution_role_does_not_make_a_student_the_instructor(tool, lms):
     aid = assignment(tool.database)
     got = handed(tool, tool.post("/lti/launch", data=form_of(tool, lms, "learner-9", LEARNER_WITH_INSTITUTION_ROLE,
@@ -126,6 +129,7 @@ def test_an_institution_role_does_not_make_a_student_the_instructor(tool, lms):
     assert got["role"] == "student" and got["path"].endswith("/pendulum_rebound")
 
 
+@SQLITE_ONLY
 def test_a_placement_from_another_course_or_assignment_opens_nothing(tool, lms):
     aid = assignment(tool.database)
     forged = custom_for(aid, context="course-2")  # sealed for another course
@@ -157,6 +161,7 @@ def _tampered(form: dict) -> dict:
     return {**form, "id_token": f"{head}.{body}.{signature}"}
 
 
+@SQLITE_ONLY
 def test_a_bad_launch_gets_a_plain_refusal_and_is_logged(tool, lms, caplog):
     aid = assignment(tool.database)
     for case, (make, why) in BAD.items():
@@ -180,12 +185,14 @@ def test_a_replayed_launch_is_refused(tool, lms, caplog):
     assert "replayed nonce" in caplog.text
 
 
+@SQLITE_ONLY
 def test_a_login_from_an_unregistered_platform_is_refused(tool, lms):
     answer = tool.get("/lti/login", params={"iss": "https://evil.test", "login_hint": "x",
                                             "target_link_uri": TOOL + "/lti/launch"})
     assert answer.status_code == 400 and "not registered" in answer.text
 
 
+@SQLITE_ONLY
 def test_the_hand_off_is_spent_once_and_cannot_be_edited(tool, lms):
     spend = store.spender(tool.database)
     token = lti.handoff({"role": "student", "a": 1, "l": "lti-x", "s": 3})
@@ -196,6 +203,7 @@ def test_the_hand_off_is_spent_once_and_cannot_be_edited(tool, lms):
     assert lti.redeem(token, spend) is None  # a reload of the same URL, or a copied link
 
 
+@SQLITE_ONLY
 def test_jwks_and_canvas_configuration(tool, lms):
     keys = tool.get("/lti/jwks").json()["keys"]
     assert keys[0]["kty"] == "RSA" and keys[0]["alg"] == "RS256" and "d" not in keys[0]
@@ -229,6 +237,7 @@ def test_deep_linking_places_an_assignment_with_a_line_item_in_the_lms(tool, lms
     assert (got["role"], got["a"]) == ("student", aid)
 
 
+@SQLITE_ONLY
 def test_only_staff_may_deep_link_and_a_bad_choice_is_said(tool, lms):
     answer = tool.post("/lti/launch", data=form_of(tool, lms, "learner-1", LEARNER, deep_link=True))
     assert answer.status_code == 400 and "Only the course" in answer.text
@@ -348,3 +357,37 @@ def test_migration_0003_adds_the_lti_tables_in_place(database, monkeypatch):
     migrate.upgrade(database)
     assert {"lti_used", "lti_link", "lti_member", "lti_score"} <= set(inspect(database).get_table_names())
     assert records.gradebook(aid, database).score("s01") == 1
+
+
+# -- the course roster (NRPS) for its instructor
+
+def test_the_instructor_sees_who_has_not_started_from_the_lms_roster(tool, lms):
+    from lti import roster
+
+    student = learner(tool, lms, "ros-1")
+    records.record_attempt(student, "theta_rebound", "1", True, "right", bound=tool.database)
+    lms.members[:] = [
+        {"user_id": "ros-1", "name": "Ann", "roles": LEARNER, "status": "Active"},
+        {"user_id": "ros-2", "name": "Bea", "roles": LEARNER, "status": "Active"},
+        {"user_id": "teacher-1", "name": "Prof", "roles": INSTRUCTOR, "status": "Active"},
+        {"user_id": "ros-3", "name": "Cem", "roles": LEARNER, "status": "Active"},
+        {"user_id": "ros-4", "name": "Dee", "roles": LEARNER, "status": "Inactive"},
+    ]
+    got = handed(tool, tool.post("/lti/launch", data=form_of(tool, lms, "teacher-1", INSTRUCTOR)))
+    assert got["nrps"] == lms.url + "/memberships/course-1"
+    seen = roster.standing(got["iss"], got["nrps"], student.assignment_id, tool.database)  # three pages
+    assert [(m.name, m.attempts) for m in seen] == [("Bea", 0), ("Cem", 0), ("Ann", 1)]
+    assert seen[-1].label == student.label
+    passback._tokens.clear()  # a token the LMS does not know: refused, and said
+    with pytest.raises(roster.RosterUnavailable, match="401"):
+        roster.standing(got["iss"], lms.url + "/memberships/course-1", 1, tool.database,
+                        post=lambda *a, **k: _token_of("not-a-token"))
+
+
+class _token_of:
+    def __init__(self, token):
+        self.status_code, self.headers, self.text = 200, {}, ""
+        self.token = token
+
+    def json(self):
+        return {"access_token": self.token, "expires_in": 3600}

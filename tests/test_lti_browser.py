@@ -4,7 +4,7 @@ is third-party, and the flow uses no cookie). The instructor adds an assignment 
 linking (the LMS's "add external tool" dialog): the LMS receives a resource link with its line
 item. A learner launches it, lands on their own variant, answers right; their score reaches the
 platform's AGS endpoint by itself. The instructor launches and sees that course's gradebook, with
-the grade sent, and no key asked. Each frame's page is shot into screenshots/lti/."""
+the grade sent, and no key asked, and reads the course roster from the LMS (NRPS): who has not started. Each frame's page is shot into screenshots/lti/."""
 from __future__ import annotations
 
 import json
@@ -119,4 +119,13 @@ def run_journey(page, lms) -> None:
     wait_until_idle(tool)
     body = frame.locator("[data-testid='stMain']").inner_text()
     assert "1 sent · 0 waiting · 0 not accepted" in body and "Instructor key" not in body
+
+    # The course roster from the LMS (NRPS): who has not started.
+    lms.members[:] = [{"user_id": "learner-42", "name": "Ann Ito", "roles": LEARNER},
+                      {"user_id": "learner-43", "name": "Bea Roth", "roles": LEARNER}]
+    frame.get_by_role("button", name="Read the roster from the LMS").click()
+    frame.get_by_text("2 students in the course; 1 has not started.").wait_for(timeout=60_000)
+    wait_until_idle(tool)
+    roster = frame.locator("[data-testid='stMain']").inner_text()
+    assert roster.index("Bea Roth") < roster.index("Ann Ito")  # not started first
     shoot(page, "instructor-gradebook-in-lms")

@@ -20,7 +20,7 @@ import streamlit as st
 
 from assignments import migrate, records, signing
 from assignments.identity import LinkRefused, StudentIdentity, from_link, is_assignment_link, link_query
-from lti import launch as lti_launch, passback, store as lti_store
+from lti import launch as lti_launch, passback, roster as lti_roster, store as lti_store
 from practice.judge import RELATIVE_TOLERANCE, Verdict
 from solvers import units
 from ui.catalog import BY_ID, PROBLEMS, Problem
@@ -677,7 +677,7 @@ LEGEND = ("**Reading the gradebook.** Each answer's cell says where the student 
           "wrong answers matched.")
 
 
-def _gradebook(aid: int) -> None:
+def _gradebook(aid: int, course: dict | None = None) -> None:
     book = records.gradebook(aid)
     s = book.settings
     labels = _answer_labels(s)
@@ -740,6 +740,8 @@ def _gradebook(aid: int) -> None:
                        file_name=f"assignment-{aid}-moodle.csv", mime="text/csv", key="assign__moodle_csv",
                        help="Moodle: Grades › Import › CSV file; map “ID number” to the user's ID number.")
     _passback(aid)
+    if course is not None and course.get("nrps"):
+        _course_roster(aid, course)
     st.markdown("#### Per answer")
     st.markdown("\n".join(f"- **{plain(labels[q])}**: " + " ".join(plain(line) for line in lines)
                           for q, lines in book.statistics().items()))
@@ -760,6 +762,25 @@ def _passback(aid: int) -> None:
         if st.button("Send again now", key=f"assign__resend{aid}"):
             st.session_state["assign__said"] = f"{passback.send_again(aid)} scores will be sent again."
             st.rerun()
+
+
+def _course_roster(aid: int, course: dict) -> None:
+    """The LMS's roster (NRPS), asked for by the instructor: who has not started. Names are shown
+    as the LMS gives them, not stored."""
+    st.markdown("#### Your course's students")
+    if not st.button("Read the roster from the LMS", key=f"assign__roster_lms{aid}",
+                     help="Who in your course has not started this assignment. The names come from your LMS "
+                          "and are not stored here."):
+        return
+    try:
+        members = lti_roster.standing(course["iss"], course["nrps"], aid)
+    except lti_roster.RosterUnavailable as error:
+        st.warning(str(error), icon=":material/group_off:")
+        return
+    waiting = sum(m.attempts == 0 for m in members)
+    st.markdown(f"{len(members)} students in the course; {waiting} {'has' if waiting == 1 else 'have'} not started.")
+    st.table([{"student": plain(m.name) or "(no name shared)", "label here": literal(m.label),
+               "attempts": str(m.attempts) if m.attempts else "not started"} for m in members])
 
 
 def _history(aid: int, s: records.Settings) -> None:
@@ -826,6 +847,6 @@ def instructor_page() -> None:
         if not existing:
             st.markdown("No assignments yet." if not show_archived else "No assignments.")
             return
-        _gradebook(_assignment_choice(existing))
+        _gradebook(_assignment_choice(existing), course)
     except records.RecordingUnavailable as error:
         st.error(str(error))
