@@ -30,7 +30,7 @@ TITLE = "Dynamics Lab"
 AUTO_SUBMIT = "document.forms[0].submit()"  # allowed by its hash in edge/headers.py's policy
 PAGE = """<!doctype html><html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width,initial-scale=1">
 <title>{title}</title><style>body{{font-family:system-ui,sans-serif;max-width:40rem;margin:1.5rem auto;padding:0 1rem;line-height:1.5}}
-label{{display:block;margin:.6rem 0 .2rem;font-weight:600}} input,select{{font-size:1rem;padding:.3rem}} .answers label{{font-weight:400;display:block;margin:.2rem 0}}
+label{{display:block;margin:.6rem 0 .2rem;font-weight:600}} input,select{{font-size:1rem;padding:.3rem;max-width:100%;box-sizing:border-box}} .answers label{{font-weight:400;display:block;margin:.2rem 0}}
 button{{font-size:1rem;padding:.5rem 1rem;margin-top:1rem}} .refused{{border-left:4px solid #b3261e;padding-left:.8rem}}</style></head>
 <body>{body}</body></html>"""
 

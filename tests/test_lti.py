@@ -391,3 +391,72 @@ class _token_of:
 
     def json(self):
         return {"access_token": self.token, "expires_in": 3600}
+
+
+# -- the settings and the frame
+
+def test_only_registered_platforms_may_frame_the_app_or_receive_its_forms(tmp_path, monkeypatch):
+    from edge import headers
+
+    monkeypatch.delenv(platforms.PLATFORMS_ENV, raising=False)
+    monkeypatch.setenv(headers.FRAME_ENV, "https://moodle.example.edu")
+    assert headers.frame_ancestors() == "https://moodle.example.edu" and headers.form_targets() == "'self'"
+    file = tmp_path / "platforms.json"
+    entry = {"issuer": "https://canvas.instructure.com", "client_id": "1", "auth_login_url": "https://sso.test/a",
+             "auth_token_url": "https://sso.test/t", "key_set_url": "https://sso.test/k", "deployment_ids": ["1:x"],
+             "frame_origins": ["https://canvas.example.edu"]}
+    file.write_text(json.dumps([entry, {**entry, "issuer": "https://lms.other.edu", "frame_origins": None}]))
+    monkeypatch.setenv(platforms.PLATFORMS_ENV, str(file))
+    policy = headers.content_security_policy()
+    assert ("frame-ancestors https://moodle.example.edu https://canvas.example.edu https://lms.other.edu"
+            in policy)
+    assert "form-action 'self' https://canvas.example.edu https://lms.other.edu" in policy
+    monkeypatch.delenv(headers.FRAME_ENV)
+    assert headers.frame_ancestors() == "'self' https://canvas.example.edu https://lms.other.edu"
+
+
+@pytest.mark.parametrize("entries, said", [
+    ("not json", "is not valid JSON"),
+    ([], "must hold a list of platforms"),
+    ([{"issuer": "https://a.test"}], "lacks client_id"),
+    ([{"issuer": "https://a.test", "client_id": "1", "auth_login_url": "ftp://x", "auth_token_url": "https://a.test/t",
+       "key_set_url": "https://a.test/k", "deployment_ids": ["d"]}], "auth_login_url 'ftp://x' is not an http(s) URL"),
+])
+def test_a_platform_file_that_cannot_work_stops_the_start_in_plain_words(tmp_path, monkeypatch, entries, said):
+    import serve
+
+    file = tmp_path / "platforms.json"
+    file.write_text(entries if isinstance(entries, str) else json.dumps(entries))
+    monkeypatch.setenv(platforms.PLATFORMS_ENV, str(file))
+    monkeypatch.setenv(signing.SECRET_ENV, SECRET)
+    monkeypatch.setenv("DL_INSTRUCTOR_KEY", "instructor-key-0030")
+    monkeypatch.setenv(platforms.URL_ENV, TOOL)
+    problems = serve.settings_problems()
+    assert len(problems) == 1 and said in problems[0], problems
+
+
+def test_lti_needs_the_public_address_and_the_course_secret(tmp_path, monkeypatch, lms):
+    import serve
+
+    file = tmp_path / "platforms.json"
+    file.write_text(json.dumps([lms.registration_entry()]))
+    monkeypatch.setenv(platforms.PLATFORMS_ENV, str(file))
+    monkeypatch.setenv(db.DATA_ENV, str(lms.key_dir))
+    monkeypatch.delenv(signing.SECRET_ENV, raising=False)
+    monkeypatch.delenv(platforms.URL_ENV, raising=False)
+    problems = " ".join(serve.settings_problems())
+    assert "DL_PUBLIC_URL is not the app's public address" in problems and "DL_COURSE_SECRET is not" in problems
+    monkeypatch.setenv(platforms.URL_ENV, TOOL)
+    monkeypatch.setenv(signing.SECRET_ENV, SECRET)
+    monkeypatch.setenv("DL_INSTRUCTOR_KEY", "instructor-key-0030")
+    assert serve.settings_problems() == []
+
+
+@SQLITE_ONLY
+def test_names_are_kept_only_when_the_admin_turns_it_on(tool, lms, monkeypatch):
+    aid = assignment(tool.database)
+    monkeypatch.setenv(platforms.NAMES_ENV, "1")
+    handed(tool, tool.post("/lti/launch", data=form_of(tool, lms, "named-1", LEARNER, custom=custom_for(aid),
+                                                       name="Ada Lovelace")))
+    with db.session(tool.database) as s:
+        assert s.query(db.LtiMember).filter_by(sub="named-1").one().name == "Ada Lovelace"

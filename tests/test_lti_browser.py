@@ -40,9 +40,18 @@ def in_lms(page, lms, start: str):
     return frame, page.frame(name="tool")
 
 
-def shoot(page, name: str) -> None:
+SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844)}
+
+
+def shoot(page, name: str, tool=None) -> None:
+    """The LMS page with the tool's frame, at each size (the frame's page idle again after each)."""
     SHOTS.mkdir(parents=True, exist_ok=True)
-    page.screenshot(path=str(SHOTS / f"{name}.png"), full_page=True)
+    for size, (width, height) in SIZES.items():
+        page.set_viewport_size({"width": width, "height": height})
+        if tool is not None:
+            wait_until_idle(tool)
+        page.screenshot(path=str(SHOTS / f"{name}-{size}.png"))
+    page.set_viewport_size({"width": 1400, "height": 1000})
 
 
 def test_deep_link_learner_launch_and_grade_passback_in_an_lms_frame(tmp_path, monkeypatch):
@@ -102,7 +111,7 @@ def run_journey(page, lms) -> None:
     frame.get_by_role("button", name="Check").click()
     frame.get_by_text("Recorded: attempt 1 of 3").first.wait_for(timeout=60_000)
     wait_until_idle(tool)
-    shoot(page, "learner-in-lms")
+    shoot(page, "learner-in-lms", tool)
 
     # The score reaches the LMS by itself (the app's sender thread, the platform's AGS endpoint).
     deadline = time.monotonic() + 30
@@ -128,4 +137,4 @@ def run_journey(page, lms) -> None:
     wait_until_idle(tool)
     roster = frame.locator("[data-testid='stMain']").inner_text()
     assert roster.index("Bea Roth") < roster.index("Ann Ito")  # not started first
-    shoot(page, "instructor-gradebook-in-lms")
+    shoot(page, "instructor-gradebook-in-lms", tool)
