@@ -276,6 +276,10 @@ def main() -> None:
             logging.getLogger("dynamics_lab").error("setting: %s", problem)
         sys.exit("Dynamics Lab did not start: " + " ".join(problems))
     migrate()
+    from lti import passback, platforms
+
+    if platforms.enabled():
+        passback.start()  # scores left waiting by the last run are sent without waiting for a new attempt
     seconds = warm()
     logging.getLogger("dynamics_lab").warning("warmed in %.1f s", seconds)
     run(ROOT / "app.py", sys.argv[1:])

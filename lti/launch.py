@@ -71,6 +71,9 @@ def login_redirect(params: dict) -> str:
     if deployment and deployment not in platform.deployment_ids:
         raise refuse(f"login for unknown deployment {deployment!r} of {issuer}",
                      "This course site's deployment of Dynamics Lab is not registered (ask the admin to add it).")
+    target = params.get("target_link_uri")
+    if target and not str(target).startswith(platforms.public_url() + "/"):
+        raise refuse(f"login for another tool's target_link_uri {str(target)[:200]!r}")
     nonce = secrets.token_urlsafe(24)
     state = signing.seal("lti-state", {"iss": platform.issuer, "aud": platform.client_id, "nonce": nonce},
                          STATE_SECONDS)

@@ -109,6 +109,9 @@ def test_a_learner_arrives_as_a_student_of_the_assignment_with_their_own_variant
         assert s.query(db.LtiLink).filter_by(resource_link_id="rl-1").one().lineitem == lms.url + "/lineitems/rl-1"
     again = handed(tool, tool.post("/lti/launch", data=form_of(tool, lms, "learner-7", LEARNER)))  # the link is known now
     assert (again["a"], again["l"], again["s"]) == (aid, label, got["s"])
+    signed = records.enrol(aid, ["s01"], tool.database)  # a signed-link student of the same assignment
+    assert {s.label for s in records.gradebook(aid, tool.database).students} == {"s01", label, other["l"]}
+    assert {s.label for s in signed} == {"s01", label, other["l"]}  # both kinds in one gradebook
 
 
 def test_an_instructor_arrives_as_the_instructor_of_that_course_only(tool, lms):
@@ -190,6 +193,11 @@ def test_a_login_from_an_unregistered_platform_is_refused(tool, lms):
     answer = tool.get("/lti/login", params={"iss": "https://evil.test", "login_hint": "x",
                                             "target_link_uri": TOOL + "/lti/launch"})
     assert answer.status_code == 400 and "not registered" in answer.text
+    elsewhere = tool.get("/lti/login", params={"iss": ISSUER, "login_hint": "x", "client_id": "dl-client-1",
+                                               "target_link_uri": "https://evil.test/lti/launch"})
+    assert elsewhere.status_code == 400 and "Not accepted" in elsewhere.text
+    unknown = tool.get("/lti/login", params={"iss": ISSUER, "login_hint": "x", "lti_deployment_id": "deployment-9"})
+    assert unknown.status_code == 400 and "deployment of Dynamics Lab is not registered" in unknown.text
 
 
 @SQLITE_ONLY
