@@ -103,9 +103,12 @@ def _picker(checked: Launch, problem: str = "", said: str = "") -> Response:
     settings = checked.claims.get(DL_CLAIM + "deep_linking_settings") or {}
     if not settings.get("deep_link_return_url"):
         raise lti.refuse("deep-linking request without deep_link_return_url")
+    kept = {lti.CLAIM + "deployment_id": checked.deployment, lti.CLAIM + "roles": checked.claim("roles"),
+            lti.CLAIM + "context": {k: checked.context[k] for k in ("id", "title") if k in checked.context},
+            DL_CLAIM + "deep_linking_settings": {k: settings[k] for k in ("deep_link_return_url", "data")
+                                                 if k in settings}}  # what the answer needs, no more
     sealed = signing.seal("lti-deep-link", {"iss": checked.platform.issuer, "aud": checked.platform.client_id,
-                                            "claims": {k: checked.claims[k] for k in checked.claims
-                                                       if k.startswith((lti.CLAIM, DL_CLAIM))}}, DL_SECONDS)
+                                            "claims": kept}, DL_SECONDS)
     hidden = f"<input type='hidden' name='dl' value='{html.escape(sealed)}'>"
     notice = f"<p class='refused'>{html.escape(said)}</p>" if said else ""
     if problem not in BY_ID:
