@@ -212,6 +212,19 @@ def test_the_hand_off_is_spent_once_and_cannot_be_edited(tool, lms):
 
 
 @SQLITE_ONLY
+def test_the_routes_follow_a_path_prefix(tool, lms):
+    from streamlit import config
+
+    config.set_option("server.baseUrlPath", "dynamics-lab")
+    try:
+        prefixed = TestClient(LtiRoutes(PlainTextResponse("streamlit")), base_url=TOOL)
+    finally:
+        config.set_option("server.baseUrlPath", "")
+    assert prefixed.get("/dynamics-lab/lti/jwks").json()["keys"]
+    assert prefixed.get("/lti/jwks").text == "streamlit"  # outside the prefix: Streamlit's
+
+
+@SQLITE_ONLY
 def test_jwks_and_canvas_configuration(tool, lms):
     keys = tool.get("/lti/jwks").json()["keys"]
     assert keys[0]["kty"] == "RSA" and keys[0]["alg"] == "RS256" and "d" not in keys[0]
