@@ -38,7 +38,7 @@ DL_CLAIM = "https://purl.imsglobal.org/spec/lti-dl/claim/"
 AGS_CLAIM = "https://purl.imsglobal.org/spec/lti-ags/claim/endpoint"
 NRPS_CLAIM = "https://purl.imsglobal.org/spec/lti-nrps/claim/namesroleservice"
 MESSAGES = ("LtiResourceLinkRequest", "LtiDeepLinkingRequest")
-STAFF = ("Instructor", "TeachingAssistant", "ContentDeveloper", "Administrator", "Mentor")
+STAFF = ("Instructor", "TeachingAssistant", "Administrator")  # of the context (a Mentor is a parent or advisor)
 STATE_SECONDS, HANDOFF_SECONDS, LEEWAY = 600, 120, 60
 
 

@@ -135,11 +135,11 @@ def send(row_id: int, bound: Engine | None = None, post=requests.post) -> str:
         row = s.get(db.LtiScore, row_id)
         member = s.scalar(select(db.LtiMember).where(db.LtiMember.assignment_id == row.assignment_id,
                                                      db.LtiMember.label == row.label))
-        lineitem = s.scalar(select(db.LtiLink.lineitem).where(db.LtiLink.assignment_id == row.assignment_id,
-                                                              db.LtiLink.issuer == member.issuer,
-                                                              db.LtiLink.lineitem != "").order_by(db.LtiLink.id))
+        link = s.execute(select(db.LtiLink.lineitem, db.LtiLink.deployment_id).where(
+            db.LtiLink.assignment_id == row.assignment_id, db.LtiLink.issuer == member.issuer,
+            db.LtiLink.lineitem != "").order_by(db.LtiLink.id)).first()
     identity = StudentIdentity(row.assignment_id, row.label, records.student_seed(row.assignment_id, row.label), "lti")
-    platform = platforms.find(member.issuer)
+    lineitem, platform = (link[0], platforms.serving(member.issuer, link[1])) if link else ("", None)
     try:
         if platform is None or not lineitem:
             raise SendFailed("the LMS gave this link no grade column (line item), or is no longer registered", False)

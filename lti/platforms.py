@@ -105,6 +105,13 @@ def find(issuer: object, client_id: object = None) -> Platform | None:
     return matches[0] if len(matches) == 1 else None
 
 
+def serving(issuer: str, deployment: str) -> Platform | None:
+    """The registration of this issuer that has this deployment (hosted Canvas: one issuer, many
+    registrations, told apart by their deployments)."""
+    matches = [p for p in platforms() if p.issuer == issuer and deployment in p.deployment_ids]
+    return matches[0] if len(matches) == 1 else None
+
+
 def frame_origins() -> tuple[str, ...]:
     return tuple(dict.fromkeys(o for p in platforms() for o in p.frame_origins))
 

@@ -29,9 +29,9 @@ class RosterUnavailable(RuntimeError):
     """The LMS did not give its roster; the message says why, in plain words."""
 
 
-def learners(issuer: str, url: str, get=requests.get, post=requests.post) -> list[dict]:
+def learners(issuer: str, client_id: str, url: str, get=requests.get, post=requests.post) -> list[dict]:
     """The context's active learners, every page (the Link header's rel="next")."""
-    platform = platforms.find(issuer)
+    platform = platforms.find(issuer, client_id)
     if platform is None or not url:
         raise RosterUnavailable("This course site does not offer its roster to Dynamics Lab.")
     try:
@@ -50,9 +50,11 @@ def learners(issuer: str, url: str, get=requests.get, post=requests.post) -> lis
             and any(str(r).endswith("#Learner") or r == "Learner" for r in m.get("roles", []))]
 
 
-def standing(issuer: str, url: str, assignment_id: int, bound: Engine | None = None, **http) -> list[Member]:
+def standing(issuer: str, client_id: str, url: str, assignment_id: int, bound: Engine | None = None,
+             **http) -> list[Member]:
     """Each learner of the course with their attempts at the assignment: those not started first."""
-    people = [(str(m.get("name", "")), label_of(issuer, str(m["user_id"]))) for m in learners(issuer, url, **http)]
+    people = [(str(m.get("name", "")), label_of(issuer, str(m["user_id"])))
+              for m in learners(issuer, client_id, url, **http)]
     with db.session(bound) as s:
         counts = dict(s.execute(select(db.Attempt.label, func.count()).where(
             db.Attempt.assignment_id == assignment_id).group_by(db.Attempt.label)).all())

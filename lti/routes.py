@@ -67,7 +67,8 @@ def _after_launch(form: dict) -> Response:
     base = platforms.public_url()
     if checked.staff:
         roster = (checked.claims.get(lti.NRPS_CLAIM) or {}).get("context_memberships_url", "")
-        token = lti.handoff({"role": "instructor", "iss": checked.platform.issuer, "ctx": context,
+        token = lti.handoff({"role": "instructor", "iss": checked.platform.issuer, "aud": checked.platform.client_id,
+                             "ctx": context,
                              "title": str(checked.context.get("title", ""))[:120], "a": assignment, "nrps": roster})
         return RedirectResponse(f"{base}/gradebook?lti={quote(token)}", status_code=303)
     if assignment is None:

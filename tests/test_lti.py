@@ -396,12 +396,12 @@ def test_the_instructor_sees_who_has_not_started_from_the_lms_roster(tool, lms):
     ]
     got = handed(tool, tool.post("/lti/launch", data=form_of(tool, lms, "teacher-1", INSTRUCTOR)))
     assert got["nrps"] == lms.url + "/memberships/course-1"
-    seen = roster.standing(got["iss"], got["nrps"], student.assignment_id, tool.database)  # three pages
+    seen = roster.standing(got["iss"], got["aud"], got["nrps"], student.assignment_id, tool.database)  # 3 pages
     assert [(m.name, m.attempts) for m in seen] == [("Bea", 0), ("Cem", 0), ("Ann", 1)]
     assert seen[-1].label == student.label
     passback._tokens.clear()  # a token the LMS does not know: refused, and said
     with pytest.raises(roster.RosterUnavailable, match="401"):
-        roster.standing(got["iss"], lms.url + "/memberships/course-1", 1, tool.database,
+        roster.standing(got["iss"], got["aud"], lms.url + "/memberships/course-1", 1, tool.database,
                         post=lambda *a, **k: _token_of("not-a-token"))
 
 
@@ -481,3 +481,17 @@ def test_names_are_kept_only_when_the_admin_turns_it_on(tool, lms, monkeypatch):
                                                        name="Ada Lovelace")))
     with db.session(tool.database) as s:
         assert s.query(db.LtiMember).filter_by(sub="named-1").one().name == "Ada Lovelace"
+
+
+def test_one_issuer_with_several_registrations_is_told_apart(tmp_path, monkeypatch):
+    """Instructure-hosted Canvas: one issuer for every school; each registration its client id and deployments."""
+    entry = {"issuer": "https://canvas.instructure.com", "auth_login_url": "https://sso.test/a",
+             "auth_token_url": "https://sso.test/t", "key_set_url": "https://sso.test/k"}
+    file = tmp_path / "platforms.json"
+    file.write_text(json.dumps([{**entry, "client_id": "1", "deployment_ids": ["1:a"]},
+                                {**entry, "client_id": "2", "deployment_ids": ["2:b", "2:c"]}]))
+    monkeypatch.setenv(platforms.PLATFORMS_ENV, str(file))
+    assert platforms.find("https://canvas.instructure.com") is None  # ambiguous: never a guess
+    assert platforms.find("https://canvas.instructure.com", "2").client_id == "2"
+    assert platforms.serving("https://canvas.instructure.com", "2:c").client_id == "2"
+    assert platforms.serving("https://canvas.instructure.com", "3:z") is None

@@ -773,7 +773,7 @@ def _course_roster(aid: int, course: dict) -> None:
                           "and are not stored here."):
         return
     try:
-        members = lti_roster.standing(course["iss"], course["nrps"], aid)
+        members = lti_roster.standing(course["iss"], course.get("aud", ""), course["nrps"], aid)
     except lti_roster.RosterUnavailable as error:
         st.warning(str(error), icon=":material/group_off:")
         return
