@@ -10,7 +10,7 @@ import pytest
 from assignments import db, migrate, records
 from lti import launch as lti
 from solvers import pendulum_rebound
-from tests.test_assignment_pages import INSTRUCTOR_PAGE, answer, course, student  # noqa: F401 (fixture)
+from tests.test_assignment_pages import INSTRUCTOR_PAGE, ROOT, answer, course, student  # noqa: F401 (fixture)
 
 from streamlit.testing.v1 import AppTest
 
@@ -46,6 +46,11 @@ def test_a_learner_launch_opens_their_variant_records_and_works_once(course):
     assert any("Recorded: attempt 1 of 3" in i.value for i in page.info)
     with db.session() as s:
         assert s.query(db.LtiScore).filter_by(assignment_id=aid, label=label).count() == 1  # queued for the LMS
+    elsewhere = AppTest.from_file(str(ROOT / "pages" / "disk_wall.py"), default_timeout=60)
+    elsewhere.session_state["lti__arrival"] = page.session_state["lti__arrival"]  # the same session, another page
+    elsewhere.run()
+    assert not elsewhere.exception and not elsewhere.error  # practice there, as anyone
+    assert not any("Graded assignment" in i.value for i in elsewhere.info)
     again = student({"lti": token})  # the same address opened again (a reload, a copied link)
     assert "expired or was already used" in again.error[0].value
     assert not any(b.label == "Check" for b in again.button)

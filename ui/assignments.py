@@ -134,6 +134,8 @@ def student_link(problem: Problem) -> StudentLink | None:
     if settings is None or not enrolled:
         return StudentLink(refused="This assignment link is not in the course's records (the assignment or "
                                    "your code is not on its roster). Ask your instructor for a new link.")
+    if problem.id not in settings.problems and identity.source == "lti":
+        return None  # an LMS student on another page of the app: practice, as anyone
     if problem.id not in settings.problems:
         right = " or ".join(f"“{_title(p)}”" for p in settings.problems)
         return StudentLink(refused=f"This assignment link belongs to the page {right}, not this one. Open the "
