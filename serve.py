@@ -174,6 +174,7 @@ def trust_only_named_proxies() -> None:
 def install_middleware() -> None:
     """Put our middlewares in front of Streamlit, after its path-security check and before its gzip:
     ``SecurityHeaders`` (the headers a course site expects, metrics closed: edge/headers.py),
+    ``LtiRoutes`` (the LTI 1.3 tool's ``/lti/…`` routes when platforms are registered: lti/routes.py),
     ``FairShare`` (each websocket session's message budget: edge/fair_share.py), ``StaticGzip``
     (Streamlit's static files gzipped once) and ``ui.figure.BundleServer`` (the figure component's
     plotly bundles gzipped once and cached by browsers for a year; Streamlit's own component route
@@ -184,13 +185,14 @@ def install_middleware() -> None:
 
     from edge.fair_share import FairShare
     from edge.headers import SecurityHeaders
+    from lti.routes import LtiRoutes
     from ui.figure import BundleServer
 
     streamlit_middleware = starlette_app.create_streamlit_middleware  # fails loudly if renamed
 
     def with_ours():
         stack = streamlit_middleware()
-        stack[1:1] = [Middleware(SecurityHeaders), Middleware(FairShare), Middleware(StaticGzip),
+        stack[1:1] = [Middleware(SecurityHeaders), Middleware(LtiRoutes), Middleware(FairShare), Middleware(StaticGzip),
                       Middleware(BundleServer)]
         return stack
 
@@ -223,6 +225,7 @@ def settings_problems() -> list[str]:
     is refused, not ignored (it used to be treated as unset, closing everything in silence)."""
     from assignments import migrate as schema, signing
     from edge.headers import SettingError, frame_ancestors
+    from lti import platforms
     from practice import instructor
 
     problems = []
@@ -238,9 +241,13 @@ def settings_problems() -> list[str]:
     if secret and not key:
         problems.append(f"{signing.SECRET_ENV} is set (assignments are on) but {instructor.KEY_ENV} is not: "
                         "nobody could create or read an assignment (README: Deploy).")
+    if platforms.enabled() and not secret:
+        problems.append(f"{platforms.PLATFORMS_ENV} is set (LTI is on) but {signing.SECRET_ENV} is not: launches "
+                        "are sealed and students' variants keyed with it (README: Inside the LMS).")
+    problems += platforms.problems()
     if os.environ.get(schema.EXPECT_ENV, "") not in ("", "0", "1"):
         problems.append(f"{schema.EXPECT_ENV} is 1 (the database must exist) or unset.")
-    return problems
+    return list(dict.fromkeys(problems))
 
 
 def migrate() -> None:
@@ -269,6 +276,10 @@ def main() -> None:
             logging.getLogger("dynamics_lab").error("setting: %s", problem)
         sys.exit("Dynamics Lab did not start: " + " ".join(problems))
     migrate()
+    from lti import passback, platforms
+
+    if platforms.enabled():
+        passback.start()  # scores left waiting by the last run are sent without waiting for a new attempt
     seconds = warm()
     logging.getLogger("dynamics_lab").warning("warmed in %.1f s", seconds)
     run(ROOT / "app.py", sys.argv[1:])

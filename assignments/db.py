@@ -127,6 +127,54 @@ class Change(Base):
     undoes: Mapped[int | None] = mapped_column(Integer, nullable=True)  # the change this one undid
 
 
+class LtiUsed(Base):
+    """A one-time value already spent: an LTI launch's nonce, a hand-off into the page (replays refused)."""
+    __tablename__ = "lti_used"
+    key: Mapped[str] = mapped_column(String(200), primary_key=True)
+    at: Mapped[dt.datetime] = mapped_column(UTCDateTime, index=True)
+
+
+class LtiLink(Base):
+    """An LMS resource link (one placement of an assignment in one course) and its grade column."""
+    __tablename__ = "lti_link"
+    __table_args__ = (UniqueConstraint("issuer", "deployment_id", "resource_link_id"),)
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
+    issuer: Mapped[str] = mapped_column(String(255))
+    deployment_id: Mapped[str] = mapped_column(String(255))
+    context_id: Mapped[str] = mapped_column(String(255), index=True)
+    resource_link_id: Mapped[str] = mapped_column(String(255))
+    lineitem: Mapped[str] = mapped_column(String(1000), default="")  # the AGS line item's URL, if any
+
+
+class LtiMember(Base):
+    """A student who arrived from an LMS: their label here, and the platform's opaque ``sub`` (needed to
+    send their score back). A name only where the admin turned that on (DL_LTI_KEEP_NAMES=1)."""
+    __tablename__ = "lti_member"
+    __table_args__ = (UniqueConstraint("assignment_id", "label"),)
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
+    label: Mapped[str] = mapped_column(String(40))
+    issuer: Mapped[str] = mapped_column(String(255))
+    sub: Mapped[str] = mapped_column(String(255))
+    name: Mapped[str] = mapped_column(String(200), default="")
+
+
+class LtiScore(Base):
+    """One student's score for the LMS: what was last sent, and what waits (retried with backoff)."""
+    __tablename__ = "lti_score"
+    __table_args__ = (UniqueConstraint("assignment_id", "label"),)
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    assignment_id: Mapped[int] = mapped_column(ForeignKey("assignment.id", ondelete="CASCADE"), index=True)
+    label: Mapped[str] = mapped_column(String(40))
+    status: Mapped[str] = mapped_column(String(16))  # waiting, sent, failed
+    sent: Mapped[float | None] = mapped_column(Float, nullable=True)  # the best score the LMS has
+    sent_progress: Mapped[str] = mapped_column(String(20), default="")
+    tries: Mapped[int] = mapped_column(Integer, default=0)
+    next_try: Mapped[dt.datetime] = mapped_column(UTCDateTime, index=True)
+    error: Mapped[str] = mapped_column(String(1000), default="")
+
+
 def database_url() -> str:
     url = os.environ.get(URL_ENV, "").strip()
     if url:

@@ -1,11 +1,10 @@
 """Who is answering: the seam between how a student arrives and what is recorded.
 
-Today a student arrives with a signed assignment link (``from_link``). An LTI 1.3 launch from
-Canvas or Moodle would arrive as a verified ID token instead: its ``sub`` claim (opaque per
-platform) would become the label, its resource link the assignment, and it would build the same
-``StudentIdentity`` with ``source="lti"``. Everything downstream (the page, the records, the
-gradebook) sees only a ``StudentIdentity``, so a launch adds one constructor here and a route in
-front; grade passback would read ``records.gradebook``."""
+A student arrives with a signed assignment link (``from_link``), or from an LMS's LTI 1.3 launch:
+``lti.store.student`` turns the verified ID token into the same ``StudentIdentity`` with
+``source="lti"`` (its label opaque, keyed from the platform and its ``sub``; its assignment from
+the resource link). Everything downstream (the page, the records, the gradebook) sees only a
+``StudentIdentity``; grade passback (``lti.passback``) reads ``records.standing``."""
 from __future__ import annotations
 
 import re

@@ -11,8 +11,10 @@ from __future__ import annotations
 import base64
 import hashlib
 import hmac
+import json
 import os
 import re
+import time
 
 SECRET_ENV = "DL_COURSE_SECRET"
 MIN_SECRET = 16  # characters; a shorter secret is treated as not set
@@ -68,3 +70,30 @@ def verify(assignment: int, seed: int, label: str, signature: str) -> bool:
     if not valid_label(label) or not isinstance(signature, str):
         return False
     return hmac.compare_digest(sign(assignment, seed, label).encode(), signature.encode())
+
+
+def seal(purpose: str, payload: dict, seconds: int) -> str:
+    """A short-lived token (URL-safe, no padding): ``payload`` as JSON with its expiry, signed with
+    the course secret for one ``purpose`` (an LTI login's state, a launch's hand-off into the page).
+    Readable by whoever holds it: put no secret in it."""
+    body = json.dumps({**payload, "exp": int(time.time()) + seconds}, separators=(",", ":"), sort_keys=True)
+    packed = base64.urlsafe_b64encode(body.encode()).decode().rstrip("=")
+    mac = _mac(f"dynamics-lab/{purpose}/v1\x1f{packed}".encode())
+    return packed + "." + base64.urlsafe_b64encode(mac).decode().rstrip("=")
+
+
+def unseal(purpose: str, token: object) -> dict | None:
+    """The payload of a token ``seal`` made for this purpose and not expired; None for anything else."""
+    if not isinstance(token, str) or len(token) > 8000 or token.count(".") != 1:
+        return None
+    packed, mac = token.split(".")
+    want = base64.urlsafe_b64encode(_mac(f"dynamics-lab/{purpose}/v1\x1f{packed}".encode())).decode().rstrip("=")
+    if not hmac.compare_digest(want.encode(), mac.encode()):
+        return None
+    try:
+        payload = json.loads(base64.urlsafe_b64decode(packed + "=" * (-len(packed) % 4)))
+    except ValueError:
+        return None
+    if not isinstance(payload, dict) or not isinstance(payload.get("exp"), int) or payload["exp"] < time.time():
+        return None
+    return payload

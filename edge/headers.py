@@ -3,10 +3,12 @@
 One setting decides who may embed the app in a frame: ``DL_FRAME_ANCESTORS``, the origins
 separated by spaces (an LMS such as ``https://canvas.example.edu``), ``'self'`` when unset. The
 same value goes into the Content-Security-Policy's ``frame-ancestors`` here and in the nginx
-templates (``deploy/``). The policy lets scripts come only from the app itself: its files, the
+templates (``deploy/``); the LTI platforms the admin registered (``DL_LTI_PLATFORMS``) are added
+here, and only they, and their origins may receive the app's forms (a deep link's answer). The policy lets scripts come only from the app itself: its files, the
 blob: modules Streamlit's components v2 make in the page from the app's own code (the figure, the
 answers, the derivation), the hashes of the inline scripts (the one line in Streamlit's index.html,
-read from the file at start-up, and the app's own, ``ui.params.SLIDER_NAMES``), and WebAssembly compiled by the app's own scripts ('wasm-unsafe-eval'; no
+read from the file at start-up, and the app's own, ``ui.params.SLIDER_NAMES`` and the line that
+posts an LTI deep link's answer back to the LMS), and WebAssembly compiled by the app's own scripts ('wasm-unsafe-eval'; no
 eval of strings). The page connects only to its own server. Styles allow inline ones (Streamlit and
 plotly.js write style attributes). A browser test opens every page under it and finds no violation.
 
@@ -30,16 +32,33 @@ class SettingError(ValueError):
     """A setting the admin gave cannot be used as it is."""
 
 
+def _lms_origins() -> tuple[str, ...]:
+    """The registered LTI platforms' origins (lti/platforms.py), where LTI is on."""
+    from lti import platforms
+
+    try:
+        return platforms.frame_origins()
+    except platforms.NotRegistered as error:
+        raise SettingError(str(error)) from None
+
+
 def frame_ancestors(value: str | None = None) -> str:
-    """The origins that may embed the app, checked: each an http(s) origin, 'self' or 'none'."""
+    """The origins that may embed the app, checked: each an http(s) origin, 'self' or 'none'; with
+    the registered LTI platforms' origins added (only theirs: a platform not registered is not)."""
     raw = (os.environ.get(FRAME_ENV, "") if value is None else value).split()
-    if not raw:
-        return "'self'"
     bad = [origin for origin in raw if not _ORIGIN.match(origin)]
     if bad:
         raise SettingError(f"{FRAME_ENV}: {bad[0]!r} is not an origin such as https://lms.example.edu, "
                            "'self' or 'none'")
-    return " ".join(raw)
+    lms = [o for o in _lms_origins() if o not in raw] if value is None else []
+    if lms and raw == ["'none'"]:
+        raw = []
+    return " ".join((raw or ["'self'"]) + lms)
+
+
+def form_targets() -> str:
+    """Where the app's forms may post: itself, and the registered LMSs (a deep link's answer)."""
+    return " ".join(["'self'", *_lms_origins()])
 
 
 def _inline_scripts(html: str) -> list[str]:
@@ -53,10 +72,11 @@ def inline_script_hashes() -> tuple[str, ...]:
     exact text and nothing else."""
     import streamlit
 
+    from lti.routes import AUTO_SUBMIT
     from ui.params import SLIDER_NAMES
 
     html = (Path(streamlit.__file__).parent / "static" / "index.html").read_text(encoding="utf-8")
-    scripts = _inline_scripts(html) + _inline_scripts(SLIDER_NAMES)
+    scripts = _inline_scripts(html) + _inline_scripts(SLIDER_NAMES) + [AUTO_SUBMIT]
     return tuple("'sha256-" + base64.b64encode(hashlib.sha256(s.encode()).digest()).decode() + "'"
                  for s in scripts)
 
@@ -73,7 +93,7 @@ def content_security_policy(ancestors: str | None = None) -> str:
         "frame-src 'self'",
         "object-src 'none'",
         "base-uri 'self'",
-        "form-action 'self'",
+        f"form-action {form_targets()}",
         f"frame-ancestors {frame_ancestors() if ancestors is None else ancestors}",
     ])
 

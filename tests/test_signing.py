@@ -76,3 +76,29 @@ def test_a_number_has_one_spelling(key, spelling):
     assert int(other) == int(value)  # the same number to Python
     with pytest.raises(LinkRefused, match="changed since your instructor issued it"):
         from_link(query | {key: other})
+
+
+# -- sealed short-lived tokens (an LTI login's state, a launch's hand-off)
+
+PAYLOADS = hst.dictionaries(hst.text("abcdefghij", min_size=1, max_size=5),
+                            hst.one_of(hst.integers(-10**6, 10**6), hst.text(max_size=30)), max_size=4)
+
+
+@settings(max_examples=60, deadline=None)
+@given(PAYLOADS, hst.data())
+def test_a_sealed_token_opens_unchanged_and_only_unchanged(payload, data):
+    token = signing.seal("lti-handoff", payload, 60)
+    opened = signing.unseal("lti-handoff", token)
+    assert {k: v for k, v in opened.items() if k != "exp"} == {k: v for k, v in payload.items() if k != "exp"}
+    assert signing.unseal("lti-state", token) is None  # sealed for another purpose
+    at = data.draw(hst.integers(0, len(token) - 1))
+    swapped = "A" if token[at] != "A" else "B"
+    assert signing.unseal("lti-handoff", token[:at] + swapped + token[at + 1:]) is None
+
+
+def test_a_sealed_token_expires_and_needs_the_course_secret(monkeypatch):
+    assert signing.unseal("lti-handoff", signing.seal("lti-handoff", {"a": 1}, -1)) is None
+    token = signing.seal("lti-handoff", {"a": 1}, 60)
+    monkeypatch.setenv(signing.SECRET_ENV, "another-course-secret-000000")
+    assert signing.unseal("lti-handoff", token) is None
+    assert signing.unseal("lti-handoff", None) is None and signing.unseal("lti-handoff", "x" * 9000) is None

@@ -20,6 +20,7 @@ import streamlit as st
 
 from assignments import migrate, records, signing
 from assignments.identity import LinkRefused, StudentIdentity, from_link, is_assignment_link, link_query
+from lti import launch as lti_launch, passback, roster as lti_roster, store as lti_store
 from practice.judge import RELATIVE_TOLERANCE, Verdict
 from solvers import units
 from ui.catalog import BY_ID, PROBLEMS, Problem
@@ -90,15 +91,38 @@ class StudentLink:
     problem: str = ""  # the page's problem
 
 
+LAUNCH_SPENT = ("This launch from your course site has expired or was already used (it works once, for two "
+                "minutes). Open the activity again from your course's page in the LMS.")
+
+
+def lti_arrival() -> dict | None:
+    """What an LTI launch handed this session (lti/launch.py): the ``?lti=`` hand-off in the URL is
+    redeemed once and taken out of the URL, and the session keeps it (no cookie is needed in the
+    LMS's iframe). ``{"refused": …}`` when the hand-off is spent, expired or altered."""
+    token = st.query_params.get("lti")
+    if token:
+        del st.query_params["lti"]
+        payload = lti_launch.redeem(token, lti_store.spender()) if _schema_ready() else None
+        st.session_state["lti__arrival"] = payload or {"refused": LAUNCH_SPENT}
+    return st.session_state.get("lti__arrival")
+
+
 def student_link(problem: Problem) -> StudentLink | None:
-    """None unless the page was opened with an assignment link; else the checked link."""
+    """None unless the page was opened with an assignment link or from an LMS launch; else the
+    checked link (both identities meet here, and go on to the same records)."""
     query = {k: st.query_params.get(k) for k in st.query_params.keys()}
-    if not is_assignment_link(query):
+    arrival = lti_arrival() if not is_assignment_link(query) else None
+    if arrival and arrival.get("refused"):
+        return StudentLink(refused=arrival["refused"])
+    if arrival and arrival.get("role") == "student":
+        identity = lti_store.from_handoff(arrival)
+    elif not is_assignment_link(query):
         return None
-    try:
-        identity = from_link(query)
-    except LinkRefused as refusal:
-        return StudentLink(refused=str(refusal))
+    else:
+        try:
+            identity = from_link(query)
+        except LinkRefused as refusal:
+            return StudentLink(refused=str(refusal))
     unrecorded = StudentLink(identity, notice=records.UNAVAILABLE, problem=problem.id)
     if not _schema_ready():
         return unrecorded
@@ -110,6 +134,8 @@ def student_link(problem: Problem) -> StudentLink | None:
     if settings is None or not enrolled:
         return StudentLink(refused="This assignment link is not in the course's records (the assignment or "
                                    "your code is not on its roster). Ask your instructor for a new link.")
+    if problem.id not in settings.problems and identity.source == "lti":
+        return None  # an LMS student on another page of the app: practice, as anyone
     if problem.id not in settings.problems:
         right = " or ".join(f"“{_title(p)}”" for p in settings.problems)
         return StudentLink(refused=f"This assignment link belongs to the page {right}, not this one. Open the "
@@ -169,6 +195,7 @@ def recording(link: StudentLink, solution=None, system: str = "si") -> Recording
         except records.RecordingUnavailable as error:
             st.error(str(error), icon=":material/cloud_off:")
             return
+        passback.queue(identity)  # an LMS student's score waits for the sender thread, not this page
         _said_recorded(kept, labels.get((problem, answer.name), answer_label(answer)), link, solution, answer, system)
 
     def on_reveal() -> bool:
@@ -654,7 +681,7 @@ LEGEND = ("**Reading the gradebook.** Each answer's cell says where the student 
           "wrong answers matched.")
 
 
-def _gradebook(aid: int) -> None:
+def _gradebook(aid: int, course: dict | None = None) -> None:
     book = records.gradebook(aid)
     s = book.settings
     labels = _answer_labels(s)
@@ -716,10 +743,48 @@ def _gradebook(aid: int) -> None:
     c4.download_button("Grades for Moodle (CSV)", records.lms_csv(book, "moodle"),
                        file_name=f"assignment-{aid}-moodle.csv", mime="text/csv", key="assign__moodle_csv",
                        help="Moodle: Grades › Import › CSV file; map “ID number” to the user's ID number.")
+    _passback(aid)
+    if course is not None and course.get("nrps"):
+        _course_roster(aid, course)
     st.markdown("#### Per answer")
     st.markdown("\n".join(f"- **{plain(labels[q])}**: " + " ".join(plain(line) for line in lines)
                           for q, lines in book.statistics().items()))
     _history(aid, s)
+
+
+def _passback(aid: int) -> None:
+    """What reached the LMS's gradebook (students who came from an LMS only)."""
+    sent = passback.summary(aid)
+    if sent is None:
+        return
+    st.markdown("#### Grades sent to the LMS")
+    st.markdown(f"{sent.sent} sent · {sent.waiting} waiting · {len(sent.failed)} not accepted by the LMS. "
+                "The best score is sent after each recorded attempt; a busy LMS is tried again by itself.")
+    if sent.failed:
+        st.warning("The LMS did not accept these scores (they are tried again every hour):", icon=":material/sync_problem:")
+        st.table([{"student": literal(label), "why": plain(why)} for label, why in sent.failed])
+        if st.button("Send again now", key=f"assign__resend{aid}"):
+            st.session_state["assign__said"] = f"{passback.send_again(aid)} scores will be sent again."
+            st.rerun()
+
+
+def _course_roster(aid: int, course: dict) -> None:
+    """The LMS's roster (NRPS), asked for by the instructor: who has not started. Names are shown
+    as the LMS gives them, not stored."""
+    st.markdown("#### Your course's students")
+    if not st.button("Read the roster from the LMS", key=f"assign__roster_lms{aid}",
+                     help="Who in your course has not started this assignment. The names come from your LMS "
+                          "and are not stored here."):
+        return
+    try:
+        members = lti_roster.standing(course["iss"], course.get("aud", ""), course["nrps"], aid)
+    except lti_roster.RosterUnavailable as error:
+        st.warning(str(error), icon=":material/group_off:")
+        return
+    waiting = sum(m.attempts == 0 for m in members)
+    st.markdown(f"{len(members)} students in the course; {waiting} {'has' if waiting == 1 else 'have'} not started.")
+    st.table([{"student": plain(m.name) or "(no name shared)", "label here": literal(m.label),
+               "attempts": str(m.attempts) if m.attempts else "not started"} for m in members])
 
 
 def _history(aid: int, s: records.Settings) -> None:
@@ -751,7 +816,11 @@ def instructor_page() -> None:
 
     _leave_legacy_pages_mode()  # a deep link to /gradebook on a fresh server: see ui/page.py
     st.markdown("# Assignments\n:gray[Signed per-student links, every attempt recorded, the gradebook.]")
-    if not instructor_key_entry("assign__instructor_key", "assignments"):
+    arrival = lti_arrival()
+    course = arrival if arrival and arrival.get("role") == "instructor" else None
+    if arrival and arrival.get("refused"):
+        st.error(arrival["refused"])
+    if course is None and not instructor_key_entry("assign__instructor_key", "assignments"):
         return
     if not signing.configured():
         st.warning(f"The course admin has not set a course secret (`{signing.SECRET_ENV}`, at least "
@@ -763,16 +832,25 @@ def instructor_page() -> None:
         return
     try:
         show_archived = st.session_state.get("assign__archived", False)
-        existing = records.assignments(archived=show_archived)
-        with st.expander("New assignment", expanded=not existing or st.session_state.get("assign__drafting", False),
-                         icon=":material/add:"):
-            _new_assignment()
-        existing = records.assignments(archived=show_archived)  # with the one just created
+        if course is not None:  # an instructor from the LMS: this course's assignments, no others
+            placed = set(lti_store.contexts_assignments(course["iss"], course["ctx"]))
+            existing = [(aid, s) for aid, s in records.assignments(archived=show_archived) if aid in placed]
+            st.info(f"From your course site{': ' + plain(course['title']) if course.get('title') else ''}. These "
+                    "are its Dynamics Lab assignments; add another with your LMS's “add external tool” dialog.",
+                    icon=":material/school:")
+            if course.get("a") in placed:
+                st.session_state.setdefault("assign__chosen", course["a"])
+        else:
+            existing = records.assignments(archived=show_archived)
+            with st.expander("New assignment", expanded=not existing or st.session_state.get("assign__drafting", False),
+                             icon=":material/add:"):
+                _new_assignment()
+            existing = records.assignments(archived=show_archived)  # with the one just created
         st.markdown("### Your assignments")
         st.toggle("Show archived assignments", key="assign__archived")
         if not existing:
             st.markdown("No assignments yet." if not show_archived else "No assignments.")
             return
-        _gradebook(_assignment_choice(existing))
+        _gradebook(_assignment_choice(existing), course)
     except records.RecordingUnavailable as error:
         st.error(str(error))

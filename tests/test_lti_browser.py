@@ -1,0 +1,140 @@
+"""Inside an LMS, in Chromium, end to end: ``lti1p3platform``'s platform (tests/lti_platform.py) on
+``localhost`` embeds the app, served by serve.py on ``127.0.0.1`` (another site: the tool's frame
+is third-party, and the flow uses no cookie). The instructor adds an assignment through deep
+linking (the LMS's "add external tool" dialog): the LMS receives a resource link with its line
+item. A learner launches it, lands on their own variant, answers right; their score reaches the
+platform's AGS endpoint by itself. The instructor launches and sees that course's gradebook, with
+the grade sent, and no key asked, and reads the course roster from the LMS (NRPS): who has not started. Each frame's page is shot into screenshots/lti/."""
+from __future__ import annotations
+
+import json
+import os
+import time
+from pathlib import Path
+
+import pytest
+
+from assignments import records, signing
+from lti import launch as lti
+from practice.variants import ASSIGNMENT, variant
+from scripts.live_app import CHROMIUM, free_port, launch_browser, start_app, wait_healthy, wait_until_idle
+from solvers import disk_wall, units
+from tests.lti_platform import INSTRUCTOR, ISSUER, LEARNER, LmsEmulator
+
+pytestmark = pytest.mark.browser
+SHOTS = Path(__file__).resolve().parent.parent / "screenshots" / "lti"
+KEY, SECRET = "instructor-key-0030", "course-secret-for-the-lti-tests-30"
+
+if not Path(CHROMIUM).exists():
+    if os.environ.get("CI"):
+        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
+    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
+
+sync_api = pytest.importorskip("playwright.sync_api")
+
+
+def in_lms(page, lms, start: str):
+    """Open the LMS's course page with the tool's frame started at ``start``; the frame."""
+    page.goto(f"{lms.url}/course?start={start.replace('&', '%26').replace('?', '%3F')}")
+    frame = page.frame_locator("iframe[name=tool]")
+    return frame, page.frame(name="tool")
+
+
+SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844)}
+
+
+def shoot(page, name: str, tool=None) -> None:
+    """The LMS page with the tool's frame, at each size (the frame's page idle again after each)."""
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    for size, (width, height) in SIZES.items():
+        page.set_viewport_size({"width": width, "height": height})
+        if tool is not None:
+            wait_until_idle(tool)
+        page.screenshot(path=str(SHOTS / f"{name}-{size}.png"))
+    page.set_viewport_size({"width": 1400, "height": 1000})
+
+
+def test_deep_link_learner_launch_and_grade_passback_in_an_lms_frame(tmp_path, monkeypatch):
+    monkeypatch.setenv(signing.SECRET_ENV, SECRET)  # this process works out the learner's right answer
+    port = free_port()
+    tool_url = f"http://127.0.0.1:{port}"
+    with LmsEmulator(tool_url, host="localhost") as lms:
+        platforms_file = tmp_path / "platforms.json"
+        platforms_file.write_text(json.dumps([lms.registration_entry()]))
+        env = {"DL_INSTRUCTOR_KEY": KEY, "DL_COURSE_SECRET": SECRET, "DL_DATA_DIR": str(tmp_path / "data"),
+               "DL_DATABASE_URL": "", "DL_LTI_PLATFORMS": str(platforms_file), "DL_PUBLIC_URL": tool_url}
+        proc = start_app(port, env=env)
+        try:
+            wait_healthy(tool_url, proc=proc)
+            with sync_api.sync_playwright() as p:
+                browser = launch_browser(p)
+                context = browser.new_context(viewport={"width": 1400, "height": 1000})
+                page = context.new_page()
+                errors: list[str] = []
+                page.on("pageerror", lambda exc: errors.append(str(exc)))
+                run_journey(page, lms)
+                assert not errors, errors
+                browser.close()
+        finally:
+            proc.terminate()
+            proc.wait(10)
+
+
+def run_journey(page, lms) -> None:
+    # The instructor adds the activity from the LMS's dialog (deep linking).
+    frame, _ = in_lms(page, lms, lms.login_url("teacher-1", INSTRUCTOR, deep_link=True))
+    frame.get_by_label("Problem").select_option("disk_wall")
+    frame.get_by_role("button", name="Next").click()
+    frame.get_by_label("Title").fill("Week 6: the disk and the wall")
+    boxes = frame.locator("input[name=answer]")
+    for i in range(boxes.count()):  # only the velocity along the wall counts
+        if boxes.nth(i).get_attribute("value") != "v1x":
+            boxes.nth(i).uncheck()
+    frame.get_by_label("Attempts per answer").fill("3")
+    shoot(page, "deep-link-picker")
+    frame.get_by_role("button", name="Add to the course").click()
+    frame.get_by_text("The LMS received: Week 6: the disk and the wall").wait_for(timeout=30_000)
+    (item,) = lms.deep_links[-1]
+    assert item["lineItem"]["label"] == "Week 6: the disk and the wall"
+    aid = int(item["custom"]["dl_assignment"].split(".")[0])
+
+    # A learner opens it: their own variant, inside the LMS's frame.
+    frame, tool = in_lms(page, lms, lms.login_url("learner-42", LEARNER, resource_link="rl-week6",
+                                                  custom=item["custom"]))
+    frame.get_by_text("Graded assignment: Week 6").wait_for(timeout=60_000)
+    wait_until_idle(tool)
+    assert "lti=" not in tool.url  # the hand-off has left the address
+    label = lti.label_of(ISSUER, "learner-42")
+    seed = records.student_seed(aid, label)
+    v1x = disk_wall.solve(**variant(disk_wall, "disk_wall", seed, ASSIGNMENT)).answers["v1x"]
+    frame.get_by_label("Your answer", exact=True).fill(f"{units.to_display(v1x, 'speed'):.5g}")
+    frame.get_by_role("button", name="Check").click()
+    frame.get_by_text("Recorded: attempt 1 of 3").first.wait_for(timeout=60_000)
+    wait_until_idle(tool)
+    shoot(page, "learner-in-lms", tool)
+
+    # The score reaches the LMS by itself (the app's sender thread, the platform's AGS endpoint).
+    deadline = time.monotonic() + 30
+    while not lms.scores and time.monotonic() < deadline:
+        time.sleep(0.2)
+    (score,) = lms.scores
+    assert (score["userId"], score["scoreGiven"], score["scoreMaximum"]) == ("learner-42", 1, 1)
+    assert (score["lineitem"], score["activityProgress"], score["gradingProgress"]) == ("rl-week6", "Completed",
+                                                                                       "FullyGraded")
+
+    # The instructor opens the link: that course's gradebook, no key, the grade said sent.
+    frame, tool = in_lms(page, lms, lms.login_url("teacher-1", INSTRUCTOR, resource_link="rl-week6"))
+    frame.get_by_text("Grades sent to the LMS").wait_for(timeout=60_000)
+    wait_until_idle(tool)
+    body = frame.locator("[data-testid='stMain']").inner_text()
+    assert "1 sent · 0 waiting · 0 not accepted" in body and "Instructor key" not in body
+
+    # The course roster from the LMS (NRPS): who has not started.
+    lms.members[:] = [{"user_id": "learner-42", "name": "Ann Ito", "roles": LEARNER},
+                      {"user_id": "learner-43", "name": "Bea Roth", "roles": LEARNER}]
+    frame.get_by_role("button", name="Read the roster from the LMS").click()
+    frame.get_by_text("2 students in the course; 1 has not started.").wait_for(timeout=60_000)
+    wait_until_idle(tool)
+    roster = frame.locator("[data-testid='stMain']").inner_text()
+    assert roster.index("Bea Roth") < roster.index("Ann Ito")  # not started first
+    shoot(page, "instructor-gradebook-in-lms", tool)
