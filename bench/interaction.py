@@ -5,8 +5,9 @@ slider measured in the same run; and each figure's JSON size.
 
 Server time is AppTest's run after a widget change (the script run plus Streamlit's own work),
 median of distinct values: each change moves the page's lesson control one step of its own
-(``bench/controls.py``: a slider by one step, as a student's drag can, a box by half its step),
-so no value repeats within a run. The process is warmed first as ``serve.py`` warms a replica
+(``bench/controls.changes_of``: a slider along its grid within its range, the only values a drag
+gives, a box by half its step), so no value repeats within a run (a slider with fewer positions
+than ``--changes``, the pendulum's e with 21, gives all it has). The process is warmed first as ``serve.py`` warms a replica
 before it listens (every derivation, and what ``WARM`` lists, e.g. the ladder's every slider
 angle), so the numbers are a warm server's. Prints a Markdown table.
 """
@@ -25,7 +26,7 @@ sys.path.insert(0, str(ROOT))
 
 from streamlit.testing.v1 import AppTest  # noqa: E402
 
-from bench.controls import lesson_control  # noqa: E402
+from bench.controls import changes_of, lesson_control  # noqa: E402
 from solvers import registry  # noqa: E402
 
 CONTROLS = {pid: lesson_control(pid) for pid in registry.PROBLEM_IDS}  # page -> (widget key, start, kind, step)
@@ -35,20 +36,20 @@ def widget(at, key, kind):
     return at.slider(key=key) if kind == "slider" else at.number_input(key=key)
 
 
-def paired_changes(path: Path, key: str, start: float, kind: str, step: float,
-                   changes: int) -> tuple[float, float, float]:
+def paired_changes(path: Path, key: str, kind: str, values: list[float]) -> tuple[float, float, float]:
     """Alternate a change on the page with a change on the empty page, so that drift on a shared
     machine hits both alike; returns (page median, empty median, median of the paired ratios)."""
     page = AppTest.from_file(str(path), default_timeout=120).run()
     empty = AppTest.from_file(str(ROOT / "bench" / "empty_page.py"), default_timeout=120).run()
     page_times, empty_times = [], []
-    for i in range(1, changes + 1):
-        value = round(start + step * i, 6)
+    changes = len(values)
+    for i, value in enumerate(values, start=1):
         w = widget(page, key, kind)
         began = time.perf_counter()
         w.set_value(value).run()
         page_times.append(time.perf_counter() - began)
         assert not page.exception, page.exception
+        assert not page.error, f"{path.stem} refused {value}: {page.error[0].value}"  # a refusal is not a change
         e = empty.slider(key="x")
         began = time.perf_counter()
         e.set_value(round(0.9 - 0.5 * i / changes, 6)).run()
@@ -68,8 +69,8 @@ def main() -> None:
     print("| page | median server time per change | empty page, same run | × empty page (median of pairs) |")
     print("|---|---|---|---|")
     ratios = {}
-    for pid, (key, start, kind, step) in CONTROLS.items():
-        page, empty, ratio = paired_changes(ROOT / "pages" / f"{pid}.py", key, start, kind, step, args.changes)
+    for pid, (key, _, kind, _) in CONTROLS.items():
+        page, empty, ratio = paired_changes(ROOT / "pages" / f"{pid}.py", key, kind, changes_of(pid, args.changes))
         ratios[pid] = ratio
         print(f"| {pid} | {page * 1000:.1f} ms | {empty * 1000:.1f} ms | {ratio:.2f} |", flush=True)
     print(f"\nworst ratio: {max(ratios.values()):.2f}")
