@@ -1,7 +1,7 @@
 """Benchmark 1 and 3: server time per control change on every page, against an empty page with one
 slider measured in the same run; and each figure's JSON size.
 
-    python bench/interaction.py [--changes 30] [--json OUT]
+    python bench/interaction.py [--changes 30] [--pages PAGE ...] [--json OUT] [--no-figures]
 
 Server time is AppTest's run after a widget change (the script run plus Streamlit's own work),
 median of distinct values: each change moves the page's lesson control one step of its own
@@ -63,13 +63,15 @@ def main() -> None:
     parser.add_argument("--changes", type=int, default=30)
     parser.add_argument("--json", type=Path, help="also write {page: ratio} here")
     parser.add_argument("--no-figures", action="store_true", help="leave out the figures' sizes")
+    parser.add_argument("--pages", nargs="*", default=list(CONTROLS), help="these pages only (default: all)")
     args = parser.parse_args()
     from serve import warm
     print(f"warmed as serve.py does in {warm():.1f} s\n")
     print("| page | median server time per change | empty page, same run | × empty page (median of pairs) |")
     print("|---|---|---|---|")
     ratios = {}
-    for pid, (key, _, kind, _) in CONTROLS.items():
+    for pid in args.pages:
+        key, _, kind, _ = CONTROLS[pid]
         page, empty, ratio = paired_changes(ROOT / "pages" / f"{pid}.py", key, kind, changes_of(pid, args.changes))
         ratios[pid] = ratio
         print(f"| {pid} | {page * 1000:.1f} ms | {empty * 1000:.1f} ms | {ratio:.2f} |", flush=True)
@@ -79,7 +81,7 @@ def main() -> None:
     if args.no_figures:
         return
     print("\n| figure | frames | JSON size |\n|---|---|---|")
-    for pid in CONTROLS:
+    for pid in args.pages:
         solution = importlib.import_module(f"solvers.{pid}").solve()
         for fig in importlib.import_module(f"viz.{pid}").figures(solution):
             print(f"| {pid}: {fig.key} | {len(fig.spec['animation']['times']) if 'animation' in fig.spec else 0} | {len(fig.json_bytes()) / 1024:.0f} KB |")
