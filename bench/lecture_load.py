@@ -21,7 +21,10 @@ address, and 200 sessions from one address would be throttled as one NAT'd room 
 default the scenario runs twice, on one process (``--processes 1``: a replica of the shipped image)
 and on two behind the nginx of ``deploy/`` (``--processes 2``: the shipped Compose topology, with
 ``DL_TRUSTED_PROXIES=*`` as Compose sets it, so the app reads each client's address from nginx's
-X-Forwarded-For), each against its own empty page.
+X-Forwarded-For). Each page's lecture runs side by side with the same lecture on the empty page
+(its own servers of the same topology, at the same time): the machine is shared, and what else runs
+on it then weighs on the page and on its baseline alike; the ratio is the page's interaction p95
+over that of the empty page beside it.
 """
 from __future__ import annotations
 
@@ -232,31 +235,47 @@ def report(label: str, r: Results, mb_per_session: float, cpu_per_run: float) ->
     return row
 
 
-def run_topology(processes: int, pages: list[str], args) -> list[dict]:
-    """The scenario against the empty page, then each page, each on fresh servers; the rows."""
-    rows = []
-    targets = [("empty page", ROOT / "bench" / "empty_app.py", "")] + [(page, ROOT / "app.py", page) for page in pages]
-    for label, app, page in targets:
-        procs, url, workdir, nginx = start_servers(app, processes)
+def stop_servers(procs: list[subprocess.Popen], workdir: Path | None, nginx: subprocess.Popen | None) -> None:
+    if nginx:
+        nginx.terminate()
+    for proc in procs:
+        proc.terminate()
+    for proc in procs:
         try:
-            results, mb, cpu = asyncio.run(scenario(url, page, args.sessions, args.join, args.changes,
-                                                    [p.pid for p in procs], args.spread, tuple(args.pause)))
-            rows.append(report(label, results, mb, cpu))
-            print(f"  done: {label} ({processes} process(es))", file=sys.stderr)
+            proc.wait(15)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+    if workdir:
+        shutil.rmtree(workdir, ignore_errors=True)
+
+
+async def side_by_side(empty_url: str, page_url: str, page: str, empty_pids: list[int], page_pids: list[int], args):
+    return await asyncio.gather(
+        scenario(empty_url, "", args.sessions, args.join, args.changes, empty_pids, args.spread, tuple(args.pause)),
+        scenario(page_url, page, args.sessions, args.join, args.changes, page_pids, args.spread, tuple(args.pause)))
+
+
+def run_topology(processes: int, pages: list[str], args) -> list[dict]:
+    """Each page's lecture side by side with the same lecture on the empty page: both on fresh
+    servers of this topology, at the same time, so that whatever else the machine is doing (it is
+    shared) weighs on both alike. The rows: the empty page beside each page, then the page."""
+    rows = []
+    for page in pages:
+        empty = start_servers(ROOT / "bench" / "empty_app.py", processes)
+        try:
+            app = start_servers(ROOT / "app.py", processes)
+            try:
+                (er, emb, ecpu), (pr, pmb, pcpu) = asyncio.run(side_by_side(
+                    empty[1], app[1], page, [p.pid for p in empty[0]], [p.pid for p in app[0]], args))
+            finally:
+                stop_servers(app[0], app[2], app[3])
         finally:
-            if nginx:
-                nginx.terminate()
-            for proc in procs:
-                proc.terminate()
-            for proc in procs:
-                try:
-                    proc.wait(15)
-                except subprocess.TimeoutExpired:
-                    proc.kill()
-            if workdir:
-                shutil.rmtree(workdir, ignore_errors=True)
-    for row in rows:
-        row["p95 x empty"] = row["int p95"] / rows[0]["int p95"]
+            stop_servers(empty[0], empty[2], empty[3])
+        beside, row = report(f"empty page beside {page}", er, emb, ecpu), report(page, pr, pmb, pcpu)
+        beside["p95 x empty"], row["p95 x empty"] = 1.0, row["int p95"] / beside["int p95"]
+        rows += [beside, row]
+        print(f"  done: {page} ({processes} process(es)): p95 {row['int p95'] * 1000:.0f} ms, "
+              f"the empty page's beside it {beside['int p95'] * 1000:.0f} ms", file=sys.stderr)
     return rows
 
 
