@@ -23,7 +23,7 @@ run: $(BIN)/.runtime
 test: $(BIN)/.dev
 	$(BIN)/python -m pytest
 
-# The quick benchmarks (BENCHMARKS.md §1 and §4, a few minutes), beside the last recorded ratios
+# The quick benchmarks (BENCHMARKS.md §1 and §4, about ten minutes), beside the last recorded ratios
 # (bench/recorded.json; `bench/quick.py --record` updates them). Not part of `make test`.
 bench: $(BIN)/.dev
 	$(BIN)/python bench/quick.py

@@ -2,7 +2,7 @@
 
     python bench/quick.py [--record]
 
-Runs, in a few minutes, the quick versions of BENCHMARKS.md §1 and §4:
+Runs, in about ten minutes (most of it warming a fresh server per page), the quick versions of BENCHMARKS.md §1 and §4:
 - the interaction ratios (``bench/interaction.py --changes 15``: AppTest's run after a change of each
   page's lesson control, against the empty one-slider page interleaved in the same process);
 - a 50-session lecture on one process (``bench/lecture_load.py --sessions 50 --join 10 --changes 3
