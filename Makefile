@@ -23,6 +23,11 @@ run: $(BIN)/.runtime
 test: $(BIN)/.dev
 	$(BIN)/python -m pytest
 
+# The quick benchmarks (BENCHMARKS.md §1 and §4, about ten minutes), beside the last recorded ratios
+# (bench/recorded.json; `bench/quick.py --record` updates them). Not part of `make test`.
+bench: $(BIN)/.dev
+	$(BIN)/python bench/quick.py
+
 screenshots: $(BIN)/.dev
 	$(BIN)/python scripts/screenshots.py --themes light dark --sizes laptop projector phone
 

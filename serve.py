@@ -40,8 +40,8 @@ def warm() -> float:
         for combination in itertools.product(*(c.options for c in choices)):
             solution = solver.solve(**dict(zip((c.name for c in choices), combination)))
             viz.figures(solution)
-        for params in solver.WARM:  # the states no option combination reaches
-            solver.solve(**params)
+        for params in solver.WARM:  # the states no option combination reaches, or a slider's every position
+            viz.figures(solver.solve(**params))
         if hasattr(viz, "on_request"):  # a costly figure on request, for the textbook's numbers
             _requested(pid, tuple(sorted(solver.solve().params.items())))  # (shared by every session)
     return time.perf_counter() - started

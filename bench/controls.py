@@ -20,3 +20,21 @@ def lesson_control(pid: str) -> tuple[str, float, str, float]:
     if is_slider(p):
         return f"{pid}__si__{p.name}", start, "slider", -step
     return f"{pid}__si__{p.name}", start, "number", step / 2
+
+
+def changes_of(pid: str, count: int) -> list[float]:
+    """Up to ``count`` distinct values for the lesson control, as a student's moves give them: a
+    box by half its step upwards; a slider along its own grid (the only values a drag gives),
+    first away from the start in the step's direction, then, past the slider's end, on the other
+    side of the start. Never the start itself, never out of the slider's range: a slider with fewer
+    positions than ``count`` gives all it has."""
+    key, start, kind, step = lesson_control(pid)
+    if kind != "slider":
+        return [round(start + step * i, 6) for i in range(1, count + 1)]
+    p = next(p for p in registry.solver(pid).PARAMS if key.endswith(f"__{p.name}"))
+    lo = float(p.ui_low if p.ui_low is not None else p.low)  # as ui.params draws the slider
+    hi = float(p.ui_high if p.ui_high is not None else p.high)
+    inside = lambda v: lo - 1e-9 <= v <= hi + 1e-9  # noqa: E731
+    ahead = [v for v in (round(start + step * i, 6) for i in range(1, count + 1)) if inside(v)]
+    behind = [v for v in (round(start - step * i, 6) for i in range(1, count + 1)) if inside(v)]
+    return (ahead + behind)[:count]

@@ -1,15 +1,21 @@
 """Benchmark 1 and 3: server time per control change on every page, against an empty page with one
 slider measured in the same run; and each figure's JSON size.
 
-    python bench/interaction.py [--changes 25]
+    python bench/interaction.py [--changes 30] [--pages PAGE ...] [--json OUT] [--no-figures]
 
 Server time is AppTest's run after a widget change (the script run plus Streamlit's own work),
-median of distinct values, so no cache can answer for the page. Prints a Markdown table.
+median of distinct values: each change moves the page's lesson control one step of its own
+(``bench/controls.changes_of``: a slider along its grid within its range, the only values a drag
+gives, a box by half its step), so no value repeats within a run (a slider with fewer positions
+than ``--changes``, the pendulum's e with 21, gives all it has). The process is warmed first as ``serve.py`` warms a replica
+before it listens (every derivation, and what ``WARM`` lists, e.g. the ladder's every slider
+angle), so the numbers are a warm server's. Prints a Markdown table.
 """
 from __future__ import annotations
 
 import argparse
 import importlib
+import json
 import statistics
 import sys
 import time
@@ -20,29 +26,30 @@ sys.path.insert(0, str(ROOT))
 
 from streamlit.testing.v1 import AppTest  # noqa: E402
 
-from bench.controls import lesson_control  # noqa: E402
+from bench.controls import changes_of, lesson_control  # noqa: E402
 from solvers import registry  # noqa: E402
 
-CONTROLS = {pid: lesson_control(pid)[:3] for pid in registry.PROBLEM_IDS}  # page -> (widget key, start, kind)
+CONTROLS = {pid: lesson_control(pid) for pid in registry.PROBLEM_IDS}  # page -> (widget key, start, kind, step)
 
 
 def widget(at, key, kind):
     return at.slider(key=key) if kind == "slider" else at.number_input(key=key)
 
 
-def paired_changes(path: Path, key: str, start: float, kind: str, changes: int) -> tuple[float, float, float]:
+def paired_changes(path: Path, key: str, kind: str, values: list[float]) -> tuple[float, float, float]:
     """Alternate a change on the page with a change on the empty page, so that drift on a shared
     machine hits both alike; returns (page median, empty median, median of the paired ratios)."""
     page = AppTest.from_file(str(path), default_timeout=120).run()
     empty = AppTest.from_file(str(ROOT / "bench" / "empty_page.py"), default_timeout=120).run()
     page_times, empty_times = [], []
-    for i in range(1, changes + 1):
-        value = round(start * (1 - 0.3 * i / changes), 6) if kind == "slider" else start * (1 + 0.004 * i)
+    changes = len(values)
+    for i, value in enumerate(values, start=1):
         w = widget(page, key, kind)
         began = time.perf_counter()
         w.set_value(value).run()
         page_times.append(time.perf_counter() - began)
         assert not page.exception, page.exception
+        assert not page.error, f"{path.stem} refused {value}: {page.error[0].value}"  # a refusal is not a change
         e = empty.slider(key="x")
         began = time.perf_counter()
         e.set_value(round(0.9 - 0.5 * i / changes, 6)).run()
@@ -54,17 +61,27 @@ def paired_changes(path: Path, key: str, start: float, kind: str, changes: int) 
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--changes", type=int, default=30)
+    parser.add_argument("--json", type=Path, help="also write {page: ratio} here")
+    parser.add_argument("--no-figures", action="store_true", help="leave out the figures' sizes")
+    parser.add_argument("--pages", nargs="*", default=list(CONTROLS), help="these pages only (default: all)")
     args = parser.parse_args()
+    from serve import warm
+    print(f"warmed as serve.py does in {warm():.1f} s\n")
     print("| page | median server time per change | empty page, same run | × empty page (median of pairs) |")
     print("|---|---|---|---|")
-    worst = 0.0
-    for pid, (key, start, kind) in CONTROLS.items():
-        page, empty, ratio = paired_changes(ROOT / "pages" / f"{pid}.py", key, start, kind, args.changes)
-        worst = max(worst, ratio)
-        print(f"| {pid} | {page * 1000:.1f} ms | {empty * 1000:.1f} ms | {ratio:.2f} |")
-    print(f"\nworst ratio: {worst:.2f}")
+    ratios = {}
+    for pid in args.pages:
+        key, _, kind, _ = CONTROLS[pid]
+        page, empty, ratio = paired_changes(ROOT / "pages" / f"{pid}.py", key, kind, changes_of(pid, args.changes))
+        ratios[pid] = ratio
+        print(f"| {pid} | {page * 1000:.1f} ms | {empty * 1000:.1f} ms | {ratio:.2f} |", flush=True)
+    print(f"\nworst ratio: {max(ratios.values()):.2f}")
+    if args.json:
+        args.json.write_text(json.dumps(ratios, indent=1))
+    if args.no_figures:
+        return
     print("\n| figure | frames | JSON size |\n|---|---|---|")
-    for pid in CONTROLS:
+    for pid in args.pages:
         solution = importlib.import_module(f"solvers.{pid}").solve()
         for fig in importlib.import_module(f"viz.{pid}").figures(solution):
             print(f"| {pid}: {fig.key} | {len(fig.spec['animation']['times']) if 'animation' in fig.spec else 0} | {len(fig.json_bytes()) / 1024:.0f} KB |")

@@ -1,7 +1,7 @@
 """Benchmark 4, the lecture: hundreds of students open the same link, then each moves a control.
 
     python bench/lecture_load.py [--sessions 200] [--join 20] [--changes 5] [--pause 4 6]
-                                 [--processes 1] [--spread] [--pages PAGE ...]
+                                 [--processes 1 2] [--spread] [--pages PAGE ...] [--json OUT]
 
 A load generator that speaks Streamlit's own websocket protocol (the protobuf messages in
 streamlit.proto): each session connects to /_stcore/stream, sends BackMsg.rerun_script for its
@@ -13,11 +13,24 @@ one asyncio process. The same scenario runs against an empty one-slider app in t
 Reports first-load and interaction latency (p50/p95/p99), errors, bytes per interaction, the server's
 CPU time per run (first loads and interactions together; one process, holding one interpreter lock,
 has about a second of it per second) and server memory per session. Loopback only, bounded in count and time.
+
+Each session connects from its own loopback address (127.0.0.2 … 127.0.0.254, the socket bound to
+it; Linux's loopback answers all of 127/8), as the students of a lecture come from their own
+phones and laptops: the server's fair share (edge/fair_share.py) budgets messages per client
+address, and 200 sessions from one address would be throttled as one NAT'd room flooding. By
+default the scenario runs twice, on one process (``--processes 1``: a replica of the shipped image)
+and on two behind the nginx of ``deploy/`` (``--processes 2``: the shipped Compose topology, with
+``DL_TRUSTED_PROXIES=*`` as Compose sets it, so the app reads each client's address from nginx's
+X-Forwarded-For). Each page's lecture runs side by side with the same lecture on the empty page
+(its own servers of the same topology, at the same time): the machine is shared, and what else runs
+on it then weighs on the page and on its baseline alike; the ratio is the page's interaction p95
+over that of the empty page beside it.
 """
 from __future__ import annotations
 
 import argparse
 import asyncio
+import json
 import os
 import random
 import shutil
@@ -46,6 +59,12 @@ CONTROLS = {  # page -> (widget key suffix, start value, step per change)
     "": ("x", 0.5, 0.01),  # the empty app's slider
 } | {pid: (key, start, step) for pid in registry.PROBLEM_IDS for key, start, _, step in [lesson_control(pid)]}
 SESSION_TIMEOUT = 120.0
+SOURCE_ADDRESSES = [f"127.0.0.{n}" for n in range(2, 255)]
+
+
+def source_address(n: int) -> str:
+    """The loopback address session ``n`` connects from (253 of them, reused round the list)."""
+    return SOURCE_ADDRESSES[n % len(SOURCE_ADDRESSES)]
 
 
 @dataclass
@@ -97,14 +116,14 @@ def widget_state(wid: str, kind: str, value: float) -> WidgetState:
 
 
 async def session(url: str, page: str, delay: float, changes: int, results: Results, rng: random.Random,
-                  spread: bool, pause: tuple[float, float]) -> None:
+                  spread: bool, pause: tuple[float, float], source: str = "127.0.0.1") -> None:
     await asyncio.sleep(delay)
     key, value, step = CONTROLS[page]
     if spread:  # every student her own values: no two sessions ask for the same state
         step = step * rng.uniform(0.05, 0.95)
     try:
         async with websockets.connect(url, subprotocols=["streamlit"], max_size=None, open_timeout=60,
-                                      ping_interval=None) as ws:
+                                      ping_interval=None, local_addr=(source, 0)) as ws:
             seconds, _, messages = await run_script(ws, page, [])
             results.first_load.append(seconds)
             found = widget_id(messages, key)
@@ -158,6 +177,8 @@ def percentile(values: list[float], q: float) -> float:
 
 def start_servers(app: Path, processes: int) -> tuple[list[subprocess.Popen], str, Path | None, subprocess.Popen | None]:
     env = {**os.environ, "STREAMLIT_LOGGER_HIDE_WELCOME_MESSAGE": "true", "STREAMLIT_SERVER_COOKIE_SECRET": "bench"}
+    if processes > 1:  # behind nginx, as Compose runs it: the client is the one nginx's X-Forwarded-For names
+        env["DL_TRUSTED_PROXIES"] = "*"
     ports = [free_port() for _ in range(processes)]
     procs = []
     for port in ports:
@@ -184,7 +205,7 @@ async def scenario(url: str, page: str, sessions: int, join: float, changes: int
     cpu_before = cpu_seconds(pids)
     samples = [before]
     tasks = [asyncio.create_task(session(url, page, rng.uniform(0, join), changes, results, random.Random(i),
-                                         spread, pause)) for i in range(sessions)]
+                                         spread, pause, source_address(i))) for i in range(sessions)]
 
     async def sample_memory():
         while not all(t.done() for t in tasks):
@@ -214,6 +235,66 @@ def report(label: str, r: Results, mb_per_session: float, cpu_per_run: float) ->
     return row
 
 
+def stop_servers(procs: list[subprocess.Popen], workdir: Path | None, nginx: subprocess.Popen | None) -> None:
+    if nginx:
+        nginx.terminate()
+    for proc in procs:
+        proc.terminate()
+    for proc in procs:
+        try:
+            proc.wait(15)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+    if workdir:
+        shutil.rmtree(workdir, ignore_errors=True)
+
+
+async def side_by_side(empty_url: str, page_url: str, page: str, empty_pids: list[int], page_pids: list[int], args):
+    return await asyncio.gather(
+        scenario(empty_url, "", args.sessions, args.join, args.changes, empty_pids, args.spread, tuple(args.pause)),
+        scenario(page_url, page, args.sessions, args.join, args.changes, page_pids, args.spread, tuple(args.pause)))
+
+
+def run_topology(processes: int, pages: list[str], args) -> list[dict]:
+    """Each page's lecture side by side with the same lecture on the empty page: both on fresh
+    servers of this topology, at the same time, so that whatever else the machine is doing (it is
+    shared) weighs on both alike. The rows: the empty page beside each page, then the page."""
+    rows = []
+    for page in pages:
+        empty = start_servers(ROOT / "bench" / "empty_app.py", processes)
+        try:
+            app = start_servers(ROOT / "app.py", processes)
+            try:
+                (er, emb, ecpu), (pr, pmb, pcpu) = asyncio.run(side_by_side(
+                    empty[1], app[1], page, [p.pid for p in empty[0]], [p.pid for p in app[0]], args))
+            finally:
+                stop_servers(app[0], app[2], app[3])
+        finally:
+            stop_servers(empty[0], empty[2], empty[3])
+        beside, row = report(f"empty page beside {page}", er, emb, ecpu), report(page, pr, pmb, pcpu)
+        beside["p95 x empty"], row["p95 x empty"] = 1.0, row["int p95"] / beside["int p95"]
+        rows += [beside, row]
+        print(f"  done: {page} ({processes} process(es)): p95 {row['int p95'] * 1000:.0f} ms, "
+              f"the empty page's beside it {beside['int p95'] * 1000:.0f} ms", file=sys.stderr)
+    return rows
+
+
+def print_table(rows: list[dict], processes: int, args) -> None:
+    print(f"\n{args.sessions} sessions joining over {args.join:g} s, {args.changes} changes each "
+          f"{args.pause[0]:g}–{args.pause[1]:g} s apart, "
+          f"{processes} process(es){' behind nginx' if processes > 1 else ''}, "
+          f"{'each session its own values' if args.spread else 'the same values in every session'}, "
+          f"from {min(args.sessions, len(SOURCE_ADDRESSES))} loopback addresses\n")
+    print("| page | first load p50 / p95 | interaction p50 / p95 / p99 | p95 × empty | errors | KB per interaction "
+          "| server MB per session | server CPU per run |")
+    print("|---|---|---|---|---|---|---|---|")
+    for row in rows:
+        print(f"| {row['page']} | {row['first p50'] * 1000:.0f} / {row['first p95'] * 1000:.0f} ms | "
+              f"{row['int p50'] * 1000:.0f} / {row['int p95'] * 1000:.0f} / {row['int p99'] * 1000:.0f} ms | "
+              f"{row['p95 x empty']:.1f} | {row['errors']} ({row['interactions']} done) | "
+              f"{row['KB/interaction']:.0f} | {row['MB/session']:.2f} | {row['CPU/run'] * 1000:.1f} ms |")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--sessions", type=int, default=200)
@@ -221,46 +302,21 @@ def main() -> None:
     parser.add_argument("--changes", type=int, default=5)
     parser.add_argument("--pause", type=float, nargs=2, default=(4.0, 6.0), metavar=("LOW", "HIGH"),
                         help="seconds between a session's changes, drawn uniformly (default 4 6)")
-    parser.add_argument("--processes", type=int, default=1)
+    parser.add_argument("--processes", type=int, nargs="+", default=[1, 2],
+                        help="the topologies: 1 = one process, n > 1 = n processes behind nginx (default 1 2)")
     parser.add_argument("--pages", nargs="*", default=[p for p in CONTROLS if p])
     parser.add_argument("--spread", action="store_true",
                         help="each session moves its control by its own random steps (no shared states)")
+    parser.add_argument("--json", type=Path, help="also write {processes: {page: row}} here")
     args = parser.parse_args()
-    rows = []
-    targets = [("empty page", ROOT / "bench" / "empty_app.py", "")] + [
-        (page, ROOT / "app.py", page) for page in args.pages]
-    for label, app, page in targets:
-        procs, url, workdir, nginx = start_servers(app, args.processes)
-        try:
-            results, mb, cpu = asyncio.run(scenario(url, page, args.sessions, args.join, args.changes,
-                                                    [p.pid for p in procs], args.spread, tuple(args.pause)))
-            rows.append(report(label, results, mb, cpu))
-            print(f"  done: {label}", file=sys.stderr)
-        finally:
-            if nginx:
-                nginx.terminate()
-            for proc in procs:
-                proc.terminate()
-            for proc in procs:
-                try:
-                    proc.wait(15)
-                except subprocess.TimeoutExpired:
-                    proc.kill()
-            if workdir:
-                shutil.rmtree(workdir, ignore_errors=True)
-    empty_p95 = rows[0]["int p95"]
-    print(f"\n{args.sessions} sessions joining over {args.join:g} s, {args.changes} changes each "
-          f"{args.pause[0]:g}–{args.pause[1]:g} s apart, "
-          f"{args.processes} process(es){' behind nginx' if args.processes > 1 else ''}, "
-          f"{'each session its own values' if args.spread else 'the same values in every session'}\n")
-    print("| page | first load p50 / p95 | interaction p50 / p95 / p99 | p95 × empty | errors | KB per interaction "
-          "| server MB per session | server CPU per run |")
-    print("|---|---|---|---|---|---|---|---|")
-    for row in rows:
-        print(f"| {row['page']} | {row['first p50'] * 1000:.0f} / {row['first p95'] * 1000:.0f} ms | "
-              f"{row['int p50'] * 1000:.0f} / {row['int p95'] * 1000:.0f} / {row['int p99'] * 1000:.0f} ms | "
-              f"{row['int p95'] / empty_p95:.1f} | {row['errors']} ({row['interactions']} done) | "
-              f"{row['KB/interaction']:.0f} | {row['MB/session']:.2f} | {row['CPU/run'] * 1000:.1f} ms |")
+    results = {}
+    for processes in args.processes:
+        rows = run_topology(processes, args.pages, args)
+        print_table(rows, processes, args)
+        results[str(processes)] = {row["page"]: row for row in rows}
+        sys.stdout.flush()
+    if args.json:
+        args.json.write_text(json.dumps(results, indent=1))
 
 
 if __name__ == "__main__":

@@ -311,3 +311,53 @@ def test_everything_moving_stays_inside_the_view_and_g_drifts_at_the_answer_s_sp
     after = np.arange(len(m["t"])) >= m["leave_frame"]
     slope = np.polyfit(m["t"][after], m["x_G"][after], 1)[0]
     assert slope == pytest.approx(s.answers["vx_leave"], rel=1e-6)  # a straight line at ẋ_G = vx_leave
+
+
+# ----------------------------------------------------------------------------------------------
+# What a move of the slider finds ready (BENCHMARKS.md §1): the integration and its sampling depend
+# on θ₀ alone, and every angle the slider offers is solved and drawn at server start (WARM)
+
+
+def test_warm_lists_every_whole_degree_the_slider_offers():
+    assert [round(math.degrees(p["theta0"]), 9) for p in ladder.WARM] == list(range(5, 90))
+
+
+@settings(max_examples=10, deadline=None)
+@given(pos(0.2, 40), pos(0.5, 30), pos(0.5, 300), st.integers(5, 89))
+def test_the_motion_for_any_length_mass_and_gravity_is_the_unit_motion_scaled(L, g, m, degrees):
+    """Dimensional analysis, independent of the cache: lengths scale with L, times with √(L/g),
+    forces with m g, and the angle not at all."""
+    theta0 = math.radians(degrees)
+    unit = ladder.motion(ladder.solve(m=1.0, L=1.0, g=1.0, theta0=theta0))
+    scaled = ladder.motion(ladder.solve(m=m, L=L, g=g, theta0=theta0))
+    T = math.sqrt(L / g)
+    assert np.allclose(scaled["theta"], unit["theta"], rtol=0, atol=1e-15)
+    for length in ("x_G", "y_G", "x_A", "y_A", "x_B", "y_B"):
+        assert np.allclose(scaled[length], unit[length] * L, rtol=1e-12, atol=1e-12 * L)
+    assert np.allclose(scaled["t"], unit["t"] * T, rtol=1e-12)
+    assert np.allclose(scaled["N_wall"], unit["N_wall"] * m * g, rtol=1e-12, atol=1e-12 * m * g)
+    assert scaled["t_leave"] == pytest.approx(unit["t_leave"] * T, rel=1e-12)
+
+
+def test_the_shared_sampling_cannot_be_changed_by_one_figure():
+    m = ladder.motion(ladder.solve())
+    with pytest.raises(ValueError):
+        m["theta"][0] = 0.0  # a view of the shared, read-only states
+
+
+def test_a_move_of_the_slider_on_the_page_finds_its_angle_warmed():
+    """The page's slider value, converted to SI as the page converts it, is the very key WARM
+    solved: after the warm-up a move to any whole degree integrates nothing."""
+    from pathlib import Path
+
+    from streamlit.testing.v1 import AppTest
+
+    for params in ladder.WARM:
+        ladder_viz.figures(ladder.solve(**params))
+    at = AppTest.from_file(str(Path(__file__).resolve().parent.parent / "pages" / "sliding_ladder.py"),
+                           default_timeout=60).run()
+    before = ladder.integrated.cache_info().misses, ladder._sampled.cache_info().misses
+    for degrees in (47, 12, 88):
+        at.slider(key="sliding_ladder__si__theta0").set_value(float(degrees)).run()
+        assert not at.exception
+    assert (ladder.integrated.cache_info().misses, ladder._sampled.cache_info().misses) == before

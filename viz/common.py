@@ -270,10 +270,10 @@ def _compact(coords: dict) -> dict:
     if all(isinstance(t, Trail) for t in rows) and all(t.starts == rows[0].starts for t in rows):
         return {"slices": {"keys": list(coords), "paths": [t.path for t in rows], "starts": rows[0].starts}}
     if list(coords) == ["x", "y"] and all(isinstance(t, Spirals) and t.shape_of is rows[0].shape_of for t in rows):
-        sent = {"spirals": rows[0].shape_of}
-        if all(np.abs(np.asarray(unpacked(sent, len(rows[0]))[k]) - np.asarray(coords[k])).max() <= REBUILT
-               for k in coords):
-            return sent
+        shape = rows[0].shape_of  # rebuilt as ``unpacked`` does, compared as arrays (no lists between)
+        rebuilt = spiral_rows(shape["inner"], shape["outer"], shape["turns"], shape["start"], shape["n"])
+        if all(np.abs(again - np.asarray(coords[k])).max() <= REBUILT for k, again in zip(coords, rebuilt)):
+            return {"spirals": shape}
     return _affine(coords) or coords
 
 
