@@ -95,7 +95,7 @@ def test_without_katex_the_answers_still_show_their_values(browser, app_url):
     assert page.locator(".dl-answers li").count() >= 3 and page.locator(".dl-derivation code").count() >= 6
     # The network back: the next change typesets every formula shown, the unchanged ones too.
     context.unroute("**/katex.*.min.js")
-    box = page.locator("[data-testid='stSidebar'] [data-testid='stNumberInput'] input").first
+    box = page.locator("[data-testid='stNumberInput'] input").first  # a lesson's box, on the stage
     box.fill(f"{float(box.input_value()) * 1.1:.6g}")
     box.press("Enter")
     page.wait_for_function("() => !document.querySelector('.dl-text code')"
@@ -171,8 +171,8 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
     assert page.locator("[data-testid='stException']").count() == 0
     assert page.locator("[data-testid='stAlertContentError']").count() == 0
 
-    # A slider (angles, restitution) answers the keyboard too.
-    slider = page.locator("[data-testid='stSidebar'] [role='slider']").first
+    # A slider (angles, restitution) answers the keyboard too: a lesson's, on the stage beside the figure.
+    slider = page.locator(".st-key-dl_stage_controls [data-testid='stSlider'] [role='slider']").first
     if slider.count():
         before = answers_table(page)
         slider.focus()

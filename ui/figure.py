@@ -148,24 +148,26 @@ def declared(name: str = NAME):
 
 
 # The lecture view on a projector (issue 14): the component raises every text of the figure to at
-# least ``min_font`` px, multiplies line widths and marker sizes, and (``fit_screen``, the first
-# figure) sizes the graph to what is left of the first screen, so Play and the whole figure show.
+# least ``min_font`` px and multiplies line widths and marker sizes. In every view the motion on the
+# stage (``fit_screen``, ui/page.py) is sized to what is left of the first screen (below its top, and
+# above the lesson's controls where a phone stacks them under it), so Play, the whole figure and the
+# controls show without scrolling.
 # The legend stands in a column at the right: a projector is wide, and a row of legend above a
 # figure of equal axes would take the height the drawing needs.
 LECTURE = {"min_font": 18, "title_font": 22, "line_scale": 1.8, "marker_scale": 1.6, "legend_right": True}
 
 
-def payload(figure: Figure, bundle: str, style: dict | None) -> bytes:
+def payload(figure: Figure, bundle: str, style: dict | None, fit_screen: bool = False) -> bytes:
     """What a run sends for one figure: one JSON object as bytes, the figure's cached JSON spliced
     in as it is (no second encoding of it)."""
     head = orjson.dumps({"height": figure.height, "title": figure.title, "description": figure.description,
-                         "bundle": bundle, "style": style, "key_frame": figure.key_frame,
+                         "bundle": bundle, "style": style, "fit_screen": fit_screen, "key_frame": figure.key_frame,
                          "key_caption": figure.key_caption})
     return head[:-1] + b',"spec":' + figure.json_bytes() + b"}"
 
 
 def show(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False) -> None:
     """``page``: every figure of the page, so that all of them share one plotly.js bundle."""
-    style = {**LECTURE, "fit_screen": fit_screen} if lecture else None
     mount = declared()
-    mount(data=payload(figure, url(bundles()[kind_of(figure, page)][0]), style), key=figure.key)
+    mount(data=payload(figure, url(bundles()[kind_of(figure, page)][0]), LECTURE if lecture else None, fit_screen),
+          key=figure.key)

@@ -35,9 +35,33 @@ LECTURE_CSS = """
 PHONE_CSS = """
 <style>
   @media (max-width: 640px) {
+    .stMainBlockContainer { padding-top: 3.5rem; }
+    .stMainBlockContainer h1 { font-size: 1.65rem !important; padding-bottom: 0.25rem !important; }
     .stMainBlockContainer .katex-display { font-size: 0.9em; }
     .stMainBlockContainer table { font-size: 0.85rem; }
     .stMainBlockContainer th, .stMainBlockContainer td { padding: 0.3rem 0.35rem; }
+  }
+</style>
+"""
+
+
+# The stage (Study and Lecture): the motion with the lesson's controls beside it in a narrow column,
+# which a phone stacks below the figure; there the controls stand two to a row, so that the figure,
+# Play and the controls share the first screen, and a slider's thumb is the size of a thumb. On paper
+# the motion takes the page's width and the controls are left out.
+STAGE_CSS = """
+<style>
+  @media (max-width: 640px) {
+    .st-key-dl_stage_controls { display: grid !important; grid-template-columns: 1fr 1fr; column-gap: 14px; row-gap: 0; }
+    .st-key-dl_stage_controls > div { min-width: 0; width: auto !important; }
+    .st-key-dl_stage_controls [data-testid='stSlider'] [role='slider'] { width: 22px; height: 22px; }
+    .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p { font-size: 0.8rem; line-height: 1.25; }
+    .st-key-dl_stage .dl-figure h4.dl-title { font-size: 1.05rem; margin: 0 0 0.2rem 0; }
+  }
+  @media print {
+    .st-key-dl_stage [data-testid='stHorizontalBlock'] { display: block !important; }
+    .st-key-dl_stage [data-testid='stColumn'] { width: 100% !important; max-width: none !important; }
+    .st-key-dl_stage_controls { display: none !important; }
   }
 </style>
 """
@@ -83,6 +107,8 @@ PRINT_CSS = """
     h1, h2, h3, h4, .dl-text .dl-caption, .dl-text p:has(+ .dl-math) { break-after: avoid; }
     /* a step's title may carry inline math taller than its line (½ m R²): room above it at a page's top */
     .dl-text p:has(+ .dl-math) { padding-top: 6px; }
+    /* and so may a list item's (the slips' −kπ²/8) */
+    .dl-text li { padding-top: 4px; }
   }
 </style>
 """
@@ -166,12 +192,12 @@ def _requested(problem_id: str, key: tuple):
     return importlib.import_module(f"viz.{problem_id}").on_request(solution)
 
 
-def _figures(figures, lecture: bool = False) -> None:
-    """The motion and its companion plots, each with the text a screen reader gets. In the lecture
-    view the first (the motion) fills the first screen, in projector type."""
+def _figures(figures, page=None, lecture: bool = False, fit_first: bool = False) -> None:
+    """Figures (the motion and its companion plots, or those below the stage), each with the text a
+    screen reader gets, in projector type in the lecture view; ``fit_first``: the first fills the
+    first screen. ``page``: every figure of the page (they share one plotly.js bundle)."""
     for n, figure in enumerate(figures):
-        # title and description are drawn with it; the page's figures share one plotly.js bundle
-        show_figure(figure, page=figures, lecture=lecture, fit_screen=lecture and n == 0)
+        show_figure(figure, page=page or figures, lecture=lecture, fit_screen=fit_first and n == 0)
 
 
 def _leave_legacy_pages_mode() -> None:
@@ -196,9 +222,9 @@ def problem_page(problem_id: str) -> None:
     instructor = is_instructor()  # before mirror_to_url drops ?instructor=KEY from the address
     system, view = _page_flags(problem, practice_only=(seed is not None and not instructor) or link is not None)
     lecture, practice = view == "Lecture", view == "Practice"
-    if lecture:  # the projector: the figure gets the screen, one click brings the controls back
+    if lecture:  # the projector: the stage gets the screen, one click brings the sidebar back
         st.set_page_config(initial_sidebar_state="collapsed")
-    st.html(RUN_CSS + PHONE_CSS + PRINT_CSS + (LECTURE_CSS if lecture else ""))
+    st.html(RUN_CSS + PHONE_CSS + STAGE_CSS + PRINT_CSS + (LECTURE_CSS if lecture else ""))
     heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
     if link is not None:  # an assignment: its variant, fixed, and the link kept as it came
         _heading(problem, heading, [])
@@ -207,10 +233,16 @@ def problem_page(problem_id: str) -> None:
             return
         _assignment(problem, link, system)
         return
+    head = st.container()  # the title, filled once the state is known
+    motion_column = None
     if seed is None:
         base = {}
         st.sidebar.markdown("### Parameters")
-        params, warnings = parameter_panel(problem, system)
+        stage = None
+        if not practice:  # the stage: the motion, with the lesson's controls beside it (below it on a phone)
+            motion_column, stage_column = st.container(key="dl_stage").columns([7, 3], gap="medium")
+            stage = stage_column.container(key="dl_stage_controls")
+        params, warnings = parameter_panel(problem, system, stage=stage)
     else:  # a variant's givens are fixed, as on an assignment link: a nudged control would be another problem
         base = variant(solver, problem.id, seed)
         params, warnings = fixed_parameters(problem, system, base, seed)
@@ -223,23 +255,32 @@ def problem_page(problem_id: str) -> None:
         check_in_range(problem, params, system)
         solution, figures = _solve_and_draw(problem, params, system)
     except ValueError as error:
-        _heading(problem, heading, notices)
-        results.refused(error, system, solver.LIMIT_LABELS)
+        with head:
+            _heading(problem, heading, notices)
+        with motion_column or st.container():
+            results.refused(error, system, solver.LIMIT_LABELS)
         if isinstance(error, PhysicalLimitError):
             _beside_refusal(problem, params, practice)
         return
 
     answers = problem.answers_of(solution)
-    _heading(problem, heading, notices)
+    with head:
+        _heading(problem, heading, notices)
     if practice and not practice_panel(problem, solution, answers, system):
         takehome.downloads(problem, solution, answers, system, exercise=True)  # the statement and the method
         instructor_export(problem)  # the statement, the method and the answer box, nothing more
         return
+    if motion_column is not None:  # the motion on the stage, fitted to the first screen; its companions below
+        with motion_column:
+            show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True)
+        figures_below = figures[1:]
+    else:
+        figures_below = figures
     if lecture:
-        _figures(figures, lecture=True)
+        _figures(figures_below, figures, lecture=True, fit_first=motion_column is None)
     results.answer_section(solution, answers, system)
     if not lecture:
-        _figures(figures)
+        _figures(figures_below, figures)
     _on_request(problem, solution, figures)
     _derivation(solver, solution)
     takehome.downloads(problem, solution, answers, system)

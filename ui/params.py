@@ -239,13 +239,15 @@ def _differs(p: Any, value: Any, base: dict, system: str) -> bool:
 
 
 def parameter_panel(problem: Problem, system: str, base: dict | None = None,
-                    container=None) -> tuple[dict, list[str]]:
+                    container=None, stage=None) -> tuple[dict, list[str]]:
     """Draw the controls; return (parameters in SI for ``solve``, warnings about the URL).
 
-    The problem's primary parameters are always shown; the others behind a "More parameters"
+    The problem's primary parameters (the lesson's) are always shown, in ``stage`` if given (beside
+    the figure), else in ``container``; the others in ``container`` behind a "More parameters"
     toggle, which starts open when one of them is not at its starting value (a link that changes
     a mass shows it). A hidden parameter keeps its value."""
     container = container or st.sidebar
+    stage = stage or container
     base = base or {}
     remembered = st.session_state.get(f"{problem.id}__si", {})
     warnings = _initial_values(problem, system, base)
@@ -253,7 +255,7 @@ def parameter_panel(problem: Problem, system: str, base: dict | None = None,
     known = {p.name: remembered.get(p.name, base.get(p.name, p.default)) for p in params}
     first = [p for p in params if p.name in problem.primary] or list(params)
     rest = [p for p in params if p not in first]
-    values = {p.name: _in_si(p, _control(p, problem, system, container), system, known[p.name]) for p in first}
+    values = {p.name: _in_si(p, _control(p, problem, system, stage), system, known[p.name]) for p in first}
     if rest:
         more_key = f"{problem.id}__more"
         stored = {p.name: _in_si(p, st.session_state[_key(problem, system, p.name)], system, known[p.name])

@@ -355,6 +355,29 @@ def base_layout(title: str = "", equal_axes: bool = True, x_range=None, y_range=
     return layout
 
 
+def fitted(traces: Sequence[Moving | dict], pad: float = 0.08) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The x and y ranges that hold every point of ``traces`` (moving ones over all their frames,
+    static ones as drawn), each widened by ``pad`` of the larger span: the stage fits the motion, so
+    the bodies fill the plot (with equal axes plotly widens the roomier axis to keep the aspect)."""
+    def flat(rows) -> np.ndarray:
+        if isinstance(rows, Trail):
+            rows = [rows.path]
+        return np.concatenate([np.ravel(np.asarray(row, dtype=float)) for row in rows])
+
+    xs, ys = [], []
+    for trace in traces:
+        if isinstance(trace, Moving):
+            xs.append(flat(trace.per_frame["x"]))
+            ys.append(flat(trace.per_frame["y"]))
+        else:
+            xs.append(np.asarray(trace["x"], dtype=float).ravel())
+            ys.append(np.asarray(trace["y"], dtype=float).ravel())
+    x, y = np.concatenate(xs), np.concatenate(ys)
+    (x_lo, x_hi), (y_lo, y_hi) = (np.nanmin(x), np.nanmax(x)), (np.nanmin(y), np.nanmax(y))
+    margin = pad * max(x_hi - x_lo, y_hi - y_lo, 1e-9)
+    return (float(x_lo - margin), float(x_hi + margin)), (float(y_lo - margin), float(y_hi + margin))
+
+
 def padded(lo: float, hi: float, pad: float = 0.08) -> tuple[float, float]:
     span = hi - lo or 1.0
     return lo - pad * span, hi + pad * span

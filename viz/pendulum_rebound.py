@@ -8,7 +8,7 @@ import numpy as np
 from solvers import pendulum_rebound as solver
 from solvers.core import plain_fixed
 from solvers import units
-from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, line, moving, points,
+from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, fitted, line, moving, points,
                          r, segments, thumbnail, trails)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -28,10 +28,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
     reach = L + 2 * rad
     u = units.unit("length", system)
     floor = p["surface"] == "floor"
-    if floor:
-        ground = line([-reach * 1.1, reach * 1.1], [-p["d"] * k] * 2, "floor", COLORS["ground"], width=6)
-    else:
-        ground = line([-rad] * 2, [-reach * 1.1, 0.3 * reach], "wall", COLORS["ground"], width=6)
+    contact = ({"x": [0.0], "y": [-p["d"] * k]} if floor else {"x": [-rad], "y": [0.0]})  # where the surface is
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
     theta_deg = np.degrees(m["theta"])
     curve = line(r(m["t_curve"]), r(np.degrees(m["theta_curve"])), "θ(t)", COLORS["body"], width=2,
@@ -54,12 +51,19 @@ def figures(solution, system: str = "si") -> list[Figure]:
         moving(points(None, None, "now", COLORS["impulse"], size=10, xaxis="x2", yaxis="y2"),
                column(m["t"]), column(theta_deg)),
     ]
-    layout = base_layout(equal_axes=True, x_range=(-reach * 1.15, reach * 1.15),
-                         y_range=(-reach * 1.15, reach * 1.15), x_title=f"x ({u})", y_title=f"y ({u})")
+    # The stage fits the motion (pivot, rod, sphere and its arrow over every frame) and the surface's
+    # contact; the surface runs past the view whatever the window's aspect.
+    x_range, y_range = fitted([pivot, *moving_traces[1:5], contact])
+    span = 3 * max(x_range[1] - x_range[0], y_range[1] - y_range[0])
+    if floor:
+        ground = line(r([x_range[0] - span, x_range[1] + span]), [-p["d"] * k] * 2, "floor", COLORS["ground"], width=6)
+    else:
+        ground = line([-rad] * 2, r([y_range[0] - span, y_range[1] + span]), "wall", COLORS["ground"], width=6)
+    layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range, x_title=f"x ({u})", y_title=f"y ({u})")
     # Stacked, not side by side, so that a phone-width window keeps both readable.
-    layout["yaxis"]["domain"] = [0.38, 1.0]
+    layout["yaxis"]["domain"] = [0.42, 1.0]
     layout["xaxis2"] = {"anchor": "y2", "title": {"text": "t (s)"}}
-    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.24], "title": {"text": "θ (°)"}}
+    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.22], "title": {"text": "θ (°)"}}
     layout["height"] = 700
     spec = animated([ground, pivot, curve, impact_line], moving_traces, m["t"], layout)
     description = (f"Side view. Released from rest at θ₀ = {deg(p['theta0'])}, the pendulum "

@@ -7,7 +7,7 @@ import numpy as np
 
 from solvers import rod_disk_spring as solver
 from solvers.core import plain_fixed, plain_number as n
-from viz.common import (COLORS, Figure, animated, base_layout, circles, line, moving, points, r, segments,
+from viz.common import (COLORS, Figure, animated, base_layout, circles, fitted, line, moving, points, r, segments,
                          spirals, thumbnail)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -46,8 +46,9 @@ def figures(solution, system: str = "si") -> list[Figure]:
                *segments(cx, cy, cx + R * np.sin(spin), cy + R * np.cos(spin))),
         moving(bars, y=energy),
     ]
-    layout = base_layout(equal_axes=True, x_range=(-reach * 1.15, reach * 1.15),
-                         y_range=(-reach * 1.15, reach * 1.15))
+    # The stage fits the motion (the pivot, the spring, the rod and the disk over every frame) and the θ₂ mark.
+    x_range, y_range = fitted([pivot, theta2_mark, *moving_traces[:-1]])
+    layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range)
     layout["yaxis"]["domain"] = [0.40, 1.0]  # room between for the x title and the ticks, in lecture type too
     layout["xaxis2"] = {"anchor": "y2"}
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.22], "range": [0, top * 1.05],

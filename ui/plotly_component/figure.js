@@ -26,6 +26,13 @@ const CSS = `
 .dl-figure.dl-lecture .dl-hint, .dl-figure.dl-lecture .dl-description, .dl-figure.dl-lecture .dl-readout { font-size: 18px; }
 .dl-figure.dl-lecture h4.dl-title { font-size: 1.6rem; }
 .dl-figure .dl-key { display: none; font-size: 14px; font-style: italic; margin: 0.2rem 0; }
+@media (hover: none) { .dl-figure .dl-hint { display: none; } }
+/* A phone's stage: the caption's first two lines under the motion, the whole of it on a tap (the graph's
+   name carries all of it for a screen reader), so the lesson's controls below stay in the first screen. */
+@media (max-width: 640px) {
+  .dl-figure.dl-staged .dl-description:not(.dl-open) { display: -webkit-box; -webkit-line-clamp: 2;
+    -webkit-box-orient: vertical; overflow: hidden; cursor: pointer; }
+}
 @media print {
   .dl-figure { break-inside: avoid; }
   .dl-figure .dl-controls, .dl-figure .dl-hint { display: none !important; }
@@ -85,6 +92,7 @@ class Figure {
     this.controls = $(".dl-controls");
     this.graph = $(".dl-graph");
     this.description = $(".dl-description");
+    this.description.addEventListener("click", () => this.description.classList.toggle("dl-open"));
     this.keyCaption = $(".dl-key");
     this.keyFrame = 0;
     this.frames = [];
@@ -195,13 +203,20 @@ class Figure {
     this.playSeq++;
   }
 
-  // The first figure of the lecture view fills what is left of the first screen below its top, so
+  // The motion on the stage (ui/page.py) fills what is left of the first screen below its top, so
   // the whole figure and its Play button show without scrolling (the page's scroll offset is added
-  // back). Capped at the figure's own height.
+  // back); where the lesson's controls stand below it (a phone stacks the stage's columns), the room
+  // from the graph's foot to theirs is kept too (its caption, the controls). Capped at the figure's own
+  // height.
   screenHeight(height) {
     const main = this.root.closest("[data-testid='stMain']");
-    const top = this.graph.getBoundingClientRect().top + (main ? main.scrollTop : 0);
-    return Math.max(280, Math.min(height, Math.floor(window.innerHeight - top - 12)));
+    const graph = this.graph.getBoundingClientRect();
+    const top = graph.top + (main ? main.scrollTop : 0);
+    const stage = this.root.closest(".st-key-dl_stage");
+    const controls = stage && stage.querySelector(".st-key-dl_stage_controls");
+    const box = controls && controls.getBoundingClientRect();
+    const below = box && box.height && box.top > graph.top ? box.bottom - graph.bottom : 0;  // caption, controls
+    return Math.max(200, Math.min(height, Math.floor(window.innerHeight - top - below - 12)));
   }
 
   async draw(args, theme, seq) {
@@ -223,9 +238,15 @@ class Figure {
       this.timeLabel = [current.prefix || "t = ", current.suffix || ""];
     }
     this.root.classList.toggle("dl-lecture", !!style);
+    this.root.classList.toggle("dl-staged", !!args.fit_screen);
+    // A phone's stage has no room for a legend of many rows: the caption says what each colour is.
+    if (args.fit_screen && this.root.clientWidth < 500) layout.showlegend = false;
     if (style) spec.data = emphasised(spec.data, layout, style);
+    const thin = args.fit_screen && !style ? outlineScale(this.root.clientWidth) : 1;  // a projector keeps them thick
+    if (thin < 1) spec.data = scaled(spec.data, thin, Math.max(thin, 0.75));
     this.controls.hidden = !spec.animation;  // before measuring: the controls sit above the graph
-    layout.height = style && style.fit_screen ? this.screenHeight(args.height) : args.height;
+    this.fitHeight = args.fit_screen ? args.height : 0;
+    layout.height = this.fitHeight ? this.screenHeight(this.fitHeight) : args.height;
     layout.autosize = true;
     const frames = unfold(spec.animation, spec.data);
     this.pause();
@@ -248,6 +269,29 @@ class Figure {
     this.controls.hidden = !this.frameNames.length;
     this.frameIndex = 0;
     this.width = this.root.clientWidth;
+    if (this.fitHeight) this.watchStage();
+  }
+
+  // A figure fitted to the first screen fits again when what shares the screen with it changes: the
+  // lesson's controls drawn (or redrawn taller) after it, the window turned or resized.
+  watchStage() {
+    const stage = this.root.closest(".st-key-dl_stage");
+    if (!this.refitting) {
+      this.refitting = () => {
+        if (!this.fitHeight || !this.Plotly || !this.graph.layout || this.printing) return;
+        const height = this.screenHeight(this.fitHeight);
+        // autosize kept: a height relayout alone turns it off, and the width would no longer follow the sidebar
+        if (Math.abs(height - this.graph.layout.height) > 2) quiet(this.Plotly.relayout(this.graph, {height: height, autosize: true}));
+      };
+      this.stageWatch = new ResizeObserver(() => this.refitting());
+      window.addEventListener("resize", () => this.refitting());
+    }
+    if (stage && stage !== this.watched) {  // the stage grows when the controls are drawn or change
+      if (this.watched) this.stageWatch.unobserve(this.watched);
+      this.stageWatch.observe(stage);
+      this.watched = stage;
+    }
+    this.refitting();
   }
 
   // On paper (the browser's Print, or print media): the animation's key instant, drawn at the
@@ -381,7 +425,8 @@ function emphasised(data, layout, style) {
   const at = (font) => Object.assign({}, font || {}, {size: Math.max((font && font.size) || 0, min)});
   layout.font = at(layout.font);
   layout.legend = Object.assign({}, layout.legend, {font: at((layout.legend || {}).font)},
-    style.legend_right ? {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"} : {});
+    // (not beside a 3-D scene, which is as wide as it is deep and needs the width)
+    style.legend_right && !layout.scene ? {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"} : {});
   if (layout.title) layout.title = Object.assign({}, layout.title, {font: at(Object.assign({size: style.title_font}, (layout.title || {}).font))});
   const axis = (a) => Object.assign({}, a, {tickfont: at((a || {}).tickfont), automargin: true,
     title: Object.assign({}, (a || {}).title, {font: at(((a || {}).title || {}).font)})});
@@ -390,13 +435,22 @@ function emphasised(data, layout, style) {
   if (layout.annotations) layout.annotations = layout.annotations.map(n => Object.assign({}, n, {font: at(n.font)}));
   if (layout.sliders) layout.sliders = layout.sliders.map(sl => Object.assign({}, sl, {font: at(sl.font),
     currentvalue: Object.assign({}, sl.currentvalue, {font: at((sl.currentvalue || {}).font)})}));
+  return scaled(data, style.line_scale, style.marker_scale);
+}
+
+// Lines and markers drawn ``line`` and ``marker`` times as thick.
+function scaled(data, line, marker) {
   return data.map(t => {
     const out = Object.assign({}, t);
-    if (t.line && t.line.width) out.line = Object.assign({}, t.line, {width: t.line.width * style.line_scale});
-    if (t.marker && t.marker.size) out.marker = Object.assign({}, t.marker, {size: t.marker.size * style.marker_scale});
+    if (t.line && t.line.width) out.line = Object.assign({}, t.line, {width: t.line.width * line});
+    if (t.marker && t.marker.size) out.marker = Object.assign({}, t.marker, {size: t.marker.size * marker});
     return out;
   });
 }
+
+// The motion's outlines follow the stage's width: drawn for about 700 px, down to half as thick on a
+// phone, so a small sphere stays a sphere, not a ring.
+function outlineScale(width) { return Math.max(0.5, Math.min(1, width / 700)); }
 
 // ------------------------------------------------------------------ on paper
 // The width a figure is drawn at for print: an A4 or Letter page's text block (ui/page.py PRINT_CSS
