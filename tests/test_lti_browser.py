@@ -4,7 +4,8 @@ is third-party, and the flow uses no cookie). The instructor adds an assignment 
 linking (the LMS's "add external tool" dialog): the LMS receives a resource link with its line
 item. A learner launches it, lands on their own variant, answers right; their score reaches the
 platform's AGS endpoint by itself. The instructor launches and sees that course's gradebook, with
-the grade sent, and no key asked, and reads the course roster from the LMS (NRPS): who has not started. Each frame's page is shot into screenshots/lti/."""
+the grade sent, and no key asked, and reads the course roster from the LMS (NRPS): who has not started. The journey runs on SQLite and on
+PostgreSQL, in one Chromium; each frame's page is shot (SQLite's run) into screenshots/lti/."""
 from __future__ import annotations
 
 import json
@@ -13,8 +14,9 @@ import time
 from pathlib import Path
 
 import pytest
+from sqlalchemy import text
 
-from assignments import records, signing
+from assignments import db, records, signing
 from lti import launch as lti
 from practice.variants import ASSIGNMENT, variant
 from scripts.live_app import CHROMIUM, free_port, launch_browser, start_app, wait_healthy, wait_until_idle
@@ -43,8 +45,10 @@ def in_lms(page, lms, start: str):
 SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844)}
 
 
-def shoot(page, name: str, tool=None) -> None:
+def shoot(page, name: str, tool=None, shots: bool = True) -> None:
     """The LMS page with the tool's frame, at each size (the frame's page idle again after each)."""
+    if not shots:
+        return
     SHOTS.mkdir(parents=True, exist_ok=True)
     for size, (width, height) in SIZES.items():
         page.set_viewport_size({"width": width, "height": height})
@@ -54,33 +58,48 @@ def shoot(page, name: str, tool=None) -> None:
     page.set_viewport_size({"width": 1400, "height": 1000})
 
 
-def test_deep_link_learner_launch_and_grade_passback_in_an_lms_frame(tmp_path, monkeypatch):
+@pytest.fixture(scope="module")
+def browser():
+    """One Chromium for both databases' journeys (its start is not what either tests)."""
+    with sync_api.sync_playwright() as p:
+        started = launch_browser(p)
+        yield started
+        started.close()
+
+
+def test_deep_link_learner_launch_and_grade_passback_in_an_lms_frame(browser, database, tmp_path, monkeypatch):
+    """The same journey on SQLite and on PostgreSQL (``database``: a fresh, migrated database on
+    each); the app's own process records and sends, so the backend is the one it was started on."""
     monkeypatch.setenv(signing.SECRET_ENV, SECRET)  # this process works out the learner's right answer
+    sqlite = database.dialect.name == "sqlite"  # SQLite: the app's own file in its data directory, as shipped
     port = free_port()
     tool_url = f"http://127.0.0.1:{port}"
     with LmsEmulator(tool_url, host="localhost") as lms:
         platforms_file = tmp_path / "platforms.json"
         platforms_file.write_text(json.dumps([lms.registration_entry()]))
         env = {"DL_INSTRUCTOR_KEY": KEY, "DL_COURSE_SECRET": SECRET, "DL_DATA_DIR": str(tmp_path / "data"),
-               "DL_DATABASE_URL": "", "DL_LTI_PLATFORMS": str(platforms_file), "DL_PUBLIC_URL": tool_url}
+               "DL_DATABASE_URL": "" if sqlite else database.url.render_as_string(hide_password=False),
+               "DL_LTI_PLATFORMS": str(platforms_file), "DL_PUBLIC_URL": tool_url}
         proc = start_app(port, env=env)
         try:
             wait_healthy(tool_url, proc=proc)
-            with sync_api.sync_playwright() as p:
-                browser = launch_browser(p)
-                context = browser.new_context(viewport={"width": 1400, "height": 1000})
-                page = context.new_page()
-                errors: list[str] = []
-                page.on("pageerror", lambda exc: errors.append(str(exc)))
-                run_journey(page, lms)
-                assert not errors, errors
-                browser.close()
+            context = browser.new_context(viewport={"width": 1400, "height": 1000})
+            page = context.new_page()
+            errors: list[str] = []
+            page.on("pageerror", lambda exc: errors.append(str(exc)))
+            run_journey(page, lms, shots=sqlite)  # the pages look alike on both
+            assert not errors, errors
+            context.close()
         finally:
             proc.terminate()
             proc.wait(10)
+        kept = db.make_engine(f"sqlite:///{tmp_path / 'data' / 'dynamics-lab.sqlite'}") if sqlite else database
+        with kept.connect() as c:  # what the journey left is in this backend, not elsewhere
+            assert c.execute(text("SELECT count(*) FROM lti_score WHERE status = 'sent'")).scalar() == 1
+            assert c.execute(text("SELECT count(*) FROM attempt")).scalar() == 1
 
 
-def run_journey(page, lms) -> None:
+def run_journey(page, lms, shots: bool = True) -> None:
     # The instructor adds the activity from the LMS's dialog (deep linking).
     frame, _ = in_lms(page, lms, lms.login_url("teacher-1", INSTRUCTOR, deep_link=True))
     frame.get_by_label("Problem").select_option("disk_wall")
@@ -91,7 +110,7 @@ def run_journey(page, lms) -> None:
         if boxes.nth(i).get_attribute("value") != "v1x":
             boxes.nth(i).uncheck()
     frame.get_by_label("Attempts per answer").fill("3")
-    shoot(page, "deep-link-picker")
+    shoot(page, "deep-link-picker", shots=shots)
     frame.get_by_role("button", name="Add to the course").click()
     frame.get_by_text("The LMS received: Week 6: the disk and the wall").wait_for(timeout=30_000)
     (item,) = lms.deep_links[-1]
@@ -111,7 +130,7 @@ def run_journey(page, lms) -> None:
     frame.get_by_role("button", name="Check").click()
     frame.get_by_text("Recorded: attempt 1 of 3").first.wait_for(timeout=60_000)
     wait_until_idle(tool)
-    shoot(page, "learner-in-lms", tool)
+    shoot(page, "learner-in-lms", tool, shots)
 
     # The score reaches the LMS by itself (the app's sender thread, the platform's AGS endpoint).
     deadline = time.monotonic() + 30
@@ -137,4 +156,4 @@ def run_journey(page, lms) -> None:
     wait_until_idle(tool)
     roster = frame.locator("[data-testid='stMain']").inner_text()
     assert roster.index("Bea Roth") < roster.index("Ann Ito")  # not started first
-    shoot(page, "instructor-gradebook-in-lms", tool)
+    shoot(page, "instructor-gradebook-in-lms", tool, shots)
