@@ -9,6 +9,7 @@ import pytest
 
 from assignments import db, migrate, records
 from lti import launch as lti
+from assignments.identity import parameters
 from solvers import pendulum_rebound
 from tests.test_assignment_pages import INSTRUCTOR_PAGE, ROOT, answer, course, student  # noqa: F401 (fixture)
 
@@ -74,3 +75,58 @@ def test_the_lms_instructor_sees_their_course_only_without_a_key(course):
     assert any("Grades sent to the LMS" in m.value for m in at.markdown)
     key_holder = AppTest.from_file(INSTRUCTOR_PAGE, default_timeout=60).run()
     assert key_holder.text_input(key="assign__instructor_key")  # without a launch: the key, as before
+
+
+HANDOUTS = str(ROOT / "pages" / "handouts.py")
+
+
+def handouts_as(arrival: dict | None) -> AppTest:
+    at = AppTest.from_file(HANDOUTS, default_timeout=60)
+    if arrival is not None:
+        at.query_params["lti"] = lti.handoff(arrival)
+    return at.run()
+
+
+def test_an_lms_instructor_gets_their_course_answer_keys_and_no_other(course):
+    """The answer keys of the course's own assignments open without the key; another course's, the
+    signed-link assignments and the numbered variants (every course's) do not; a learner gets none."""
+    migrate.upgrade()
+    ours, theirs = placed("Ours", "course-1", "rl-1"), placed("Theirs", "course-2", "rl-2")
+    records.create(records.Settings.of("Signed links only", "pendulum_rebound", ("theta_rebound",), 5e-3, DUE, 3))
+    mine, _ = lms_student(ours, "learner-1")
+    other, _ = lms_student(theirs, "learner-2")
+    teacher = {"role": "instructor", "iss": ISSUER, "ctx": "course-1", "title": "Dynamics 101", "a": ours}
+    at = handouts_as(teacher)
+    assert not at.exception and not at.text_input  # no key asked
+    assert not at.radio(key="handouts__what").value.startswith("Answer")
+    assert [r.key for r in at.radio] == ["handouts__what"]  # no range of variants: only the course's rosters
+    (choice,) = at.selectbox(key="handouts__assignment").options
+    assert "Ours" in choice
+    at.radio(key="handouts__what").set_value("Answer key").run()
+    sheets = "\n".join(m.value for m in at.markdown)
+    assert not at.exception and f"Student {mine}" in sheets and other not in sheets
+    solution = pendulum_rebound.solve(**parameters(records.roster(ours)[0], pendulum_rebound, "pendulum_rebound"))
+    assert f"= {solution.answers['energy_loss']:.2f}" in sheets  # their energy lost, in J (as the sheet rounds)
+
+    elsewhere = handouts_as({**teacher, "ctx": "course-2", "a": theirs})  # another course's instructor
+    (choice,) = elsewhere.selectbox(key="handouts__assignment").options
+    assert "Theirs" in choice and "Ours" not in choice
+
+    for arrival in ({"role": "student", "a": ours, "l": mine, "s": records.student_seed(ours, mine)}, None):
+        closed = handouts_as(arrival)  # a learner from the LMS, or nobody: the key box, nothing else
+        assert not closed.exception and closed.text_input(key="handouts__instructor_key")
+        assert not closed.selectbox and not closed.radio
+
+
+def test_an_lms_instructor_on_a_problem_page_is_told_their_course_keys_not_given_the_variants(course):
+    migrate.upgrade()
+    placed("Ours", "course-1", "rl-1")
+    placed("Theirs", "course-2", "rl-2")
+    at = AppTest.from_file(str(ROOT / "pages" / "pendulum_rebound.py"), default_timeout=60)
+    at.query_params["practice"] = "1"  # the export is in Practice
+    at.query_params["lti"] = lti.handoff({"role": "instructor", "iss": ISSUER, "ctx": "course-1", "a": 0})
+    at.run()
+    said = "\n".join(m.value for m in at.markdown)
+    assert not at.exception and "Your course's assignments here: “Ours”" in said and "Theirs" not in said
+    assert at.text_input(key="pendulum_rebound__instructor_key")  # the seed variants: still the key
+    assert not any(b.label == "Prepare the CSV" for b in at.button)

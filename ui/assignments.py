@@ -107,6 +107,20 @@ def lti_arrival() -> dict | None:
     return st.session_state.get("lti__arrival")
 
 
+def lms_course() -> dict | None:
+    """The LMS course whose instructor (or TA) launched this session (issuer, context), or None. It
+    opens that course's assignments, their gradebook and their answer keys without the instructor
+    key, and nothing else the key opens (the ``?seed=N`` variants shared by every course, other
+    courses' assignments, creating assignments here)."""
+    arrival = lti_arrival()
+    return arrival if arrival and arrival.get("role") == "instructor" and arrival.get("ctx") else None
+
+
+def course_assignments(course: dict) -> set[int]:
+    """The assignments placed in the LMS course ``course`` (``lms_course()``'s)."""
+    return set(lti_store.contexts_assignments(course["iss"], course["ctx"]))
+
+
 def student_link(problem: Problem) -> StudentLink | None:
     """None unless the page was opened with an assignment link or from an LMS launch; else the
     checked link (both identities meet here, and go on to the same records)."""
@@ -817,7 +831,7 @@ def instructor_page() -> None:
     _leave_legacy_pages_mode()  # a deep link to /gradebook on a fresh server: see ui/page.py
     st.markdown("# Assignments\n:gray[Signed per-student links, every attempt recorded, the gradebook.]")
     arrival = lti_arrival()
-    course = arrival if arrival and arrival.get("role") == "instructor" else None
+    course = lms_course()
     if arrival and arrival.get("refused"):
         st.error(arrival["refused"])
     if course is None and not instructor_key_entry("assign__instructor_key", "assignments"):
@@ -833,7 +847,7 @@ def instructor_page() -> None:
     try:
         show_archived = st.session_state.get("assign__archived", False)
         if course is not None:  # an instructor from the LMS: this course's assignments, no others
-            placed = set(lti_store.contexts_assignments(course["iss"], course["ctx"]))
+            placed = course_assignments(course)
             existing = [(aid, s) for aid, s in records.assignments(archived=show_archived) if aid in placed]
             st.info(f"From your course site{': ' + plain(course['title']) if course.get('title') else ''}. These "
                     "are its Dynamics Lab assignments; add another with your LMS's “add external tool” dialog.",

@@ -1,4 +1,4 @@
-"""Handouts for a class (instructor key): for a problem and a range of variants, or an assignment's
+"""Handouts for a class (instructor key; an LMS instructor's session: its course's assignments only): for a problem and a range of variants, or an assignment's
 roster, each student's statement with their givens and room to work, and a separate answer key with
 each variant's answers and derivation. A printable page (the browser's Print: one sheet per student,
 ui/page.py PRINT_CSS) and the same as one LaTeX file or Markdown.
@@ -18,7 +18,8 @@ from practice.variants import MAX_SEED, variant
 from ui import documents
 from ui.catalog import BY_ID, PROBLEMS, Problem
 from ui.page import PRINT_CSS, _leave_legacy_pages_mode
-from ui.practice import instructor_key_entry
+from ui.assignments import course_assignments, lms_course
+from ui.practice import instructor_key_entry, is_instructor
 
 MAX_SHEETS = 60  # per handout: a longer class is printed in parts (each sheet is typeset in the page)
 RANGE, ROSTER = "A range of variants", "An assignment's roster"
@@ -89,9 +90,11 @@ def _from_link() -> None:
         st.session_state["handouts__what"] = KEY
 
 
-def _whose() -> tuple[Problem, list[tuple[str, dict, str]], tuple[str, ...], str] | None:
-    """The problem, the students, the answers that count and a file name's stem, as chosen."""
-    source = st.radio("Whose numbers", (RANGE, ROSTER), horizontal=True, key="handouts__source")
+def _whose(placed: set[int] | None = None) -> tuple[Problem, list[tuple[str, dict, str]], tuple[str, ...], str] | None:
+    """The problem, the students, the answers that count and a file name's stem, as chosen.
+    ``placed``: an LMS instructor's session, its course's assignments only (no range of variants)."""
+    source = ROSTER if placed is not None else st.radio("Whose numbers", (RANGE, ROSTER), horizontal=True,
+                                                        key="handouts__source")
     if source == RANGE:
         problem = BY_ID[st.selectbox("Problem", [p.id for p in PROBLEMS], format_func=lambda i: BY_ID[i].title,
                                      key="handouts__problem")]
@@ -103,12 +106,14 @@ def _whose() -> tuple[Problem, list[tuple[str, dict, str]], tuple[str, ...], str
             return None
         return problem, variant_range(problem, first, last, app_base()), (), f"{problem.id}-variants-{first}-{last}"
     try:
-        existing = records.assignments()
+        existing = [(aid, s) for aid, s in records.assignments() if placed is None or aid in placed]
     except records.RecordingUnavailable as error:
         st.error(str(error))
         return None
     if not existing:
-        st.markdown("No assignments yet: create one on the Assignments page.")
+        st.markdown("No assignments yet: create one on the Assignments page." if placed is None else
+                    "Your course has no Dynamics Lab assignments yet: add one with your LMS's “add external "
+                    "tool” dialog.")
         return None
     chosen = st.selectbox("Assignment", existing, key="handouts__assignment",
                           format_func=lambda a: f"{a[1].title} ({BY_ID[a[1].problem].title if a[1].problem in BY_ID else a[1].problem})")
@@ -135,11 +140,22 @@ def handouts_page() -> None:
     st.markdown("# Handouts\n:gray[Printable sheets for a class: each student's givens with room to work, and a "
                 "separate answer key. Print with the browser (one student per sheet), or download LaTeX or "
                 'Markdown.]<span class="dl-screen-only"></span>', unsafe_allow_html=True)
-    if not instructor_key_entry("handouts__instructor_key", "the handouts and their answer keys"):
+    course = lms_course()
+    if course is not None and not is_instructor():  # from the LMS: that course's assignments, no key
+        try:
+            placed = course_assignments(course)
+        except records.RecordingUnavailable as error:
+            st.error(str(error))
+            return
+        st.info("From your course site: the handouts and answer keys of its Dynamics Lab assignments.",
+                icon=":material/school:")
+    elif not instructor_key_entry("handouts__instructor_key", "the handouts and their answer keys"):
         return
+    else:
+        placed = None
     st.query_params.pop("instructor", None)  # an instructor link's key leaves the address bar
     _from_link()
-    chosen = _whose()
+    chosen = _whose(placed)
     if chosen is None:
         return
     problem, who, counted, stem = chosen

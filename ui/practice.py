@@ -215,6 +215,29 @@ def instructor_key_entry(key: str, what: str = "the answer keys") -> bool:
     return False
 
 
+def _course_keys(problem: Problem) -> None:
+    """An LMS instructor's session (no key given): its course's assignments on this problem, whose
+    answer keys the Handouts page gives it; the ``?seed=N`` variants below are every course's, so
+    they stay behind the key."""
+    from ui.assignments import course_assignments, lms_course  # (ui.assignments imports this module)
+    from assignments import records
+
+    course = lms_course()
+    if course is None:
+        return
+    try:
+        placed = course_assignments(course)
+        mine = [s.title for aid, s in records.assignments() if aid in placed and problem.id in s.problems]
+    except records.RecordingUnavailable as error:
+        st.error(str(error))
+        return
+    said = ", ".join(f"“{plain(t)}”" for t in mine) if mine else "none on this problem yet"
+    st.markdown(f"From your course site. Your course's assignments here: {said}. Each student's givens and "
+                "answers are on the **Handouts** page (in the menu, For instructors; choose **Answer key**), "
+                "with no key to type. The numbered variants of `?seed=N` links below are shared by every "
+                "course: they need the instructor key.")
+
+
 def _key_typed(key: str) -> None:
     """The key box changed: one try, and the box emptied (a rerun does not try the same text again)."""
     typed = st.session_state.get(key) or ""
@@ -225,6 +248,8 @@ def _key_typed(key: str) -> None:
 
 def instructor_export(problem: Problem) -> None:
     with st.expander("For instructors: per-student variants"):
+        if not is_instructor():
+            _course_keys(problem)
         if not instructor_key_entry(f"{problem.id}__instructor_key"):
             return
         st.markdown(f"Hand out `?seed=N` links (N from 0 to {MAX_SEED:,}); each gives its own numbers, the "
