@@ -143,6 +143,9 @@ def send(row_id: int, bound: Engine | None = None, post=requests.post) -> str:
     try:
         if platform is None or not lineitem:
             raise SendFailed("the LMS gave this link no grade column (line item), or is no longer registered", False)
+        if not platforms.owns(platform, lineitem):
+            raise SendFailed(f"the grade column's address {lineitem[:200]} is not on the LMS's registered "
+                             "addresses (its issuer, token, key set or frame origins)", False)
         score = score_of(identity, bound)
         if score is None:
             raise SendFailed("the assignment no longer exists", False)

@@ -46,6 +46,19 @@ class Platform:
     frame_origins: tuple[str, ...]
 
 
+def owns(platform: Platform, url: object) -> bool:
+    """``url`` is an http(s) address on one of the platform's own origins (its issuer, login, token,
+    key set and frame origins): where the tool sends a score, a bearer token or a signed answer.
+    The LTI specs do not name the hosts of a service URL; the tool refuses others rather than be
+    told by a launch to post tokens or students' scores to any address (a server-side request
+    forgery, a ``javascript:`` URL)."""
+    if not isinstance(url, str) or not _URL.match(url):
+        return False
+    known = {origin(u) for u in (platform.issuer, platform.auth_login_url, platform.auth_token_url,
+                                 platform.key_set_url)} | set(platform.frame_origins)
+    return origin(url).lower() in {k.lower() for k in known}
+
+
 def enabled() -> bool:
     return bool(os.environ.get(PLATFORMS_ENV, "").strip())
 

@@ -35,9 +35,11 @@ def learners(issuer: str, client_id: str, url: str, get=requests.get, post=reque
     if platform is None or not url:
         raise RosterUnavailable("This course site does not offer its roster to Dynamics Lab.")
     try:
-        token = access_token(platform, MEMBERSHIP_SCOPE, post)
-        members, pages = [], 0
+        token, members, pages = "", [], 0
         while url and pages < MAX_PAGES:
+            if not platforms.owns(platform, url):  # the launch's, or a next page's: the LMS's own address only
+                raise RosterUnavailable(f"The roster's address {str(url)[:200]} is not the LMS's registered address.")
+            token = token or access_token(platform, MEMBERSHIP_SCOPE, post)
             answer = get(url, headers={"Authorization": f"Bearer {token}", "Accept": MEDIA}, timeout=TIMEOUT)
             if answer.status_code == 401:
                 _tokens.clear()  # an expired or revoked token: a new one next time

@@ -60,6 +60,9 @@ async def login(request: Request) -> Response:
 
 def _after_launch(form: dict) -> Response:
     checked = lti.verify(form, store.spender())
+    if checked.staff and not checked.context.get("id"):  # staff see a course's assignments: which course?
+        raise lti.refuse(f"staff launch without a context from {checked.platform.issuer}",
+                         "Open Dynamics Lab from a course in the LMS: its instructors see that course's work.")
     if checked.message == "LtiDeepLinkingRequest":
         return _picker(checked)
     context = checked.context.get("id", "")
@@ -104,6 +107,9 @@ def _picker(checked: Launch, problem: str = "", said: str = "") -> Response:
     settings = checked.claims.get(DL_CLAIM + "deep_linking_settings") or {}
     if not settings.get("deep_link_return_url"):
         raise lti.refuse("deep-linking request without deep_link_return_url")
+    if not platforms.owns(checked.platform, settings["deep_link_return_url"]):
+        raise lti.refuse(f"deep_link_return_url {str(settings['deep_link_return_url'])[:200]!r} is not on "
+                         f"{checked.platform.issuer}'s registered origins")
     kept = {lti.CLAIM + "deployment_id": checked.deployment, lti.CLAIM + "roles": checked.claim("roles"),
             lti.CLAIM + "context": {k: checked.context[k] for k in ("id", "title") if k in checked.context},
             DL_CLAIM + "deep_linking_settings": {k: settings[k] for k in ("deep_link_return_url", "data")
@@ -160,8 +166,10 @@ def _deep_link(form: dict, answers: list[str]) -> Response:
     except ValueError as error:
         return _picker(checked, form.get("problem", ""), str(error))
     context = checked.context.get("id", "")
-    elsewhere = [c for c in store.contexts_of(made.id) if c != (checked.platform.issuer, context)]
-    if elsewhere:
+    placed = store.contexts_of(made.id)
+    elsewhere = [c for c in placed if c != (checked.platform.issuer, context)]
+    if elsewhere or (not made.new and (checked.platform.issuer, context) not in placed
+                     and records.roster(made.id)):  # not another course's, nor a signed-link class's
         return _picker(checked, form["problem"], "An assignment with this title, problem and due time exists in "
                                                  "another course; give this one another title.")
     return _deep_link_answer(checked, made.id, settings)
@@ -239,5 +247,34 @@ class LtiRoutes:
     async def __call__(self, scope, receive, send):
         if (scope["type"] == "http" and scope["path"].startswith(self.prefix + "/lti/")
                 and platforms.enabled()):
-            return await self.router({**scope, "path": scope["path"][len(self.prefix):]}, receive, send)
+            body = await _bounded(receive)
+            if body is None:  # read no further than the bound: an oversize post costs nobody memory
+                return await page("Too large", "<h1>Not accepted</h1><p class='refused'>This request is larger "
+                                  "than any launch from a course site.</p>", 413)(scope, receive, send)
+            replay = iter([{"type": "http.request", "body": body, "more_body": False}])
+            return await self.router({**scope, "path": scope["path"][len(self.prefix):]},
+                                     lambda: _next(replay, receive), send)
         return await self.app(scope, receive, send)
+
+
+MAX_BODY = 256 * 1024  # an id_token with every claim is a few kB; Canvas's largest launches stay far below
+
+
+async def _bounded(receive) -> bytes | None:
+    """The request's body, or None once it passes MAX_BODY (whatever Content-Length says)."""
+    chunks, size = [], 0
+    while True:
+        message = await receive()
+        if message["type"] != "http.request":
+            return b"".join(chunks)
+        size += len(message.get("body", b""))
+        if size > MAX_BODY:
+            return None
+        chunks.append(message.get("body", b""))
+        if not message.get("more_body", False):
+            return b"".join(chunks)
+
+
+async def _next(replay, receive):
+    message = next(replay, None)
+    return message if message is not None else await receive()

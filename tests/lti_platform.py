@@ -106,10 +106,11 @@ class LmsEmulator:
     # -- the LMS starting a launch
     def login_url(self, user: str, roles: list[str], resource_link: str = "rl-1", context: str = "course-1",
                   deep_link: bool = False, custom: dict | None = None, lineitem: str | None = None,
-                  name: str = "") -> str:
+                  name: str = "", return_url: str | None = None) -> str:
         hint = f"hint-{len(self.pending)}"
         self.pending[hint] = {"user": user, "roles": roles, "resource_link": resource_link, "context": context,
                               "deep_link": deep_link, "custom": custom, "name": name,
+                              "return_url": return_url or self.url + "/deep_link_return",
                               "lineitem": lineitem or f"{self.url}/lineitems/{resource_link}"}
         login = _Login(None, _Config(registration=self.registration))
         login.set_lti_message_hint(hint=hint)
@@ -124,7 +125,7 @@ class LmsEmulator:
         launch.set_user_data(setup["user"], setup["roles"], full_name=setup["name"] or None)
         launch.set_launch_context_claim(setup["context"], context_title="Dynamics 101")
         if setup["deep_link"]:
-            launch.set_dl(self.url + "/deep_link_return", title="Dynamics Lab", extra_data={"data": "dl-data-1"},
+            launch.set_dl(setup["return_url"], title="Dynamics Lab", extra_data={"data": "dl-data-1"},
                           accept_types={"ltiResourceLink"})
         else:
             launch.set_resource_link_claim(setup["resource_link"], title="Week 9")

@@ -495,3 +495,67 @@ def test_one_issuer_with_several_registrations_is_told_apart(tmp_path, monkeypat
     assert platforms.find("https://canvas.instructure.com", "2").client_id == "2"
     assert platforms.serving("https://canvas.instructure.com", "2:c").client_id == "2"
     assert platforms.serving("https://canvas.instructure.com", "3:z") is None
+
+
+# -- read as a hostile student would (or a launch naming addresses that are not the LMS's)
+
+@SQLITE_ONLY
+@pytest.mark.parametrize("return_url", ["javascript:alert(document.domain)", "https://attacker.test/collect",
+                                        "data:text/html,<script>alert(1)</script>"])
+def test_a_deep_link_answer_goes_only_to_the_lms_own_address(tool, lms, return_url):
+    answer = tool.post("/lti/launch", data=form_of(tool, lms, "teacher-1", INSTRUCTOR, deep_link=True,
+                                                   return_url=return_url))
+    assert answer.status_code == 400 and "Not accepted" in answer.text and return_url not in answer.text
+
+
+@SQLITE_ONLY
+def test_a_staff_launch_without_a_course_is_refused(tool, lms):
+    for deep_link in (False, True):
+        answer = tool.post("/lti/launch", data=form_of(tool, lms, "teacher-1", INSTRUCTOR, deep_link=deep_link,
+                                                       claims={lti.CLAIM + "context": {"title": "no id"}}))
+        assert answer.status_code == 400 and "from a course" in answer.text
+
+
+@SQLITE_ONLY
+def test_scores_and_the_roster_go_only_to_the_lms_own_address(tool, lms):
+    """A launch's line item or roster URL elsewhere (an internal address: server-side request
+    forgery, a bearer token handed to a stranger) is not posted to; the instructor sees why."""
+    from lti import roster
+
+    aid = assignment(tool.database)
+    got = handed(tool, tool.post("/lti/launch", data=form_of(
+        tool, lms, "ssrf-1", LEARNER, custom=custom_for(aid), resource_link="rl-ssrf",
+        lineitem="http://169.254.169.254/latest/lineitems/1")))
+    student = store.from_handoff(got)
+    records.record_attempt(student, "theta_rebound", "1", True, "right", bound=tool.database)
+    posted = []
+    assert passback.queue(student, tool.database)
+    assert passback.run_due(tool.database, post=lambda *a, **k: posted.append(a) or _token_of("t")) == 1
+    assert posted == []  # not even an access token was asked for
+    (failed,) = passback.summary(aid, tool.database).failed
+    assert "not on the LMS's registered addresses" in failed[1]
+    with pytest.raises(roster.RosterUnavailable, match="not the LMS's registered address"):
+        roster.standing(ISSUER, lms.registration_entry()["client_id"], "http://127.0.0.1:1/memberships/x", aid,
+                        tool.database, post=lambda *a, **k: posted.append(a) or _token_of("t"))
+    assert posted == []
+
+
+@SQLITE_ONLY
+def test_an_oversize_post_is_refused_before_it_is_read_whole(tool):
+    answer = tool.post("/lti/launch", data={"id_token": "x" * 300_000, "state": "s"})
+    assert answer.status_code == 413 and "larger" in answer.text
+
+
+@SQLITE_ONLY
+def test_deep_linking_cannot_adopt_an_assignment_of_signed_links(tool, lms):
+    """Another class's assignment (signed links, a roster) cannot be taken over by an LMS instructor
+    who gives its exact title, problem and due time: its gradebook would be theirs."""
+    settings = records.Settings.of("Week 11", "pendulum_rebound", ("theta_rebound",), 0.01, DUE, 2)
+    theirs = records.create(settings, ["s01"], tool.database).id
+    picker = tool.post("/lti/launch", data=form_of(tool, lms, "teacher-1", INSTRUCTOR, deep_link=True))
+    sealed = re.search(r"name='dl' value='([^']+)'", picker.text).group(1)
+    done = tool.post("/lti/deep_link", data={"dl": sealed, "problem": "pendulum_rebound", "step": "create",
+                                             "title": "Week 11", "answer": ["theta_rebound"], "tolerance": "0.01",
+                                             "attempts": "2", "due": DUE.strftime("%Y-%m-%dT%H:%M")})
+    assert done.status_code == 200 and "exists in another course" in done.text and "JWT" not in done.text
+    assert store.contexts_of(theirs, tool.database) == set()
