@@ -119,9 +119,13 @@ def access_token(platform: platforms.Platform, scope: str, post=requests.post) -
     except requests.RequestException as error:
         raise SendFailed(f"access token: no answer from the LMS ({type(error).__name__})", True) from None
     _check(answer, "access token")
-    body = answer.json()
-    _tokens[key] = (body["access_token"], time.time() + float(body.get("expires_in", 3600)))
-    return body["access_token"]
+    try:
+        body = answer.json()
+        token, lifetime = str(body["access_token"]), float(body.get("expires_in", 3600))
+    except (ValueError, KeyError, TypeError, AttributeError):  # an answer that is not a token: try again later
+        raise SendFailed("access token: the LMS's answer held no access token", True) from None
+    _tokens[key] = (token, time.time() + lifetime)
+    return token
 
 
 def _scores_url(lineitem: str) -> str:

@@ -147,7 +147,8 @@ def _chosen(form: dict, answers: list[str]) -> records.Settings:
                          "and time.") from None
     if not answers:
         raise ValueError("Choose at least one answer that counts.")
-    return records.Settings.of(form.get("title", "").strip()[:120], form["problem"], answers, tolerance, due, attempts)
+    return records.Settings.of(form.get("title", "").strip()[:120], form.get("problem", ""), answers, tolerance, due,
+                               attempts)
 
 
 def _deep_link(form: dict, answers: list[str]) -> Response:
@@ -170,7 +171,7 @@ def _deep_link(form: dict, answers: list[str]) -> Response:
     elsewhere = [c for c in placed if c != (checked.platform.issuer, context)]
     if elsewhere or (not made.new and (checked.platform.issuer, context) not in placed
                      and records.roster(made.id)):  # not another course's, nor a signed-link class's
-        return _picker(checked, form["problem"], "An assignment with this title, problem and due time exists in "
+        return _picker(checked, form.get("problem", ""), "An assignment with this title, problem and due time exists in "
                                                  "another course; give this one another title.")
     return _deep_link_answer(checked, made.id, settings)
 

@@ -559,3 +559,25 @@ def test_deep_linking_cannot_adopt_an_assignment_of_signed_links(tool, lms):
                                              "attempts": "2", "due": DUE.strftime("%Y-%m-%dT%H:%M")})
     assert done.status_code == 200 and "exists in another course" in done.text and "JWT" not in done.text
     assert store.contexts_of(theirs, tool.database) == set()
+
+
+@SQLITE_ONLY
+def test_a_choice_without_a_problem_and_a_token_answer_that_is_no_token_are_said_not_crashed(tool, lms):
+    picker = tool.post("/lti/launch", data=form_of(tool, lms, "teacher-1", INSTRUCTOR, deep_link=True))
+    sealed = re.search(r"name='dl' value='([^']+)'", picker.text).group(1)
+    bare = tool.post("/lti/deep_link", data={"dl": sealed, "step": "create", "title": "W", "answer": ["x"],
+                                             "tolerance": "0.01", "attempts": "2", "due": "2031-02-01T12:00"})
+    assert bare.status_code == 200 and "is not a problem of this app" in bare.text  # said, and the list again
+    student = learner(tool, lms, "tok-1")
+    records.record_attempt(student, "theta_rebound", "1", True, "right", bound=tool.database)
+    assert passback.queue(student, tool.database)
+
+    class NotJson(_token_of):
+        def json(self):
+            raise ValueError("<html>login page</html>")
+
+    passback._tokens.clear()
+    assert passback.run_due(tool.database, post=lambda *a, **k: NotJson("")) == 1
+    with db.session(tool.database) as s:  # waiting again, with the reason, not stuck "sending"
+        row = s.query(db.LtiScore).one()
+        assert row.status == "waiting" and "held no access token" in row.error
