@@ -4,7 +4,8 @@ is third-party, and the flow uses no cookie). The instructor adds an assignment 
 linking (the LMS's "add external tool" dialog): the LMS receives a resource link with its line
 item. A learner launches it, lands on their own variant, answers right; their score reaches the
 platform's AGS endpoint by itself. The instructor launches and sees that course's gradebook, with
-the grade sent, and no key asked, and reads the course roster from the LMS (NRPS): who has not started. The journey runs on SQLite and on
+the grade sent, and no key asked, and reads the course roster from the LMS (NRPS): who has not started; then, in the same session, Handouts
+gives that course's answer keys with no key (SQLite's run). The journey runs on SQLite and on
 PostgreSQL, in one Chromium; each frame's page is shot (SQLite's run) into screenshots/lti/."""
 from __future__ import annotations
 
@@ -157,3 +158,15 @@ def run_journey(page, lms, shots: bool = True) -> None:
     roster = frame.locator("[data-testid='stMain']").inner_text()
     assert roster.index("Bea Roth") < roster.index("Ann Ito")  # not started first
     shoot(page, "instructor-gradebook-in-lms", tool, shots)
+    if not shots:
+        return  # the pages below read what the database gave above, the same on both
+
+    # The same session, another page of the app: that course's answer keys, no key to type.
+    frame.locator("[data-testid='stSidebarNav']").get_by_text("Handouts").click()
+    frame.get_by_text("From your course site: the handouts").wait_for(timeout=60_000)
+    frame.get_by_text("Answer key", exact=True).click()
+    frame.get_by_text(f"Student {label}").first.wait_for(timeout=60_000)
+    wait_until_idle(tool)
+    sheets = frame.locator("[data-testid='stMain']").inner_text()
+    assert "Instructor key" not in sheets and "A range of variants" not in sheets
+    shoot(page, "instructor-handouts-in-lms", tool, shots)
