@@ -130,3 +130,21 @@ def test_an_lms_instructor_on_a_problem_page_is_told_their_course_keys_not_given
     assert not at.exception and "Your course's assignments here: “Ours”" in said and "Theirs" not in said
     assert at.text_input(key="pendulum_rebound__instructor_key")  # the seed variants: still the key
     assert not any(b.label == "Prepare the CSV" for b in at.button)
+
+
+def test_the_course_keys_say_so_when_the_database_is_away(course, monkeypatch):
+    from sqlalchemy.exc import OperationalError
+
+    from lti import store
+
+    migrate.upgrade()
+    token = lti.handoff({"role": "instructor", "iss": ISSUER, "ctx": "course-1", "a": 0})
+
+    def away(*args, **kwargs):
+        raise OperationalError("SELECT", {}, Exception("connection refused"))
+
+    at = AppTest.from_file(HANDOUTS, default_timeout=60)
+    at.query_params["lti"] = token
+    monkeypatch.setattr(store, "contexts_assignments", away)  # the hand-off is redeemed; then the database goes
+    at.run()
+    assert not at.exception and "cannot be reached" in at.error[0].value and not at.selectbox

@@ -17,6 +17,7 @@ import zoneinfo
 from dataclasses import dataclass, replace
 
 import streamlit as st
+from sqlalchemy.exc import SQLAlchemyError
 
 from assignments import migrate, records, signing
 from assignments.identity import LinkRefused, StudentIdentity, from_link, is_assignment_link, link_query
@@ -117,8 +118,13 @@ def lms_course() -> dict | None:
 
 
 def course_assignments(course: dict) -> set[int]:
-    """The assignments placed in the LMS course ``course`` (``lms_course()``'s)."""
-    return set(lti_store.contexts_assignments(course["iss"], course["ctx"]))
+    """The assignments placed in the LMS course ``course`` (``lms_course()``'s); RecordingUnavailable
+    when the database cannot be reached (said on the page, never a traceback)."""
+    try:
+        return set(lti_store.contexts_assignments(course["iss"], course["ctx"]))
+    except (SQLAlchemyError, OSError) as error:
+        raise records.RecordingUnavailable("The course's database cannot be reached right now, so its "
+                                           "assignments cannot be read. Try again in a few minutes.") from error
 
 
 def student_link(problem: Problem) -> StudentLink | None:
