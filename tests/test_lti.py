@@ -581,3 +581,19 @@ def test_a_choice_without_a_problem_and_a_token_answer_that_is_no_token_are_said
     with db.session(tool.database) as s:  # waiting again, with the reason, not stuck "sending"
         row = s.query(db.LtiScore).one()
         assert row.status == "waiting" and "held no access token" in row.error
+
+
+@SQLITE_ONLY
+def test_a_hostile_title_is_text_in_the_deep_link_pages(tool, lms):
+    picker = tool.post("/lti/launch", data=form_of(tool, lms, "teacher-1", INSTRUCTOR, deep_link=True))
+    sealed = re.search(r"name='dl' value='([^']+)'", picker.text).group(1)
+    title = "<script>alert(1)</script>' onmouseover='x"
+    done = tool.post("/lti/deep_link", data={"dl": sealed, "problem": "pendulum_rebound", "step": "create",
+                                             "title": title, "answer": ["theta_rebound"], "tolerance": "0.01",
+                                             "attempts": "2", "due": "2031-03-01T12:00"})
+    assert done.status_code == 200 and "<script>alert" not in done.text and "' onmouseover" not in done.text
+    assert "&lt;script&gt;alert(1)&lt;/script&gt;" in done.text
+    bad = tool.post("/lti/deep_link", data={"dl": sealed, "problem": "<b>x</b>", "step": "create", "title": title,
+                                            "answer": ["theta_rebound"], "tolerance": "many", "attempts": "2",
+                                            "due": "2031-03-01T12:00"})
+    assert bad.status_code == 200 and "<b>x</b>" not in bad.text and "<script>alert" not in bad.text
