@@ -33,6 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
+from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -157,6 +158,21 @@ def derivation(regime: str) -> Derivation:
     ]
     return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
+
+
+def _live_cases() -> tuple[Case, ...]:
+    """Stick when the no-slip impulse is within the friction cone (as ``solve`` decides), else slip.
+    (μ = ∞: ∞·|P_n| holds any |P_t|, P_n being never zero.)"""
+    stick = derivation("stick")
+    return (Case("stick", "B sticks: the contact stops slipping", stick,
+                 sp.Abs(P_t) <= mu * sp.Abs(P_n) * (1 + sp.Float(1e-12)),
+                 {"slip_direction": sp.Integer(0)}),
+            Case("slip", "B slides throughout the impact: friction at its limit", derivation("slip"),
+                 inputs={"slip_direction": sp.sign(V * sp.sin(theta) - R * omega)}))
+
+
+# Live while dragging (solvers/live.py): the approach, the spin, e and μ.
+LIVE = Live(("V", "omega", "theta", "e", "mu"), _live_cases)
 
 @within_model_range
 def solve(**params) -> Solution:

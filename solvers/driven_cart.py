@@ -33,6 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
+from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -148,6 +149,18 @@ class FrontWheelsLiftError(PhysicalLimitError):
 # What a PhysicalLimitError's attribute is, for the page that shows it: (label, dimension).
 LIMIT_LABELS = {"mu_lift": ("μ at which the front wheels lift (μ = b/a)", "dimensionless")}
 
+
+
+def _live_cases(drive: str) -> tuple[Case, ...]:
+    """Rear and all-wheel drive: the front wheels lift once μa ≥ b (``solve``'s limit); else the chain."""
+    lift = () if drive == "front" else (
+        Case("lift_off", "the front wheels lift off (μa ≥ b): a wheelie this model cannot describe",
+             when=sp.Not(mu * a < b), values=False),)
+    return (*lift, Case(drive, "all four wheels on the ground", derivation(drive)))
+
+
+# Live while dragging (solvers/live.py): μ and where the CM sits.
+LIVE = Live(("mu", "a", "b"), _live_cases)
 
 @within_model_range
 def solve(**params) -> Solution:

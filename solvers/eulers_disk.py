@@ -32,6 +32,7 @@ from .core import (
     root_with_sign,
     validate_params,
 )
+from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -138,6 +139,14 @@ def derivation() -> Derivation:
     ]
     return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
+
+
+def _live_cases() -> tuple[Case, ...]:
+    return (Case("steady", "steady precession", derivation()),)
+
+
+# Live while dragging (solvers/live.py): the tilt and the radius.
+LIVE = Live(("theta", "r"), _live_cases)
 
 @within_model_range
 def solve(**params) -> Solution:

@@ -36,6 +36,7 @@ from .core import (
     require,
     validate_params,
 )
+from .live import Case, Live
 from .protocol import About, Mistake, Variants
 from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, integrate_leg
 
@@ -180,6 +181,18 @@ def _validate(params) -> dict:
                 f"got d = {p['d']:g} m: the pendulum would swing past without touching it.")
     return p
 
+
+
+def _live_cases(sphere: str, surface: str) -> tuple[Case, ...]:
+    """Released at or below the impact angle: the limit ``solve`` refuses; else the chain."""
+    d_ = derivation(sphere, surface)
+    return (Case("below_impact", f"released below the angle where the sphere touches the {surface}: no impact",
+                 d_, sp.Not(theta0 > theta_I), values=False),
+            Case(surface, f"the sphere strikes the {surface} and rebounds", d_))
+
+
+# Live while dragging (solvers/live.py): e and the release angle.
+LIVE = Live(("e", "theta0"), _live_cases)
 
 @within_model_range
 def solve(**params) -> Solution:

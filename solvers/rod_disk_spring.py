@@ -33,6 +33,7 @@ from .core import (
     require,
     validate_params,
 )
+from .live import Case, Live, Stops
 from .protocol import About, Mistake, Variants
 from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
 
@@ -191,6 +192,26 @@ def _validate(params) -> dict:
             f"θ₂ = {plain_number(math.degrees(p['theta2']))}°.")
     return p
 
+
+
+def _live_cases(disk: str) -> tuple[Case, ...]:
+    """Where ``largest_angle`` finds the spring stopping the rod before θ₂ (the same three tests: at
+    rest upright, the spring winning at release, and T(θ) ≤ 0 on the solver's grid, T(θ) being the
+    chain's T₂ with θ₂ → θ), the limit; else the chain. Q, the weights' moment coefficient, is read
+    off the chain's work of gravity."""
+    d_ = derivation(disk)
+    at = sp.Symbol("theta_at")
+    energy_at = d_.expression_of("T2").subs(theta2, at)
+    Q = sp.simplify(d_.expression_of("U_gravity") / (sp.cos(theta1) - sp.cos(theta2)))
+    said = "the spring stops the rod before θ₂: it never gets there"
+    return (Case("upright", said, when=sp.And(sp.Eq(theta1, 0), Q <= k), values=False),
+            Case("spring_wins", said, when=sp.And(theta1 > 0, Q * sp.sin(theta1) - k * theta1 <= 0), values=False),
+            Case("stops", said, when=Stops(energy_at, at, theta1, theta2, 4097), values=False),
+            Case(disk, "the rod reaches θ₂", d_))
+
+
+# Live while dragging (solvers/live.py): the stiffness and the angle asked about.
+LIVE = Live(("k", "theta2"), _live_cases)
 
 @within_model_range
 def solve(**params) -> Solution:

@@ -39,6 +39,7 @@ from .core import (
     within_model_range,
 )
 from . import units
+from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -335,6 +336,15 @@ def _validate(params) -> dict:
             f"angle from {lowest}° to {plain_number(90 - math.degrees(CLOSEST_TO_REST), 8)}°.")
     return p
 
+
+
+def _live_cases() -> tuple[Case, ...]:
+    """One regime; the two times need quadratures (τ₁, τ₂), so the browser leaves them to the server."""
+    return (Case("", "", derivation()[0]),)
+
+
+# Live while dragging (solvers/live.py): the release angle and the length; not the times.
+LIVE = Live(("theta0", "L"), _live_cases)
 
 @within_model_range
 def solve(**params) -> Solution:

@@ -34,6 +34,7 @@ from .core import (
     require,
     validate_params,
 )
+from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -161,6 +162,17 @@ def derivation(mode: str) -> Derivation:
         ]
     return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS_STICK + ANSWERS_BOUNCE})
 
+
+
+def _live_cases(mode: str) -> tuple[Case, ...]:
+    """Off the stick (refused, as ``solve`` does), else the mode's chain."""
+    return (Case("off_stick", "the impact point is off the stick (s > l/2)", when=s > l / 2 * (1 + sp.Float(1e-12)),
+                 values=False),
+            Case(mode, "the ball attaches" if mode == "stick" else "the ball bounces off", derivation(mode)))
+
+
+# Live while dragging (solvers/live.py): the ball's speed, where it hits, and e.
+LIVE = Live(("v", "s", "e"), _live_cases)
 
 @within_model_range
 def solve(**params) -> Solution:

@@ -56,8 +56,10 @@ def bundles() -> dict[str, tuple[str, bytes]]:
 DERIVATION = "dynamics_lab_derivation"
 ANSWERS = "dynamics_lab_answers"
 # Each component's name and the module that draws it (plotly_component/<file>): this file's figure,
-# and the answers and the derivation that ui/results.py shows (one module, text.js, for both).
-COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js"}
+# the answers and the derivation that ui/results.py shows (one module, text.js, for both), and the
+# live values while a lesson control is dragged (ui/live.py).
+LIVE = "dynamics_lab_live"
+COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js", LIVE: "live.js"}
 
 
 @cache

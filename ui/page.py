@@ -10,7 +10,7 @@ import streamlit as st
 from assignments.identity import parameters
 from practice.variants import variant
 from solvers.core import PhysicalLimitError, Solution, within_model_range
-from ui import assignments, results, takehome
+from ui import assignments, live, results, takehome
 from ui.practice import instructor_export, is_instructor, practice_panel, seed_from_url
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
@@ -286,6 +286,8 @@ def problem_page(problem_id: str) -> None:
     takehome.downloads(problem, solution, answers, system)
     if practice:
         instructor_export(problem)
+    elif motion_column is not None:  # the lesson page: the answers follow a dragged control (never in Practice)
+        live.show(problem, solution, answers, system)
 
 
 def _assignment(problem: Problem, link, system: str) -> None:

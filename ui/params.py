@@ -21,7 +21,8 @@ from ui.results import plain
 MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed
 
 
-def _key(problem: Problem, system: str, name: str) -> str:
+def control_key(problem: Problem, system: str, name: str) -> str:
+    """The Streamlit key of a parameter's control (its element carries the class st-key-<key>)."""
     return f"{problem.id}__{system}__{name}"
 
 
@@ -132,7 +133,7 @@ def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
     warnings = []
     remembered = st.session_state.get(f"{problem.id}__si", {})
     for p in problem.solver.PARAMS:
-        key = _key(problem, system, p.name)
+        key = control_key(problem, system, p.name)
         if key in st.session_state:
             continue
         if p.name in remembered:
@@ -181,7 +182,7 @@ SLIDER_NAMES = """<script>
 
 
 def _control(p: Any, problem: Problem, system: str, container) -> Any:
-    key = _key(problem, system, p.name)
+    key = control_key(problem, system, p.name)
     if isinstance(p, Choice):
         return container.radio(_label(p, system), p.options, key=key, format_func=p.label_of,
                                help=p.help or None)
@@ -258,7 +259,7 @@ def parameter_panel(problem: Problem, system: str, base: dict | None = None,
     values = {p.name: _in_si(p, _control(p, problem, system, stage), system, known[p.name]) for p in first}
     if rest:
         more_key = f"{problem.id}__more"
-        stored = {p.name: _in_si(p, st.session_state[_key(problem, system, p.name)], system, known[p.name])
+        stored = {p.name: _in_si(p, st.session_state[control_key(problem, system, p.name)], system, known[p.name])
                   for p in rest}
         if more_key not in st.session_state:
             st.session_state[more_key] = any(_differs(p, stored[p.name], base, system) for p in rest)
@@ -269,7 +270,7 @@ def parameter_panel(problem: Problem, system: str, base: dict | None = None,
                 values[p.name] = _in_si(p, _control(p, problem, system, container), system, known[p.name])
             else:
                 # Re-set it as a plain value: Streamlit drops the state of a widget not drawn in a run.
-                key = _key(problem, system, p.name)
+                key = control_key(problem, system, p.name)
                 st.session_state[key] = st.session_state[key]
                 values[p.name] = stored[p.name]
     values = {p.name: values[p.name] for p in params}  # the solver's order

@@ -1,0 +1,182 @@
+"""Live values while a control is dragged: one JavaScript function per problem (and option), generated
+from the solver's own sympy derivation, never typed by hand.
+
+A problem opts in with ``LIVE = Live(follows, cases)`` in ``solvers/<pid>.py``: ``follows``, the
+parameters whose controls the browser follows while they are dragged; ``cases(**options)``, the
+regimes in order (the first whose ``when`` holds is the one), each with the ``Derivation`` whose
+chain gives its values. A case without values (``values=False``) is a physical limit or a refusal:
+the page marks the answers as waiting for the server. A chain link that needs an input the browser
+does not have (an integral evaluated by quadrature) is left out, and its answers marked too.
+
+``function_source(pid, options)`` turns that into the source of a JavaScript arrow function
+``(p) => ({regime, values})`` (``p``: every parameter in SI, by name): for each case, its chain's
+links as constants (``sympy.cse`` over the chain, ``sympy.printing.jscode``), then its condition.
+The links are evaluated in the chain's order, as ``Derivation.evaluate`` does, so the browser's
+numbers are the server's to a few units in the last place (tests/test_live.py: 1e-9 relative).
+Before the cases, the followed parameters' valid ranges (``Number.low``/``high``) are tested: a
+value the solver would refuse gives the regime ``"refused"`` and no values.
+"""
+from __future__ import annotations
+
+import functools
+import re
+from dataclasses import dataclass, field
+from typing import Callable, Mapping
+
+import sympy as sp
+from sympy.printing.jscode import JavascriptCodePrinter
+
+from . import registry, units
+from .derivation import Derivation
+from .formatting import GROUPED_BELOW
+from .specs import Choice, Number
+
+REFUSED = "refused"
+
+
+@dataclass(frozen=True)
+class Stops:
+    """A condition no closed form gives: ``expr`` (in the parameters and ``var``) is ≤ 0 somewhere on
+    ``numpy.linspace(low, high, points)[1:]`` (e.g. the spring's rod stopping before θ₂, found on the
+    solver's own grid)."""
+
+    expr: sp.Expr
+    var: sp.Symbol
+    low: sp.Expr
+    high: sp.Expr
+    points: int
+
+
+@dataclass(frozen=True)
+class Case:
+    """One regime: its name (``Solution.regime``'s word, or a limit's), what the live view says
+    when a drag enters it, the derivation that gives its values (and its condition's results), the
+    condition (sympy, in the parameters and that derivation's result symbols; or ``Stops``), and the
+    chain's extra inputs as expressions in the parameters (the disk's slip direction)."""
+
+    regime: str
+    said: str
+    derivation: Derivation | None = None
+    when: object = sp.true
+    inputs: Mapping[str, sp.Expr] = field(default_factory=dict)
+    values: bool = True
+
+
+@dataclass(frozen=True)
+class Live:
+    follows: tuple[str, ...]
+    cases: Callable[..., tuple[Case, ...]]
+
+
+def declared(pid: str) -> Live | None:
+    return getattr(registry.solver(pid), "LIVE", None)
+
+
+class _Printer(JavascriptCodePrinter):
+    """sympy's JavaScript with every number a double literal (1/2 stays 1/2: JS divides in floats)."""
+
+    def _print_Float(self, expr):
+        return repr(float(expr))
+
+
+def _js(expr, printer=_Printer()) -> str:
+    return printer.doprint(expr)
+
+
+def _safe(prefix: str, name: str) -> str:
+    return prefix + re.sub(r"\W", "_", name)
+
+
+def _range_condition(param: Number, sym: sp.Symbol) -> sp.Basic:
+    parts = []
+    if param.low is not None:
+        parts.append(sym >= param.low if param.low_inclusive else sym > param.low)
+    if param.high is not None:
+        parts.append(sym <= param.high if param.high_inclusive else sym < param.high)
+    bounds = param.model_bounds()  # the magnitudes the model is meant for (validate_params refuses the rest)
+    if bounds:
+        parts.append(sp.Or(sp.Eq(sym, 0), sp.And(sp.Abs(sym) >= bounds[0], sp.Abs(sym) <= bounds[1]))
+                     if not param.allow_inf else sp.Or(sp.Eq(sym, 0), sp.Eq(sym, sp.oo),
+                                                      sp.And(sp.Abs(sym) >= bounds[0], sp.Abs(sym) <= bounds[1])))
+    return sp.And(*parts)
+
+
+def _case_block(case: Case, params: Mapping[str, sp.Symbol], answers: tuple[str, ...]) -> str:
+    """A JS block: the case's chain evaluated (links whose inputs the browser lacks left out), then
+    its condition; returns when it holds."""
+    names = {sym: _safe("p_", name) for name, sym in params.items()}
+    lines, known = [], dict(names)
+    for name, expr in case.inputs.items():
+        sym = case.derivation.symbols[name] if case.derivation else sp.Symbol(name)
+        known[sym] = _safe("i_", name)
+        lines.append(f"const {known[sym]} = {_js(expr.xreplace({s: sp.Symbol(n) for s, n in names.items()}))};")
+    links = []
+    for link in (case.derivation.chain if case.derivation else ()):
+        if link.expr.free_symbols <= set(known):
+            known[link.symbol] = _safe("r_", link.name)
+            links.append(link)
+    rename = {s: sp.Symbol(n) for s, n in known.items()}
+    exprs = [link.expr.xreplace(rename) for link in links]
+    when = case.when
+    stops = None
+    if isinstance(when, Stops):
+        stops, when = when, sp.true
+    for n, (link, expr) in enumerate(zip(links, exprs)):  # each link's own subexpressions, in the chain's order
+        replacements, (reduced,) = sp.cse(expr, symbols=sp.numbered_symbols(f"c{n}_"), order="none")
+        lines += [f"const {s} = {_js(e)};" for s, e in replacements]
+        lines.append(f"const {rename[link.symbol]} = {_js(reduced)};")
+    test = _js(when.xreplace(rename)) if when is not sp.true else "true"
+    if stops is not None:
+        var = _safe("v_", stops.var.name)
+        inner = _js(stops.expr.xreplace(rename | {stops.var: sp.Symbol(var)}))
+        low, high = _js(stops.low.xreplace(rename)), _js(stops.high.xreplace(rename))
+        # numpy.linspace: low + i·(high − low)/(n − 1), its last point exactly high
+        lines.append(f"let stops = false;\nfor (let i = 1; i < {stops.points} && !stops; i++) {{\n"
+                     f"  const {var} = i === {stops.points - 1} ? {high} : {low} + i * (({high}) - ({low})) / {stops.points - 1};\n"
+                     f"  if (!({inner} > 0)) stops = true;\n}}")
+        test = "stops"
+    values = ("{" + ", ".join(f"{n!r}: {known[link.symbol]}" for link in links for n in [link.name]) + "}"
+              if case.values else "null")
+    lines.append(f"if ({test}) return {{regime: {case.regime!r}, values: {values}}};")
+    return "{\n" + "\n".join("  " + line for line in "\n".join(lines).split("\n")) + "\n}"
+
+
+@functools.lru_cache(maxsize=64)
+def function_source(pid: str, options: tuple[tuple[str, str], ...] = ()) -> str:
+    """The generated function for problem ``pid`` with its options (``(name, value)`` pairs of its
+    ``Choice`` parameters, sorted), as JavaScript source: ``(p) => ({regime, values})``."""
+    solver = registry.solver(pid)
+    live = solver.LIVE
+    numbers = {p.name: p for p in solver.PARAMS if isinstance(p, Number)}
+    params = {name: sym for name, sym in solver.SYMBOLS.items() if name in numbers}
+    head = [f"const {_safe('p_', name)} = p[{name!r}];" for name in params]
+    # on symbols without the solver's assumptions (a positive e would make e ≥ 0 vanish)
+    valid = sp.And(*(_range_condition(numbers[name], sp.Symbol(_safe("p_", name))) for name in live.follows))
+    finite = [f"Number.isFinite({_safe('p_', n)})" if not numbers[n].allow_inf else f"!Number.isNaN({_safe('p_', n)})"
+              for n in live.follows]  # an emptied box (NaN) is refused too
+    head.append(f"if (!({' && '.join(finite)} && {_js(valid)})) return {{regime: {REFUSED!r}, values: null}};")
+    blocks = [_case_block(case, params, ()) for case in live.cases(**dict(options))]
+    body = "\n".join(["  " + line for line in head] + blocks)
+    return f"(p) => {{\n{body}\nreturn {{regime: {REFUSED!r}, values: null}};\n}}"
+
+
+def options_of(pid: str, params: Mapping[str, object]) -> tuple[tuple[str, str], ...]:
+    return tuple(sorted((p.name, params[p.name]) for p in registry.solver(pid).PARAMS if isinstance(p, Choice)))
+
+
+def payload(pid: str, params: Mapping[str, object], answers, system: str, control_keys: Mapping[str, str]) -> dict:
+    """What the page's live module needs: the generated function, the parameters now (SI), the
+    followed controls (their Streamlit keys and the factor from what they show to SI), the answers'
+    rows (name, unit shown, factor from SI, angle?) and the regimes' words. Units come from
+    ``solvers.units`` and the number format's constants from ``solvers.formatting``."""
+    solver = registry.solver(pid)
+    live = solver.LIVE
+    options = options_of(pid, params)
+    numbers = {p.name: p for p in solver.PARAMS if isinstance(p, Number)}
+    follows = [[name, control_keys[name], units.to_display(1.0, numbers[name].dimension, system)]
+               for name in live.follows if name in control_keys]
+    rows = [[a.name, units.unit(a.dimension, system), units.to_display(1.0, a.dimension, system),
+             a.dimension == "angle"] for a in answers]
+    said = {case.regime: case.said for case in live.cases(**dict(options))}
+    return {"source": function_source(pid, options), "params": dict(params), "follows": follows,
+            "answers": rows, "said": said, "grouped_below": GROUPED_BELOW}

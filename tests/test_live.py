@@ -1,0 +1,178 @@
+"""Live values while dragging (solvers/live.py, ui/plotly_component/live.js) against the server.
+
+For every page, hypothesis draws valid parameters (the problem's own ``VALID``), with the followed
+controls anywhere on their range (so that drags cross regimes and limits), and node evaluates the
+generated JavaScript on the whole batch at once: each value must be ``solve``'s to 1e-9 relative, the
+regime ``Solution.regime``, a physical limit or a refusal no values at all; the formatting the live
+view writes must be ``ui/results.answer_rows``'s, character for character."""
+from __future__ import annotations
+
+import importlib
+import json
+import math
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import strategies as st
+
+from solvers import live, registry, units
+from solvers.core import Number, PhysicalLimitError
+from solvers.formatting import plain_number
+from ui.catalog import BY_ID
+
+ROOT = Path(__file__).resolve().parent.parent
+NODE = shutil.which("node")
+pytestmark = pytest.mark.skipif(NODE is None and not __import__("os").environ.get("CI"), reason="needs node")
+
+# Answers the browser cannot compute (integrals by quadrature): typed here from PROBLEMS.md, not read
+# from the generator. Every other answer of every page must be live.
+NOT_LIVE = {"sliding_ladder": {"t_leave", "t_floor"}}
+BATCH = 40
+
+
+def node(tmp_path: Path, program: str, payload) -> list:
+    """Run ``program`` (an ES module importing live.js as ``./live.mjs``) with ``payload`` on stdin."""
+    (tmp_path / "live.mjs").write_text((ROOT / "ui/plotly_component/live.js").read_text())
+    (tmp_path / "main.mjs").write_text('import fs from "node:fs";\nimport * as live from "./live.mjs";\n'
+                                       "const input = JSON.parse(fs.readFileSync(0, 'utf8'));\n" + program)
+    out = subprocess.run([NODE, str(tmp_path / "main.mjs")], input=json.dumps(payload), capture_output=True,
+                         text=True, timeout=60, check=True)
+    return json.loads(out.stdout)
+
+
+EVALUATE = ("const fns = await Promise.all(input.map(([source]) => live.load(source)));\n"
+            "console.log(JSON.stringify(input.map(([, params], i) => fns[i](live.fromJSON(params)))));")
+
+
+def as_json(params: dict) -> dict:
+    return {k: ("inf" if isinstance(v, float) and math.isinf(v) else v) for k, v in params.items()}
+
+
+def dragged(pid: str):
+    """The problem's VALID parameters with each followed control anywhere on its control's range."""
+    solver = registry.solver(pid)
+    valid = importlib.import_module(f"tests.test_{pid}").VALID
+    numbers = {p.name: p for p in solver.PARAMS if isinstance(p, Number)}
+    ranges = {}
+    for name in solver.LIVE.follows:
+        p = numbers[name]
+        low = p.ui_low if p.ui_low is not None else p.low
+        ranges[name] = st.floats(float(low), float(p.ui_high), allow_nan=False).map(
+            lambda shown, d=p.dimension: units.to_si(shown, d))
+    return st.tuples(valid, st.fixed_dictionaries({}, optional=ranges)).map(lambda pair: pair[0] | pair[1])
+
+
+def outcome(pid: str, params: dict):
+    """("values", solution) | ("limit", None) | ("refused", None)"""
+    try:
+        return "values", registry.solver(pid).solve(**params)
+    except PhysicalLimitError:
+        return "limit", None
+    except ValueError:
+        return "refused", None
+
+
+def close(a: float, b: float, scale: float) -> bool:
+    return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12 * scale)
+
+
+@pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
+def test_every_problem_opts_in(pid):
+    assert live.declared(pid) is not None, f"{pid}: no LIVE"
+    solver = registry.solver(pid)
+    numbers = {p.name for p in solver.PARAMS if isinstance(p, Number)}
+    assert set(solver.LIVE.follows) <= numbers & set(solver.ABOUT.primary)
+
+
+@pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
+def test_live_values_are_the_solvers(pid, tmp_path_factory):
+    # no shrinking: a failure names its parameters in the message, and shrinking a batch takes minutes
+    @settings(max_examples=4, deadline=None, suppress_health_check=list(HealthCheck),
+              phases=(Phase.explicit, Phase.reuse, Phase.generate))
+    @given(st.lists(dragged(pid), min_size=BATCH, max_size=BATCH))
+    def check(samples):
+        sources = [live.function_source(pid, live.options_of(pid, {**_defaults(pid), **p})) for p in samples]
+        results = node(tmp_path_factory.mktemp("node"), EVALUATE,
+                       [[src, as_json({**_defaults(pid), **p})] for src, p in zip(sources, samples)])
+        counts = {}
+        for params, got in zip(samples, results):
+            kind, solution = outcome(pid, params)
+            counts[kind] = counts.get(kind, 0) + 1
+            if kind != "values":
+                assert got["values"] is None, (params, got)
+                if kind == "limit":
+                    assert got["regime"] != live.REFUSED, params
+                continue
+            assert got["regime"] == solution.regime, (params, got["regime"], solution.regime)
+            shown = BY_ID[pid].answers_of(solution)
+            missing = {a.name for a in shown if a.name not in got["values"]}
+            assert missing == NOT_LIVE.get(pid, set()) & {a.name for a in shown}, (params, missing)
+            for a in shown:
+                if a.name in missing:
+                    continue
+                same = [abs(solution.answers[b.name]) for b in shown if b.dimension == a.dimension]
+                assert close(got["values"][a.name], solution.answers[a.name], max(same)), (
+                    a.name, params, got["values"][a.name], solution.answers[a.name])
+        assert counts.get("values", 0) > 0
+    check()
+
+
+def _defaults(pid: str) -> dict:
+    return {p.name: p.default for p in registry.solver(pid).PARAMS}
+
+
+def test_regimes_are_crossed():
+    """The draws reach the regimes a drag can cross: the disk's stick and slip, the pendulum's release
+    below the impact, the spring stopping the rod, the cart's lift-off (else the test above proves
+    little about them)."""
+    cases = {
+        "disk_wall": [({"mu": 0.05, "omega": 40.0}, "slip"), ({"mu": 5.0}, "stick")],
+        "pendulum_rebound": [({"theta0": math.radians(-60)}, "below_impact")],
+        "rod_disk_spring": [({"k": 50.0}, "stops"), ({"k": 300.0}, "upright"), ({"k": 0.0}, "welded"),
+                            ({"k": 300.0, "theta1": 0.5}, "spring_wins")],
+        "driven_cart": [({"drive": "rear", "mu": 3.0}, "lift_off")],
+        "stick_ball": [({"s": 0.9}, "off_stick")],
+    }
+    for pid, pairs in cases.items():
+        for params, regime in pairs:
+            full = {**_defaults(pid), **params}
+            source = live.function_source(pid, live.options_of(pid, full))
+            got = node(Path(__import__("tempfile").mkdtemp()), EVALUATE, [[source, as_json(full)]])[0]
+            assert got["regime"] == regime, (pid, params, got)
+            kind, solution = outcome(pid, full)
+            assert (kind == "values") == (got["values"] is not None), (pid, params, kind)
+
+
+# Answers are below 1e300 (``within_model_range``); plain_number itself overflows rounding 1.7975e308.
+NUMBERS = st.one_of(st.floats(-1e300, 1e300), st.sampled_from([math.inf, -math.inf, 0.0, -0.0]),
+                    st.floats(-1e7, 1e7), st.floats(-1, 1),
+                    st.integers(-10**7, 10**7).map(lambda n: n / 8))  # n/8: exact ties at the fourth figure
+
+
+@settings(max_examples=5, deadline=None, suppress_health_check=list(HealthCheck),
+          phases=(Phase.explicit, Phase.reuse, Phase.generate))
+@given(st.lists(NUMBERS, min_size=300, max_size=300))
+def test_numbers_are_written_as_the_page_writes_them(tmp_path_factory, xs):
+    got = node(tmp_path_factory.mktemp("fmt"), "console.log(JSON.stringify(input.map((x) => live.plainNumber(x === 'inf' ? "
+               "Infinity : x === '-inf' ? -Infinity : x))));", [("inf" if x == math.inf else "-inf" if x == -math.inf else x)
+                                                                for x in xs])
+    assert got == [plain_number(x) for x in xs]
+
+
+def test_quantities_are_written_as_the_answers_table_writes_them(tmp_path):
+    """Units (solvers/units.py, sent as data) and an angle's radians, as ui/results.answer_rows."""
+    from ui.results import answer_rows
+
+    rows, payloads = [], []
+    for pid, system in (("pendulum_rebound", "us"), ("pendulum_rebound", "si"), ("driven_cart", "si"),
+                        ("sliding_ladder", "si")):
+        solution = registry.solver(pid).solve()
+        answers = BY_ID[pid].answers_of(solution)
+        data = live.payload(pid, solution.params, answers, system, {})
+        rows += [row[2] for row in answer_rows(solution, answers, system)]
+        payloads += [[solution.answers[a.name], row] for a, row in zip(answers, data["answers"])]
+    got = node(tmp_path, "console.log(JSON.stringify(input.map(([x, row]) => live.quantity(x, row, 1e6))));", payloads)
+    assert got == rows

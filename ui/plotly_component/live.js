@@ -1,0 +1,257 @@
+// Live values while a lesson control is dragged (ui/live.py), a Streamlit components-v2 module on the
+// lesson page only (Study and Lecture: never in Practice, a variant or an assignment, where it would
+// give the answers away).
+//
+// Streamlit reruns the page when a slider is released; while it is dragged (mouse, touch or a held
+// arrow key) its thumb's value changes in the page alone. This module watches the stage's controls
+// (the slider's range input, a number box's typing), and on the next animation frame (one per frame,
+// however many events came) evaluates the problem's generated function (solvers/live.py: generated
+// from the solver's sympy chain, never typed here) with the value shown, converted to SI, and writes
+// the answers' values as the page formats them (``plainNumber``: solvers/formatting.plain_number's
+// rules). What it cannot compute (an integral, a refused value, past a physical limit) is marked
+// "updating…", never left stale: the figure, its caption, the notes, the checks and the derivation
+// are dimmed and say so until the server's run replaces them. A regime the drag enters is said in
+// words above the answers. Once the run after the release is done, everything is the server's
+// again, and the main answer is said once to a screen reader (a polite live region).
+"use strict";
+
+const STYLE = `
+.dl-live-stale { opacity: 0.35; transition: none; }
+.dl-live-badge { display: inline-block; font-size: 0.8rem; font-weight: 600; padding: 0 0.5em; margin: 0 0 0.3rem 0;
+  border-radius: 0.4em; background: var(--st-orange-background-color, #FFF3E0); color: var(--st-orange-text-color, #9B4519); }
+.dl-live-status { font-size: 0.95rem; margin: 0 0 0.5rem 0; color: var(--st-orange-text-color, #9B4519); font-weight: 600; }
+.dl-live-status:empty { display: none; }
+.dl-live-value { font-variant-numeric: tabular-nums; }
+.dl-live-waiting { font-weight: 400; font-style: italic; color: var(--st-orange-text-color, #9B4519); }
+.dl-live-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }
+`;
+const UPDATING = "updating…";
+
+// ------------------------------------------------------------------ numbers as the page writes them
+const SUPERSCRIPT = {"0": "⁰", "1": "¹", "2": "²", "3": "³", "4": "⁴", "5": "⁵", "6": "⁶", "7": "⁷", "8": "⁸", "9": "⁹", "-": "⁻"};
+
+// Python's float(f"{x:.{sig}g}"): the exact binary value rounded to ``sig`` figures, a tie to even
+// (JavaScript's toPrecision breaks a tie away from zero).
+export function roundSig(x, sig) {
+  const away = Number(x.toPrecision(sig));
+  const [mantissa, exponent] = x.toExponential(Math.min(100, sig + 24)).split("e");
+  const digits = mantissa.replace("-", "").replace(".", "");
+  if (!/^50*$/.test(digits.slice(sig)) || Number(digits[sig - 1]) % 2 === 1) return away;
+  return Number(`${x < 0 ? "-" : ""}${digits[0]}.${digits.slice(1, sig)}e${exponent}`);
+}
+
+// solvers/formatting.plain_number: ``sig`` figures and a true minus; digits grouped by narrow no-break
+// spaces from ten thousand, a typeset power of ten from ``groupedBelow`` and below 10⁻⁴, never −0.
+export function plainNumber(x, sig = 4, groupedBelow = 1e6) {
+  if (x === Infinity) return "∞";
+  if (x === -Infinity) return "−∞";
+  const rounded = roundSig(x, sig);
+  if (rounded === 0) return "0";
+  const size = Math.abs(rounded);
+  let text;
+  if (size >= groupedBelow || size < 1e-4) {
+    let [mantissa, exponent] = rounded.toExponential(sig - 1).split("e");
+    if (mantissa.includes(".")) mantissa = mantissa.replace(/0+$/, "").replace(/\.$/, "");
+    text = `${mantissa}\u202f×\u202f10${String(Number(exponent)).replace(/./g, (c) => SUPERSCRIPT[c])}`;
+  } else if (size >= 1e4) {
+    const decimals = Math.max(0, sig - String(Math.trunc(size)).length);
+    let [whole, fraction] = rounded.toFixed(decimals).split(".");
+    whole = whole.replace(/\B(?=(\d{3})+(?!\d))/g, "\u202f");
+    if (fraction !== undefined) fraction = fraction.replace(/0+$/, "");
+    text = fraction ? `${whole}.${fraction}` : whole;
+  } else {
+    text = String(rounded);
+  }
+  return text.replace(/-/g, "−");
+}
+
+// ui/results.answer_rows: the value in the unit shown (degrees glued), an angle in radians too.
+export function quantity(x, [, unit, factor, angle], groupedBelow) {
+  const shown = plainNumber(x * factor, 4, groupedBelow);
+  const value = !unit ? shown : unit === "°" ? shown + unit : `${shown} ${unit}`;
+  return angle ? `${value} (${plainNumber(x, 4, groupedBelow)} rad)` : value;
+}
+
+// The generated function from its source (made by solvers/live.py on the server, never from anything
+// typed), loaded as a module: in the page from a blob (the app's Content-Security-Policy allows blob:
+// scripts, not eval), in node (tests/test_live.py) from a data: URL.
+const loadedFunctions = new Map();
+export function load(source) {
+  let fn = loadedFunctions.get(source);
+  if (!fn) {
+    const text = `export default ${source};`;
+    const url = typeof document !== "undefined" ? URL.createObjectURL(new Blob([text], {type: "text/javascript"}))
+      : "data:text/javascript," + encodeURIComponent(text);
+    loadedFunctions.set(source, fn = import(url).then((m) => m.default));
+  }
+  return fn;
+}
+
+// The parameters as JSON carries them: an infinite one (μ = ∞) as the word "inf" (ui/live.py).
+export const fromJSON = (params) => Object.fromEntries(Object.entries(params).map(([k, v]) => [k, v === "inf" ? Infinity : v]));
+
+// ------------------------------------------------------------------ the page while a control moves
+let state = null;   // this page's data (the last run's), and the drag under way
+let frame = 0;      // the animation frame requested, if any
+
+const $$ = (selector) => [...document.querySelectorAll(selector)];
+const stage = () => document.querySelector(".st-key-dl_stage");
+const answersTable = () => document.querySelector(".dl-text.dl-answers table");
+
+// What the server drew that a live value cannot redraw: dimmed, with a word, until the run replaces it.
+function staleParts() {
+  const answers = document.querySelector(".dl-text.dl-answers");
+  const own = answers ? [answers.querySelector("h3"), answersTable(), answers.querySelector(".dl-live-status")] : [];
+  return [...$$(".dl-figure"), ...(answers ? [...answers.children].filter((el) => !own.includes(el)) : []),
+          ...$$(".dl-text.dl-derivation")];
+}
+
+function controlValue(name) {
+  const key = state.data.follows.find(([n]) => n === name)[1];
+  const box = document.querySelector(`.st-key-${CSS.escape(key)} input`);
+  if (!box) return null;
+  const shown = box.value === "" ? NaN : Number(box.value);
+  return shown;
+}
+
+function shownParams() {
+  const params = {...state.params};
+  for (const [name, , factor] of state.data.follows) {
+    const shown = controlValue(name);
+    if (shown !== null) params[name] = shown / factor;  // shown = SI × factor (solvers/units.py)
+  }
+  return params;
+}
+
+function changed(params) {
+  return state.data.follows.some(([name]) => !Object.is(params[name], state.params[name]) &&
+    !(Math.abs(params[name] - state.params[name]) <= 1e-12 * Math.abs(state.params[name])));
+}
+
+function begin() {
+  if (state.live) return;
+  state.live = true;
+  document.body.classList.add("dl-live-dragging");
+  for (const el of staleParts()) el.classList.add("dl-live-stale");
+  const fig = document.querySelector(".st-key-dl_stage .dl-figure");
+  if (fig && !document.querySelector(".dl-live-badge"))  // beside the dimmed figure, not in it: legible
+    fig.before(Object.assign(document.createElement("span"), {className: "dl-live-badge", textContent: "the motion is updating…"}));
+}
+
+// Back to the server's drawing: every live value and mark gone.
+function end() {
+  if (!state || !state.live) return;
+  state.live = false;
+  document.body.classList.remove("dl-live-dragging");
+  for (const el of $$(".dl-live-stale")) el.classList.remove("dl-live-stale");
+  for (const el of $$(".dl-live-badge, .dl-live-value")) el.remove();
+  for (const el of $$("[data-dl-live-hidden]")) { el.hidden = false; el.removeAttribute("data-dl-live-hidden"); }
+  const status = document.querySelector(".dl-live-status");
+  if (status) status.textContent = "";
+}
+
+// One frame: the values for what the controls show now.
+function draw() {
+  frame = 0;
+  if (!state) return;
+  const params = shownParams();
+  if (!changed(params) && !state.live) return;
+  begin();
+  let result = {regime: "loading", values: null};  // the function not here yet: every value waits
+  if (state.fn) try { result = state.fn(params); } catch (e) { result = {regime: "refused", values: null}; }
+  const table = answersTable();
+  if (table) {
+    [...table.tBodies[0].rows].forEach((tr, i) => {
+      const row = state.data.answers[i], cell = tr.cells[2];
+      if (!row || !cell) return;
+      const x = result.values ? result.values[row[0]] : undefined;
+      const text = Number.isFinite(x) ? quantity(x, row, state.data.grouped_below) : UPDATING;
+      let live = cell.querySelector(".dl-live-value");
+      if (!live) {
+        for (const child of cell.children) { child.hidden = true; child.setAttribute("data-dl-live-hidden", ""); }
+        cell.append(live = Object.assign(document.createElement("strong"), {className: "dl-live-value"}));
+      }
+      live.classList.toggle("dl-live-waiting", text === UPDATING);
+      if (live.textContent !== text) live.textContent = text;
+    });
+  }
+  const status = statusLine();
+  if (status) {
+    const said = state.data.said[result.regime];
+    const text = result.regime === "refused" ? "This value is outside what the model allows: the page will say why on release."
+      : result.regime !== state.regime && said ? `Now: ${said}.` : "";
+    if (status.textContent !== text) status.textContent = text;
+  }
+}
+
+function statusLine() {
+  const table = answersTable();
+  if (!table) return null;
+  let status = table.parentElement.querySelector(".dl-live-status");
+  if (!status) table.before(status = Object.assign(document.createElement("p"), {className: "dl-live-status"}));
+  return status;
+}
+
+function schedule() { if (state && !frame) frame = requestAnimationFrame(draw); }
+
+// The stage's controls: a slider's value (react-aria sets its range input while it is dragged), a
+// number box's typing, a held arrow key.
+function watch() {
+  const controls = document.querySelector(".st-key-dl_stage_controls") || document.body;
+  if (controls.dlLiveWatched) return;
+  controls.dlLiveWatched = true;
+  new MutationObserver(schedule).observe(controls, {subtree: true, attributes: true, characterData: true,
+    childList: true, attributeFilter: ["aria-valuetext", "value"]});
+  for (const type of ["input", "pointermove", "keydown", "keyup", "pointerup"]) controls.addEventListener(type, schedule, true);
+}
+
+// The run after a release: when the app is idle again, the server's drawing stands.
+let watchingRuns = false;
+function watchRuns() {
+  if (watchingRuns) return;
+  const app = document.querySelector("[data-testid='stApp']");
+  if (!app) return;
+  watchingRuns = true;
+  new MutationObserver(() => {
+    if (app.getAttribute("data-test-script-state") === "notRunning") requestAnimationFrame(() => settle());
+  }).observe(app, {attributes: true, attributeFilter: ["data-test-script-state"]});
+}
+
+function settle() {
+  if (!state) return;
+  const params = shownParams();
+  if (state.live && !changed(params)) end();
+}
+
+// The main answer, said once after a run that a stage control started (not on every frame).
+function announce() {
+  let region = document.getElementById("dl-live-announce");
+  if (!region) {
+    region = Object.assign(document.createElement("div"), {id: "dl-live-announce", className: "dl-live-sr"});
+    region.setAttribute("aria-live", "polite");
+    document.body.append(region);
+  }
+  const table = answersTable();
+  const row = table && table.tBodies[0].rows[0];
+  const text = row ? `${row.cells[1].textContent}: ${row.cells[2].textContent}` : "";
+  if (region.textContent !== text) region.textContent = text;
+}
+
+const decoder = new TextDecoder();
+
+export function render({data, parentElement}) {
+  const d = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
+  if (!document.getElementById("dl-live-style"))
+    document.head.append(Object.assign(document.createElement("style"), {id: "dl-live-style", textContent: STYLE}));
+  parentElement.replaceChildren();
+  const params = fromJSON(d.params);
+  const wasLive = state && state.live;
+  if (state) end();
+  state = {data: d, params, regime: d.regime, live: false, fn: null};
+  const mine = state;
+  load(d.source).then((fn) => { mine.fn = fn; });
+  if (wasLive) requestAnimationFrame(announce);
+  watch();
+  watchRuns();
+  return () => { if (state && state.data === d) { end(); state = null; } };
+}
