@@ -369,3 +369,81 @@ def test_the_time_slider_scrubs_by_keyboard_and_follows_play(browser, app_url):
     assert int(scrub.input_value()) > 3, "the slider did not follow Play"
     assert not errors, errors
     context.close()
+
+
+RUN_COUNTER = ("() => { window.__runs = 0; const app = document.querySelector(\"[data-testid='stApp']\");"
+               " new MutationObserver((ms) => { for (const m of ms) if (m.oldValue === 'running') window.__runs++; })"
+               ".observe(app, {attributes: true, attributeOldValue: true, attributeFilter: ['data-test-script-state']}); }")
+LIVE_CELLS = ("() => [...document.querySelector('.dl-answers table').tBodies[0].rows].map((r) => r.cells[2].innerText)")
+
+
+def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(browser, app_url):
+    """Issue 27: while θ₀ is dragged (the mouse held down) the answers are the solver's for the value the
+    slider shows, with no server run; past the impact angle every answer waits ("updating…") and the
+    regime is said; on release one run replaces everything. Practice loads no live module; axe stays
+    at zero."""
+    from solvers.pendulum_rebound import solve
+    from solvers import units
+    from tests.test_where_used import serious_violations
+    from ui.results import answer_rows
+    from ui.catalog import BY_ID
+
+    context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound")
+    loaded = []
+    page.on("request", lambda r: loaded.append(r.url))
+    page.locator(".dl-answers table").first.wait_for()
+    page.evaluate(RUN_COUNTER)
+    control = page.locator(".st-key-pendulum_rebound__si__theta0")
+    track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
+    low, high = -89, 89
+    x_of = lambda degrees: track["x"] + (degrees - low) / (high - low) * track["width"]  # noqa: E731
+    y = track["y"] + track["height"] / 2
+    shown = lambda: float(control.locator("input[type='range']").input_value())  # noqa: E731
+
+    def expected(degrees: float) -> list[str]:
+        solution = solve(theta0=units.to_si(degrees, "angle"))
+        return [row[2] for row in answer_rows(solution, BY_ID["pendulum_rebound"].answers_of(solution), "si")]
+
+    before = page.evaluate(LIVE_CELLS)
+    page.mouse.move(x_of(0), y)
+    page.mouse.down()
+    for degrees in range(0, -21, -4):
+        page.mouse.move(x_of(degrees), y)
+    page.wait_for_timeout(200)
+    dragged_to = shown()
+    assert dragged_to < -5, dragged_to
+    during = page.evaluate(LIVE_CELLS)
+    assert during != before and during == expected(dragged_to), (during, expected(dragged_to))
+    assert page.evaluate("window.__runs") == 0  # all of it in the browser
+    assert page.locator(".dl-figure.dl-live-stale").count() >= 1  # the motion is not redrawn: marked
+
+    page.mouse.move(x_of(-70), y)  # below the impact angle (−35.7°): no impact, nothing to show
+    page.wait_for_timeout(200)
+    assert set(page.evaluate(LIVE_CELLS)) == {"updating…"}
+    assert "no impact" in page.locator(".dl-live-status").inner_text()
+
+    page.mouse.move(x_of(-12), y)
+    page.wait_for_timeout(200)
+    released_at = shown()
+    live_values = page.evaluate(LIVE_CELLS)
+    page.mouse.up()
+    page.wait_for_function("() => window.__runs >= 1 && !document.querySelector('.dl-live-value')", timeout=30_000)
+    wait_until_idle(page)
+    page.wait_for_timeout(300)
+    assert page.evaluate("window.__runs") == 1  # one server run for the whole drag
+    assert page.evaluate(LIVE_CELLS) == live_values == expected(released_at)
+    assert page.locator(".dl-live-stale, .dl-live-badge").count() == 0
+    assert page.locator("#dl-live-announce").inner_text().strip()  # the main answer, said once
+    assert any("/live." in url for url in loaded + page.evaluate(
+        "() => performance.getEntriesByType('resource').map((e) => e.name)"))  # so the check below can fail
+    assert serious_violations(page) == []
+    assert not errors, errors
+    assert csp_violations(page) == []
+    context.close()
+
+    context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound?practice=1")
+    page.get_by_role("heading", name=BY_ID["pendulum_rebound"].title).wait_for()
+    sources = page.evaluate("() => performance.getEntriesByType('resource').map((e) => e.name)")
+    assert not any("/live." in url for url in sources), sources
+    assert page.locator("#dl-live-style").count() == 0
+    context.close()

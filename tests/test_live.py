@@ -10,6 +10,7 @@ from __future__ import annotations
 import importlib
 import json
 import math
+import os
 import shutil
 import subprocess
 from pathlib import Path
@@ -25,7 +26,8 @@ from ui.catalog import BY_ID
 
 ROOT = Path(__file__).resolve().parent.parent
 NODE = shutil.which("node")
-pytestmark = pytest.mark.skipif(NODE is None and not __import__("os").environ.get("CI"), reason="needs node")
+# Skipped on a workstation without node; in CI (.ci/run installs Debian's nodejs) a missing node fails.
+pytestmark = pytest.mark.skipif(NODE is None and not os.environ.get("CI"), reason="needs node (apt-get install nodejs)")
 
 # Answers the browser cannot compute (integrals by quadrature): typed here from PROBLEMS.md, not read
 # from the generator. Every other answer of every page must be live.
@@ -90,7 +92,7 @@ def test_every_problem_opts_in(pid):
 @pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
 def test_live_values_are_the_solvers(pid, tmp_path_factory):
     # no shrinking: a failure names its parameters in the message, and shrinking a batch takes minutes
-    @settings(max_examples=4, deadline=None, suppress_health_check=list(HealthCheck),
+    @settings(max_examples=3, deadline=None, suppress_health_check=list(HealthCheck),
               phases=(Phase.explicit, Phase.reuse, Phase.generate))
     @given(st.lists(dragged(pid), min_size=BATCH, max_size=BATCH))
     def check(samples):
