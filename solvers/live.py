@@ -176,7 +176,7 @@ def payload(pid: str, params: Mapping[str, object], answers, system: str, contro
     follows = [[name, control_keys[name], units.to_display(1.0, numbers[name].dimension, system)]
                for name in live.follows if name in control_keys]
     rows = [[a.name, units.unit(a.dimension, system), units.to_display(1.0, a.dimension, system),
-             a.dimension == "angle"] for a in answers]
+             a.dimension == "angle", a.label] for a in answers]
     said = {case.regime: case.said for case in live.cases(**dict(options))}
     return {"source": function_source(pid, options), "params": dict(params), "follows": follows,
             "answers": rows, "said": said, "grouped_below": GROUPED_BELOW}

@@ -415,7 +415,9 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     during = page.evaluate(LIVE_CELLS)
     assert during != before and during == expected(dragged_to), (during, expected(dragged_to))
     assert page.evaluate("window.__runs") == 0  # all of it in the browser
-    assert page.locator(".dl-figure.dl-live-stale").count() >= 1  # the motion is not redrawn: marked
+    assert page.locator(".dl-figure .dl-live-stale").count() >= 1  # the motion is not redrawn: marked
+    headline = page.locator(".dl-live-headline").inner_text()  # the main answer on the stage, by the figure
+    assert headline.endswith(expected(dragged_to)[0]), headline
 
     page.mouse.move(x_of(-70), y)  # below the impact angle (−35.7°): no impact, nothing to show
     page.wait_for_timeout(200)

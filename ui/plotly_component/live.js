@@ -16,9 +16,11 @@
 "use strict";
 
 const STYLE = `
-.dl-live-stale { opacity: 0.35; transition: none; }
-.dl-live-badge { display: inline-block; font-size: 0.8rem; font-weight: 600; padding: 0 0.5em; margin: 0 0 0.3rem 0;
-  border-radius: 0.4em; background: var(--st-orange-background-color, #FFF3E0); color: var(--st-orange-text-color, #9B4519); }
+.dl-live-stale { opacity: 0.35 !important; transition: none; }  /* over the caption's own .75 */
+.dl-figure { position: relative; }
+.dl-live-badge { position: absolute; top: 0; left: 0; right: 0; z-index: 5; font-size: 1rem; padding: 0.15em 0.6em; margin: 0 0 0.3rem 0; border-radius: 0.4em;
+  background: var(--st-orange-background-color, #FFF3E0); color: var(--st-orange-text-color, #9B4519); }
+.dl-live-badge .dl-live-note { font-size: 0.8rem; margin-left: 0.6em; opacity: 0.9; }
 .dl-live-status { font-size: 0.95rem; margin: 0 0 0.5rem 0; color: var(--st-orange-text-color, #9B4519); font-weight: 600; }
 .dl-live-status:empty { display: none; }
 .dl-live-value { font-variant-numeric: tabular-nums; }
@@ -102,7 +104,7 @@ const answersTable = () => document.querySelector(".dl-text.dl-answers table");
 function staleParts() {
   const answers = document.querySelector(".dl-text.dl-answers");
   const own = answers ? [answers.querySelector("h3"), answersTable(), answers.querySelector(".dl-live-status")] : [];
-  return [...$$(".dl-figure"), ...(answers ? [...answers.children].filter((el) => !own.includes(el)) : []),
+  return [...$$(".dl-figure > :not(.dl-live-badge)"), ...(answers ? [...answers.children].filter((el) => !own.includes(el)) : []),
           ...$$(".dl-text.dl-derivation")];
 }
 
@@ -134,8 +136,14 @@ function begin() {
   document.body.classList.add("dl-live-dragging");
   for (const el of staleParts()) el.classList.add("dl-live-stale");
   const fig = document.querySelector(".st-key-dl_stage .dl-figure");
-  if (fig && !document.querySelector(".dl-live-badge"))  // beside the dimmed figure, not in it: legible
-    fig.before(Object.assign(document.createElement("span"), {className: "dl-live-badge", textContent: "the motion is updating…"}));
+  // Over the figure's title, not dimmed with it, and taking no room: nothing under the finger moves.
+  if (fig && !document.querySelector(".dl-live-badge")) {
+    const badge = Object.assign(document.createElement("p"), {className: "dl-live-badge"});
+    badge.append(Object.assign(document.createElement("strong"), {className: "dl-live-headline"}),
+                 Object.assign(document.createElement("span"), {className: "dl-live-said"}),
+                 Object.assign(document.createElement("span"), {className: "dl-live-note", textContent: "the motion is updating…"}));
+    fig.prepend(badge);
+  }
 }
 
 // Back to the server's drawing: every live value and mark gone.
@@ -175,13 +183,20 @@ function draw() {
       if (live.textContent !== text) live.textContent = text;
     });
   }
+  const said = state.data.said[result.regime];
+  const regimeText = result.regime === "refused" ? "This value is outside what the model allows: the page will say why on release."
+    : result.regime !== state.regime && said ? `Now: ${said}.` : "";
   const status = statusLine();
-  if (status) {
-    const said = state.data.said[result.regime];
-    const text = result.regime === "refused" ? "This value is outside what the model allows: the page will say why on release."
-      : result.regime !== state.regime && said ? `Now: ${said}.` : "";
-    if (status.textContent !== text) status.textContent = text;
-  }
+  if (status && status.textContent !== regimeText) status.textContent = regimeText;
+  // The headline on the stage, where the eye is while dragging: the main answer, and a regime entered.
+  const main = state.data.answers[0], x = result.values && main ? result.values[main[0]] : undefined;
+  setText(".dl-live-headline", main ? `${main[4]}: ${Number.isFinite(x) ? quantity(x, main, state.data.grouped_below) : UPDATING}` : "");
+  setText(".dl-live-said", regimeText ? ` · ${regimeText}` : "");
+}
+
+function setText(selector, text) {
+  const el = document.querySelector(selector);
+  if (el && el.textContent !== text) el.textContent = text;
 }
 
 function statusLine() {
