@@ -162,6 +162,7 @@ function end() {
 function draw() {
   frame = 0;
   if (!state) return;
+  const started = performance.now();
   const params = shownParams();
   if (!changed(params) && !state.live) return;
   begin();
@@ -192,6 +193,7 @@ function draw() {
   const main = state.data.answers[0], x = result.values && main ? result.values[main[0]] : undefined;
   setText(".dl-live-headline", main ? `${main[4]}: ${Number.isFinite(x) ? quantity(x, main, state.data.grouped_below) : UPDATING}` : "");
   setText(".dl-live-said", regimeText ? ` · ${regimeText}` : "");
+  performance.measure("dl-live-draw", {start: started});  // its own cost, for bench/live_drag.py
 }
 
 function setText(selector, text) {
@@ -262,6 +264,7 @@ export function render({data, parentElement}) {
   const params = fromJSON(d.params);
   const wasLive = state && state.live;
   if (state) end();
+  performance.clearMeasures("dl-live-draw");  // one drag's worth kept, not a session's
   state = {data: d, params, regime: d.regime, live: false, fn: null};
   const mine = state;
   load(d.source).then((fn) => { mine.fn = fn; });
