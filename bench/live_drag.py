@@ -25,9 +25,8 @@ sys.path.insert(0, str(ROOT))
 from playwright.sync_api import sync_playwright  # noqa: E402
 
 from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
-from solvers.core import Number  # noqa: E402
+from bench.controls import lesson_control  # noqa: E402
 from ui.catalog import PROBLEMS  # noqa: E402
-from ui.params import control_key, is_slider  # noqa: E402
 
 # Each input event's time, and the first task after the next frame in which ``watched`` changed text.
 PROBE = """(watched) => {
@@ -87,12 +86,11 @@ def live_page(browser, url: str, problem, moves: int) -> dict:
     page.goto(f"{url}/{problem.id}")
     wait_until_idle(page)
     page.locator(".dl-answers table").first.wait_for()
-    numbers = {p.name: p for p in problem.solver.PARAMS if isinstance(p, Number)}
-    first = next(numbers[name] for name in problem.primary if name in numbers)
-    control = page.locator(f".st-key-{control_key(problem, 'si', first.name)}")
+    key, _, kind, _ = lesson_control(problem.id)  # the control every benchmark moves
+    control = page.locator(f".st-key-{key}")
     control.scroll_into_view_if_needed()
     page.evaluate(PROBE, ".dl-answers table")  # the answers (the headline may not depend on this control)
-    if is_slider(first):
+    if kind == "slider":
         track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
         drag_slider(page, track, moves)
         during = page.evaluate("window.__runs")
@@ -111,7 +109,8 @@ def live_page(browser, url: str, problem, moves: int) -> dict:
     page.wait_for_function("() => window.__runs >= 1", timeout=30_000)
     wait_until_idle(page)
     page.wait_for_timeout(500)
-    result = {"draw_ms": statistics.median(draws) if draws else float("nan"), "control": first.name, "kind": "slider" if is_slider(first) else "box", "lat": page.evaluate("window.__lat"),
+    result = {"draw_ms": statistics.median(draws) if draws else float("nan"), "control": key.rsplit("__", 1)[-1],
+              "kind": "slider" if kind == "slider" else "box", "lat": page.evaluate("window.__lat"),
               "runs_while_moving": during, "runs_after_release": page.evaluate("window.__runs") - during}
     page.close()
     return result
