@@ -101,7 +101,7 @@ def _range_condition(param: Number, sym: sp.Symbol) -> sp.Basic:
     return sp.And(*parts)
 
 
-def _case_block(case: Case, params: Mapping[str, sp.Symbol], answers: tuple[str, ...]) -> str:
+def _case_block(case: Case, params: Mapping[str, sp.Symbol]) -> str:
     """A JS block: the case's chain evaluated (links whose inputs the browser lacks left out), then
     its condition; returns when it holds."""
     names = {sym: _safe("p_", name) for name, sym in params.items()}
@@ -155,7 +155,7 @@ def function_source(pid: str, options: tuple[tuple[str, str], ...] = ()) -> str:
     finite = [f"Number.isFinite({_safe('p_', n)})" if not numbers[n].allow_inf else f"!Number.isNaN({_safe('p_', n)})"
               for n in live.follows]  # an emptied box (NaN) is refused too
     head.append(f"if (!({' && '.join(finite)} && {_js(valid)})) return {{regime: {REFUSED!r}, values: null}};")
-    blocks = [_case_block(case, params, ()) for case in live.cases(**dict(options))]
+    blocks = [_case_block(case, params) for case in live.cases(**dict(options))]
     body = "\n".join(["  " + line for line in head] + blocks)
     return f"(p) => {{\n{body}\nreturn {{regime: {REFUSED!r}, values: null}};\n}}"
 
