@@ -361,8 +361,11 @@ def fitted(traces: Sequence[Moving | dict], pad: float = 0.08) -> tuple[tuple[fl
     the bodies fill the plot (with equal axes plotly widens the roomier axis to keep the aspect)."""
     def flat(rows) -> np.ndarray:
         if isinstance(rows, Trail):
-            rows = [rows.path]
-        return np.concatenate([np.ravel(np.asarray(row, dtype=float)) for row in rows])
+            return np.asarray(rows.path, dtype=float).ravel()
+        try:  # every frame's row at once (rows of one length: all but a trail's)
+            return np.asarray(rows, dtype=float).ravel()
+        except ValueError:  # ragged rows
+            return np.concatenate([np.ravel(np.asarray(row, dtype=float)) for row in rows])
 
     xs, ys = [], []
     for trace in traces:
