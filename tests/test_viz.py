@@ -143,6 +143,7 @@ def test_the_stage_fits_every_kind_of_rows():
     rng = np.random.default_rng(3)
     grid = rng.normal(size=(12, 5))
     ragged = [[float(v) for v in rng.normal(size=n)] + [None] for n in range(2, 14)]
+    grid[-1, 2], ragged[-1][0] = 40.0, -60.0  # the extremes in the last frames, the ranges' ends
     path_x, path_y = trails(rng.normal(size=12) * 4, rng.normal(size=12) - 9)
     traces = [moving(line(None, None, "grid", "#000"), grid, grid * 2),
               moving(line(None, None, "equal", "#000"), [list(row) for row in grid + 5], [list(row) for row in grid]),
