@@ -58,7 +58,7 @@ def _animation(solution) -> Figure:
         moving(_scatter3d(np.zeros((1, 3)), "contact point", COLORS["impulse"], mode="markers", size=7),
                *xyz(m["contact"][:, None, :])),
     ]
-    span = 1.15 * rad
+    span = 1.05 * rad
     tick = _nice_below(span / 2)  # three labels a side (−20, 0, 20), clear of the corners where two axes meet
     axis = lambda lo, hi, ticks: {"range": r([lo, hi]), "title": {"text": ""}, "tickvals": ticks}  # noqa: E731
     layout = {
@@ -72,7 +72,7 @@ def _animation(solution) -> Figure:
         # the tick labels; z above its top), text the page lays out and keeps inside the graph.
         "scene": {"xaxis": axis(-span, span, [-tick, 0, tick]), "yaxis": axis(-span, span, [-tick, 0, tick]),
                   "zaxis": axis(0, span, [tick, 2 * tick]), "aspectmode": "manual",
-                  "aspectratio": {"x": 1, "y": 1, "z": 0.5},
+                  "aspectratio": {"x": 1.1, "y": 1.1, "z": 0.55},
                   "camera": {"eye": {"x": 0.95, "y": -0.95, "z": 0.62}, "center": {"x": -0.04, "y": -0.04, "z": -0.05},
                              "projection": {"type": "orthographic"}},
                   "annotations": [
