@@ -14,7 +14,7 @@ import pytest
 
 from scripts.live_app import CHROMIUM, wait_until_idle
 from tests.test_browser import open_page
-from tests.test_stage import stage_faults
+from tests.test_stage import overlaps, stage_faults
 from ui.catalog import PROBLEMS
 from ui.params import is_slider
 from ui.figure import LECTURE
@@ -103,6 +103,17 @@ def test_lecture_view_on_a_projector(browser, app_url, size):
             "g => [...g.querySelectorAll('text')].filter(t => t.textContent.trim())"
             ".map(t => parseFloat(getComputedStyle(t).fontSize))")
         assert fonts and min(fonts) >= LECTURE["min_font"], (where, sorted(fonts)[:5])
+        # And every text of the lesson's controls beside it (labels, values, options), none over another.
+        controls = page.locator(".st-key-dl_stage_controls").evaluate(
+            "c => [...c.querySelectorAll('*')].filter(e => e.offsetParent !== null && ([...e.childNodes].some("
+            "n => n.nodeType === 3 && n.textContent.trim()) || e.tagName === 'INPUT' && e.type !== 'range'))"
+            ".map(e => { const r = e.getBoundingClientRect(); return [e.textContent.trim().slice(0, 30) || e.value,"
+            " parseFloat(getComputedStyle(e).fontSize), {x: r.x, y: r.y, width: r.width, height: r.height}]; })")
+        assert controls and min(size for _, size, _ in controls) >= LECTURE["min_font"], (where, sorted(controls, key=lambda c: c[1])[:3])
+        texts = [(text, box) for text, _, box in controls if box["width"] and box["height"]]
+        over = [(a, b) for n, (a, box) in enumerate(texts) for b, other in texts[n + 1:]
+                if overlaps(box, other) and not (inside(box, other) or inside(other, box))]  # (nested: one text)
+        assert over == [], (where, over)
         # Lines and markers as drawn: thicker than the study view's thinnest (1 px lines, 9 px markers).
         widths = frame.locator(".dl-graph").evaluate(
             # (a filled body's outline follows its drawn size instead: tests/test_stage.py)
@@ -125,6 +136,12 @@ def test_lecture_view_on_a_projector(browser, app_url, size):
             _the_figure_follows_the_sidebar(page, where)
         assert not errors, (where, errors)
         context.close()
+
+
+def inside(a: dict, b: dict) -> bool:
+    """Box ``a`` within box ``b``."""
+    return (b["x"] - 1 <= a["x"] and a["x"] + a["width"] <= b["x"] + b["width"] + 1
+            and b["y"] - 1 <= a["y"] and a["y"] + a["height"] <= b["y"] + b["height"] + 1)
 
 
 def _controls_beside_and_the_figure_stays(page, where: str) -> None:

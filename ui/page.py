@@ -25,6 +25,12 @@ LECTURE_CSS = """
   .stMainBlockContainer h1 { font-size: 2.4rem; padding-top: 0; }
   .stMainBlockContainer .katex { font-size: 1.45em; }
   .stMainBlockContainer table { font-size: 1.25rem; }
+  /* the lesson's controls on the stage, read from the back of the room like the figure beside them */
+  .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p, .st-key-dl_stage_controls [role='radiogroup'] p,
+  .st-key-dl_stage_controls input, .st-key-dl_stage_controls [data-testid='stSliderThumbValue'],
+  .st-key-dl_stage_controls [data-testid='stSliderTickBar'] div {
+    font-size: 18px !important; line-height: 1.35; }
+  .st-key-dl_stage_controls [data-testid='stSlider'] [data-testid='stWidgetLabel'] { margin-bottom: 1.1rem; }  /* the value above the thumb clears it */
 </style>
 """
 
