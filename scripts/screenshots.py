@@ -1,6 +1,6 @@
 """Screenshots of every page in headless Chromium, light and dark theme, at the three sizes the app
 is used at: a laptop (1400x1000), a projector (1280x720, the lecture view) and a phone (390x844,
-touch, 2x pixels). Each page is shot whole (the window grown to the page's height) into
+touch, 2x pixels; a small one, 360x740, on request). Each page is shot whole (the window grown to the page's height) into
 NAME-THEME-SIZE.png, and its first screen, what a person sees before scrolling, into
 NAME-THEME-SIZE-first.png.
 
@@ -18,7 +18,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
 from ui.catalog import PROBLEMS  # noqa: E402
 
-SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844)}
+SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844), "phone-small": (360, 740)}
 VIEW = {"projector": "lecture=1"}  # the projector shows the lecture view
 PHONE = {"is_mobile": True, "has_touch": True, "device_scale_factor": 2}
 
@@ -42,7 +42,7 @@ def main() -> None:
             for size in args.sizes:
                 w, h = SIZES[size]
                 context = browser.new_context(viewport={"width": w, "height": h}, color_scheme=theme,
-                                              **(PHONE if size == "phone" else {}))
+                                              **(PHONE if size.startswith("phone") else {}))
                 page = context.new_page()
                 for path in paths:
                     query = "&".join(q for q in (VIEW.get(size, "") if path else "", args.query) if q)

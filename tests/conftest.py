@@ -20,9 +20,10 @@ def fresh_key_throttle():
     yield
 
 
-# The browser tests' shared fixtures (tests/test_browser.py, tests/test_where_used.py): one Chromium
-# and one server per test module.
-@pytest.fixture(scope="module")
+# The browser tests' shared fixtures (test_browser, test_where_used, test_stage, test_seen_and_heard, ...):
+# one Chromium and one server for the whole session (each start costs 10-30 s of a 2-core CI machine);
+# a module that needs a server of its own (other settings) defines its own fixture.
+@pytest.fixture(scope="session")
 def browser():
     from playwright.sync_api import sync_playwright
 
@@ -34,7 +35,7 @@ def browser():
         b.close()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def app_url():
     """The app as shipped (serve.py) on a free loopback port, or APP_URL: the container, the balancer."""
     if os.environ.get("APP_URL"):

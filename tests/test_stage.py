@@ -26,9 +26,23 @@ STAGE, CONTROLS = ".st-key-dl_stage", ".st-key-dl_stage_controls"
 MEASURE = """(g) => {
   const full = g._fullLayout;
   if (full.scene) {
-    const domain = full.scene.domain, graph = g.getBoundingClientRect();
-    return {scene: true, domainW: domain.x[1] - domain.x[0], domainH: domain.y[1] - domain.y[0],
-            plotW: full._size.w, graphW: graph.width};
+    // The moving body (the disk's rim, the body colour) as drawn: the scene redrawn and its pixels read at
+    // once, before the browser composites the frame; its box beside the plot area's.
+    const scene = full.scene._scene, canvas = scene.glplot.canvas;
+    scene.glplot.redraw();
+    const copy = document.createElement("canvas");
+    copy.width = canvas.width; copy.height = canvas.height;
+    const ctx = copy.getContext("2d");
+    ctx.drawImage(canvas, 0, 0);
+    const px = ctx.getImageData(0, 0, copy.width, copy.height).data, body = [0x00, 0x72, 0xB2];
+    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+    for (let i = 0; i < px.length; i += 4) {
+      if (px[i + 3] < 200 || Math.abs(px[i] - body[0]) + Math.abs(px[i + 1] - body[1]) + Math.abs(px[i + 2] - body[2]) > 40) continue;
+      const x = (i / 4) % copy.width, y = Math.floor(i / 4 / copy.width);
+      x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y);
+    }
+    const scale = canvas.width / canvas.getBoundingClientRect().width;
+    return {scene: true, width: (x1 - x0) / scale / full._size.w, height: (y1 - y0) / scale / full._size.h};
   }
   const xa = full.xaxis, ya = full.yaxis;
   let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
@@ -41,8 +55,32 @@ MEASURE = """(g) => {
       for (const v of d.y) if (v !== null && isFinite(v)) { y0 = Math.min(y0, v); y1 = Math.max(y1, v); }
     });
   }
+  // Each filled body's outline (a sphere, a disk) beside its drawn size: thick outlines turn a small sphere into a ring.
+  const rings = [];
+  g._fullData.forEach((t, n) => {
+    if (t.fill !== "toself" || !t.line || t.xaxis !== "x" || t.yaxis !== "y") return;
+    const f = frames[0] && frames[0].traces.indexOf(n) >= 0 ? frames[0].data[frames[0].traces.indexOf(n)] : t;
+    const span = (v, a) => { v = Array.from(v).filter(u => u !== null && isFinite(u));
+                             return Math.abs(a.l2p(Math.max(...v)) - a.l2p(Math.min(...v))); };
+    const size = Math.min(span(f.x, xa), span(f.y, ya));
+    // (at most 1/14 of its size, 1.5 px at least; figure.js redraws an outline a quarter off)
+    if (t.line.width > 1.3 * Math.max(1.5, size / 14)) rings.push(`${t.name}: ${t.line.width} px on ${size.toFixed(0)} px`);
+  });
+  // Every axis label (ticks and titles) clear of the others and of every other subplot's plot area.
+  const labels = [...g.querySelectorAll(".xaxislayer-above text, .yaxislayer-above text, .g-xtitle text, .g-ytitle text,"
+                                        + " .g-x2title text, .g-y2title text")].filter(t => t.textContent.trim());
+  const boxes = labels.map(t => [t.textContent, t.getBoundingClientRect()]);
+  const areas = [...g.querySelectorAll(".draglayer .nsewdrag")].map(r => [r.closest("g[class]").getAttribute("class"), r.getBoundingClientRect()]);
+  const cross = (a, b) => a.left < b.right - 1 && b.left < a.right - 1 && a.top < b.bottom - 1 && b.top < a.bottom - 1;
+  const clashes = [];
+  boxes.forEach(([text, box], i) => {
+    boxes.slice(i + 1).forEach(([other, b]) => { if (cross(box, b)) clashes.push(`${text} / ${other}`); });
+    areas.forEach(([name, area]) => {
+      if (cross(box, area)) clashes.push(`${text} in ${name}`);
+    });
+  });
   return {scene: false, frames: frames.length, width: Math.abs(xa.l2p(x1) - xa.l2p(x0)) / xa._length,
-          height: Math.abs(ya.l2p(y1) - ya.l2p(y0)) / ya._length,
+          height: Math.abs(ya.l2p(y1) - ya.l2p(y0)) / ya._length, rings: rings, clashes: clashes,
           unitX: Math.abs(xa.l2p(1) - xa.l2p(0)), unitY: Math.abs(ya.l2p(1) - ya.l2p(0))};
 }"""
 
@@ -79,9 +117,9 @@ def stage_faults(page, problem, height: int) -> list[str]:
     if overlaps(graph, controls):
         faults.append("controls over the figure")
     m = figure.locator(".dl-graph").evaluate(MEASURE)
-    if m["scene"]:  # Euler's disk: the 3-D scene takes the graph's room
-        if not (m["domainW"] >= 0.9 and m["domainH"] >= 0.9 and m["plotW"] >= 0.8 * m["graphW"]):
-            faults.append(f"scene {m}")
+    if m["scene"]:  # Euler's disk: its disk as drawn fills the 3-D scene's plot area as a 2-D stage's bodies do
+        if max(m["width"], m["height"]) < 0.5:
+            faults.append(f"the disk fills {m['width']:.2f} × {m['height']:.2f} of the scene")
     elif m["frames"] <= 1:
         faults.append("no animation")
     else:
@@ -89,6 +127,7 @@ def stage_faults(page, problem, height: int) -> list[str]:
             faults.append(f"bodies fill {m['width']:.2f} × {m['height']:.2f} of the plot")
         if abs(m["unitX"] - m["unitY"]) > 0.01 * m["unitX"]:
             faults.append(f"unequal axes {m['unitX']:.1f} / {m['unitY']:.1f} px")
+        faults += [f"ring: {ring}" for ring in m["rings"]] + [f"label over: {clash}" for clash in m["clashes"]]
     return faults
 
 

@@ -132,3 +132,41 @@ def test_compacting_keeps_what_is_not_rigid():
     assert "affine" in packed[2]
     rebuilt = unpacked(packed[2], 40)
     assert np.abs(np.asarray(rebuilt["x"]) - turned.real).max() <= REBUILT
+
+
+def test_the_stage_fits_every_kind_of_rows():
+    """``fitted`` reads a moving trace's frames as one array where the rows have one length, row by
+    row where they do not (issue 28): the ranges are those of every point, gaps left out, whichever
+    way the rows come (a 2-D array, equal lists, ragged lists with None, a trail)."""
+    from viz.common import fitted, line, moving, trails
+
+    rng = np.random.default_rng(3)
+    grid = rng.normal(size=(12, 5))
+    ragged = [[float(v) for v in rng.normal(size=n)] + [None] for n in range(2, 14)]
+    grid[-1, 2], ragged[-1][0] = 40.0, -60.0  # the extremes in the last frames, the ranges' ends
+    path_x, path_y = trails(rng.normal(size=12) * 4, rng.normal(size=12) - 9)
+    traces = [moving(line(None, None, "grid", "#000"), grid, grid * 2),
+              moving(line(None, None, "equal", "#000"), [list(row) for row in grid + 5], [list(row) for row in grid]),
+              moving(line(None, None, "ragged", "#000"), ragged, ragged),
+              moving(line(None, None, "trail", "#000"), path_x, path_y),
+              {"x": [7.5, None], "y": [0.0, -1.0]}]
+    every = lambda axis: np.array([v for t in traces for row in (  # noqa: E731  the plain reference
+        [t[axis]] if isinstance(t, dict) else [t.per_frame[axis].path] if hasattr(t.per_frame[axis], "path")
+        else t.per_frame[axis]) for v in np.ravel(np.asarray(row, dtype=float))])
+    x, y = every("x"), every("y")
+    x_lo, x_hi, y_lo, y_hi = np.nanmin(x), np.nanmax(x), np.nanmin(y), np.nanmax(y)
+    margin = 0.08 * max(x_hi - x_lo, y_hi - y_lo)
+    assert fitted(traces) == ((x_lo - margin, x_hi + margin), (y_lo - margin, y_hi + margin))
+
+
+def test_the_shared_pseudo_inverse_cannot_be_changed():
+    """The compaction's pseudo-inverse is kept per first frame and shared between figures (issue 28):
+    it is the same numbers as numpy's, and read-only, so no caller can spoil it for the next."""
+    from viz.common import _pinv
+
+    homogeneous = np.hstack([np.random.default_rng(5).normal(size=(7, 2)), np.ones((7, 1))])
+    kept = _pinv(homogeneous.tobytes(), homogeneous.shape)
+    assert np.array_equal(kept, np.linalg.pinv(homogeneous, rcond=1e-6))
+    assert _pinv(homogeneous.tobytes(), homogeneous.shape) is kept
+    with pytest.raises(ValueError):
+        kept[0, 0] = 1.0

@@ -14,7 +14,7 @@ import pytest
 
 from scripts.live_app import CHROMIUM, wait_until_idle
 from tests.test_browser import open_page
-from tests.test_stage import stage_faults
+from tests.test_stage import overlaps, stage_faults
 from ui.catalog import PROBLEMS
 from ui.params import is_slider
 from ui.figure import LECTURE
@@ -103,9 +103,21 @@ def test_lecture_view_on_a_projector(browser, app_url, size):
             "g => [...g.querySelectorAll('text')].filter(t => t.textContent.trim())"
             ".map(t => parseFloat(getComputedStyle(t).fontSize))")
         assert fonts and min(fonts) >= LECTURE["min_font"], (where, sorted(fonts)[:5])
+        # And every text of the lesson's controls beside it (labels, values, options), none over another.
+        controls = page.locator(".st-key-dl_stage_controls").evaluate(
+            "c => [...c.querySelectorAll('*')].filter(e => e.offsetParent !== null && ([...e.childNodes].some("
+            "n => n.nodeType === 3 && n.textContent.trim()) || e.tagName === 'INPUT' && e.type !== 'range'))"
+            ".map(e => { const r = e.getBoundingClientRect(); return [e.textContent.trim().slice(0, 30) || e.value,"
+            " parseFloat(getComputedStyle(e).fontSize), {x: r.x, y: r.y, width: r.width, height: r.height}]; })")
+        assert controls and min(size for _, size, _ in controls) >= LECTURE["min_font"], (where, sorted(controls, key=lambda c: c[1])[:3])
+        texts = [(text, box) for text, _, box in controls if box["width"] and box["height"]]
+        over = [(a, b) for n, (a, box) in enumerate(texts) for b, other in texts[n + 1:]
+                if overlaps(box, other) and not (inside(box, other) or inside(other, box))]  # (nested: one text)
+        assert over == [], (where, over)
         # Lines and markers as drawn: thicker than the study view's thinnest (1 px lines, 9 px markers).
         widths = frame.locator(".dl-graph").evaluate(
-            "g => g._fullData.flatMap(t => [t.line && t.mode !== 'markers' ? t.line.width : null,"
+            # (a filled body's outline follows its drawn size instead: tests/test_stage.py)
+            "g => g._fullData.flatMap(t => [t.line && t.mode !== 'markers' && t.fill !== 'toself' ? t.line.width : null,"
             " t.marker && /markers/.test(t.mode || '') ? t.marker.size : null]).filter(v => v != null)")
         assert min(widths) >= 1.8, (where, widths)
         # The answers follow the figure, in large type.
@@ -120,8 +132,16 @@ def test_lecture_view_on_a_projector(browser, app_url, size):
         assert serious_violations(page) == [], where
         if all(is_slider(p) for p in problem.solver.PARAMS if p.name in problem.primary and hasattr(p, "dimension")):
             _controls_beside_and_the_figure_stays(page, where)
+        if problem == PROBLEMS[0] and size == PROJECTORS[0]:
+            _the_figure_follows_the_sidebar(page, where)
         assert not errors, (where, errors)
         context.close()
+
+
+def inside(a: dict, b: dict) -> bool:
+    """Box ``a`` within box ``b``."""
+    return (b["x"] - 1 <= a["x"] and a["x"] + a["width"] <= b["x"] + b["width"] + 1
+            and b["y"] - 1 <= a["y"] and a["y"] + a["height"] <= b["y"] + b["height"] + 1)
 
 
 def _controls_beside_and_the_figure_stays(page, where: str) -> None:
@@ -141,6 +161,20 @@ def _controls_beside_and_the_figure_stays(page, where: str) -> None:
     assert page.evaluate("document.querySelector(\"[data-testid='stMain']\").scrollTop") == 0, where
 
 
+def _the_figure_follows_the_sidebar(page, where: str) -> None:
+    """Opening the sidebar (») narrows the figure, closing it widens it again: drawn, not clipped."""
+    graph = page.locator(f"{FIGURE} .dl-graph").first
+    drawn = graph.locator(".main-svg").first
+    wide = graph.bounding_box()["width"]
+    for button, narrower in (("[data-testid='stExpandSidebarButton']", True),
+                             ("[data-testid='stSidebar'] [data-testid='stSidebarCollapseButton'] button", False)):
+        page.locator(button).click()
+        page.wait_for_timeout(1000)
+        width = graph.bounding_box()["width"]
+        assert (width < wide - 100) if narrower else width == pytest.approx(wide, abs=2), (where, wide, width)
+        assert drawn.bounding_box()["width"] == pytest.approx(width, abs=2), (where, "the drawing did not follow")
+
+
 # --- the phone -------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("size", PHONES, ids=[f"{w}x{h}" for w, h in PHONES])
@@ -151,10 +185,8 @@ def test_on_a_phone(browser, app_url, size):
         context, page, errors = open_at(browser, f"{app_url}/{problem.id}", size, phone=True)
         where = f"{problem.id} at {width} px"
         frame = graph_of(page)  # measure the settled page, its figure drawn
-        # The stage: the motion, Play and the lesson's controls (below it) in the first screen of a
-        # 390×844 phone (at 360×740 the disk's five lesson controls need a little scrolling).
-        if width == 390:
-            assert stage_faults(page, problem, size[1]) == [], where
+        # The stage: the motion, Play and the lesson's controls (below it) in the first screen of a phone.
+        assert stage_faults(page, problem, size[1]) == [], where
         # The page never scrolls sideways.
         assert page.evaluate("document.documentElement.scrollWidth") <= width, where
         main = page.locator("[data-testid='stMain']")

@@ -25,6 +25,12 @@ LECTURE_CSS = """
   .stMainBlockContainer h1 { font-size: 2.4rem; padding-top: 0; }
   .stMainBlockContainer .katex { font-size: 1.45em; }
   .stMainBlockContainer table { font-size: 1.25rem; }
+  /* the lesson's controls on the stage, read from the back of the room like the figure beside them */
+  .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p, .st-key-dl_stage_controls [role='radiogroup'] p,
+  .st-key-dl_stage_controls input, .st-key-dl_stage_controls [data-testid='stSliderThumbValue'],
+  .st-key-dl_stage_controls [data-testid='stSliderTickBar'] div {
+    font-size: 18px !important; line-height: 1.35; }
+  .st-key-dl_stage_controls [data-testid='stSlider'] [data-testid='stWidgetLabel'] { margin-bottom: 1.1rem; }  /* the value above the thumb clears it */
 </style>
 """
 
@@ -35,8 +41,8 @@ LECTURE_CSS = """
 PHONE_CSS = """
 <style>
   @media (max-width: 640px) {
-    .stMainBlockContainer { padding-top: 3.5rem; }
-    .stMainBlockContainer h1 { font-size: 1.65rem !important; padding-bottom: 0.25rem !important; }
+    .stMainBlockContainer { padding-top: 3.75rem; }  /* below the header and its » */
+    .stMainBlockContainer h1 { font-size: 1.65rem !important; padding-top: 0 !important; padding-bottom: 0.25rem !important; }
     .stMainBlockContainer .katex-display { font-size: 0.9em; }
     .stMainBlockContainer table { font-size: 0.85rem; }
     .stMainBlockContainer th, .stMainBlockContainer td { padding: 0.3rem 0.35rem; }
@@ -56,7 +62,15 @@ STAGE_CSS = """
     .st-key-dl_stage_controls > div { min-width: 0; width: auto !important; }
     .st-key-dl_stage_controls [data-testid='stSlider'] [role='slider'] { width: 22px; height: 22px; }
     .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p { font-size: 0.8rem; line-height: 1.25; }
+    .st-key-dl_stage_controls [data-testid='stRadio'] [role='radiogroup'] p { font-size: 0.85rem; line-height: 1.3; }
     .st-key-dl_stage .dl-figure h4.dl-title { font-size: 1.05rem; margin: 0 0 0.2rem 0; }
+    /* stacked, the figure's column and the controls' need no column gap between them */
+    .st-key-dl_stage [data-testid='stHorizontalBlock'] { gap: 0.5rem !important; }
+  }
+  /* a short phone (360×740): the blurb a step smaller, so the stage starts higher */
+  @media (max-width: 640px) and (max-height: 800px) {
+    .stMainBlockContainer h1 { font-size: 1.5rem !important; }
+    .stMainBlockContainer h1 + p, .stMainBlockContainer [data-testid='stHeadingWithActionElements'] + p { font-size: 0.9rem; }
   }
   @media print {
     .st-key-dl_stage [data-testid='stHorizontalBlock'] { display: block !important; }

@@ -4,6 +4,7 @@ drawn comes from a solver. Coordinates are rounded so equal inputs give byte-equ
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
@@ -239,6 +240,16 @@ def animated(
 REBUILT = 1.2e-4  # a little more than one unit of the rounding (DIGITS)
 
 
+@functools.lru_cache(maxsize=1024)
+def _pinv(homogeneous: bytes, shape: tuple[int, int]) -> np.ndarray:
+    """The pseudo-inverse of a first frame's points (homogeneous coordinates), kept by their bytes:
+    a body's first frame is often the same for many states (a cart at rest, a disk before impact),
+    and the decomposition is the largest part of a trace's compaction. Read-only: it is shared."""
+    inverse = np.linalg.pinv(np.frombuffer(homogeneous).reshape(shape), rcond=1e-6)
+    inverse.flags.writeable = False
+    return inverse
+
+
 def _affine(coords: dict):
     """{"affine": ...} for rows that one affine map per frame takes from the first frame, else None."""
     keys = list(coords)
@@ -256,7 +267,7 @@ def _affine(coords: dict):
         return None
     template = points[0][keep]
     homogeneous = np.hstack([template, np.ones((len(template), 1))])
-    maps = np.einsum("jk,fkd->fjd", np.linalg.pinv(homogeneous, rcond=1e-6), points[:, keep])
+    maps = np.einsum("jk,fkd->fjd", _pinv(homogeneous.tobytes(), homogeneous.shape), points[:, keep])
     maps[:, :-1] = maps[:, :-1].round(9)
     maps[:, -1] = maps[:, -1].round(7)
     if not np.abs(np.einsum("kj,fjd->fkd", homogeneous, maps) - points[:, keep]).max() <= REBUILT:
@@ -361,8 +372,11 @@ def fitted(traces: Sequence[Moving | dict], pad: float = 0.08) -> tuple[tuple[fl
     the bodies fill the plot (with equal axes plotly widens the roomier axis to keep the aspect)."""
     def flat(rows) -> np.ndarray:
         if isinstance(rows, Trail):
-            rows = [rows.path]
-        return np.concatenate([np.ravel(np.asarray(row, dtype=float)) for row in rows])
+            return np.asarray(rows.path, dtype=float).ravel()
+        try:  # every frame's row at once (rows of one length: all but a trail's)
+            return np.asarray(rows, dtype=float).ravel()
+        except ValueError:  # ragged rows
+            return np.concatenate([np.ravel(np.asarray(row, dtype=float)) for row in rows])
 
     xs, ys = [], []
     for trace in traces:

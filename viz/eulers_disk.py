@@ -58,20 +58,23 @@ def _animation(solution) -> Figure:
         moving(_scatter3d(np.zeros((1, 3)), "contact point", COLORS["impulse"], mode="markers", size=7),
                *xyz(m["contact"][:, None, :])),
     ]
-    span = 1.15 * rad
-    axis = lambda lo, hi, ticks: {"range": r([lo, hi]), "title": {"text": ""}, "nticks": ticks}  # noqa: E731
+    span = 1.05 * rad
+    tick = _nice_below(span / 2)  # three labels a side (−20, 0, 20), clear of the corners where two axes meet
+    axis = lambda lo, hi, ticks: {"range": r([lo, hi]), "title": {"text": ""}, "tickvals": ticks}  # noqa: E731
     layout = {
         "height": 560, "margin": {"l": 0, "r": 0, "t": 10, "b": 90},
         "legend": {"orientation": "h", "y": 1.0, "x": 0},
-        # In mm, with short tick labels ("20", not "0.02"), few ticks, and the camera further off and
-        # aimed a little left of centre. The axis titles are the scene's annotations, not WebGL's
+        # In mm, with short tick labels ("20", not "0.02"), a few ticks a side, and an orthographic
+        # camera (no perspective: the near corner's labels are no larger than the far ones') close
+        # enough that the disk fills the scene, aimed a little left of centre. The axis titles are the scene's annotations, not WebGL's
         # titles, which a phone cut off at the graph's edge ("z (mm)" gone, "y (mm" cut): each is
         # anchored at its axis (x and y at the middle of the edge that carries their ticks, beyond
         # the tick labels; z above its top), text the page lays out and keeps inside the graph.
-        "scene": {"xaxis": axis(-span, span, 5), "yaxis": axis(-span, span, 5),
-                  "zaxis": axis(0, span, 3), "aspectmode": "manual",
-                  "aspectratio": {"x": 1, "y": 1, "z": 0.5},
-                  "camera": {"eye": {"x": 2.05, "y": -2.05, "z": 1.25}, "center": {"x": -0.06, "y": -0.06, "z": 0.0}},
+        "scene": {"xaxis": axis(-span, span, [-tick, 0, tick]), "yaxis": axis(-span, span, [-tick, 0, tick]),
+                  "zaxis": axis(0, span, [tick, 2 * tick]), "aspectmode": "manual",
+                  "aspectratio": {"x": 1.1, "y": 1.1, "z": 0.55},
+                  "camera": {"eye": {"x": 0.95, "y": -0.95, "z": 0.62}, "center": {"x": -0.04, "y": -0.04, "z": -0.05},
+                             "projection": {"type": "orthographic"}},
                   "annotations": [
                       {"x": 0, "y": r(-span), "z": 0, "text": "x (mm)", "showarrow": False, "xshift": -40, "yshift": -42},
                       {"x": r(span), "y": 0, "z": 0, "text": "y (mm)", "showarrow": False, "xshift": 40, "yshift": -42},
@@ -120,6 +123,12 @@ def _versus_tilt(solution) -> Figure:
                    f"where ω_p = {solution.answers['omega_p']:.3g} rad/s.")
     return Figure("eulers_disk_versus_tilt", "As θ → 0: the contact whirls faster, the disk turns slower",
                   {"data": data, "layout": layout}, description, animated=False, height=460)
+
+
+def _nice_below(value: float) -> float:
+    """The largest of 1, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten that is at most ``value``."""
+    power = 10.0 ** math.floor(math.log10(value))
+    return max(m * power for m in (1, 1.5, 2, 2.5, 3, 4, 5, 6, 8) if m * power <= value * (1 + 1e-12))
 
 
 def _log_ticks(lo: float, hi: float) -> dict:

@@ -32,6 +32,10 @@ const CSS = `
 @media (max-width: 640px) {
   .dl-figure.dl-staged .dl-description:not(.dl-open) { display: -webkit-box; -webkit-line-clamp: 2;
     -webkit-box-orient: vertical; overflow: hidden; cursor: pointer; }
+  .dl-figure.dl-staged .dl-description { margin-bottom: 0; }
+}
+@media (max-width: 640px) and (max-height: 760px) {  /* a short phone (360×740): its first line */
+  .dl-figure.dl-staged .dl-description:not(.dl-open) { -webkit-line-clamp: 1; }
 }
 @media print {
   .dl-figure { break-inside: avoid; }
@@ -120,7 +124,7 @@ class Figure {
       const width = this.root.clientWidth;
       if (width === this.width || !this.Plotly || !this.graph.layout) return;
       this.width = width;
-      quiet(this.Plotly.Plots.resize(this.graph));
+      quiet(this.Plotly.Plots.resize(this.graph).then(() => this.fitDrawn()));
     }).observe(this.root);
     $(".dl-play").addEventListener("click", () => this.play());
     $(".dl-pause").addEventListener("click", () => this.pause());
@@ -244,11 +248,32 @@ class Figure {
     if (style) spec.data = emphasised(spec.data, layout, style);
     const thin = args.fit_screen && !style ? outlineScale(this.root.clientWidth) : 1;  // a projector keeps them thick
     if (thin < 1) spec.data = scaled(spec.data, thin, Math.max(thin, 0.75));
+    const frames = unfold(spec.animation, spec.data);
+    // Outlines as the last drawing's axes would draw them (fitDrawn corrects them after, if far off).
+    const outlineWidths = spec.data.map(t => t.fill === "toself" && t.line ? t.line.width : null);
+    const before = this.graph._fullLayout;
+    if (before && before.xaxis && !layout.scene)
+      for (const [t, width] of outlines(before.xaxis, before.yaxis, spec.data, frames, outlineWidths))
+        spec.data[t] = Object.assign({}, spec.data[t], {line: Object.assign({}, spec.data[t].line, {width: width})});
     this.controls.hidden = !spec.animation;  // before measuring: the controls sit above the graph
     this.fitHeight = args.fit_screen ? args.height : 0;
     layout.height = this.fitHeight ? this.screenHeight(this.fitHeight) : args.height;
     layout.autosize = true;
-    const frames = unfold(spec.animation, spec.data);
+    // A 3-D scene is drawn as large as the graph's height allows: on a wide graph its legend stands in a
+    // column at the right, not in rows above it.
+    if (layout.scene && layout.showlegend !== false && this.root.clientWidth > 1.5 * layout.height)
+      layout.legend = Object.assign({}, layout.legend, {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"});
+    // WebGL sizes the scene's box to the graph's height: where the graph is wider than tall (beside its
+    // legend), the box is drawn up to 1.5 times larger, to fill the width too.
+    if (layout.scene && layout.scene.aspectratio) {
+      const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
+      const wide = (this.root.clientWidth - (legendBeside ? 260 : 0)) / Math.max(1, plotHeight(layout));
+      const grow = Math.min(1.5, Math.max(1, wide)), ratio = layout.scene.aspectratio;
+      layout.scene = Object.assign({}, layout.scene, {aspectratio: {x: ratio.x * grow, y: ratio.y * grow, z: ratio.z * grow}});
+    }
+    if (slider && !layout.scene)  // the lowest plot's x tick labels and title, no more
+      layout.margin.b = Math.min(layout.margin.b, Math.ceil(axisRoom(layout, (layout.yaxis2 ? layout.xaxis2 : layout.xaxis) || {})));
+    applied(layout, stacked(layout, plotHeight(layout)));
     this.pause();
     this.printing = false;
     // One update in place: data, layout and the frames replaced together (no new plot).
@@ -269,7 +294,27 @@ class Figure {
     this.controls.hidden = !this.frameNames.length;
     this.frameIndex = 0;
     this.width = this.root.clientWidth;
+    this.outlineWidths = outlineWidths;
+    await this.fitDrawn();
     if (this.fitHeight) this.watchStage();
+  }
+
+  // What follows the size the graph is drawn at, after every change of it (a new figure, the screen
+  // refitted, the sidebar opened or closed): room between stacked plots for the upper one's tick
+  // labels and axis title, few enough ticks on a short axis that they never touch, and each filled
+  // body's outline at most a fraction of its drawn size, so a small sphere stays a sphere, not a ring.
+  fitDrawn() {
+    const full = this.graph._fullLayout;
+    if (!full || !full._size || !this.Plotly) return Promise.resolve();
+    const relayout = stacked(this.graph.layout, full._size.h), traces = [], widths = [];
+    // (a change of a quarter or more: a new figure starts from the last one's estimate, drawn in the same update)
+    for (const [t, width] of outlines(full.xaxis, full.yaxis, this.graph._fullData, this.frames, this.outlineWidths)) {
+      const now = this.graph._fullData[t].line.width;
+      if (Math.abs(width - now) > Math.max(0.15, 0.25 * width)) { traces.push(t); widths.push(width); }
+    }
+    if (!relayout && !traces.length) return Promise.resolve();
+    return this.Plotly.update(this.graph, traces.length ? {"line.width": widths} : {}, relayout || {},
+                              traces.length ? traces : undefined).catch(() => {});
   }
 
   // A figure fitted to the first screen fits again when what shares the screen with it changes: the
@@ -281,7 +326,8 @@ class Figure {
         if (!this.fitHeight || !this.Plotly || !this.graph.layout || this.printing) return;
         const height = this.screenHeight(this.fitHeight);
         // autosize kept: a height relayout alone turns it off, and the width would no longer follow the sidebar
-        if (Math.abs(height - this.graph.layout.height) > 2) quiet(this.Plotly.relayout(this.graph, {height: height, autosize: true}));
+        if (Math.abs(height - this.graph.layout.height) > 2)
+          quiet(this.Plotly.relayout(this.graph, {height: height, autosize: true}).then(() => this.fitDrawn()));
       };
       this.stageWatch = new ResizeObserver(() => this.refitting());
       window.addEventListener("resize", () => this.refitting());
@@ -446,6 +492,71 @@ function scaled(data, line, marker) {
     if (t.marker && t.marker.size) out.marker = Object.assign({}, t.marker, {size: t.marker.size * marker});
     return out;
   });
+}
+
+// Stacked plots (a second y axis whose domain ends below the first's): the gap between them holds the
+// upper plot's x tick labels and title at their font size, and the lower plot's short y axis gets few
+// enough ticks that their labels never touch, for a plot area ``height`` px tall. The update for
+// Plotly.relayout, or null.
+function stacked(layout, height) {
+  const upper = layout.yaxis || {}, lower = layout.yaxis2 || {}, xa = layout.xaxis || {};
+  if (!upper.domain || !lower.domain || lower.domain[1] > upper.domain[0] || !(height > 0)) return null;
+  const size = (font) => (font && font.size) || (layout.font || {}).size || 12;
+  const need = Math.min(0.45, axisRoom(layout, xa) / height), gap = upper.domain[0] - lower.domain[1];
+  const out = {};
+  let bottom = lower.domain[1];
+  if (gap < need - 0.02) {  // both plots give room in proportion to their heights
+    const top = 1 - upper.domain[0], low = lower.domain[1] - lower.domain[0];
+    const scale = (1 - need - lower.domain[0]) / (top + low);
+    bottom = lower.domain[0] + low * scale;
+    out["yaxis.domain"] = [bottom + need, upper.domain[1]];
+    out["yaxis2.domain"] = [lower.domain[0], bottom];
+  }
+  const room = (bottom - lower.domain[0]) * height / size(lower.tickfont);  // in lines of tick labels
+  const ticks = room < 4 ? 2 : Math.max(3, Math.min(6, Math.floor(room / 1.8)));  // (plotly draws at most this many)
+  if (!(lower.nticks <= ticks)) out["yaxis2.nticks"] = ticks;
+  return Object.keys(out).length ? out : null;
+}
+
+// The room an x axis needs below its plot for its tick labels and title, in px.
+function axisRoom(layout, xa) {
+  const base = (layout.font || {}).size || 12, size = (font) => (font && font.size) || base;
+  return (xa.showticklabels === false ? 0 : size(xa.tickfont) * 1.35 + 8)
+         + (xa.title && xa.title.text ? size(xa.title.font) * 1.35 + 10 : 0) + 8;
+}
+
+// The plot area's height a layout gets (its margins and a legend row above taken off), before plotly draws it.
+function plotHeight(layout) {
+  const margin = layout.margin || {}, legend = layout.showlegend !== false && (layout.legend || {}).orientation === "h";
+  return layout.height - (margin.t ?? 80) - (margin.b ?? 80) - (legend ? 2 * ((layout.font || {}).size || 12) * 1.4 : 0);
+}
+
+function applied(layout, update) {  // a relayout's "a.b" keys set on a plain layout
+  for (const [key, value] of Object.entries(update || {})) {
+    const [axis, field] = key.split(".");
+    layout[axis] = Object.assign({}, layout[axis], {[field]: value});
+  }
+  return layout;
+}
+
+// Each filled body's outline (a sphere, a disk, the cart's body) at most 1/14 of its drawn size (its
+// first frame's smaller extent in pixels on the axes ``xa``, ``ya`` as drawn), at least 1.5 px, at most
+// its styled width (``widths``: null for a trace that is not a filled body). trace -> its outline's width.
+function outlines(xa, ya, data, frames, widths) {
+  const out = new Map();
+  if (!xa || !ya || !xa.l2p || !widths || !widths.some(w => w)) return out;
+  const first = new Map((frames[0] ? frames[0].traces : []).map((t, n) => [t, frames[0].data[n]]));
+  const span = (values, axis) => {
+    const v = Array.from(values).filter(u => u !== null && isFinite(u));
+    return v.length ? Math.abs(axis.l2p(Math.max(...v)) - axis.l2p(Math.min(...v))) : 0;
+  };
+  widths.forEach((width, t) => {
+    const trace = data[t], d = first.get(t) || trace;
+    if (!width || !trace || (trace.xaxis || "x") !== "x" || (trace.yaxis || "y") !== "y" || !d || !d.x || !d.y) return;
+    const size = Math.min(span(d.x, xa), span(d.y, ya));
+    out.set(t, Math.round(10 * Math.min(width, Math.max(1.5, size / 14))) / 10);
+  });
+  return out;
 }
 
 // The motion's outlines follow the stage's width: drawn for about 700 px, down to half as thick on a
