@@ -21,9 +21,11 @@ def fresh_key_throttle():
 
 
 # The browser tests' shared fixtures (test_browser, test_where_used, test_stage, test_seen_and_heard, ...):
-# one Chromium and one server for the whole session (each start costs 10-30 s of a 2-core CI machine);
-# a module that needs a server of its own (other settings) defines its own fixture.
-@pytest.fixture(scope="session")
+# one server for the whole session (each start costs 10-30 s of a 2-core CI machine; a module that
+# needs a server of its own, with other settings, defines its own fixture), and one Chromium per
+# module: Playwright's sync API holds an event loop while it runs, which would refuse every other
+# test's asyncio.run() if it lived for the whole session.
+@pytest.fixture(scope="module")
 def browser():
     from playwright.sync_api import sync_playwright
 

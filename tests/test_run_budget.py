@@ -20,14 +20,16 @@ from ui import figure as component
 STUB_BYTES = 400  # the module a run carries: an import of plotly_component/figure.<hash>.js
 
 
-def counted(at) -> tuple[int, list, list, list]:
-    """(Markdown elements, figure elements, answer elements, derivation elements) in the main area."""
+def counted(at) -> tuple[int, list, list, list, list]:
+    """(Markdown elements, figure elements, answer elements, derivation elements, live-value elements)
+    in the main area."""
     markdown = sum(1 for e in at.main if getattr(e, "type", None) == "markdown")
     ours = [e.proto for e in at.main if getattr(e, "type", None) == "bidi_component"]
-    figures, answers, derivations = ([p for p in ours if p.component_name == name]
-                                     for name in (component.NAME, component.ANSWERS, component.DERIVATION))
-    assert len(figures) + len(answers) + len(derivations) == len(ours)
-    return markdown, figures, answers, derivations
+    figures, answers, derivations, live = ([p for p in ours if p.component_name == name]
+                                           for name in (component.NAME, component.ANSWERS, component.DERIVATION,
+                                                        component.LIVE))
+    assert len(figures) + len(answers) + len(derivations) + len(live) == len(ours)
+    return markdown, figures, answers, derivations, live
 
 
 @pytest.mark.parametrize("pid", IDS)
@@ -36,14 +38,19 @@ def test_a_run_sends_the_heading_the_answers_the_derivation_and_each_figure_once
     solution = importlib.import_module(f"solvers.{pid}").solve()
     shown = importlib.import_module(f"viz.{pid}").figures(solution)
     text_module = f"/text.{component.module('text.js')[0].split('.')[1]}.js"
+    live_module = f"/live.{component.module('live.js')[0].split('.')[1]}.js"
     for state in ("first run", "after a change"):
         assert_clean(at)
-        markdown, figures, answers, derivations = counted(at)
+        markdown, figures, answers, derivations, live = counted(at)
         assert markdown == 1, (pid, state, markdown)  # the heading
         assert len(figures) == len(shown), (pid, state)
         for text in (*answers, *derivations):
             assert len(text.js_content) <= STUB_BYTES and text_module in text.js_content
         assert len(answers) == 1 and len(derivations) == 1
+        # the live values' element: its module imported, its data (the generated function, the
+        # followed controls, the answers' units) a few kB
+        assert len(live) == 1 and len(live[0].js_content) <= STUB_BYTES and live_module in live[0].js_content
+        assert len(live[0].bytes) <= 8_000, len(live[0].bytes)
         for proto in figures:
             assert proto.component_name == component.NAME and not proto.isolate_styles
             assert len(proto.js_content) <= STUB_BYTES, len(proto.js_content)
