@@ -142,6 +142,13 @@ def _case_block(case: Case, params: Mapping[str, sp.Symbol]) -> str:
 
 
 @functools.lru_cache(maxsize=64)
+def cases(pid: str, options: tuple[tuple[str, str], ...] = ()) -> tuple[Case, ...]:
+    """Problem ``pid``'s regimes for its options, made once: building them is sympy work (the spring's
+    simplifies an expression, about 16 ms), which a page's run must not repeat."""
+    return registry.solver(pid).LIVE.cases(**dict(options))
+
+
+@functools.lru_cache(maxsize=64)
 def function_source(pid: str, options: tuple[tuple[str, str], ...] = ()) -> str:
     """The generated function for problem ``pid`` with its options (``(name, value)`` pairs of its
     ``Choice`` parameters, sorted), as JavaScript source: ``(p) => ({regime, values})``."""
@@ -155,7 +162,7 @@ def function_source(pid: str, options: tuple[tuple[str, str], ...] = ()) -> str:
     finite = [f"Number.isFinite({_safe('p_', n)})" if not numbers[n].allow_inf else f"!Number.isNaN({_safe('p_', n)})"
               for n in live.follows]  # an emptied box (NaN) is refused too
     head.append(f"if (!({' && '.join(finite)} && {_js(valid)})) return {{regime: {REFUSED!r}, values: null}};")
-    blocks = [_case_block(case, params) for case in live.cases(**dict(options))]
+    blocks = [_case_block(case, params) for case in cases(pid, options)]
     body = "\n".join(["  " + line for line in head] + blocks)
     return f"(p) => {{\n{body}\nreturn {{regime: {REFUSED!r}, values: null}};\n}}"
 
@@ -177,6 +184,6 @@ def payload(pid: str, params: Mapping[str, object], answers, system: str, contro
                for name in live.follows if name in control_keys]
     rows = [[a.name, units.unit(a.dimension, system), units.to_display(1.0, a.dimension, system),
              a.dimension == "angle", a.label] for a in answers]
-    said = {case.regime: case.said for case in live.cases(**dict(options))}
+    said = {case.regime: case.said for case in cases(pid, options)}
     return {"source": function_source(pid, options), "params": dict(params), "follows": follows,
             "answers": rows, "said": said, "grouped_below": GROUPED_BELOW}
