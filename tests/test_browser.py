@@ -177,8 +177,9 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
         before = answers_table(page)
         slider.focus()
         slider.press("ArrowLeft")
+        # the run's answers, not the live values shown before it (live.js commits a key press once the key is up)
         page.wait_for_function("(before) => document.querySelector(\"[data-testid='stMain'] table\").innerText"
-                               " !== before", arg=before, timeout=30_000)
+                               " !== before && !document.querySelector('.dl-live-value')", arg=before, timeout=30_000)
         wait_until_idle(page)
 
     # Play moves the animation: a moving trace's coordinates change; the keyboard steps it too.
@@ -448,4 +449,70 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     sources = page.evaluate("() => performance.getEntriesByType('resource').map((e) => e.name)")
     assert not any("/live." in url for url in sources), sources
     assert page.locator("#dl-live-style").count() == 0
+    context.close()
+
+
+def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, app_url):
+    """Issue 27: ArrowRight held on the stage's first slider (rod_disk_spring's θ₂) for about a second
+    moves the thumb and its value, and the answers follow the solver during the hold with no run; the
+    release runs the page once. A single press (and Home/End) still moves and runs once. The thumb stays
+    a slider whose value screen readers get; axe stays at zero."""
+    from solvers.rod_disk_spring import solve
+    from solvers import units
+    from tests.test_where_used import serious_violations
+    from ui.results import answer_rows
+    from ui.catalog import BY_ID
+
+    context, page, errors = open_page(browser, f"{app_url}/rod_disk_spring")
+    page.locator(".dl-answers table").first.wait_for()
+    page.evaluate(RUN_COUNTER)
+    thumb = page.locator(".st-key-dl_stage_controls [data-testid='stSlider'] input[type='range']").first
+    assert thumb.evaluate("(el) => el.closest('.st-key-rod_disk_spring__si__theta2') !== null")
+    shown = lambda: float(thumb.input_value())  # noqa: E731
+
+    def expected(degrees: float) -> list[str]:
+        solution = solve(theta2=units.to_si(degrees, "angle"))
+        return [row[2] for row in answer_rows(solution, BY_ID["rod_disk_spring"].answers_of(solution), "si")]
+
+    def runs() -> int:
+        return page.evaluate("window.__runs")
+
+    def settled(count: int) -> None:
+        page.wait_for_function(f"() => window.__runs >= {count} && !document.querySelector('.dl-live-value')",
+                               timeout=30_000)
+        wait_until_idle(page)
+
+    start = shown()
+    thumb.focus()
+    page.keyboard.down("ArrowRight")
+    seen = []
+    for i in range(30):  # about a second of the key's repeats
+        page.wait_for_timeout(33)
+        page.keyboard.down("ArrowRight")  # held: an auto-repeat
+        if i % 10 == 9:
+            page.wait_for_timeout(50)
+            seen.append((shown(), page.evaluate(LIVE_CELLS), thumb.get_attribute("aria-valuetext")))
+    assert runs() == 0, "the page ran while the key was held"
+    assert [s for s, _, _ in seen] == sorted({s for s, _, _ in seen}) and seen[-1][0] >= start + 25, seen
+    for degrees, cells, said in seen:
+        assert cells == expected(degrees), (degrees, cells, expected(degrees))
+        assert said and said.startswith(str(int(degrees))), said  # the slider says the value it shows
+    held_to = shown()
+    page.keyboard.up("ArrowRight")
+    settled(1)
+    page.wait_for_timeout(400)
+    assert runs() == 1 and shown() == held_to  # one run, for the value the thumb showed
+    assert page.evaluate(LIVE_CELLS) == expected(held_to)
+    assert thumb.get_attribute("role") in (None, "slider") and thumb.evaluate("(el) => el === document.activeElement")
+
+    thumb.press("ArrowLeft")  # one press: one step, one run
+    settled(2)
+    assert shown() == held_to - 1 and runs() == 2 and page.evaluate(LIVE_CELLS) == expected(held_to - 1)
+    thumb.press("Home")  # to the slider's end (committed by the key back from one step above it)
+    settled(3)
+    assert shown() == float(thumb.get_attribute("min")) and runs() == 3
+    assert page.evaluate(LIVE_CELLS) == expected(shown())
+    assert serious_violations(page) == []
+    assert not errors, errors
+    assert csp_violations(page) == []
     context.close()

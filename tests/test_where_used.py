@@ -154,8 +154,9 @@ def _controls_beside_and_the_figure_stays(page, where: str) -> None:
     before = answers_table(page).inner_text()
     slider.focus()
     slider.press("ArrowLeft")
+    # the run's answers, not the live values shown before it (live.js commits a key press once the key is up)
     page.wait_for_function("(before) => document.querySelector(\"[data-testid='stMain'] table\").innerText"
-                           " !== before", arg=before, timeout=30_000)
+                           " !== before && !document.querySelector('.dl-live-value')", arg=before, timeout=30_000)
     wait_until_idle(page)
     assert page.locator(FIGURE).first.bounding_box()["y"] == pytest.approx(frame_top, abs=2), where
     assert page.evaluate("document.querySelector(\"[data-testid='stMain']\").scrollTop") == 0, where

@@ -2,8 +2,9 @@
 // lesson page only (Study and Lecture: never in Practice, a variant or an assignment, where it would
 // give the answers away).
 //
-// Streamlit reruns the page when a slider is released; while it is dragged (mouse, touch or a held
-// arrow key) its thumb's value changes in the page alone. This module watches the stage's controls
+// Streamlit reruns the page when a slider is released; while it is dragged (mouse or touch) its thumb's
+// value changes in the page alone, and here a key held on it (or pressed again and again) does the same
+// until the key is up (see "a held key" below). This module watches the stage's controls
 // (the slider's range input, a number box's typing), and on the next animation frame (one per frame,
 // however many events came) evaluates the problem's generated function (solvers/live.py: generated
 // from the solver's sympy chain, never typed here) with the value shown, converted to SI, and writes
@@ -212,7 +213,7 @@ function statusLine() {
 function schedule() { if (state && !frame) frame = requestAnimationFrame(draw); }
 
 // The stage's controls: a slider's value (react-aria sets its range input while it is dragged), a
-// number box's typing, a held arrow key.
+// number box's typing, a held key (below).
 function watch() {
   const controls = document.querySelector(".st-key-dl_stage_controls") || document.body;
   if (controls.dlLiveWatched) return;
@@ -220,6 +221,10 @@ function watch() {
   new MutationObserver(schedule).observe(controls, {subtree: true, attributes: true, characterData: true,
     childList: true, attributeFilter: ["aria-valuetext", "value"]});
   for (const type of ["input", "pointermove", "keydown", "keyup", "pointerup"]) controls.addEventListener(type, schedule, true);
+  controls.addEventListener("keydown", onKeyDown, true);  // before react-aria's (React listens at its root)
+  controls.addEventListener("keyup", onKeyUp, true);
+  controls.addEventListener("focusout", onFocusOut, true);
+  controls.addEventListener("pointerdown", onPointerDown, true);
 }
 
 // The run after a release: when the app is idle again, the server's drawing stands.
@@ -252,6 +257,91 @@ function announce() {
   const row = table && table.tBodies[0].rows[0];
   const text = row ? `${row.cells[1].textContent}: ${row.cells[2].textContent}` : "";
   if (region.textContent !== text) region.textContent = text;
+}
+
+// ------------------------------------------------------------------ a held key, a burst of presses
+// Streamlit's slider (react-aria) commits every key press, and each commit is a run of the page. On
+// the stage a key moves a slider as a drag does: the thumb, its shown value and the live answers
+// follow each press (a held key's repeats too), and the value is committed once, when no key has
+// been down for COMMIT_AFTER ms (or the slider loses focus). The slider's own keyboard contract is
+// kept: an arrow moves one step (with Shift, a page), Page Up/Down a page (a tenth of the range, in
+// whole steps, as react-aria's pageSize), Home/End the ends. The moves go through the range input's
+// own value and "input" event (the path react-aria's slider takes for assistive technology), which
+// changes the thumb without a commit; the commit is the slider's own keyboard path: one step back,
+// and the same key once more, which react-aria ends with its onChangeEnd, as for any key press.
+const COMMIT_AFTER = 250;
+const MOVES = {ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1, PageUp: "page", PageDown: "-page", Home: "min", End: "max"};
+const REPLAYED = Symbol("dl-replayed");
+let held = null;  // {input, timer, down}: the slider moved by keys and not yet committed
+
+// The value's own setter (React watches the element's), as a person's input would set it.
+const setValue = (input, value) => Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, "value").set.call(input, value);
+
+export function pageSize(min, max, step) {  // react-aria's: a tenth of the range in whole steps, one step at least
+  return Math.max(step, Math.round((max - min) / 10 / step) * step);
+}
+
+function stageSlider(el) {
+  return el instanceof HTMLInputElement && el.type === "range" && el.closest(".st-key-dl_stage_controls [data-testid='stSlider']") ? el : null;
+}
+
+// The value the slider takes (the input sanitises it to its range and steps) and tells React of it.
+function moveTo(input, how) {
+  const min = Number(input.min), max = Number(input.max), step = Number(input.step) || 1;
+  if (how === "min" || how === "max") setValue(input, String(how === "min" ? min : max));
+  else {
+    const steps = typeof how === "number" ? how : (how[0] === "-" ? -1 : 1) * Math.round(pageSize(min, max, step) / step);
+    if (steps > 0) input.stepUp(steps); else input.stepDown(-steps);
+  }
+  input.dispatchEvent(new Event("input", {bubbles: true}));
+}
+
+function onKeyDown(event) {
+  const input = stageSlider(event.target), how = MOVES[event.key];
+  if (!input || event[REPLAYED] || how === undefined || event.altKey || event.ctrlKey || event.metaKey) return;
+  event.preventDefault();
+  event.stopPropagation();  // react-aria would commit it (and the page run)
+  if (held && held.input !== input) commit();
+  if (!held) held = {input, timer: 0};
+  clearTimeout(held.timer);
+  held.down = true;
+  moveTo(input, typeof how === "number" && event.shiftKey ? (how > 0 ? "page" : "-page") : how);
+  schedule();
+}
+
+function onKeyUp(event) {
+  if (!held || MOVES[event.key] === undefined) return;
+  held.down = false;
+  clearTimeout(held.timer);
+  held.timer = setTimeout(commit, COMMIT_AFTER);
+}
+
+// The slider's own commit of the value it shows: one step back through the input, then the key that
+// steps forward again, handled by react-aria (after React has drawn the step back).
+function commit() {
+  if (!held) return;
+  const {input} = held;
+  clearTimeout(held.timer);
+  held = null;
+  if (!input.isConnected) return;
+  const value = Number(input.value), min = Number(input.min), max = Number(input.max);
+  if (!(max > min)) return;
+  const key = value > min ? "ArrowRight" : "ArrowLeft";
+  moveTo(input, value > min ? -1 : 1);
+  setTimeout(() => {
+    const replay = new KeyboardEvent("keydown", {key, code: key, bubbles: true, cancelable: true});
+    replay[REPLAYED] = true;
+    input.dispatchEvent(replay);
+  }, 0);
+}
+
+function onFocusOut(event) {
+  if (held && event.target === held.input) commit();
+}
+
+// A pointer on the slider being held by keys: react-aria's drag commits on its release.
+function onPointerDown(event) {
+  if (held && held.input.closest("[data-testid='stSlider']").contains(event.target)) { clearTimeout(held.timer); held = null; }
 }
 
 const decoder = new TextDecoder();
