@@ -516,3 +516,52 @@ def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, 
     assert not errors, errors
     assert csp_violations(page) == []
     context.close()
+
+
+def test_a_phone_steps_a_stage_slider_one_step_a_tap(browser, app_url):
+    """Issue 27: at 390×844 a finger cannot hit one step of θ₂ on a half-width slider; its + and −
+    (44 px, named for screen readers) move exactly one step a tap, live; a burst of taps is one run,
+    and a lone tap (or Enter on the focused button) one run each."""
+    from solvers.rod_disk_spring import solve
+    from solvers import units
+    from ui.results import answer_rows
+    from ui.catalog import BY_ID
+
+    context, page, errors = open_page(browser, f"{app_url}/rod_disk_spring", 390, 844, phone=True)
+    page.locator(".dl-answers table").first.wait_for()
+    page.evaluate(RUN_COUNTER)
+    slider = page.locator(".st-key-rod_disk_spring__si__theta2")
+    shown = lambda: float(slider.locator("input[type='range']").input_value())  # noqa: E731
+    higher = slider.get_by_role("button", name="θ₂ one step higher")
+    lower = slider.get_by_role("button", name="θ₂ one step lower")
+
+    def expected(degrees: float) -> list[str]:
+        solution = solve(theta2=units.to_si(degrees, "angle"))
+        return [row[2] for row in answer_rows(solution, BY_ID["rod_disk_spring"].answers_of(solution), "si")]
+
+    def settled(count: int) -> None:
+        page.wait_for_function(f"() => window.__runs >= {count} && !document.querySelector('.dl-live-value')",
+                               timeout=30_000)
+        wait_until_idle(page)
+
+    start = shown()
+    for _ in range(3):
+        higher.tap()
+        page.wait_for_timeout(60)
+    page.wait_for_timeout(40)
+    assert shown() == start + 3 and page.evaluate("window.__runs") == 0
+    assert page.evaluate(LIVE_CELLS) == expected(start + 3)
+    settled(1)
+    page.wait_for_timeout(400)
+    assert page.evaluate("window.__runs") == 1 and shown() == start + 3
+    assert page.evaluate(LIVE_CELLS) == expected(start + 3)
+    lower.tap()
+    settled(2)
+    assert shown() == start + 2 and page.evaluate("window.__runs") == 2
+    lower.focus()
+    page.keyboard.press("Enter")
+    settled(3)
+    assert shown() == start + 1 and page.evaluate("window.__runs") == 3
+    assert page.evaluate(LIVE_CELLS) == expected(start + 1)
+    assert not errors, errors
+    context.close()

@@ -116,6 +116,7 @@ def stage_faults(page, problem, height: int) -> list[str]:
         faults.append(f"controls {controls['y']:.0f}–{controls['y'] + controls['height']:.0f}")
     if overlaps(graph, controls):
         faults.append("controls over the figure")
+    faults += stepper_faults(page, height)
     m = figure.locator(".dl-graph").evaluate(MEASURE)
     if m["scene"]:  # Euler's disk: its disk as drawn fills the 3-D scene's plot area as a 2-D stage's bodies do
         if max(m["width"], m["height"]) < 0.5:
@@ -128,6 +129,35 @@ def stage_faults(page, problem, height: int) -> list[str]:
         if abs(m["unitX"] - m["unitY"]) > 0.01 * m["unitX"]:
             faults.append(f"unequal axes {m['unitX']:.1f} / {m['unitY']:.1f} px")
         faults += [f"ring: {ring}" for ring in m["rings"]] + [f"label over: {clash}" for clash in m["clashes"]]
+    return faults
+
+
+def stepper_faults(page, height: int) -> list[str]:
+    """Each stage slider's −/+ (ui/plotly_component/live.js) on a narrow screen: two, named, at least
+    44×44 px, in the first screen, clear of the thumb at either end of the track; none on a wide one."""
+    narrow = page.evaluate("innerWidth") <= 640
+    faults = []
+    for slider in page.locator(f"{CONTROLS} [data-testid='stSlider']").all():
+        name = slider.locator("input[type='range']").get_attribute("aria-label").split(" — ")[0]
+        steps = [s for s in slider.locator(".dl-step").all() if s.is_visible()]
+        if not narrow:
+            if steps:
+                faults.append(f"{name}: −/+ on a wide screen")
+            continue
+        names = sorted(s.get_attribute("aria-label") for s in steps)
+        if names != [f"{name} one step higher", f"{name} one step lower"]:
+            faults.append(f"{name}: steppers {names}")
+            continue
+        track = box(slider.locator("[role='group'] > [data-orientation]").first)
+        thumb = box(slider.locator("[data-testid='stSliderThumbValue']").locator("xpath=..").first)
+        half = thumb["width"] / 2
+        for step in steps:
+            b = box(step)
+            if b["width"] < 44 or b["height"] < 44 or b["y"] < 0 or b["y"] + b["height"] > height + 1:
+                faults.append(f"{step.get_attribute('aria-label')}: {b['width']:.0f}×{b['height']:.0f} at {b['y']:.0f}")
+            for end in (track["x"], track["x"] + track["width"]):  # the thumb at either end of its track
+                if overlaps(b, {**thumb, "x": end - half}):
+                    faults.append(f"{step.get_attribute('aria-label')}: under the thumb at the track's end")
     return faults
 
 

@@ -26,6 +26,20 @@ const STYLE = `
 .dl-live-status:empty { display: none; }
 .dl-live-value { font-variant-numeric: tabular-nums; }
 .dl-live-waiting { font-weight: 400; font-style: italic; color: var(--st-orange-text-color, #9B4519); }
+/* a stage slider's −/+ (one step each) on a narrow screen, at the ends of its track, thumb-sized */
+.dl-step { display: none; }
+@media (max-width: 640px) {
+  /* the track between them, a thumb at either end clear of them (44 px, a gap, half the 22 px thumb) */
+  .st-key-dl_stage_controls .dl-stepped > [role='group'] { padding-left: 56px; padding-right: 56px; }
+  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderThumbValue'] { z-index: 1; }
+  .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: -2px; width: 44px; height: 44px; padding: 0;
+    font-size: 1.4rem; line-height: 1; border-radius: 0.5rem; cursor: pointer; touch-action: manipulation;
+    border: 1px solid var(--st-border-color, rgba(49, 51, 63, 0.2)); background: var(--st-secondary-background-color, #f0f2f6);
+    color: var(--st-text-color, #31333F); }
+  .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: 0; }
+  .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: 0; }
+}
+@media print { .dl-step { display: none !important; } }
 .dl-live-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }
 `;
 const UPDATING = "updating…";
@@ -218,8 +232,10 @@ function watch() {
   const controls = document.querySelector(".st-key-dl_stage_controls") || document.body;
   if (controls.dlLiveWatched) return;
   controls.dlLiveWatched = true;
-  new MutationObserver(schedule).observe(controls, {subtree: true, attributes: true, characterData: true,
-    childList: true, attributeFilter: ["aria-valuetext", "value"]});
+  new MutationObserver(() => { addSteppers(); schedule(); }).observe(controls, {subtree: true, attributes: true,
+    characterData: true, childList: true, attributeFilter: ["aria-valuetext", "value"]});
+  addSteppers();
+  controls.addEventListener("click", onStep);
   for (const type of ["input", "pointermove", "keydown", "keyup", "pointerup"]) controls.addEventListener(type, schedule, true);
   controls.addEventListener("keydown", onKeyDown, true);  // before react-aria's (React listens at its root)
   controls.addEventListener("keyup", onKeyUp, true);
@@ -341,7 +357,44 @@ function onFocusOut(event) {
 
 // A pointer on the slider being held by keys: react-aria's drag commits on its release.
 function onPointerDown(event) {
-  if (held && held.input.closest("[data-testid='stSlider']").contains(event.target)) { clearTimeout(held.timer); held = null; }
+  if (held && !event.target.closest(".dl-step") && held.input.closest("[data-testid='stSlider']").contains(event.target)) {
+    clearTimeout(held.timer);
+    held = null;
+  }
+}
+
+// ------------------------------------------------------------------ one step by thumb (a phone)
+// A finger on a half-width slider cannot hit one step (1° of θ₂ on some 80 px): on a narrow screen each
+// stage slider has a − and a + button (44 px, WCAG's target size) at the ends of its track, named for
+// screen readers ("θ₂ one step lower"). A tap moves one step as a key press does (above): live, and a
+// burst of taps is one run, COMMIT_AFTER ms after the last. Hidden on a wide screen and on paper.
+function addSteppers() {
+  for (const slider of document.querySelectorAll(".st-key-dl_stage_controls [data-testid='stSlider']")) {
+    if (slider.querySelector(":scope > .dl-step")) continue;
+    const input = slider.querySelector("input[type='range']");
+    if (!input) continue;
+    const symbol = (input.getAttribute("aria-label") || "").split(" — ")[0];
+    slider.classList.add("dl-stepped");
+    for (const [steps, sign, words] of [[-1, "−", "one step lower"], [1, "+", "one step higher"]]) {
+      const button = Object.assign(document.createElement("button"), {type: "button", className: "dl-step", textContent: sign});
+      button.dataset.steps = String(steps);
+      button.setAttribute("aria-label", `${symbol} ${words}`.trim());
+      slider.append(button);
+    }
+  }
+}
+
+function onStep(event) {
+  const button = event.target.closest && event.target.closest(".dl-step");
+  const input = button && stageSlider(button.parentElement.querySelector("input[type='range']"));
+  if (!input) return;
+  event.preventDefault();
+  if (held && held.input !== input) commit();
+  if (!held) held = {input, timer: 0};
+  clearTimeout(held.timer);
+  moveTo(input, Number(button.dataset.steps));
+  held.timer = setTimeout(commit, COMMIT_AFTER);
+  schedule();
 }
 
 const decoder = new TextDecoder();
