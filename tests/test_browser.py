@@ -379,8 +379,8 @@ LIVE_CELLS = ("() => [...document.querySelector('.dl-answers table').tBodies[0].
 
 
 def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(browser, app_url):
-    """Issue 27: while θ₀ is dragged (the mouse held down) the answers are the solver's for the value the
-    slider shows, with no server run; past the impact angle every answer waits ("updating…") and the
+    """Issue 27: while θ₀ is dragged (the mouse held down) the answers, and the caption's headline, are the
+    solver's for the value the slider shows, with no server run; past the impact angle every answer waits ("updating…") and the
     regime is said; on release one run replaces everything. Practice loads no live module; axe stays
     at zero."""
     from solvers.pendulum_rebound import solve
@@ -388,6 +388,8 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     from tests.test_where_used import serious_violations
     from ui.results import answer_rows
     from ui.catalog import BY_ID
+    from viz.common import headline_text
+    from viz.pendulum_rebound import figures
 
     context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound")
     loaded = []
@@ -405,6 +407,11 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
         solution = solve(theta0=units.to_si(degrees, "angle"))
         return [row[2] for row in answer_rows(solution, BY_ID["pendulum_rebound"].answers_of(solution), "si")]
 
+    def caption_headline(degrees: float) -> str:
+        solution = solve(theta0=units.to_si(degrees, "angle"))
+        stage = figures(solution, "si")[0]
+        return headline_text(stage.headline, {**solution.params, **solution.answers})
+
     before = page.evaluate(LIVE_CELLS)
     page.mouse.move(x_of(0), y)
     page.mouse.down()
@@ -419,11 +426,17 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     assert page.locator(".dl-figure .dl-live-stale").count() >= 1  # the motion is not redrawn: marked
     headline = page.locator(".dl-live-headline").inner_text()  # the main answer on the stage, by the figure
     assert headline.endswith(expected(dragged_to)[0]), headline
+    # The caption's headline is the server's caption for the value shown; the rest of it dimmed.
+    caption = page.locator(".st-key-dl_stage .dl-description")
+    assert caption.locator(".dl-live-caption").inner_text() == caption_headline(dragged_to)
+    assert caption.locator(".dl-live-caption.dl-live-stale").count() == 0
+    assert caption.locator(".dl-live-stale").count() == 1 and caption.get_attribute("aria-live") == "off"
 
     page.mouse.move(x_of(-70), y)  # below the impact angle (−35.7°): no impact, nothing to show
     page.wait_for_timeout(200)
     assert set(page.evaluate(LIVE_CELLS)) == {"updating…"}
     assert "no impact" in page.locator(".dl-live-status").inner_text()
+    assert caption.locator(".dl-live-caption.dl-live-stale").count() == 1  # another regime: its words would be wrong
 
     page.mouse.move(x_of(-12), y)
     page.wait_for_timeout(200)
@@ -435,7 +448,8 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     page.wait_for_timeout(300)
     assert page.evaluate("window.__runs") == 1  # one server run for the whole drag
     assert page.evaluate(LIVE_CELLS) == live_values == expected(released_at)
-    assert page.locator(".dl-live-stale, .dl-live-badge").count() == 0
+    assert page.locator(".dl-live-stale, .dl-live-badge, .dl-live-caption").count() == 0
+    assert caption.inner_text().startswith(caption_headline(released_at)) and caption.get_attribute("aria-live") == "polite"
     assert page.locator("#dl-live-announce").inner_text().strip()  # the main answer, said once
     assert any("/live." in url for url in loaded + page.evaluate(
         "() => performance.getEntriesByType('resource').map((e) => e.name)"))  # so the check below can fail

@@ -178,3 +178,57 @@ def test_quantities_are_written_as_the_answers_table_writes_them(tmp_path):
         payloads += [[solution.answers[a.name], row] for a, row in zip(answers, data["answers"])]
     got = node(tmp_path, "console.log(JSON.stringify(input.map(([x, row]) => live.quantity(x, row, 1e6))));", payloads)
     assert got == rows
+
+
+CAPTION = ("const fns = await Promise.all(input.map(([source]) => live.load(source)));\n"
+           "console.log(JSON.stringify(input.map(([, params, parts, grouped], i) => { const p = live.fromJSON(params);"
+           " const r = fns[i](p); return r.values ? live.headlineText(parts, {...p, ...r.values}, grouped) : null; })));")
+
+
+@pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
+def test_the_caption_s_headline_follows_as_the_server_writes_it(pid, tmp_path_factory):
+    """The stage figure's caption starts with its headline (viz.common.headline), and the browser's
+    headline for dragged values (the generated function's values, written by live.js) is the server's
+    caption for those values, character for character, wherever the regime is the server's."""
+    from solvers.formatting import GROUPED_BELOW
+    from viz.common import headline_text
+
+    viz = importlib.import_module(f"viz.{pid}")
+
+    @settings(max_examples=2, deadline=None, suppress_health_check=list(HealthCheck),
+              phases=(Phase.explicit, Phase.reuse, Phase.generate))
+    @given(st.lists(dragged(pid), min_size=8, max_size=8))
+    def check(samples):
+        cases = []
+        for p in samples:
+            kind, solution = outcome(pid, p)
+            if kind != "values":
+                continue
+            stage = viz.figures(solution, "si")[0]
+            if not stage.headline:
+                continue
+            text = headline_text(stage.headline, {**solution.params, **solution.answers})
+            assert stage.description.startswith(text) and any(not isinstance(part, str) for part in stage.headline)
+            source = live.function_source(pid, live.options_of(pid, solution.params))
+            cases.append(([source, as_json(solution.params), stage.headline, GROUPED_BELOW], text))
+        if cases:
+            assert node(tmp_path_factory.mktemp("caption"), CAPTION, [c for c, _ in cases]) == [t for _, t in cases]
+    check()
+    if pid != "eulers_disk":  # its caption opens with the slow-motion factor and the period in ms: not live
+        assert viz.figures(registry.solver(pid).solve(), "si")[0].headline, pid
+
+
+FIXED = st.tuples(st.one_of(st.floats(-1e6, 1e6), st.integers(-10**6, 10**6).map(lambda n: n / 8),
+                            st.sampled_from([0.0, -0.0, -0.04, 0.05, -0.05, 2.5, -2.5, 0.25])), st.integers(0, 3))
+
+
+@settings(max_examples=3, deadline=None, suppress_health_check=list(HealthCheck),
+          phases=(Phase.explicit, Phase.reuse, Phase.generate))
+@given(st.lists(FIXED, min_size=300, max_size=300))
+def test_fixed_decimals_are_written_as_the_captions_write_them(tmp_path_factory, pairs):
+    """live.plainFixed against solvers.formatting.plain_fixed: exact ties (n/8) to even, no −0."""
+    from solvers.formatting import plain_fixed
+
+    got = node(tmp_path_factory.mktemp("fixed"), "console.log(JSON.stringify(input.map(([x, d]) => live.plainFixed(x, d))));",
+               pairs)
+    assert got == [plain_fixed(x, d) for x, d in pairs]

@@ -301,7 +301,7 @@ def problem_page(problem_id: str) -> None:
     if practice:
         instructor_export(problem)
     elif motion_column is not None:  # the lesson page: the answers follow a dragged control (never in Practice)
-        live.show(problem, solution, answers, system)
+        live.show(problem, solution, answers, system, figures[0])
 
 
 def _assignment(problem: Problem, link, system: str) -> None:

@@ -5,11 +5,14 @@ drawn comes from a solver. Coordinates are rounded so equal inputs give byte-equ
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
 import numpy as np
 import orjson
+
+from solvers.formatting import plain_fixed, plain_number
 
 # Okabe & Ito's palette, distinguishable with every common colour-vision deficiency.
 COLORS = {
@@ -34,6 +37,9 @@ class Figure:
     # animation (ui/plotly_component/figure.js prints it, with this caption beneath).
     key_frame: int = 0
     key_caption: str = ""
+    # The words the description starts with, as ``headline_text`` writes them (``headline`` below):
+    # followed by the browser while a lesson control is dragged.
+    headline: tuple = ()
 
     def json_bytes(self) -> bytes:
         """The figure as JSON, serialised once and kept (figures are shared between sessions); an
@@ -46,6 +52,33 @@ class Figure:
 
     def json(self) -> str:
         return self.json_bytes().decode()
+
+
+# A caption's headline: the words its description starts with, whose numbers the browser follows while a
+# lesson control is dragged (ui/plotly_component/live.js). Literal text (this run's words, for its regime
+# and options) and slots (name, kind, digits) for a parameter or an answer in SI: "n", plain_number to
+# ``digits`` figures; "deg", an angle in degrees to ``digits`` decimals; "degn", in degrees to ``digits``
+# figures. The browser fills the slots only while the dragged values stay in this run's regime.
+def headline(*parts) -> tuple:
+    return tuple(p if isinstance(p, str) else tuple(p) for p in parts)
+
+
+def headline_text(parts: tuple, values) -> str:
+    """The headline as the description writes it, with ``values`` (parameters and answers, SI)."""
+    out = []
+    for part in parts:
+        if isinstance(part, str):
+            out.append(part)
+            continue
+        name, kind, digits = part
+        x = values[name]
+        if kind == "n":
+            out.append(plain_number(x, digits))
+        elif kind == "deg":
+            out.append(plain_fixed(math.degrees(x), digits) + "°")
+        else:
+            out.append(plain_number(math.degrees(x), digits) + "°")
+    return "".join(out)
 
 
 def r(values) -> np.ndarray:

@@ -7,7 +7,7 @@ import numpy as np
 
 from solvers import disk_wall as solver
 from solvers.core import plain_number as n
-from viz.common import (COLORS, Figure, animated, arrows, as_one, base_layout, circles, line, moving, padded,
+from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, as_one, base_layout, circles, line, moving, padded,
                          r, segments, thumbnail, trails)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -54,9 +54,11 @@ def figures(solution, system: str = "si") -> list[Figure]:
         after = f"with e = 0 it does not rebound: it runs on along the wall at {n(a['speed1'])} m/s"
     else:
         after = f"it rebounds and leaves at {n(a['speed1'])} m/s"
-    description = (f"Top view. The disk slides toward the wall at {n(p['V'])} m/s, spinning at "
-                   f"{n(p['omega'])} rad/s, strikes it at t = 0 and {regime}; {after}, spinning at "
+    head = headline("Top view. The disk slides toward the wall at ", ("V", "n", 4), " m/s, spinning at ",
+                    ("omega", "n", 4), f" rad/s, strikes it at t = 0 and {regime}")
+    description = (headline_text(head, {**p, **a}) + f"; {after}, spinning at "
                    f"{n(a['omega1'])} rad/s. The orange radius shows the spin, the green arrow the velocity, "
                    "the red arrow the wall's impulse.")
     return [Figure("disk_wall_motion", "The impact, slowed down", spec, description, height=520,
-                   key_frame=int(m["impact_index"]), key_caption="the impact: the wall's impulse on the disk at B")]
+                   key_frame=int(m["impact_index"]), key_caption="the impact: the wall's impulse on the disk at B",
+                   headline=head)]

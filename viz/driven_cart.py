@@ -6,7 +6,7 @@ import numpy as np
 
 from solvers import driven_cart as solver
 from solvers.core import plain_number as n
-from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, joined, line, moving,
+from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, circles, column, joined, line, moving,
                          points, r, segments, thumbnail)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -61,12 +61,13 @@ def _animation(solution) -> Figure:
     layout = base_layout(equal_axes=True, x_range=(min(-b - 2 * wheel, arrow_tail - wheel), x_end + b + 2 * wheel),
                          y_range=(y_lo, body_top * 1.4), x_title="x (m)", y_title="height (m)")
     spec = animated([ground], moving_traces, m["t"], layout, frame_ms=70)
-    description = (f"Side view, front to the right. From rest the cart accelerates at {n(a['accel'])} m/s² "
-                   f"({p['drive']}-wheel drive) for {n(m['t'][-1], 2)} s. Purple arrows: the ground's normal force on "
+    head = headline("Side view, front to the right. From rest the cart accelerates at ", ("accel", "n", 4),
+                    f" m/s² ({p['drive']}-wheel drive)")
+    description = (headline_text(head, {**p, **a}) + f" for {n(m['t'][-1], 2)} s. Purple arrows: the ground's normal force on "
                    f"each axle, {n(2 * a['N_rear'])} N at the rear and {n(2 * a['N_front'])} N at the front, drawn to "
                    "scale below the ground line; red: the traction. Acceleration moves load to the rear.")
     return Figure("cart_motion", "Accelerating from rest (forces to scale)", spec, description, height=440,
-                  key_frame=frames - 1, key_caption="under way: the forces are the same at every instant")
+                  key_frame=frames - 1, key_caption="under way: the forces are the same at every instant", headline=head)
 
 
 def _versus_mu(solution) -> Figure:

@@ -8,7 +8,7 @@ import numpy as np
 from solvers import pendulum_rebound as solver
 from solvers.core import plain_fixed
 from solvers import units
-from viz.common import (COLORS, Figure, animated, arrows, base_layout, circles, column, fitted, line, moving, points,
+from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, circles, column, fitted, line, moving, points,
                          r, segments, thumbnail, trails)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -66,13 +66,14 @@ def figures(solution, system: str = "si") -> list[Figure]:
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.22], "title": {"text": "θ (°)"}}
     layout["height"] = 700
     spec = animated([ground, pivot, curve, impact_line], moving_traces, m["t"], layout)
-    description = (f"Side view. Released from rest at θ₀ = {deg(p['theta0'])}, the pendulum "
-                   f"swings down and the sphere strikes the {p['surface']} at θ_I = "
-                   f"{deg(a['theta_impact'])}, {_rebounds(p, a, solution.extras['bounce_peaks'])}. "
+    head = headline("Side view. Released from rest at θ₀ = ", ("theta0", "deg", 1), ", the pendulum swings down and "
+                    f"the sphere strikes the {p['surface']} at θ_I = ", ("theta_impact", "deg", 1))
+    description = (headline_text(head, {**p, **a}) + f", {_rebounds(p, a, solution.extras['bounce_peaks'])}. "
                    "Below: θ against time, with the impact angle dashed.")
     first_impact = int(np.argmin(np.abs(m["t"] - m["impact_times"][0]))) if m["impact_times"] else 0
     return [Figure("pendulum_motion", "Release, bounce, rebound", spec, description, height=700,
-                   key_frame=first_impact, key_caption=f"the first impact, at θ_I = {deg(a['theta_impact'])}")]
+                   key_frame=first_impact, key_caption=f"the first impact, at θ_I = {deg(a['theta_impact'])}",
+                   headline=head)]
 
 
 def _rebounds(p, a, peaks) -> str:

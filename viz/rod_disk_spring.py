@@ -7,7 +7,7 @@ import numpy as np
 
 from solvers import rod_disk_spring as solver
 from solvers.core import plain_fixed, plain_number as n
-from viz.common import (COLORS, Figure, animated, base_layout, circles, fitted, line, moving, points, r, segments,
+from viz.common import (COLORS, Figure, headline, headline_text, animated, base_layout, circles, fitted, line, moving, points, r, segments,
                          spirals, thumbnail)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -55,14 +55,15 @@ def figures(solution, system: str = "si") -> list[Figure]:
                         "title": {"text": "energy (J)"}}
     layout["height"] = 700
     spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout, frame_ms=50)
-    description = (f"Side view, θ from the upward vertical. {_release(p, m)}, the assembly falls, passes "
-                   f"θ₂ = {deg(p['theta2'])} (dashed) at {n(a['omega2'])} rad/s, {_after(p, m)}. "
+    head = headline("Side view, θ from the upward vertical. The assembly passes θ₂ = ", ("theta2", "deg", 0),
+                    " (dashed) at ", ("omega2", "n", 4), " rad/s.")
+    description = (headline_text(head, {**p, **a}) + f" {_release(p, m)}, it falls, {_after(p, m)}. "
                    "Bars: kinetic, gravitational (zero hanging straight down) and spring energy; their sum stays "
                    "constant.")
     at_theta2 = int(np.argmax(theta >= p["theta2"])) if (theta >= p["theta2"]).any() else len(theta) - 1
     return [Figure("rod_disk_spring_motion", "The fall and the swing back, with the energy", spec, description,
                    height=700, key_frame=at_theta2,
-                   key_caption=f"passing θ₂ = {deg(p['theta2'])}, where the speed is asked for")]
+                   key_caption=f"passing θ₂ = {deg(p['theta2'])}, where the speed is asked for", headline=head)]
 
 
 def deg(angle: float) -> str:

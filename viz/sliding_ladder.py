@@ -6,7 +6,7 @@ import numpy as np
 
 from solvers import sliding_ladder as solver
 from solvers.core import plain_number as n
-from viz.common import (COLORS, Figure, animated, arrows, base_layout, column, line, moving, points, r,
+from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, column, line, moving, points, r,
                          thumbnail)
 
 # The ladder is drawn as a strip THICKNESS × L wide on the side away from the corner, so its edge
@@ -64,15 +64,17 @@ def _animation(solution, m) -> Figure:
     x_low = -max(float(np.max(at_frames[0])) * force_scale, band) - 0.05 * L
     layout = base_layout(equal_axes=True, x_range=(x_low, x_far), y_range=(y_low, 1.18 * L))
     spec = animated(static, moving_traces, m["t"], layout, frame_ms=40)
+    head = headline("Side view, wall on the left. Released at rest at θ₀ = ", ("theta0", "degn", 3), ", the ladder slides "
+                    "down; G moves on a circle about the corner while the wall pushes (purple arrow, to scale with the "
+                    "floor's green one).")
     description = (
-        f"Side view, wall on the left. Released at rest at θ₀ = {n(np.degrees(p['theta0']), 3)}°, the ladder slides "
-        f"down; G moves on a circle about the corner while the wall pushes (purple arrow, to scale with the "
-        f"floor's green one). At t = {n(a['t_leave'])} s and θ = {n(np.degrees(a['theta_leave']))}° (dashed), with "
+        headline_text(head, {**p, **a}) + f" At t = {n(a['t_leave'])} s and θ = {n(np.degrees(a['theta_leave']))}° (dashed), with "
         f"the top at two-thirds of its initial height, the wall's push reaches zero and the top leaves the wall; "
         f"G then drifts away from it at a constant {n(a['vx_leave'])} m/s while the ladder falls, landing flat at "
         f"t = {n(a['t_floor'])} s turning at {n(a['omega_floor'])} rad/s.")
     return Figure("sliding_ladder_motion", "Sliding down, leaving the wall, landing flat", spec, description,
-                  height=560, key_frame=k, key_caption="the top leaves the wall, at two-thirds of its initial height")
+                  height=560, key_frame=k, key_caption="the top leaves the wall, at two-thirds of its initial height",
+                  headline=head)
 
 
 def _reactions(solution, m) -> Figure:

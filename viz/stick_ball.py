@@ -5,7 +5,7 @@ import numpy as np
 
 from solvers import stick_ball as solver
 from solvers.core import plain_number as n
-from viz.common import (COLORS, Figure, animated, base_layout, circles, column, line, moving, padded, points,
+from viz.common import (COLORS, Figure, headline, headline_text, animated, base_layout, circles, column, line, moving, padded, points,
                          r, segments, thumbnail, trails)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -35,11 +35,12 @@ def figures(solution, system: str = "si") -> list[Figure]:
     ]
     layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range)
     spec = animated([cm_path], moving_traces, m["t"], layout)
-    description = (f"Top view. The ball slides at {n(p['v'])} m/s into the resting stick {n(p['s'])} m from its "
-                   f"midpoint; {_after(p, a, m)}. Dotted: the trail of the stick's end.")
+    head = headline("Top view. The ball slides at ", ("v", "n", 4), " m/s into the resting stick ", ("s", "n", 4),
+                    " m from its midpoint")
+    description = headline_text(head, {**p, **a}) + f"; {_after(p, a, m)}. Dotted: the trail of the stick's end."
     impact = int(np.argmin(np.abs(m["t"])))  # the impact is at t = 0
     return [Figure("stick_ball_motion", "Impact, then free motion (top view)", spec, description, height=520,
-                   key_frame=impact, key_caption="the impact: the ball meets the stick")]
+                   key_frame=impact, key_caption="the impact: the ball meets the stick", headline=head)]
 
 
 def _after(p, a, m) -> str:

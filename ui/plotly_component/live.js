@@ -10,7 +10,7 @@
 // from the solver's sympy chain, never typed here) with the value shown, converted to SI, and writes
 // the answers' values as the page formats them (``plainNumber``: solvers/formatting.plain_number's
 // rules). What it cannot compute (an integral, a refused value, past a physical limit) is marked
-// "updating…", never left stale: the figure, its caption, the notes, the checks and the derivation
+// "updating…", never left stale: the figure, its caption (but its headline, see liveCaption), the notes, the checks and the derivation
 // are dimmed and say so until the server's run replaces them. A regime the drag enters is said in
 // words above the answers. Once the run after the release is done, everything is the server's
 // again, and the main answer is said once to a screen reader (a polite live region).
@@ -89,6 +89,30 @@ export function quantity(x, [, unit, factor, angle], groupedBelow) {
   return angle ? `${value} (${plainNumber(x, 4, groupedBelow)} rad)` : value;
 }
 
+// solvers/formatting.plain_fixed: ``decimals`` decimals, a tie to even (Python's format; JavaScript's
+// toFixed breaks a tie away from zero), a true minus, never −0.
+export function plainFixed(x, decimals = 1) {
+  let text = x.toFixed(decimals);
+  const exact = Math.abs(x).toFixed(Math.min(100, decimals + 30)), point = exact.indexOf(".");
+  const kept = exact.slice(0, point + 1 + decimals).replace(/\.$/, "");
+  if (/^50*$/.test(exact.slice(point + 1 + decimals)) && Number(kept.slice(-1)) % 2 === 0) text = (x < 0 ? "-" : "") + kept;
+  return Number(text) === 0 ? text.replace("-", "") : text.replace("-", "−");
+}
+
+// viz.common.headline_text: a caption's headline with these values (SI), or null if one is missing.
+export function headlineText(parts, values, groupedBelow) {
+  let text = "";
+  for (const part of parts) {
+    if (typeof part === "string") { text += part; continue; }
+    const [name, kind, digits] = part, x = values[name];
+    if (!Number.isFinite(x)) return null;
+    const degrees = x * (180 / Math.PI);  // Python's math.degrees
+    text += kind === "n" ? plainNumber(x, digits, groupedBelow)
+      : kind === "deg" ? plainFixed(degrees, digits) + "°" : plainNumber(degrees, digits, groupedBelow) + "°";
+  }
+  return text;
+}
+
 // The generated function from its source (made by solvers/live.py on the server, never from anything
 // typed), loaded as a module: in the page from a blob (the app's Content-Security-Policy allows blob:
 // scripts, not eval), in node (tests/test_live.py) from a data: URL.
@@ -119,7 +143,8 @@ const answersTable = () => document.querySelector(".dl-text.dl-answers table");
 function staleParts() {
   const answers = document.querySelector(".dl-text.dl-answers");
   const own = answers ? [answers.querySelector("h3"), answersTable(), answers.querySelector(".dl-live-status")] : [];
-  return [...$$(".dl-figure > :not(.dl-live-badge)"), ...(answers ? [...answers.children].filter((el) => !own.includes(el)) : []),
+  const caption = state.caption && state.caption.el;
+  return [...$$(".dl-figure > :not(.dl-live-badge)").filter((el) => el !== caption), ...(answers ? [...answers.children].filter((el) => !own.includes(el)) : []),
           ...$$(".dl-text.dl-derivation")];
 }
 
@@ -149,6 +174,7 @@ function begin() {
   if (state.live) return;
   state.live = true;
   document.body.classList.add("dl-live-dragging");
+  liveCaption();
   for (const el of staleParts()) el.classList.add("dl-live-stale");
   const fig = document.querySelector(".st-key-dl_stage .dl-figure");
   // Over the figure's title, not dimmed with it, and taking no room: nothing under the finger moves.
@@ -161,10 +187,38 @@ function begin() {
   }
 }
 
+// The stage figure's caption: its headline (viz.common.headline: the run's words, numbers in slots)
+// apart from the rest, which is dimmed; its own announcements off while it changes on every frame.
+function liveCaption() {
+  const el = document.querySelector(".st-key-dl_stage .dl-figure .dl-description"), head = state.data.headline;
+  if (!el || !head || !el.textContent.startsWith(head.text)) return;
+  state.caption = {el, text: el.textContent, said: el.getAttribute("aria-live")};
+  el.setAttribute("aria-live", "off");
+  el.replaceChildren(Object.assign(document.createElement("span"), {className: "dl-live-caption", textContent: head.text}),
+                     Object.assign(document.createElement("span"), {className: "dl-live-stale", textContent: state.caption.text.slice(head.text.length)}));
+}
+
+// The headline for these values while the regime is the run's (its words are that regime's), else dimmed.
+function drawCaption(params, result) {
+  const head = state.caption && state.caption.el.querySelector(".dl-live-caption");
+  if (!head) return;
+  const text = result.regime === state.regime && result.values
+    ? headlineText(state.data.headline.parts, {...params, ...result.values}, state.data.grouped_below) : null;
+  head.classList.toggle("dl-live-stale", text === null);
+  const shown = text === null ? state.data.headline.text : text;
+  if (head.textContent !== shown) head.textContent = shown;
+}
+
 // Back to the server's drawing: every live value and mark gone.
 function end() {
   if (!state || !state.live) return;
   state.live = false;
+  if (state.caption) {  // (unless the run has written the figure's new caption already)
+    const {el, text, said} = state.caption;
+    if (el.querySelector(".dl-live-caption")) el.textContent = text;
+    if (said === null) el.removeAttribute("aria-live"); else el.setAttribute("aria-live", said);
+    state.caption = null;
+  }
   document.body.classList.remove("dl-live-dragging");
   for (const el of $$(".dl-live-stale")) el.classList.remove("dl-live-stale");
   for (const el of $$(".dl-live-badge, .dl-live-value")) el.remove();
@@ -208,6 +262,7 @@ function draw() {
   const main = state.data.answers[0], x = result.values && main ? result.values[main[0]] : undefined;
   setText(".dl-live-headline", main ? `${main[4]}: ${Number.isFinite(x) ? quantity(x, main, state.data.grouped_below) : UPDATING}` : "");
   setText(".dl-live-said", regimeText ? ` · ${regimeText}` : "");
+  drawCaption(params, result);
   performance.measure("dl-live-draw", {start: started});  // its own cost, for bench/live_drag.py
 }
 
@@ -408,7 +463,7 @@ export function render({data, parentElement}) {
   const wasLive = state && state.live;
   if (state) end();
   performance.clearMeasures("dl-live-draw");  // one drag's worth kept, not a session's
-  state = {data: d, params, regime: d.regime, live: false, fn: null};
+  state = {data: d, params, regime: d.regime, live: false, fn: null, caption: null};
   const mine = state;
   load(d.source).then((fn) => { mine.fn = fn; });
   if (wasLive) requestAnimationFrame(announce);
