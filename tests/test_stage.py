@@ -79,6 +79,13 @@ MEASURE = """(g) => {
       if (cross(box, area)) clashes.push(`${text} in ${name}`);
     });
   });
+  // Stacked plots: the upper x axis's title reads as its own, nearer its tick labels than the plot below.
+  const title = g.querySelector(".g-xtitle text"), below = g.querySelector(".draglayer .x2y2 .nsewdrag");
+  const ticks = [...g.querySelectorAll(".xaxislayer-above .xtick text")].map(t => t.getBoundingClientRect().bottom);
+  if (title && below && ticks.length) {
+    const t = title.getBoundingClientRect(), own = t.top - Math.max(...ticks), other = below.getBoundingClientRect().top - t.bottom;
+    if (own > other) clashes.push(`${title.textContent} ${own.toFixed(0)} px below its ticks, ${other.toFixed(0)} px above the plot below`);
+  }
   return {scene: false, frames: frames.length, width: Math.abs(xa.l2p(x1) - xa.l2p(x0)) / xa._length,
           height: Math.abs(ya.l2p(y1) - ya.l2p(y0)) / ya._length, rings: rings, clashes: clashes,
           unitX: Math.abs(xa.l2p(1) - xa.l2p(0)), unitY: Math.abs(ya.l2p(1) - ya.l2p(0))};

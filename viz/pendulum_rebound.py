@@ -62,6 +62,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
     layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range, x_title=f"x ({u})", y_title=f"y ({u})")
     # Stacked, not side by side, so that a phone-width window keeps both readable.
     layout["yaxis"]["domain"] = [0.42, 1.0]
+    layout["xaxis"]["title"]["standoff"] = 4  # under its own tick labels: the motion's, not the θ plot's below
     layout["xaxis2"] = {"anchor": "y2", "title": {"text": "t (s)"}}
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.22], "title": {"text": "θ (°)"}}
     layout["height"] = 700

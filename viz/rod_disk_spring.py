@@ -50,6 +50,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
     x_range, y_range = fitted([pivot, theta2_mark, *moving_traces[:-1]])
     layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range)
     layout["yaxis"]["domain"] = [0.40, 1.0]  # room between for the x title and the ticks, in lecture type too
+    layout["xaxis"]["title"]["standoff"] = 4  # under its own tick labels: the rod's, not the bars' below
     layout["xaxis2"] = {"anchor": "y2"}
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.22], "range": [0, top * 1.05],
                         "title": {"text": "energy (J)"}}
