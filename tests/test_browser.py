@@ -526,6 +526,11 @@ def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, 
     settled(3)
     assert shown() == float(thumb.get_attribute("min")) and runs() == 3
     assert page.evaluate(LIVE_CELLS) == expected(shown())
+    thumb.press("ArrowRight")  # and back at once: nothing to run, and the live view is gone, not left "updating…"
+    thumb.press("ArrowLeft")
+    page.wait_for_timeout(800)
+    assert runs() == 3 and shown() == float(thumb.get_attribute("min"))
+    assert page.locator(".dl-live-badge, .dl-live-value, .dl-live-stale").count() == 0
     assert serious_violations(page) == []
     assert not errors, errors
     assert csp_violations(page) == []

@@ -292,6 +292,7 @@ function watch() {
   addSteppers();
   controls.addEventListener("click", onStep);
   for (const type of ["input", "pointermove", "keydown", "keyup", "pointerup"]) controls.addEventListener(type, schedule, true);
+  controls.addEventListener("pointerup", () => requestAnimationFrame(settle), true);  // a drag let go where it began
   controls.addEventListener("keydown", onKeyDown, true);  // before react-aria's (React listens at its root)
   controls.addEventListener("keyup", onKeyUp, true);
   controls.addEventListener("focusout", onFocusOut, true);
@@ -343,7 +344,7 @@ function announce() {
 const COMMIT_AFTER = 250;
 const MOVES = {ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1, PageUp: "page", PageDown: "-page", Home: "min", End: "max"};
 const REPLAYED = Symbol("dl-replayed");
-let held = null;  // {input, timer, down}: the slider moved by keys and not yet committed
+let held = null;  // {input, timer}: the slider moved by keys (or taps) and not yet committed
 
 // The value's own setter (React watches the element's), as a person's input would set it.
 const setValue = (input, value) => Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, "value").set.call(input, value);
@@ -375,14 +376,12 @@ function onKeyDown(event) {
   if (held && held.input !== input) commit();
   if (!held) held = {input, timer: 0};
   clearTimeout(held.timer);
-  held.down = true;
   moveTo(input, typeof how === "number" && event.shiftKey ? (how > 0 ? "page" : "-page") : how);
   schedule();
 }
 
 function onKeyUp(event) {
   if (!held || MOVES[event.key] === undefined) return;
-  held.down = false;
   clearTimeout(held.timer);
   held.timer = setTimeout(commit, COMMIT_AFTER);
 }
@@ -403,6 +402,7 @@ function commit() {
     const replay = new KeyboardEvent("keydown", {key, code: key, bubbles: true, cancelable: true});
     replay[REPLAYED] = true;
     input.dispatchEvent(replay);
+    requestAnimationFrame(settle);  // back where the run left it: Streamlit runs nothing, so the live view ends here
   }, 0);
 }
 
