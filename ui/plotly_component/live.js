@@ -34,8 +34,7 @@ const STYLE = `
   .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderThumbValue'] { z-index: 1; }
   .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: -2px; width: 44px; height: 44px; padding: 0;
     font-size: 1.4rem; line-height: 1; border-radius: 0.5rem; cursor: pointer; touch-action: manipulation;
-    border: 1px solid var(--st-border-color, rgba(49, 51, 63, 0.2)); background: var(--st-secondary-background-color, #f0f2f6);
-    color: var(--st-text-color, #31333F); }
+    border: 1px solid rgba(128, 128, 128, 0.6); background: rgba(128, 128, 128, 0.12); color: inherit; }  /* the theme's text, light or dark */
   .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: 0; }
   .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: 0; }
 }
