@@ -164,8 +164,9 @@ function shownParams() {
   return params;
 }
 
+// A control showing another value than the run's (a box emptied to type in shows none yet).
 function changed(params) {
-  return state.data.follows.some(([name]) => !Object.is(params[name], state.params[name]) &&
+  return state.data.follows.some(([name]) => !Number.isNaN(params[name]) && !Object.is(params[name], state.params[name]) &&
     !(Math.abs(params[name] - state.params[name]) <= 1e-12 * Math.abs(state.params[name])));
 }
 
@@ -232,7 +233,7 @@ function draw() {
   if (!state) return;
   const started = performance.now();
   const params = shownParams();
-  if (!changed(params) && !state.live) return;
+  if (!changed(params)) { end(); return; }  // the run's values: the server's drawing is theirs
   begin();
   let result = {regime: "loading", values: null};  // the function not here yet: every value waits
   if (state.fn) try { result = state.fn(params); } catch (e) { result = {regime: "refused", values: null}; }
