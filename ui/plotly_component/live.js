@@ -133,6 +133,8 @@ export const fromJSON = (params) => Object.fromEntries(Object.entries(params).ma
 // ------------------------------------------------------------------ the page while a control moves
 let state = null;   // this page's data (the last run's), and the drag under way
 let frame = 0;      // the animation frame requested, if any
+let resting = 0;    // the timer that ends a live view whose controls are back at the run's values
+const RESTING_MS = 300;
 
 const $$ = (selector) => [...document.querySelectorAll(selector)];
 const stage = () => document.querySelector(".st-key-dl_stage");
@@ -232,8 +234,12 @@ function draw() {
   frame = 0;
   if (!state) return;
   const started = performance.now();
-  const params = shownParams();
-  if (!changed(params)) { end(); return; }  // the run's values: the server's drawing is theirs
+  const params = shownParams(), moved = changed(params);
+  if (!moved && !state.live) return;
+  // Back at the run's values (a key burst or a drag ending where it began, nothing to run): the live
+  // view ends once the controls rest there (not at once: typing or dragging through them would flicker).
+  clearTimeout(resting);
+  if (!moved) resting = setTimeout(settle, RESTING_MS);
   begin();
   let result = {regime: "loading", values: null};  // the function not here yet: every value waits
   if (state.fn) try { result = state.fn(params); } catch (e) { result = {regime: "refused", values: null}; }
@@ -292,7 +298,6 @@ function watch() {
   addSteppers();
   controls.addEventListener("click", onStep);
   for (const type of ["input", "pointermove", "keydown", "keyup", "pointerup"]) controls.addEventListener(type, schedule, true);
-  controls.addEventListener("pointerup", () => requestAnimationFrame(settle), true);  // a drag let go where it began
   controls.addEventListener("keydown", onKeyDown, true);  // before react-aria's (React listens at its root)
   controls.addEventListener("keyup", onKeyUp, true);
   controls.addEventListener("focusout", onFocusOut, true);
@@ -402,7 +407,6 @@ function commit() {
     const replay = new KeyboardEvent("keydown", {key, code: key, bubbles: true, cancelable: true});
     replay[REPLAYED] = true;
     input.dispatchEvent(replay);
-    requestAnimationFrame(settle);  // back where the run left it: Streamlit runs nothing, so the live view ends here
   }, 0);
 }
 
