@@ -241,7 +241,7 @@ def problem_page(problem_id: str) -> None:
     lecture, practice = view == "Lecture", view == "Practice"
     if lecture:  # the projector: the stage gets the screen, one click brings the sidebar back
         st.set_page_config(initial_sidebar_state="collapsed")
-    st.html(RUN_CSS + PHONE_CSS + STAGE_CSS + PRINT_CSS + (LECTURE_CSS if lecture else ""))
+    st.html(RUN_CSS + PHONE_CSS + STAGE_CSS + PRINT_CSS + takehome.TAKEHOME_CSS + (LECTURE_CSS if lecture else ""))
     heading = HEADING.format(p=problem)
     if link is not None:  # an assignment: its variant, fixed, and the link kept as it came
         _heading(problem, heading, [])
@@ -337,7 +337,7 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
         _figures(figures[1:], figures)
     _on_request(problem, solution, figures)
     _derivation(solver, solution)
-    takehome.downloads(problem, solution, answers, system)
+    takehome.download_links(problem)
     live.show(problem, solution, answers, system)  # the answers follow a dragged control (never in Practice)
 
 

@@ -313,24 +313,36 @@ def lesson_parameters(problem: Problem, system: str, base: dict | None, stage) -
     return values
 
 
+def parameters_of_link(problem: Problem, query, system: str, base: dict | None = None) -> tuple[dict, list[str]]:
+    """The parameters (SI) a page's address gives (``query``: its parameters by name, e.g.
+    st.query_params), each as its control would read it, else ``base``'s or the default; and a
+    warning for each value it refuses. No Streamlit: the download route reads links too."""
+    base = base or {}
+    values, warnings = {}, []
+    for p in problem.solver.PARAMS:
+        value = base.get(p.name, p.default)
+        raw = query.get(p.name)
+        if raw is not None:
+            parsed, why = _parse_url_value(p, raw, system)
+            if why is None:
+                value = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
+            else:
+                warnings.append(_url_warning(p, raw, why))
+        values[p.name] = value
+    return values, warnings
+
+
 def fixed_parameters(problem: Problem, system: str, base: dict, seed: int,
                      container=None) -> tuple[dict, list[str]]:
     """A variant link's givens (SI), which nothing on the page can change: the variant's, or a
     value the link sets itself; listed where the controls would be, as fixed. Return (parameters,
     warnings about the URL)."""
     container = container or st.sidebar
-    values, warnings, lines = {}, [], []
+    values, warnings = parameters_of_link(problem, st.query_params, system, base)
+    lines = []
     for p in problem.solver.PARAMS:
-        value, own = base.get(p.name, p.default), False
-        raw = st.query_params.get(p.name)
-        if raw is not None:
-            parsed, why = _parse_url_value(p, raw, system)
-            if why is None:
-                value = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
-                own = _differs(p, value, base, system)
-            else:
-                warnings.append(_url_warning(p, raw, why))
-        values[p.name] = value
+        value = values[p.name]
+        own = p.name in st.query_params and _differs(p, value, base, system)
         shown = (f"{p.label.capitalize()}: {p.label_of(value)}" if isinstance(p, Choice) else
                  f"{symbol_text(p.symbol)} = {units.format_quantity(value, p.dimension, system)}")
         lines.append(f"- {plain(shown)}" + (" *(from the link)*" if own else ""))
