@@ -4,6 +4,7 @@ import streamlit as st
 from edge import widget_values
 from ui.catalog import GROUPS, PROBLEMS
 from ui.home import home
+from ui.params import refused_values_notice
 from ui.practice import take_instructor_link
 
 # An emoji icon is drawn in the browser (an SVG data URL); a Material icon here would be fetched from
@@ -22,8 +23,7 @@ st.html("""<style>
 widget_values.install()  # (serve.py installs it before the first session; this covers `streamlit run`)
 take_instructor_link()  # ?instructor=KEY leaves the address bar on every page, the home page too
 if widget_values.take_refusals():
-    st.warning("A value this browser sent for a control could not be read, so the control keeps its last "
-               "value. Reloading the page sets everything right.")
+    refused_values_notice()
 
 pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True)]}
 for group in GROUPS:

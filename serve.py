@@ -179,7 +179,8 @@ def install_middleware() -> None:
     (Streamlit's static files gzipped once) and ``ui.figure.BundleServer`` (the figure component's
     plotly bundles gzipped once and cached by browsers for a year; Streamlit's own component route
     would send them with a bare ``Cache-Control: public`` and no validator, so every visit
-    downloaded plotly.js again, gzipped anew on every request)."""
+    downloaded plotly.js again, gzipped anew on every request), and ``ui.takehome.DownloadServer``
+    (the lesson page's download links: /download/<problem>/<file>?<the page's query>)."""
     from starlette.middleware import Middleware
     from streamlit.web.server.starlette import starlette_app
 
@@ -187,13 +188,14 @@ def install_middleware() -> None:
     from edge.headers import SecurityHeaders
     from lti.routes import LtiRoutes
     from ui.figure import BundleServer
+    from ui.takehome import DownloadServer
 
     streamlit_middleware = starlette_app.create_streamlit_middleware  # fails loudly if renamed
 
     def with_ours():
         stack = streamlit_middleware()
         stack[1:1] = [Middleware(SecurityHeaders), Middleware(LtiRoutes), Middleware(FairShare), Middleware(StaticGzip),
-                      Middleware(BundleServer)]
+                      Middleware(BundleServer), Middleware(DownloadServer)]
         return stack
 
     starlette_app.create_streamlit_middleware = with_ours

@@ -75,11 +75,16 @@ class Results:
     errors: list[str] = field(default_factory=list)
 
 
-async def run_script(ws, page: str, widgets: list[WidgetState]) -> tuple[float, int, list[ForwardMsg]]:
+async def run_script(ws, page: str, widgets: list[WidgetState],
+                     fragment: str = "") -> tuple[float, int, list[ForwardMsg]]:
+    """Send a rerun as the browser does (``fragment``: the id of the fragment the changed widget is
+    drawn in, whose rerun is the fragment's alone) and read the server's answer to its end."""
     msg = BackMsg()
     msg.rerun_script.page_name = page
     msg.rerun_script.query_string = ""
     msg.rerun_script.widget_states.widgets.extend(widgets)
+    if fragment:
+        msg.rerun_script.fragment_id = fragment
     started = time.perf_counter()
     await ws.send(msg.SerializeToString())
     received, messages = 0, []
@@ -93,8 +98,9 @@ async def run_script(ws, page: str, widgets: list[WidgetState]) -> tuple[float, 
             return time.perf_counter() - started, received, messages
 
 
-def widget_id(messages: list[ForwardMsg], key: str) -> tuple[str, str] | None:
-    """(id, kind) of the slider or number box whose key is ``key``."""
+def widget_id(messages: list[ForwardMsg], key: str) -> tuple[str, str, str] | None:
+    """(id, kind, fragment id or "") of the slider or number box whose key is ``key``: the browser
+    reruns only the fragment a changed widget is drawn in."""
     for forward in messages:
         if forward.HasField("delta") and forward.delta.HasField("new_element"):
             element = forward.delta.new_element
@@ -102,7 +108,7 @@ def widget_id(messages: list[ForwardMsg], key: str) -> tuple[str, str] | None:
             if kind in ("slider", "number_input"):
                 wid = getattr(element, kind).id
                 if wid.endswith(key):
-                    return wid, kind
+                    return wid, kind, forward.delta.fragment_id
     return None
 
 
@@ -130,11 +136,11 @@ async def session(url: str, page: str, delay: float, changes: int, results: Resu
             if found is None:
                 results.errors.append(f"no widget {key} on {page or 'empty'}")
                 return
-            wid, kind = found
+            wid, kind, fragment = found
             for _ in range(changes):
                 await asyncio.sleep(rng.uniform(*pause))
                 value = round(value + step, 6)
-                seconds, size, messages = await run_script(ws, page, [widget_state(wid, kind, value)])
+                seconds, size, messages = await run_script(ws, page, [widget_state(wid, kind, value)], fragment)
                 if any(m.HasField("delta") and m.delta.HasField("new_element")
                        and m.delta.new_element.WhichOneof("type") == "exception" for m in messages):
                     results.errors.append("exception element")

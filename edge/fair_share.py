@@ -153,24 +153,38 @@ class SessionBudget:
         return {"type": "websocket.disconnect", "code": 1008}
 
 
-class FairShare:
-    """ASGI middleware: every connection to Streamlit's websocket gets its own SessionBudget."""
+class AddressBuckets:
+    """A token bucket per client address, the ``MAX_ADDRESSES`` most recently seen remembered."""
 
-    def __init__(self, app):
-        self.app = app
+    def __init__(self, rate: float, burst: int):
+        self.rate, self.burst = rate, burst
         self.addresses: collections.OrderedDict[str, TokenBucket] = collections.OrderedDict()
 
-    def address_bucket(self, address: str) -> TokenBucket:
-        bucket = self.addresses.pop(address, None) or TokenBucket(ADDRESS_RATE, ADDRESS_BURST)
+    def __call__(self, address: str) -> TokenBucket:
+        bucket = self.addresses.pop(address, None) or TokenBucket(self.rate, self.burst)
         while len(self.addresses) >= MAX_ADDRESSES:
             self.addresses.popitem(last=False)
         self.addresses[address] = bucket
         return bucket
 
+
+def client_address(scope) -> str:
+    """The client's address as uvicorn gives it (the proxy's X-Forwarded-For where DL_TRUSTED_PROXIES
+    trusts it: serve.py)."""
+    return (scope.get("client") or ("?", 0))[0]
+
+
+class FairShare:
+    """ASGI middleware: every connection to Streamlit's websocket gets its own SessionBudget."""
+
+    def __init__(self, app):
+        self.app = app
+        self.address_bucket = AddressBuckets(ADDRESS_RATE, ADDRESS_BURST)
+
     async def __call__(self, scope, receive, send):
         if scope["type"] != "websocket" or not scope["path"].endswith(STREAM_PATH):
             return await self.app(scope, receive, send)
-        address = (scope.get("client") or ("?", 0))[0]  # as uvicorn gives it: DL_TRUSTED_PROXIES (serve.py)
+        address = client_address(scope)
         budget = SessionBudget(receive, send, address, shared=self.address_bucket(address))
         try:
             await self.app(scope, budget.receive, budget.send_to_client)

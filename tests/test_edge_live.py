@@ -83,7 +83,7 @@ def test_forged_widget_values_get_a_message_and_one_log_line_per_kind(server, pa
         seen = {}
         async with websockets.connect(stream(url), subprotocols=["streamlit"], max_size=None) as ws:
             _, _, first = await run_script(ws, page, [])
-            wid, _ = widget_id(first, CONTROLS[page][0])
+            wid, _, _ = widget_id(first, CONTROLS[page][0])
             for how in FORGERIES:
                 for _ in range(3):  # the same forgery, rerun after rerun
                     _, _, seen[how] = await run_script(ws, page, [forged(wid, how)])
@@ -115,7 +115,7 @@ def test_a_flood_reaches_the_script_at_a_persons_pace(server):
         async with websockets.connect(stream(url), subprotocols=["streamlit"], max_size=None,
                                       additional_headers={"X-Forwarded-For": "203.0.113.77"}) as ws:
             _, _, first = await run_script(ws, page, [])
-            wid, kind = widget_id(first, CONTROLS[page][0])
+            wid, kind, _ = widget_id(first, CONTROLS[page][0])
             runs = 0
 
             async def count():

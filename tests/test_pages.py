@@ -2,7 +2,9 @@
 its state round-trips through the URL, and bad input of any kind ends in a plain message."""
 from __future__ import annotations
 
+import html
 import math
+import re
 from pathlib import Path
 
 import orjson
@@ -12,6 +14,7 @@ from streamlit.testing.v1 import AppTest, app_test
 
 from solvers import units
 from ui.catalog import BY_ID, PROBLEMS
+from ui import takehome
 from ui.figure import ANSWERS, DERIVATION
 
 IDS = [p.id for p in PROBLEMS]
@@ -45,13 +48,20 @@ app_test.MediaFileManager = _KeptMediaFiles  # every AppTest run keeps its media
 
 
 def downloads_shown(at: AppTest) -> dict[str, str]:
-    """Every download the page offers after its last run, by file name, made as a click makes it."""
+    """Every download the page offers after its last run, by file name, made as a click makes it:
+    a download button's function, or a download link's file as serve.py's route makes it."""
     registry = _KeptMediaFiles.last._deferred_callables
     files = {}
     for button in at.get("download_button"):
         entry = registry[button.proto.deferred_file_id]
         data = entry["callable"]()
         files[entry["filename"]] = data.decode() if isinstance(data, bytes) else data
+    for element in at.get("html"):
+        for href, name in re.findall(r'<a href="([^"]+)" download="([^"]+)"', element.proto.body):
+            path, _, query = html.unescape(href).partition("?")
+            status, _, body = takehome.made(*takehome.DOWNLOAD.search(path).groups(), query, "/page")
+            assert status == 200, body
+            files[name] = body.decode()
     return files
 
 

@@ -296,3 +296,40 @@ def test_an_assignment_link_offers_only_the_exercise_until_the_solution_is_shown
     assert "pendulum_rebound.ipynb" in files
     for name, text in files.items():
         assert leaks(text, solution, answers.values(), judge), name
+
+
+# -- the lesson page's download links (serve.py's route) --------------------------------------------
+
+def test_a_download_link_makes_the_files_of_the_page_state_it_names():
+    """The route's file for a changed state is the file the page's own functions make for that state,
+    and each bad link gets a plain refusal, never a traceback."""
+    from ui import takehome
+
+    problem = BY_ID["disk_wall"]
+    solution = problem.solver.solve(e=0.5)
+    expected = {name: make() for _, name, _, make in
+                takehome.files(problem, solution, problem.answers_of(solution), "si", "http://h/disk_wall?e=0.5")}
+    for name, text in expected.items():
+        status, kind, body = takehome.made("disk_wall", name, "e=0.5", "http://h/disk_wall?e=0.5")
+        assert status == 200 and body.decode() == text, name
+    assert takehome.made("disk_wall", "disk_wall.py", "e=0.5", "")[2] != takehome.made("disk_wall", "disk_wall.py", "", "")[2]
+    for problem_id, name, query in [("disk_wall", "x.py", ""), ("nope", "nope.py", ""), ("disk_wall", "disk_wall.py", "e=NaN"),
+                                    ("disk_wall", "disk_wall.py", "e=<script>"), ("disk_wall", "disk_wall.py", "e=-5"),
+                                    ("disk_wall", "disk_wall.py", "e=" + "1" * 5000)]:
+        status, kind, body = takehome.made(problem_id, name, query, "")
+        assert status in (400, 404) and kind.startswith("text/plain") and b"Traceback" not in body, (query, body)
+
+
+def test_the_download_route_serves_files_passes_the_rest_on_and_bounds_a_flood():
+    from starlette.responses import PlainTextResponse
+    from starlette.testclient import TestClient
+
+    from ui.takehome import DOWNLOAD_BURST, DownloadServer
+
+    client = TestClient(DownloadServer(PlainTextResponse("streamlit")))
+    answer = client.get("/download/stick_ball/stick_ball-derivation.md?units=us")
+    assert answer.status_code == 200 and 'filename="stick_ball-derivation.md"' in answer.headers["content-disposition"]
+    assert "http://testserver/stick_ball?units=us" in answer.text  # the file cites the page it came from
+    assert client.get("/stick_ball").text == "streamlit"
+    codes = [client.get("/download/stick_ball/stick_ball.py").status_code for _ in range(DOWNLOAD_BURST + 5)]
+    assert 429 in codes and codes.count(200) <= DOWNLOAD_BURST

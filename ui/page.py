@@ -15,7 +15,9 @@ from ui.practice import instructor_export, is_instructor, practice_panel, seed_f
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
 from ui.figure import show as show_figure
-from ui.params import check_in_range, fixed_parameters, mirror_to_url, parameter_panel
+from edge import widget_values
+from ui.params import (check_in_range, fixed_parameters, lesson_parameters, mirror_to_url, more_parameters,
+                       parameter_panel, refused_values_notice)
 
 LECTURE_CSS = """
 <style>
@@ -128,6 +130,7 @@ PRINT_CSS = """
 """
 
 
+HEADING = "# {p.title}\n:gray[{p.blurb} Source: {p.source}.]"
 VIEWS = ("Study", "Lecture", "Practice")
 VIEW_HELP = ("Study: answers, animation and derivation. Lecture: large type and the animation first, for "
              "a projector. Practice: the answers are hidden; type your own and get feedback.")
@@ -238,8 +241,8 @@ def problem_page(problem_id: str) -> None:
     lecture, practice = view == "Lecture", view == "Practice"
     if lecture:  # the projector: the stage gets the screen, one click brings the sidebar back
         st.set_page_config(initial_sidebar_state="collapsed")
-    st.html(RUN_CSS + PHONE_CSS + STAGE_CSS + PRINT_CSS + (LECTURE_CSS if lecture else ""))
-    heading = f"# {problem.title}\n:gray[{problem.blurb} Source: {problem.source}.]"
+    st.html(RUN_CSS + PHONE_CSS + STAGE_CSS + PRINT_CSS + takehome.TAKEHOME_CSS + (LECTURE_CSS if lecture else ""))
+    heading = HEADING.format(p=problem)
     if link is not None:  # an assignment: its variant, fixed, and the link kept as it came
         _heading(problem, heading, [])
         if link.refused:
@@ -247,23 +250,21 @@ def problem_page(problem_id: str) -> None:
             return
         _assignment(problem, link, system)
         return
-    head = st.container()  # the title, filled once the state is known
-    motion_column = None
-    if seed is None:
-        base = {}
+    if seed is None and not practice:  # the lesson page: the stage and all that follows it in a fragment
         st.sidebar.markdown("### Parameters")
-        stage = None
-        if not practice:  # the stage: the motion, with the lesson's controls beside it (below it on a phone)
-            motion_column, stage_column = st.container(key="dl_stage").columns([7, 3], gap="medium")
-            stage = stage_column.container(key="dl_stage_controls")
-        params, warnings = parameter_panel(problem, system, stage=stage)
+        warnings = more_parameters(problem, system, None, st.sidebar)
+        st.session_state[f"{problem.id}__notices"] = [w for w in (seed_warning, *warnings) if w]  # said once
+        _lesson(problem.id, system, lecture)
+        return
+    head = st.container()  # the title, filled once the state is known
+    if seed is None:  # Practice: the controls in the sidebar
+        st.sidebar.markdown("### Parameters")
+        base = {}
+        params, warnings = parameter_panel(problem, system)
     else:  # a variant's givens are fixed, as on an assignment link: a nudged control would be another problem
         base = variant(solver, problem.id, seed)
         params, warnings = fixed_parameters(problem, system, base, seed)
-    mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "",
-                                            "lecture": "1" if lecture else "", "practice": "1" if practice else "",
-                                            "seed": str(seed) if seed is not None else "",
-                                            **_on_request_flag(problem)}, base)
+    _mirror(problem, params, system, lecture, practice, seed, base)
     notices = [w for w in (seed_warning, *warnings) if w]
     try:
         check_in_range(problem, params, system)
@@ -271,12 +272,10 @@ def problem_page(problem_id: str) -> None:
     except ValueError as error:
         with head:
             _heading(problem, heading, notices)
-        with motion_column or st.container():
-            results.refused(error, system, solver.LIMIT_LABELS)
+        results.refused(error, system, solver.LIMIT_LABELS)
         if isinstance(error, PhysicalLimitError):
             _beside_refusal(problem, params, practice)
         return
-
     answers = problem.answers_of(solution)
     with head:
         _heading(problem, heading, notices)
@@ -284,24 +283,62 @@ def problem_page(problem_id: str) -> None:
         takehome.downloads(problem, solution, answers, system, exercise=True)  # the statement and the method
         instructor_export(problem)  # the statement, the method and the answer box, nothing more
         return
-    if motion_column is not None:  # the motion on the stage, fitted to the first screen; its companions below
-        with motion_column:
-            show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True)
-        figures_below = figures[1:]
-    else:
-        figures_below = figures
     if lecture:
-        _figures(figures_below, figures, lecture=True, fit_first=motion_column is None)
+        _figures(figures, lecture=True, fit_first=True)
     results.answer_section(solution, answers, system)
     if not lecture:
-        _figures(figures_below, figures)
+        _figures(figures)
     _on_request(problem, solution, figures)
     _derivation(solver, solution)
     takehome.downloads(problem, solution, answers, system)
     if practice:
         instructor_export(problem)
-    elif motion_column is not None:  # the lesson page: the answers follow a dragged control (never in Practice)
-        live.show(problem, solution, answers, system, figures[0])
+
+
+def _mirror(problem: Problem, params: dict, system: str, lecture: bool, practice: bool, seed, base: dict) -> None:
+    mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "",
+                                            "lecture": "1" if lecture else "", "practice": "1" if practice else "",
+                                            "seed": str(seed) if seed is not None else "",
+                                            **_on_request_flag(problem)}, base)
+
+
+@st.fragment
+def _lesson(problem_id: str, system: str, lecture: bool) -> None:
+    """The lesson (Study and Lecture): the stage, the motion with the lesson's controls beside it
+    (below it on a phone), then the answers, the companion figures, the derivation and the downloads.
+    A fragment: moving a lesson control reruns this alone, not the page's navigation, view, units
+    and sidebar (what a change does not touch); those run it again when they change."""
+    problem = BY_ID[problem_id]
+    solver = problem.solver
+    if widget_values.take_refusals():
+        refused_values_notice()
+    head = st.container()  # the title, filled once the address holds the state (its print link)
+    motion_column, stage_column = st.container(key="dl_stage").columns([7, 3], gap="medium")
+    params = lesson_parameters(problem, system, None, stage_column.container(key="dl_stage_controls"))
+    _mirror(problem, params, system, lecture, False, None, {})
+    with head:
+        _heading(problem, HEADING.format(p=problem), st.session_state.pop(f"{problem.id}__notices", []))
+    try:
+        check_in_range(problem, params, system)
+        solution, figures = _solve_and_draw(problem, params, system)
+    except ValueError as error:
+        with motion_column:
+            results.refused(error, system, solver.LIMIT_LABELS)
+        if isinstance(error, PhysicalLimitError):
+            _beside_refusal(problem, params)
+        return
+    answers = problem.answers_of(solution)
+    with motion_column:  # the motion on the stage, fitted to the first screen; its companions below
+        show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True)
+    if lecture:
+        _figures(figures[1:], figures, lecture=True)
+    results.answer_section(solution, answers, system)
+    if not lecture:
+        _figures(figures[1:], figures)
+    _on_request(problem, solution, figures)
+    _derivation(solver, solution)
+    takehome.download_links(problem)
+    live.show(problem, solution, answers, system, figures[0])  # the answers follow a dragged control (never in Practice)
 
 
 def _assignment(problem: Problem, link, system: str) -> None:

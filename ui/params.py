@@ -239,6 +239,12 @@ def _differs(p: Any, value: Any, base: dict, system: str) -> bool:
     return _shown(p, value, system) != _shown(p, start, system)
 
 
+def refused_values_notice() -> None:
+    """What the page says when a value the browser sent for a control was refused (edge/widget_values)."""
+    st.warning("A value this browser sent for a control could not be read, so the control keeps its last "
+               "value. Reloading the page sets everything right.")
+
+
 def parameter_panel(problem: Problem, system: str, base: dict | None = None,
                     container=None, stage=None) -> tuple[dict, list[str]]:
     """Draw the controls; return (parameters in SI for ``solve``, warnings about the URL).
@@ -246,36 +252,83 @@ def parameter_panel(problem: Problem, system: str, base: dict | None = None,
     The problem's primary parameters (the lesson's) are always shown, in ``stage`` if given (beside
     the figure), else in ``container``; the others in ``container`` behind a "More parameters"
     toggle, which starts open when one of them is not at its starting value (a link that changes
-    a mass shows it). A hidden parameter keeps its value."""
+    a mass shows it). A hidden parameter keeps its value. The lesson page draws the two parts in
+    two runs of their own (``more_parameters`` in the page's, ``lesson_parameters`` in the stage's
+    fragment), which is the same."""
     container = container or st.sidebar
-    stage = stage or container
-    base = base or {}
-    remembered = st.session_state.get(f"{problem.id}__si", {})
-    warnings = _initial_values(problem, system, base)
+    stage = stage or container.container()  # the lesson's first, above "More parameters"
+    warnings = more_parameters(problem, system, base, container)
+    return lesson_parameters(problem, system, base, stage), warnings
+
+
+def _split(problem: Problem) -> tuple[list, list]:
+    """(the lesson's parameters, the others), in the solver's order."""
     params = problem.solver.PARAMS
-    known = {p.name: remembered.get(p.name, base.get(p.name, p.default)) for p in params}
     first = [p for p in params if p.name in problem.primary] or list(params)
-    rest = [p for p in params if p not in first]
-    values = {p.name: _in_si(p, _control(p, problem, system, stage), system, known[p.name]) for p in first}
+    return first, [p for p in params if p not in first]
+
+
+def _known(problem: Problem, base: dict) -> dict:
+    remembered = st.session_state.get(f"{problem.id}__si", {})
+    return {p.name: remembered.get(p.name, base.get(p.name, p.default)) for p in problem.solver.PARAMS}
+
+
+def more_parameters(problem: Problem, system: str, base: dict | None, container) -> list[str]:
+    """Give every control its starting value, and draw the parameters other than the lesson's in
+    ``container`` behind the "More parameters" toggle; return warnings about the URL."""
+    base = base or {}
+    warnings = _initial_values(problem, system, base)
+    _, rest = _split(problem)
+    known = _known(problem, base)
     if rest:
         more_key = f"{problem.id}__more"
-        stored = {p.name: _in_si(p, st.session_state[control_key(problem, system, p.name)], system, known[p.name])
-                  for p in rest}
         if more_key not in st.session_state:
-            st.session_state[more_key] = any(_differs(p, stored[p.name], base, system) for p in rest)
+            st.session_state[more_key] = any(_differs(p, _stored(problem, p, system, known), base, system) for p in rest)
         more = container.toggle("More parameters", key=more_key,
                                 help=", ".join(p.label for p in rest).capitalize() + ".")
         for p in rest:
             if more:
-                values[p.name] = _in_si(p, _control(p, problem, system, container), system, known[p.name])
+                _control(p, problem, system, container)
             else:
                 # Re-set it as a plain value: Streamlit drops the state of a widget not drawn in a run.
                 key = control_key(problem, system, p.name)
                 st.session_state[key] = st.session_state[key]
-                values[p.name] = stored[p.name]
-    values = {p.name: values[p.name] for p in params}  # the solver's order
-    st.session_state[f"{problem.id}__si"] = dict(values)
     container.html(SLIDER_NAMES, unsafe_allow_javascript=True)
+    return warnings
+
+
+def _stored(problem: Problem, p: Any, system: str, known: dict) -> Any:
+    return _in_si(p, st.session_state[control_key(problem, system, p.name)], system, known[p.name])
+
+
+def lesson_parameters(problem: Problem, system: str, base: dict | None, stage) -> dict:
+    """Draw the lesson's controls in ``stage``; return every parameter in SI for ``solve`` (the
+    others as ``more_parameters`` left them)."""
+    first, rest = _split(problem)
+    known = _known(problem, base or {})
+    values = {p.name: _in_si(p, _control(p, problem, system, stage), system, known[p.name]) for p in first}
+    values.update({p.name: _stored(problem, p, system, known) for p in rest})
+    values = {p.name: values[p.name] for p in problem.solver.PARAMS}  # the solver's order
+    st.session_state[f"{problem.id}__si"] = dict(values)
+    return values
+
+
+def parameters_of_link(problem: Problem, query, system: str, base: dict | None = None) -> tuple[dict, list[str]]:
+    """The parameters (SI) a page's address gives (``query``: its parameters by name, e.g.
+    st.query_params), each as its control would read it, else ``base``'s or the default; and a
+    warning for each value it refuses. No Streamlit: the download route reads links too."""
+    base = base or {}
+    values, warnings = {}, []
+    for p in problem.solver.PARAMS:
+        value = base.get(p.name, p.default)
+        raw = query.get(p.name)
+        if raw is not None:
+            parsed, why = _parse_url_value(p, raw, system)
+            if why is None:
+                value = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
+            else:
+                warnings.append(_url_warning(p, raw, why))
+        values[p.name] = value
     return values, warnings
 
 
@@ -285,18 +338,11 @@ def fixed_parameters(problem: Problem, system: str, base: dict, seed: int,
     value the link sets itself; listed where the controls would be, as fixed. Return (parameters,
     warnings about the URL)."""
     container = container or st.sidebar
-    values, warnings, lines = {}, [], []
+    values, warnings = parameters_of_link(problem, st.query_params, system, base)
+    lines = []
     for p in problem.solver.PARAMS:
-        value, own = base.get(p.name, p.default), False
-        raw = st.query_params.get(p.name)
-        if raw is not None:
-            parsed, why = _parse_url_value(p, raw, system)
-            if why is None:
-                value = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
-                own = _differs(p, value, base, system)
-            else:
-                warnings.append(_url_warning(p, raw, why))
-        values[p.name] = value
+        value = values[p.name]
+        own = p.name in st.query_params and _differs(p, value, base, system)
         shown = (f"{p.label.capitalize()}: {p.label_of(value)}" if isinstance(p, Choice) else
                  f"{symbol_text(p.symbol)} = {units.format_quantity(value, p.dimension, system)}")
         lines.append(f"- {plain(shown)}" + (" *(from the link)*" if own else ""))

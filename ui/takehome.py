@@ -9,6 +9,7 @@ the method, with no answer, and no notebook (it would print the answers).
 from __future__ import annotations
 
 import html
+import re
 import urllib.parse
 
 import streamlit as st
@@ -33,20 +34,26 @@ def print_link(problem: Problem) -> str:
     return f'\n\n<p class="dl-print-only dl-print-link">This page, with these numbers: <a href="{link}">{link}</a></p>'
 
 
+def catalogue(problem: Problem, exercise: bool = False) -> list[tuple[str, str, str, str]]:
+    """(label, file name, MIME type, what it is) per download: "latex", "markdown", "notebook", "script"."""
+    stem = f"{problem.id}-{'exercise' if exercise else 'derivation'}"
+    what = "The exercise" if exercise else "The derivation"
+    out = [(f"{what} as LaTeX", f"{stem}.tex", "application/x-tex", "latex"),
+           (f"{what} as Markdown", f"{stem}.md", "text/markdown", "markdown")]
+    if not exercise:
+        out += [("A notebook that re-derives it", f"{problem.id}.ipynb", "application/x-ipynb+json", "notebook"),
+                ("The same as a Python script", f"{problem.id}.py", "text/x-python", "script")]
+    return out
+
+
 def files(problem: Problem, solution: Solution, answers, system: str, link: str,
           exercise: bool = False) -> list[tuple[str, str, str, object]]:
     """(button label, file name, MIME type, a function that makes the file's text) per download."""
     doc = lambda: documents.document(problem, solution, answers, system, link, exercise)  # noqa: E731
-    stem = f"{problem.id}-{'exercise' if exercise else 'derivation'}"
-    what = "The exercise" if exercise else "The derivation"
-    out = [(f"{what} as LaTeX", f"{stem}.tex", "application/x-tex", lambda: documents.latex(doc())),
-           (f"{what} as Markdown", f"{stem}.md", "text/markdown", lambda: documents.markdown(doc()))]
-    if not exercise:
-        out += [("A notebook that re-derives it", f"{problem.id}.ipynb", "application/x-ipynb+json",
-                 lambda: notebook.notebook(problem, solution, link)),
-                ("The same as a Python script", f"{problem.id}.py", "text/x-python",
-                 lambda: notebook.script(problem, solution, link))]
-    return out
+    makers = {"latex": lambda: documents.latex(doc()), "markdown": lambda: documents.markdown(doc()),
+              "notebook": lambda: notebook.notebook(problem, solution, link),
+              "script": lambda: notebook.script(problem, solution, link)}
+    return [(label, name, mime, makers[kind]) for label, name, mime, kind in catalogue(problem, exercise)]
 
 
 HELP = {True: "The statement with your givens and the method's steps, without the solution (LaTeX compiles with "
@@ -54,6 +61,119 @@ HELP = {True: "The statement with your givens and the method's steps, without th
         False: "LaTeX (amsmath; compiles with pdflatex as it is), Markdown with $$ math, or a Jupyter notebook "
                "and a script that rebuild the derivation with sympy for these numbers and print the answers. "
                "To print the page itself, use the browser's Print: it prints without the controls."}
+
+
+# The lesson page's downloads are links (``download_links``), served by ``DownloadServer`` at
+# <base>/download/<problem>/<file name>?<the page's query>.
+DOWNLOAD = re.compile(r"/download/([a-z_]{1,40})/([A-Za-z0-9_.-]{1,80})$")
+MAX_QUERY = 4096  # bytes: a page's query is a few hundred
+DOWNLOAD_RATE, DOWNLOAD_BURST = 4.0, 40  # files a second per client address: a class behind one NAT, not a script
+ICON = ('<svg aria-hidden="true" viewBox="0 0 24 24" width="18" height="18"><path fill="currentColor" '
+        'd="M12 16l-5-5 1.4-1.45 2.6 2.6V4h2v8.15l2.6-2.6L17 11l-5 5zm-6 4q-.825 0-1.412-.587T4 18v-3h2v3h12v-3h2v3q0 '
+        '.825-.587 1.413T18 20H6z"/></svg>')
+TAKEHOME_CSS = """
+<style>
+  .dl-downloads { display: flex; flex-wrap: wrap; gap: 0.5rem; }
+  .dl-downloads a { display: inline-flex; align-items: center; gap: 0.4rem; padding: 0.25rem 0.75rem; min-height: 2.5rem;
+    border: 1px solid rgba(49, 51, 63, 0.2); border-radius: 0.5rem; color: inherit; text-decoration: none; }
+  .dl-downloads a:hover { border-color: var(--primary-color, #005A8C); color: var(--primary-color, #005A8C); }
+  .dl-downloads a:focus-visible { outline: 2px solid var(--primary-color, #005A8C); outline-offset: 2px; }
+  @media print { .dl-downloads { display: none !important; } }
+</style>
+"""
+
+
+def download_links(problem: Problem) -> None:
+    """The lesson page's downloads in one element: links that carry the page's own query (every
+    parameter, the units), so a run registers no widget for them and a click makes the file from
+    the very link the file cites (``DownloadServer``)."""
+    base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
+    prefix = f"/{base}" if base else ""
+    query = urllib.parse.urlencode({k: st.query_params.get(k) for k in st.query_params.keys()})
+    query = f"?{query}" if query else ""
+    title = html.escape(HELP[False])
+    links = "".join(
+        f'<a href="{html.escape(f"{prefix}/download/{problem.id}/{name}{query}")}" download="{name}" '
+        f'title="{title}">{ICON}{html.escape(label)}</a>' for label, name, _, _ in catalogue(problem))
+    st.html(f'<div class="dl-downloads" role="group" aria-label="Downloads">{links}</div>')
+
+
+def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[int, str, bytes]:
+    """(HTTP status, content type, body) for GET /download/<problem_id>/<name>?<query_string>: the
+    file the lesson page offers for the parameters of its address (``page_url``: the page's own
+    address, which the file cites), or a plain-text refusal. No Streamlit."""
+    from solvers.core import within_model_range
+    from ui.catalog import BY_ID
+    from ui.params import parameters_of_link
+
+    plain_text = "text/plain; charset=utf-8"
+    problem = BY_ID.get(problem_id)
+    listed = {n: (mime, kind) for _, n, mime, kind in catalogue(problem)} if problem else {}
+    if name not in listed:
+        return 404, plain_text, b"No such file: the page's download links name the files there are."
+    if len(query_string) > MAX_QUERY:
+        return 400, plain_text, b"This link is too long to be a page's address."
+    query = dict(urllib.parse.parse_qsl(query_string, keep_blank_values=True))  # the last value wins, as on the page
+    system = "us" if query.get("units") == "us" and problem.us_units else "si"
+    values, refusals = parameters_of_link(problem, query, system)
+    if refusals:
+        return 400, plain_text, ("This link's numbers cannot be made into a file:\n"
+                                 + "\n".join(r.replace("**", "") for r in refusals)).encode()
+    try:
+        solution = within_model_range(problem.solver.solve)(**values)
+    except ValueError as error:
+        return 400, plain_text, f"These numbers have no solution in this model: {error}".encode()
+    mime, _ = listed[name]
+    make = {n: m for _, n, _, m in files(problem, solution, problem.answers_of(solution), system, page_url)}[name]
+    text = make()
+    return 200, f"{mime}; charset=utf-8", text.encode() if isinstance(text, str) else text
+
+
+class DownloadServer:
+    """ASGI middleware (installed by serve.py): the lesson page's download links. Each file is made
+    in a worker thread when asked for; each client address may ask for ``DOWNLOAD_RATE`` a second
+    (bursts of ``DOWNLOAD_BURST``), so a script asking for thousands stalls nobody."""
+
+    def __init__(self, app):
+        from edge.fair_share import AddressBuckets
+
+        self.app = app
+        self.budget = AddressBuckets(DOWNLOAD_RATE, DOWNLOAD_BURST)
+
+    async def __call__(self, scope, receive, send):
+        match = DOWNLOAD.search(scope["path"]) if scope["type"] == "http" and scope["method"] in ("GET", "HEAD") else None
+        if match is None:
+            return await self.app(scope, receive, send)
+        from anyio import to_thread
+
+        from edge.fair_share import client_address
+
+        bucket = self.budget(client_address(scope))
+        if bucket.wait() > 0:
+            status, kind, body = 429, "text/plain; charset=utf-8", b"Too many downloads at once: try again in a few seconds."
+        else:
+            bucket.take()
+            status, kind, body = await to_thread.run_sync(made, *match.groups(), scope.get("query_string", b"").decode("latin-1"),
+                                                          page_url(scope, match.group(1)))
+        headers = [(b"content-type", kind.encode()), (b"content-length", str(len(body)).encode()),
+                   (b"cache-control", b"no-store")]
+        if status == 200:
+            headers.append((b"content-disposition", f'attachment; filename="{match.group(2)}"'.encode()))
+        elif status == 429:
+            headers.append((b"retry-after", b"5"))
+        await send({"type": "http.response.start", "status": status, "headers": headers})
+        await send({"type": "http.response.body", "body": b"" if scope["method"] == "HEAD" else body})
+
+
+def page_url(scope, problem_id: str) -> str:
+    """The lesson page's address a download link came from: this server, the page's path (the
+    download's, with /download/<id>/<file> replaced by /<id>), the same query."""
+    headers = dict(scope.get("headers") or [])
+    host = headers.get(b"host", b"").decode("latin-1")
+    path = DOWNLOAD.sub(f"/{problem_id}", scope["path"])
+    query = scope.get("query_string", b"").decode("latin-1")
+    origin = f"{scope.get('scheme', 'http')}://{host}" if host else ""
+    return origin + path + (f"?{query}" if query else "")
 
 
 def downloads(problem: Problem, solution: Solution, answers, system: str, exercise: bool = False) -> None:
