@@ -63,6 +63,8 @@ STAGE_CSS = """
     .st-key-dl_stage_controls { display: grid !important; grid-template-columns: 1fr 1fr; column-gap: 14px; row-gap: 0; }
     .st-key-dl_stage_controls > div { min-width: 0; width: auto !important; }
     .st-key-dl_stage_controls [data-testid='stSlider'] [role='slider'] { width: 22px; height: 22px; }
+    /* the track is short beside its −/+: its end values stay whole numbers ("1.00", never "1.0 / 0") */
+    .st-key-dl_stage_controls [data-testid='stSliderTickBar'] div { white-space: nowrap; }
     .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p { font-size: 0.8rem; line-height: 1.25; }
     .st-key-dl_stage_controls [data-testid='stRadio'] [role='radiogroup'] p { font-size: 0.85rem; line-height: 1.3; }
     .st-key-dl_stage .dl-figure h4.dl-title { font-size: 1.05rem; margin: 0 0 0.2rem 0; }
