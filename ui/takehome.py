@@ -118,7 +118,7 @@ def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[
     values, refusals = parameters_of_link(problem, query, system)
     if refusals:
         return 400, plain_text, ("This link's numbers cannot be made into a file:\n"
-                                 + "\n".join(r.replace("**", "") for r in refusals)).encode()
+                                 + "\n".join(r.replace("**", "").replace("; using the default instead.", ".") for r in refusals)).encode()
     try:
         solution = within_model_range(problem.solver.solve)(**values)
     except ValueError as error:
