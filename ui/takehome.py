@@ -22,9 +22,13 @@ from ui.catalog import Problem
 def page_link(problem: Problem) -> str:
     """This page's address with the query the page keeps (its parameters, view, variant): the
     browser's URL where Streamlit knows it, else the page's path."""
-    base = (st.context.url or f"/{problem.id}").split("?")[0]
+    return (st.context.url or f"/{problem.id}").split("?")[0] + _query()
+
+
+def _query() -> str:
+    """The page's query as its address carries it ("?e=0.5&units=us"), or "" if it has none."""
     query = urllib.parse.urlencode({k: st.query_params.get(k) for k in st.query_params.keys()})
-    return base + (f"?{query}" if query else "")
+    return f"?{query}" if query else ""
 
 
 def print_link(problem: Problem) -> str:
@@ -89,8 +93,7 @@ def download_links(problem: Problem) -> None:
     the very link the file cites (``DownloadServer``)."""
     base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
     prefix = f"/{base}" if base else ""
-    query = urllib.parse.urlencode({k: st.query_params.get(k) for k in st.query_params.keys()})
-    query = f"?{query}" if query else ""
+    query = _query()
     title = html.escape(HELP[False])
     links = "".join(
         f'<a href="{html.escape(f"{prefix}/download/{problem.id}/{name}{query}")}" download="{name}" '
