@@ -72,14 +72,13 @@ HELP = {True: "The statement with your givens and the method's steps, without th
 DOWNLOAD = re.compile(r"/download/([a-z_]{1,40})/([A-Za-z0-9_.-]{1,80})$")
 MAX_QUERY = 4096  # bytes: a page's query is a few hundred
 DOWNLOAD_RATE, DOWNLOAD_BURST = 4.0, 40  # files a second per client address: a class behind one NAT, not a script
-ICON = ('<svg aria-hidden="true" viewBox="0 0 24 24" width="18" height="18"><path fill="currentColor" '
-        'd="M12 16l-5-5 1.4-1.45 2.6 2.6V4h2v8.15l2.6-2.6L17 11l-5 5zm-6 4q-.825 0-1.412-.587T4 18v-3h2v3h12v-3h2v3q0 '
-        '.825-.587 1.413T18 20H6z"/></svg>')
+ICON = '<span aria-hidden="true" class="dl-download-icon">↓</span>'  # st.html's sanitiser drops an inline SVG
 TAKEHOME_CSS = """
 <style>
   .dl-downloads { display: flex; flex-wrap: wrap; gap: 0.5rem; }
   .dl-downloads a { display: inline-flex; align-items: center; gap: 0.4rem; padding: 0.25rem 0.75rem; min-height: 2.5rem;
     border: 1px solid rgba(49, 51, 63, 0.2); border-radius: 0.5rem; color: inherit; text-decoration: none; }
+  .dl-download-icon { font-weight: 700; }
   .dl-downloads a:hover { border-color: var(--primary-color, #005A8C); color: var(--primary-color, #005A8C); }
   .dl-downloads a:focus-visible { outline: 2px solid var(--primary-color, #005A8C); outline-offset: 2px; }
   @media print { .dl-downloads { display: none !important; } }
