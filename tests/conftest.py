@@ -37,16 +37,27 @@ def browser():
         b.close()
 
 
-@pytest.fixture(scope="session")
-def app_url():
-    """The app as shipped (serve.py) on a free loopback port, or APP_URL: the container, the balancer."""
-    if os.environ.get("APP_URL"):
-        yield os.environ["APP_URL"].rstrip("/")
-        return
-    from scripts.live_app import running_app
+INSTRUCTOR_KEY = "test-instructor-key"  # the shared server's (its handouts, tests/test_print.py)
 
-    with running_app() as url:
-        yield url
+
+@pytest.fixture(scope="session")
+def shipped_server(tmp_path_factory):
+    """The app as shipped (serve.py) on a free loopback port, started once for the whole session
+    (a start is some 25 s of warming): ``scripts.live_app.Server`` (its URL, its log, its pid), with
+    an instructor key and a data directory of its own. A test that needs other settings starts its own."""
+    from scripts.live_app import running_server
+
+    env = {"DL_INSTRUCTOR_KEY": INSTRUCTOR_KEY, "DL_DATA_DIR": str(tmp_path_factory.mktemp("app-data"))}
+    with running_server(env=env) as server:
+        yield server
+
+
+@pytest.fixture(scope="session")
+def app_url(request):
+    """The shared server's URL, or APP_URL: the container, the balancer."""
+    if os.environ.get("APP_URL"):
+        return os.environ["APP_URL"].rstrip("/")
+    return request.getfixturevalue("shipped_server").url
 
 
 # The database tests run the same suite on both backends (tests/test_records.py): a SQLite file
