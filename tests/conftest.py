@@ -37,17 +37,21 @@ def browser():
         b.close()
 
 
-INSTRUCTOR_KEY = "test-instructor-key"  # the shared server's (its handouts, tests/test_print.py)
+# The shared server's instructor key and course secret (handouts, assignments: test_print.py,
+# test_assignments_browser.py).
+INSTRUCTOR_KEY, COURSE_SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
 
 
 @pytest.fixture(scope="session")
 def shipped_server(tmp_path_factory):
     """The app as shipped (serve.py) on a free loopback port, started once for the whole session
     (a start is some 25 s of warming): ``scripts.live_app.Server`` (its URL, its log, its pid), with
-    an instructor key and a data directory of its own. A test that needs other settings starts its own."""
+    an instructor key, a course secret and a data directory of its own (its records in SQLite there).
+    A test that needs other settings starts its own."""
     from scripts.live_app import running_server
 
-    env = {"DL_INSTRUCTOR_KEY": INSTRUCTOR_KEY, "DL_DATA_DIR": str(tmp_path_factory.mktemp("app-data"))}
+    env = {"DL_INSTRUCTOR_KEY": INSTRUCTOR_KEY, "DL_COURSE_SECRET": COURSE_SECRET,
+           "DL_DATA_DIR": str(tmp_path_factory.mktemp("app-data")), "DL_DATABASE_URL": ""}
     with running_server(env=env) as server:
         yield server
 
