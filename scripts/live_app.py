@@ -71,21 +71,34 @@ class Server(NamedTuple):
     pid: int
 
 
+class Starting:
+    """A server started now and waited for later: its warm-up (some 20 s) runs beside other work."""
+
+    def __init__(self, extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None):
+        port = free_port()
+        self.url = f"http://127.0.0.1:{port}"
+        self.proc = start_app(port, extra, env=env, entry=entry)
+
+    def ready(self) -> Server:
+        wait_healthy(self.url, timeout=180, proc=self.proc)
+        return Server(self.url, self.proc.log, self.proc.pid)
+
+    def stop(self) -> None:
+        self.proc.terminate()
+        try:
+            self.proc.wait(10)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+
+
 @contextlib.contextmanager
 def running_server(extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None):
     """A started, healthy server (``Server``), stopped after."""
-    port = free_port()
-    proc = start_app(port, extra, env=env, entry=entry)
-    url = f"http://127.0.0.1:{port}"
+    starting = Starting(extra, entry, env)
     try:
-        wait_healthy(url, proc=proc)
-        yield Server(url, proc.log, proc.pid)
+        yield starting.ready()
     finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
+        starting.stop()
 
 
 @contextlib.contextmanager

@@ -1,5 +1,7 @@
 """Test-wide settings: Hypothesis runs derandomized in CI (reproducible, no flaky deadlines)."""
+import contextlib
 import os
+import tempfile
 
 import pytest
 
@@ -42,17 +44,56 @@ def browser():
 INSTRUCTOR_KEY, COURSE_SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
 
 
+def _shipped_env() -> dict:
+    return {"DL_INSTRUCTOR_KEY": INSTRUCTOR_KEY, "DL_COURSE_SECRET": COURSE_SECRET,
+            "DL_DATA_DIR": tempfile.mkdtemp(prefix="dl-app-data-"), "DL_DATABASE_URL": ""}
+
+
+# Servers the collected tests will need, started as soon as they are collected: each warms for some
+# 20 s on the second core while the first tests (AppTest's, without a server) run.
+_EARLY: dict = {}
+
+
+def pytest_collection_finish(session):
+    from scripts.live_app import Starting
+
+    used = {name for item in session.items for name in getattr(item, "fixturenames", ())}
+    if "shipped_server" in used or ("app_url" in used and not os.environ.get("APP_URL")):
+        _EARLY["shipped"] = Starting(env=_shipped_env())
+    if "fresh_server" in used:
+        _EARLY["fresh"] = Starting()
+
+
+def pytest_unconfigure(config):
+    for starting in _EARLY.values():  # started for tests that did not run (-x, a keyboard interrupt)
+        starting.stop()
+
+
+@contextlib.contextmanager
+def _early(name: str, env: dict | None = None):
+    from scripts.live_app import Starting
+
+    starting = _EARLY.pop(name, None) or Starting(env=env)
+    try:
+        yield starting.ready()
+    finally:
+        starting.stop()
+
+
 @pytest.fixture(scope="session")
-def shipped_server(tmp_path_factory):
+def shipped_server():
     """The app as shipped (serve.py) on a free loopback port, started once for the whole session
-    (a start is some 25 s of warming): ``scripts.live_app.Server`` (its URL, its log, its pid), with
+    (a start is some 20 s of warming): ``scripts.live_app.Server`` (its URL, its log, its pid), with
     an instructor key, a course secret and a data directory of its own (its records in SQLite there).
     A test that needs other settings starts its own."""
-    from scripts.live_app import running_server
+    with _early("shipped", _shipped_env()) as server:
+        yield server
 
-    env = {"DL_INSTRUCTOR_KEY": INSTRUCTOR_KEY, "DL_COURSE_SECRET": COURSE_SECRET,
-           "DL_DATA_DIR": str(tmp_path_factory.mktemp("app-data")), "DL_DATABASE_URL": ""}
-    with running_server(env=env) as server:
+
+@pytest.fixture
+def fresh_server():
+    """A server as shipped that nobody has visited (its first visit is the test's), stopped after the test."""
+    with _early("fresh") as server:
         yield server
 
 
