@@ -1,6 +1,7 @@
 """One problem page, the same for every problem: controls -> solve -> answers, figure, derivation."""
 from __future__ import annotations
 
+import contextlib
 import functools
 import importlib
 import math
@@ -219,6 +220,32 @@ def _figures(figures, page=None, lecture: bool = False, fit_first: bool = False)
         show_figure(figure, page=page or figures, lecture=lecture, fit_screen=fit_first and n == 0)
 
 
+def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=None, practice: bool = False):
+    """(solution, figures) for ``params``; or None, once the refusal is said (in ``refused_in``, a
+    container, if given) with what a physical limit keeps beside it."""
+    try:
+        check_in_range(problem, params, system)
+        return _solve_and_draw(problem, params, system)
+    except ValueError as error:
+        with refused_in or contextlib.nullcontext():
+            results.refused(error, system, problem.solver.LIMIT_LABELS)
+        if isinstance(error, PhysicalLimitError):
+            _beside_refusal(problem, params, practice)
+        return None
+
+
+def _results(problem: Problem, solution, answers, system: str, figures, page, lecture: bool, fit_first: bool = False) -> None:
+    """The answers and ``figures`` (before the answers on the projector, after them in Study), the
+    costly figure on request and the derivation. ``page``: every figure of the page."""
+    if lecture:
+        _figures(figures, page, lecture=True, fit_first=fit_first)
+    results.answer_section(solution, answers, system)
+    if not lecture:
+        _figures(figures, page)
+    _on_request(problem, solution, page)
+    _derivation(problem.solver, solution)
+
+
 def _leave_legacy_pages_mode() -> None:
     """Streamlit runs a deep-linked ``pages/<id>.py`` by itself (its legacy pages-folder mode) until
     app.py has called st.navigation once in the process, so a student opening a shared link on a
@@ -235,7 +262,6 @@ def _leave_legacy_pages_mode() -> None:
 def problem_page(problem_id: str) -> None:
     _leave_legacy_pages_mode()
     problem = BY_ID[problem_id]
-    solver = problem.solver
     link = assignments.student_link(problem)  # None unless opened with a signed assignment link
     seed, seed_warning = (link.identity.seed, None) if link and link.identity else seed_from_url()
     instructor = is_instructor()  # before mirror_to_url drops ?instructor=KEY from the address
@@ -264,34 +290,21 @@ def problem_page(problem_id: str) -> None:
         base = {}
         params, warnings = parameter_panel(problem, system)
     else:  # a variant's givens are fixed, as on an assignment link: a nudged control would be another problem
-        base = variant(solver, problem.id, seed)
+        base = variant(problem.solver, problem.id, seed)
         params, warnings = fixed_parameters(problem, system, base, seed)
     _mirror(problem, params, system, lecture, practice, seed, base)
-    notices = [w for w in (seed_warning, *warnings) if w]
-    try:
-        check_in_range(problem, params, system)
-        solution, figures = _solve_and_draw(problem, params, system)
-    except ValueError as error:
-        with head:
-            _heading(problem, heading, notices)
-        results.refused(error, system, solver.LIMIT_LABELS)
-        if isinstance(error, PhysicalLimitError):
-            _beside_refusal(problem, params, practice)
-        return
-    answers = problem.answers_of(solution)
+    solved = _solved_or_refused(problem, params, system, practice=practice)
     with head:
-        _heading(problem, heading, notices)
+        _heading(problem, heading, [w for w in (seed_warning, *warnings) if w])
+    if solved is None:
+        return
+    solution, figures = solved
+    answers = problem.answers_of(solution)
     if practice and not practice_panel(problem, solution, answers, system):
         takehome.downloads(problem, solution, answers, system, exercise=True)  # the statement and the method
         instructor_export(problem)  # the statement, the method and the answer box, nothing more
         return
-    if lecture:
-        _figures(figures, lecture=True, fit_first=True)
-    results.answer_section(solution, answers, system)
-    if not lecture:
-        _figures(figures)
-    _on_request(problem, solution, figures)
-    _derivation(solver, solution)
+    _results(problem, solution, answers, system, figures, figures, lecture, fit_first=True)
     takehome.downloads(problem, solution, answers, system)
     if practice:
         instructor_export(problem)
@@ -311,7 +324,6 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     A fragment: moving a lesson control reruns this alone, not the page's navigation, view, units
     and sidebar (what a change does not touch); those run it again when they change."""
     problem = BY_ID[problem_id]
-    solver = problem.solver
     if widget_values.take_refusals():
         refused_values_notice()
     head = st.container()  # the title, filled once the address holds the state (its print link)
@@ -320,25 +332,14 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     _mirror(problem, params, system, lecture, False, None, {})
     with head:
         _heading(problem, HEADING.format(p=problem), st.session_state.pop(f"{problem.id}__notices", []))
-    try:
-        check_in_range(problem, params, system)
-        solution, figures = _solve_and_draw(problem, params, system)
-    except ValueError as error:
-        with motion_column:
-            results.refused(error, system, solver.LIMIT_LABELS)
-        if isinstance(error, PhysicalLimitError):
-            _beside_refusal(problem, params)
+    solved = _solved_or_refused(problem, params, system, motion_column)
+    if solved is None:
         return
+    solution, figures = solved
     answers = problem.answers_of(solution)
     with motion_column:  # the motion on the stage, fitted to the first screen; its companions below
         show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True)
-    if lecture:
-        _figures(figures[1:], figures, lecture=True)
-    results.answer_section(solution, answers, system)
-    if not lecture:
-        _figures(figures[1:], figures)
-    _on_request(problem, solution, figures)
-    _derivation(solver, solution)
+    _results(problem, solution, answers, system, figures[1:], figures, lecture)
     takehome.download_links(problem)
     live.show(problem, solution, answers, system, figures[0])  # the answers follow a dragged control (never in Practice)
 
