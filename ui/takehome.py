@@ -14,6 +14,7 @@ import urllib.parse
 
 import streamlit as st
 
+from edge import base_path
 from solvers.core import Solution
 from ui import documents, notebook
 from ui.catalog import Problem
@@ -50,14 +51,19 @@ def catalogue(problem: Problem, exercise: bool = False) -> list[tuple[str, str, 
     return out
 
 
+def maker(problem: Problem, solution: Solution, answers, system: str, link: str, kind: str, exercise: bool = False):
+    """A function that makes the text of the download of ``kind`` (``catalogue``'s last field)."""
+    doc = lambda: documents.document(problem, solution, answers, system, link, exercise)  # noqa: E731
+    return {"latex": lambda: documents.latex(doc()), "markdown": lambda: documents.markdown(doc()),
+            "notebook": lambda: notebook.notebook(problem, solution, link),
+            "script": lambda: notebook.script(problem, solution, link)}[kind]
+
+
 def files(problem: Problem, solution: Solution, answers, system: str, link: str,
           exercise: bool = False) -> list[tuple[str, str, str, object]]:
     """(button label, file name, MIME type, a function that makes the file's text) per download."""
-    doc = lambda: documents.document(problem, solution, answers, system, link, exercise)  # noqa: E731
-    makers = {"latex": lambda: documents.latex(doc()), "markdown": lambda: documents.markdown(doc()),
-              "notebook": lambda: notebook.notebook(problem, solution, link),
-              "script": lambda: notebook.script(problem, solution, link)}
-    return [(label, name, mime, makers[kind]) for label, name, mime, kind in catalogue(problem, exercise)]
+    return [(label, name, mime, maker(problem, solution, answers, system, link, kind, exercise))
+            for label, name, mime, kind in catalogue(problem, exercise)]
 
 
 HELP = {True: "The statement with your givens and the method's steps, without the solution (LaTeX compiles with "
@@ -90,9 +96,7 @@ def download_links(problem: Problem) -> None:
     """The lesson page's downloads in one element: links that carry the page's own query (every
     parameter, the units), so a run registers no widget for them and a click makes the file from
     the very link the file cites (``DownloadServer``)."""
-    base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
-    prefix = f"/{base}" if base else ""
-    query = _query()
+    prefix, query = base_path(), _query()
     title = html.escape(HELP[False])
     links = "".join(
         f'<a href="{html.escape(f"{prefix}/download/{problem.id}/{name}{query}")}" download="{name}" '
@@ -125,9 +129,8 @@ def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[
         solution = within_model_range(problem.solver.solve)(**values)
     except ValueError as error:
         return 400, plain_text, f"These numbers have no solution in this model: {error}".encode()
-    mime, _ = listed[name]
-    make = {n: m for _, n, _, m in files(problem, solution, problem.answers_of(solution), system, page_url)}[name]
-    text = make()
+    mime, kind = listed[name]
+    text = maker(problem, solution, problem.answers_of(solution), system, page_url, kind)()
     return 200, f"{mime}; charset=utf-8", text.encode() if isinstance(text, str) else text
 
 
