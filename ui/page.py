@@ -281,7 +281,7 @@ def problem_page(problem_id: str) -> None:
     if seed is None and not practice:  # the lesson page: the stage and all that follows it in a fragment
         st.sidebar.markdown("### Parameters")
         warnings = more_parameters(problem, system, None, st.sidebar)
-        st.session_state[f"{problem.id}__notices"] = [w for w in (seed_warning, *warnings) if w]  # said once
+        _heading(problem, heading, [w for w in (seed_warning, *warnings) if w], print_link=False)  # (the fragment's)
         _lesson(problem.id, system, lecture)
         return
     head = st.container()  # the title, filled once the state is known
@@ -326,21 +326,19 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     problem = BY_ID[problem_id]
     if widget_values.take_refusals():
         refused_values_notice()
-    head = st.container()  # the title, filled once the address holds the state (its print link)
     motion_column, stage_column = st.container(key="dl_stage").columns([7, 3], gap="medium")
     params = lesson_parameters(problem, system, None, stage_column.container(key="dl_stage_controls"))
     _mirror(problem, params, system, lecture, False, None, {})
-    with head:
-        _heading(problem, HEADING.format(p=problem), st.session_state.pop(f"{problem.id}__notices", []))
     solved = _solved_or_refused(problem, params, system, motion_column)
     if solved is None:
+        takehome.lesson_links(problem, downloads=False)
         return
     solution, figures = solved
     answers = problem.answers_of(solution)
     with motion_column:  # the motion on the stage, fitted to the first screen; its companions below
         show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True)
     _results(problem, solution, answers, system, figures[1:], figures, lecture)
-    takehome.download_links(problem)
+    takehome.lesson_links(problem)
     live.show(problem, solution, answers, system, figures[0])  # the answers follow a dragged control (never in Practice)
 
 
@@ -390,10 +388,10 @@ def _beside_refusal(problem: Problem, params: dict, practice: bool = False) -> N
                            slips=problem.solver.ERRATA)
 
 
-def _heading(problem: Problem, heading: str, notices: list[str]) -> None:
+def _heading(problem: Problem, heading: str, notices: list[str], print_link: bool = True) -> None:
     """The title and blurb, with the link that reproduces the page on paper (the page has mirrored
-    its state into the address by now)."""
-    st.markdown(heading + takehome.print_link(problem), unsafe_allow_html=True)
+    its state into the address by now; the lesson's fragment gives its own, takehome.lesson_links)."""
+    st.markdown(heading + (takehome.print_link(problem) if print_link else ""), unsafe_allow_html=True)
     for notice in notices:
         st.warning(notice, icon=":material/link_off:")
 
