@@ -60,7 +60,13 @@ PHONE_CSS = """
 # the motion takes the page's width and the controls are left out.
 STAGE_CSS = """
 <style>
+  /* the stage is a row: the motion 7 parts, the controls 3 (Streamlit wraps each in a layout wrapper) */
+  .st-key-dl_stage > [data-testid='stLayoutWrapper'] { min-width: 0; }
+  .st-key-dl_stage > [data-testid='stLayoutWrapper']:has(> .st-key-dl_motion) { flex: 7 1 0%; }
+  .st-key-dl_stage > [data-testid='stLayoutWrapper']:has(> .st-key-dl_stage_controls) { flex: 3 1 0%; }
   @media (max-width: 640px) {
+    .st-key-dl_stage { flex-direction: column !important; gap: 0.5rem !important; }
+    .st-key-dl_stage > [data-testid='stLayoutWrapper'] { flex: none !important; width: 100%; }
     .st-key-dl_stage_controls { display: grid !important; grid-template-columns: 1fr 1fr; column-gap: 14px; row-gap: 0; }
     .st-key-dl_stage_controls > div { min-width: 0; width: auto !important; }
     .st-key-dl_stage_controls [data-testid='stSlider'] [role='slider'] { width: 22px; height: 22px; }
@@ -69,8 +75,6 @@ STAGE_CSS = """
     .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p { font-size: 0.8rem; line-height: 1.25; }
     .st-key-dl_stage_controls [data-testid='stRadio'] [role='radiogroup'] p { font-size: 0.85rem; line-height: 1.3; }
     .st-key-dl_stage .dl-figure h4.dl-title { font-size: 1.05rem; margin: 0 0 0.2rem 0; }
-    /* stacked, the figure's column and the controls' need no column gap between them */
-    .st-key-dl_stage [data-testid='stHorizontalBlock'] { gap: 0.5rem !important; }
   }
   /* a short phone (360×740): the blurb a step smaller, so the stage starts higher */
   @media (max-width: 640px) and (max-height: 800px) {
@@ -78,8 +82,7 @@ STAGE_CSS = """
     .stMainBlockContainer h1 + p, .stMainBlockContainer [data-testid='stHeadingWithActionElements'] + p { font-size: 0.9rem; }
   }
   @media print {
-    .st-key-dl_stage [data-testid='stHorizontalBlock'] { display: block !important; }
-    .st-key-dl_stage [data-testid='stColumn'] { width: 100% !important; max-width: none !important; }
+    .st-key-dl_stage { display: block !important; }
     .st-key-dl_stage_controls { display: none !important; }
   }
 </style>
@@ -326,8 +329,9 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     problem = BY_ID[problem_id]
     if widget_values.take_refusals():
         refused_values_notice()
-    motion_column, stage_column = st.container(key="dl_stage").columns([7, 3], gap="medium")
-    params = lesson_parameters(problem, system, None, stage_column.container(key="dl_stage_controls"))
+    stage = st.container(key="dl_stage", horizontal=True, wrap=False, gap="medium")  # a row (STAGE_CSS), not columns: two elements fewer a run
+    motion_column = stage.container(key="dl_motion")
+    params = lesson_parameters(problem, system, None, stage.container(key="dl_stage_controls"))
     _mirror(problem, params, system, lecture, False, None, {})
     solved = _solved_or_refused(problem, params, system, motion_column)
     if solved is None:
