@@ -54,6 +54,16 @@ def _shipped_env() -> dict:
 _EARLY: dict = {}
 
 
+SERVED = {"shipped_server", "app_url", "fresh_server", "browser"}
+
+
+def pytest_collection_modifyitems(session, config, items):
+    """The modules that need a live server or a browser run after the others (each module's tests
+    kept together and in order), so the servers started below warm while AppTest's tests run."""
+    served = {item.module.__name__ for item in items if SERVED & set(getattr(item, "fixturenames", ()))}
+    items.sort(key=lambda item: item.module.__name__ in served)
+
+
 def pytest_collection_finish(session):
     from scripts.live_app import Starting
 
