@@ -228,8 +228,9 @@ def test_practice_mode_in_the_browser(browser, app_url):
 
 
 def help_texts(page) -> list[str]:
-    """The text of every help tooltip in the main area, shown by hovering over its icon."""
-    icons = page.locator("[data-testid='stMain'] [data-testid='stTooltipIcon']")
+    """The text of every help tooltip in the main area that a student can hover (not one inside a
+    closed expander, such as the instructor key's), shown by hovering over its icon."""
+    icons = page.locator("[data-testid='stMain'] [data-testid='stTooltipIcon']:visible")
     texts = []
     for i in range(icons.count()):
         icons.nth(i).hover()
