@@ -5,6 +5,9 @@
 Runs, in about ten minutes (most of it warming a fresh server per page), the quick versions of BENCHMARKS.md §1 and §4:
 - the interaction ratios (``bench/interaction.py --changes 15``: AppTest's run after a change of each
   page's lesson control, against the empty one-slider page interleaved in the same process);
+- one change as the browser sends it (``bench/change_cost.py --changes 25``: a real server, each change
+  of the lesson control with its fragment's id, against the empty page's on the same server code;
+  the wall time per change);
 - a 50-session lecture on one process (``bench/lecture_load.py --sessions 50 --join 10 --changes 3
   --pause 2 3 --processes 1``: interaction p95 against the empty page's, run beside it);
 and prints each ratio beside the one recorded in ``bench/recorded.json`` (which BENCHMARKS.md quotes),
@@ -24,6 +27,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 RECORDED = ROOT / "bench" / "recorded.json"
 INTERACTION = ["--changes", "15", "--no-figures"]
+CHANGE = ["--changes", "25"]
 LECTURE = ["--sessions", "50", "--join", "10", "--changes", "3", "--pause", "2", "3", "--processes", "1"]
 
 
@@ -36,8 +40,10 @@ def run(script: str, args: list[str], out: Path) -> dict:
 def measure() -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         interaction = run("interaction.py", INTERACTION, Path(tmp) / "interaction.json")
+        change = run("change_cost.py", CHANGE, Path(tmp) / "change.json")
         lecture = run("lecture_load.py", LECTURE, Path(tmp) / "lecture.json")["1"]
     return {"interaction": {page: round(ratio, 2) for page, ratio in interaction.items()},
+            "change": {row["page"]: round(row["wall x empty"], 2) for row in change},
             "lecture": {page: round(row["p95 x empty"], 2) for page, row in lecture.items()
                         if not page.startswith("empty page")},
             "lecture_errors": sum(row["errors"] for row in lecture.values())}
@@ -54,12 +60,13 @@ def main() -> None:
     recorded = json.loads(RECORDED.read_text()) if RECORDED.exists() else {}
     now = measure()
     print(f"\nRatios to the empty page in the same run (recorded: {recorded.get('date', 'none')}, "
-          f"{recorded.get('commit', '')}). Targets: interaction ≤ 3, lecture p95 ≤ 4.\n")
-    print("| page | interaction × empty | recorded | 50-session lecture p95 × empty | recorded |")
-    print("|---|---|---|---|---|")
-    old_i, old_l = recorded.get("interaction", {}), recorded.get("lecture", {})
+          f"{recorded.get('commit', '')}). Targets: a run ≤ 3, lecture p95 ≤ 4.\n")
+    print("| page | AppTest run × empty | recorded | change as sent × empty | recorded | 50-session lecture p95 × empty | recorded |")
+    print("|---|---|---|---|---|---|---|")
+    old_i, old_c, old_l = (recorded.get(k, {}) for k in ("interaction", "change", "lecture"))
     for page in now["interaction"]:
         print(f"| {page} | {cell(now['interaction'][page])} | {cell(old_i.get(page))} | "
+              f"{cell(now['change'].get(page))} | {cell(old_c.get(page))} | "
               f"{cell(now['lecture'].get(page))} | {cell(old_l.get(page))} |")
     print(f"\nlecture errors: {now['lecture_errors']} (recorded: {recorded.get('lecture_errors', '–')})")
     if args.record:

@@ -238,12 +238,11 @@ class LtiRoutes:
     """ASGI middleware: ``/lti/…`` answered here when LTI is on; everything else goes to Streamlit."""
 
     def __init__(self, app):
-        from streamlit import config
+        from edge import base_path
 
         self.app = app
         self.router = Router(ROUTES)
-        base = (config.get_option("server.baseUrlPath") or "").strip("/")
-        self.prefix = f"/{base}" if base else ""  # under a path prefix, DL_PUBLIC_URL ends with it too
+        self.prefix = base_path()  # under a path prefix, DL_PUBLIC_URL ends with it too
 
     async def __call__(self, scope, receive, send):
         if (scope["type"] == "http" and scope["path"].startswith(self.prefix + "/lti/")

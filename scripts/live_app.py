@@ -12,9 +12,11 @@ import os
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.request
 from pathlib import Path
+from typing import NamedTuple
 
 ROOT = Path(__file__).resolve().parent.parent
 CHROMIUM = os.environ.get("CHROMIUM", "/usr/bin/chromium")
@@ -29,21 +31,30 @@ def free_port() -> int:
 
 
 def start_app(port: int, extra: list[str] | None = None, env: dict | None = None,
-              entry: list[str] | None = None) -> subprocess.Popen:
+              entry: list[str] | None = None, log: Path | None = None) -> subprocess.Popen:
     """The production entry point (serve.py: warm, then Streamlit), so tests see what ships.
-    ``entry`` replaces it, e.g. with a benchmark's baseline served by the same code."""
+    ``entry`` replaces it, e.g. with a benchmark's baseline served by the same code. Its output
+    goes to ``log`` (a new temporary file if not given; ``proc.log``), never to a pipe: a server
+    that outlives many tests would fill a pipe nobody reads and stall on its next log line."""
     cmd = [sys.executable, *(entry or [str(ROOT / "serve.py")]), "--server.headless", "true",
            "--server.port", str(port), "--server.address", "127.0.0.1",
            "--browser.gatherUsageStats", "false", "--server.fileWatcherType", "none", *(extra or [])]
-    return subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            env={**os.environ, **(env or {})})
+    if log is None:
+        handle, name = tempfile.mkstemp(prefix="dl-app-", suffix=".log")
+        os.close(handle)
+        log = Path(name)
+    with open(log, "ab") as out:
+        proc = subprocess.Popen(cmd, cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, env={**os.environ, **(env or {})})
+    proc.log = log
+    return proc
 
 
 def wait_healthy(url: str, timeout: float = 120.0, proc: subprocess.Popen | None = None) -> None:
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         if proc is not None and proc.poll() is not None:
-            raise RuntimeError(f"app exited early: {proc.stderr.read().decode(errors='replace')[-2000:]}")
+            said = Path(proc.log).read_text(errors="replace") if hasattr(proc, "log") else proc.stderr.read().decode(errors="replace")
+            raise RuntimeError(f"app exited early: {said[-2000:]}")
         try:
             with urllib.request.urlopen(f"{url}/_stcore/health", timeout=2) as r:
                 if r.read().strip() == b"ok":
@@ -54,20 +65,46 @@ def wait_healthy(url: str, timeout: float = 120.0, proc: subprocess.Popen | None
     raise TimeoutError(f"{url} not healthy after {timeout} s")
 
 
+class Server(NamedTuple):
+    url: str
+    log: Path  # everything the server wrote
+    pid: int
+
+
+class Starting:
+    """A server started now and waited for later: its warm-up (some 20 s) runs beside other work."""
+
+    def __init__(self, extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None):
+        port = free_port()
+        self.url = f"http://127.0.0.1:{port}"
+        self.proc = start_app(port, extra, env=env, entry=entry)
+
+    def ready(self) -> Server:
+        wait_healthy(self.url, timeout=180, proc=self.proc)
+        return Server(self.url, self.proc.log, self.proc.pid)
+
+    def stop(self) -> None:
+        self.proc.terminate()
+        try:
+            self.proc.wait(10)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+
+
+@contextlib.contextmanager
+def running_server(extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None):
+    """A started, healthy server (``Server``), stopped after."""
+    starting = Starting(extra, entry, env)
+    try:
+        yield starting.ready()
+    finally:
+        starting.stop()
+
+
 @contextlib.contextmanager
 def running_app(extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None):
-    port = free_port()
-    proc = start_app(port, extra, env=env, entry=entry)
-    url = f"http://127.0.0.1:{port}"
-    try:
-        wait_healthy(url, proc=proc)
-        yield url
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
+    with running_server(extra, entry, env) as server:
+        yield server.url
 
 
 def launch_browser(playwright):

@@ -1,5 +1,7 @@
 """Test-wide settings: Hypothesis runs derandomized in CI (reproducible, no flaky deadlines)."""
+import contextlib
 import os
+import tempfile
 
 import pytest
 
@@ -37,16 +39,80 @@ def browser():
         b.close()
 
 
-@pytest.fixture(scope="session")
-def app_url():
-    """The app as shipped (serve.py) on a free loopback port, or APP_URL: the container, the balancer."""
-    if os.environ.get("APP_URL"):
-        yield os.environ["APP_URL"].rstrip("/")
-        return
-    from scripts.live_app import running_app
+# The shared server's instructor key and course secret (handouts, assignments: test_print.py,
+# test_assignments_browser.py).
+INSTRUCTOR_KEY, COURSE_SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
 
-    with running_app() as url:
-        yield url
+
+def _shipped_env() -> dict:
+    return {"DL_INSTRUCTOR_KEY": INSTRUCTOR_KEY, "DL_COURSE_SECRET": COURSE_SECRET,
+            "DL_DATA_DIR": tempfile.mkdtemp(prefix="dl-app-data-"), "DL_DATABASE_URL": ""}
+
+
+# Servers the collected tests will need, started as soon as they are collected: each warms for some
+# 20 s on the second core while the first tests (AppTest's, without a server) run.
+_EARLY: dict = {}
+
+
+SERVED = {"shipped_server", "app_url", "fresh_server", "browser"}
+
+
+def pytest_collection_modifyitems(session, config, items):
+    """The modules that need a live server or a browser run after the others (each module's tests
+    kept together and in order), so the servers started below warm while AppTest's tests run."""
+    served = {item.module.__name__ for item in items if SERVED & set(getattr(item, "fixturenames", ()))}
+    items.sort(key=lambda item: item.module.__name__ in served)
+
+
+def pytest_collection_finish(session):
+    from scripts.live_app import Starting
+
+    used = {name for item in session.items for name in getattr(item, "fixturenames", ())}
+    if "shipped_server" in used or ("app_url" in used and not os.environ.get("APP_URL")):
+        _EARLY["shipped"] = Starting(env=_shipped_env())
+    if "fresh_server" in used:
+        _EARLY["fresh"] = Starting()
+
+
+def pytest_unconfigure(config):
+    for starting in _EARLY.values():  # started for tests that did not run (-x, a keyboard interrupt)
+        starting.stop()
+
+
+@contextlib.contextmanager
+def _early(name: str, env: dict | None = None):
+    from scripts.live_app import Starting
+
+    starting = _EARLY.pop(name, None) or Starting(env=env)
+    try:
+        yield starting.ready()
+    finally:
+        starting.stop()
+
+
+@pytest.fixture(scope="session")
+def shipped_server():
+    """The app as shipped (serve.py) on a free loopback port, started once for the whole session
+    (a start is some 20 s of warming): ``scripts.live_app.Server`` (its URL, its log, its pid), with
+    an instructor key, a course secret and a data directory of its own (its records in SQLite there).
+    A test that needs other settings starts its own."""
+    with _early("shipped", _shipped_env()) as server:
+        yield server
+
+
+@pytest.fixture
+def fresh_server():
+    """A server as shipped that nobody has visited (its first visit is the test's), stopped after the test."""
+    with _early("fresh") as server:
+        yield server
+
+
+@pytest.fixture(scope="session")
+def app_url(request):
+    """The shared server's URL, or APP_URL: the container, the balancer."""
+    if os.environ.get("APP_URL"):
+        return os.environ["APP_URL"].rstrip("/")
+    return request.getfixturevalue("shipped_server").url
 
 
 # The database tests run the same suite on both backends (tests/test_records.py): a SQLite file

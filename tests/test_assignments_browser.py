@@ -22,14 +22,14 @@ from pathlib import Path
 import pytest
 
 from assignments import records
-from scripts.live_app import CHROMIUM, running_app, wait_until_idle
+from scripts.live_app import CHROMIUM, wait_until_idle
 from solvers import disk_wall
+from tests.conftest import INSTRUCTOR_KEY as KEY
 from practice.variants import ASSIGNMENT, variant
 from solvers import units
 
 pytestmark = pytest.mark.browser
 SHOTS = Path(__file__).resolve().parent.parent / "screenshots" / "assignments"
-KEY, SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
 SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844)}
 TITLE = "Week 6: the disk and the wall"
 
@@ -45,11 +45,9 @@ from tests.test_where_used import serious_violations  # noqa: E402
 
 
 @pytest.fixture(scope="module")
-def course_url(tmp_path_factory):
-    data = tmp_path_factory.mktemp("course-data")
-    env = {"DL_INSTRUCTOR_KEY": KEY, "DL_COURSE_SECRET": SECRET, "DL_DATA_DIR": str(data), "DL_DATABASE_URL": ""}
-    with running_app(env=env) as url:
-        yield url
+def course_url(shipped_server):
+    """The session's shared server: an instructor key, a course secret, its records in SQLite."""
+    return shipped_server.url
 
 
 def shoot(page, name: str) -> None:

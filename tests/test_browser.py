@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from scripts.live_app import CHROMIUM, running_app, wait_until_idle
+from scripts.live_app import CHROMIUM, wait_until_idle
 from ui.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
@@ -66,17 +66,17 @@ def answers_table(page) -> str:
     return page.locator("[data-testid='stMain'] table").first.inner_text()
 
 
-def test_a_deep_link_on_a_fresh_server_gets_the_app(browser):
-    with running_app() as url:  # nobody has opened the home page of this server yet
-        context, page, errors = open_page(browser, f"{url}/driven_cart?mu=0.5")
-        nav = page.locator("[data-testid='stSidebarNav']").inner_text()
-        assert "Euler's disk" in nav and "Home" in nav  # the app's navigation, not the pages folder
-        # The page reruns once to leave Streamlit's legacy pages mode: its heading may come a moment
-        # after the first idle state on a busy machine.
-        page.locator("[data-testid='stMain'] h1", has_text="Cart with driven wheels").wait_for(timeout=30_000)
-        assert page.locator("[data-testid='stException']").count() == 0
-        assert not errors
-        context.close()
+def test_a_deep_link_on_a_fresh_server_gets_the_app(browser, fresh_server):
+    """The first visit of a server nobody has opened yet: a deep link with a parameter."""
+    context, page, errors = open_page(browser, f"{fresh_server.url}/driven_cart?mu=0.5")
+    nav = page.locator("[data-testid='stSidebarNav']").inner_text()
+    assert "Euler's disk" in nav and "Home" in nav  # the app's navigation, not the pages folder
+    # The page reruns once to leave Streamlit's legacy pages mode: its heading may come a moment
+    # after the first idle state on a busy machine.
+    page.locator("[data-testid='stMain'] h1", has_text="Cart with driven wheels").wait_for(timeout=30_000)
+    assert page.locator("[data-testid='stException']").count() == 0
+    assert not errors
+    context.close()
 
 
 def test_without_katex_the_answers_still_show_their_values(browser, app_url):
@@ -228,8 +228,9 @@ def test_practice_mode_in_the_browser(browser, app_url):
 
 
 def help_texts(page) -> list[str]:
-    """The text of every help tooltip in the main area, shown by hovering over its icon."""
-    icons = page.locator("[data-testid='stMain'] [data-testid='stTooltipIcon']")
+    """The text of every help tooltip in the main area that a student can hover (not one inside a
+    closed expander, such as the instructor key's), shown by hovering over its icon."""
+    icons = page.locator("[data-testid='stMain'] [data-testid='stTooltipIcon']:visible")
     texts = []
     for i in range(icons.count()):
         icons.nth(i).hover()

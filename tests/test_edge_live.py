@@ -5,14 +5,9 @@ headers a course site expects, and Streamlit's metrics are not public."""
 from __future__ import annotations
 
 import asyncio
-import os
-import subprocess
-import sys
-import tempfile
 import time
 import urllib.error
 import urllib.request
-from pathlib import Path
 
 import pytest
 import websockets
@@ -22,31 +17,14 @@ from streamlit.proto.WidgetStates_pb2 import WidgetState
 
 from bench.lecture_load import CONTROLS, cpu_seconds, run_script, widget_id, widget_state
 from edge.fair_share import BURST, RATE
-from scripts.live_app import ROOT, free_port, wait_healthy
 from solvers import registry
 
 
 @pytest.fixture(scope="module")
-def server():
-    """(base URL, the server's log file, its pid), the app as shipped."""
-    port = free_port()
-    log = Path(tempfile.mkdtemp(prefix="dl-edge-")) / "server.log"
-    with open(log, "w") as out:
-        proc = subprocess.Popen([sys.executable, str(ROOT / "serve.py"), "--server.headless", "true",
-                                 "--server.port", str(port), "--server.address", "127.0.0.1",
-                                 "--browser.gatherUsageStats", "false"],
-                                cwd=ROOT, stdout=out, stderr=subprocess.STDOUT,
-                                env={**os.environ, "DL_DATA_DIR": str(log.parent / "data")})
-    url = f"http://127.0.0.1:{port}"
-    try:
-        wait_healthy(url, timeout=180, proc=proc)
-        yield url, log, proc.pid
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(15)
-        except subprocess.TimeoutExpired:
-            proc.kill()
+def server(shipped_server):
+    """(base URL, the server's log file, its pid): the session's server as shipped (each test reads
+    only what the log gained while it ran)."""
+    return shipped_server
 
 
 def stream(url: str) -> str:

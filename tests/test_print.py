@@ -17,10 +17,10 @@ import numpy as np
 import pytest
 
 from scripts.live_app import CHROMIUM, wait_until_idle
+from tests.conftest import INSTRUCTOR_KEY as KEY
 from ui.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
-KEY = "print-test-instructor-key"
 
 for tool, why in ((CHROMIUM, "apt-get install chromium"), ("pdftoppm", "apt-get install poppler-utils")):
     if not (Path(tool).exists() or shutil.which(tool)):
@@ -138,12 +138,9 @@ def check_printout(browser, url: str, name: str, tmp_path: Path, wait_for: tuple
 
 
 @pytest.fixture(scope="module")
-def app_url():
-    """The app as shipped, with an instructor key (the handouts), on a free loopback port."""
-    from scripts.live_app import running_app
-
-    with running_app(env={"DL_INSTRUCTOR_KEY": KEY}) as url:
-        yield url
+def app_url(shipped_server):
+    """The shared server as shipped, with its instructor key (the handouts), even when APP_URL names another."""
+    return shipped_server.url
 
 
 def test_the_cut_check_sees_ink_on_an_edge():

@@ -26,6 +26,7 @@ import orjson
 import streamlit as st
 import streamlit.components.v1 as components_v1
 
+from edge import base_path
 from viz.common import Figure
 
 NAME = "dynamics_lab_figure"
@@ -108,8 +109,7 @@ class BundleServer:
 
 def url(name: str) -> str:
     """A served file's path on this server (Streamlit's component route, under the base path)."""
-    base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
-    return f"{'/' + base if base else ''}/component/{__name__}.{NAME}/{name}"
+    return f"{base_path()}/component/{__name__}.{NAME}/{name}"
 
 
 @cache

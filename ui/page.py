@@ -1,6 +1,7 @@
 """One problem page, the same for every problem: controls -> solve -> answers, figure, derivation."""
 from __future__ import annotations
 
+import contextlib
 import functools
 import importlib
 import math
@@ -59,7 +60,13 @@ PHONE_CSS = """
 # the motion takes the page's width and the controls are left out.
 STAGE_CSS = """
 <style>
+  /* the stage is a row: the motion 7 parts, the controls 3 (Streamlit wraps each in a layout wrapper) */
+  .st-key-dl_stage > [data-testid='stLayoutWrapper'] { min-width: 0; }
+  .st-key-dl_stage > [data-testid='stLayoutWrapper']:has(> .st-key-dl_motion) { flex: 7 1 0%; }
+  .st-key-dl_stage > [data-testid='stLayoutWrapper']:has(> .st-key-dl_stage_controls) { flex: 3 1 0%; }
   @media (max-width: 640px) {
+    .st-key-dl_stage { flex-direction: column !important; gap: 0.5rem !important; }
+    .st-key-dl_stage > [data-testid='stLayoutWrapper'] { flex: none !important; width: 100%; }
     .st-key-dl_stage_controls { display: grid !important; grid-template-columns: 1fr 1fr; column-gap: 14px; row-gap: 0; }
     .st-key-dl_stage_controls > div { min-width: 0; width: auto !important; }
     .st-key-dl_stage_controls [data-testid='stSlider'] [role='slider'] { width: 22px; height: 22px; }
@@ -68,8 +75,6 @@ STAGE_CSS = """
     .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p { font-size: 0.8rem; line-height: 1.25; }
     .st-key-dl_stage_controls [data-testid='stRadio'] [role='radiogroup'] p { font-size: 0.85rem; line-height: 1.3; }
     .st-key-dl_stage .dl-figure h4.dl-title { font-size: 1.05rem; margin: 0 0 0.2rem 0; }
-    /* stacked, the figure's column and the controls' need no column gap between them */
-    .st-key-dl_stage [data-testid='stHorizontalBlock'] { gap: 0.5rem !important; }
   }
   /* a short phone (360×740): the blurb a step smaller, so the stage starts higher */
   @media (max-width: 640px) and (max-height: 800px) {
@@ -77,8 +82,7 @@ STAGE_CSS = """
     .stMainBlockContainer h1 + p, .stMainBlockContainer [data-testid='stHeadingWithActionElements'] + p { font-size: 0.9rem; }
   }
   @media print {
-    .st-key-dl_stage [data-testid='stHorizontalBlock'] { display: block !important; }
-    .st-key-dl_stage [data-testid='stColumn'] { width: 100% !important; max-width: none !important; }
+    .st-key-dl_stage { display: block !important; }
     .st-key-dl_stage_controls { display: none !important; }
   }
 </style>
@@ -219,6 +223,32 @@ def _figures(figures, page=None, lecture: bool = False, fit_first: bool = False)
         show_figure(figure, page=page or figures, lecture=lecture, fit_screen=fit_first and n == 0)
 
 
+def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=None, practice: bool = False):
+    """(solution, figures) for ``params``; or None, once the refusal is said (in ``refused_in``, a
+    container, if given) with what a physical limit keeps beside it."""
+    try:
+        check_in_range(problem, params, system)
+        return _solve_and_draw(problem, params, system)
+    except ValueError as error:
+        with refused_in or contextlib.nullcontext():
+            results.refused(error, system, problem.solver.LIMIT_LABELS)
+        if isinstance(error, PhysicalLimitError):
+            _beside_refusal(problem, params, practice)
+        return None
+
+
+def _results(problem: Problem, solution, answers, system: str, figures, page, lecture: bool, fit_first: bool = False) -> None:
+    """The answers and ``figures`` (before the answers on the projector, after them in Study), the
+    costly figure on request and the derivation. ``page``: every figure of the page."""
+    if lecture:
+        _figures(figures, page, lecture=True, fit_first=fit_first)
+    results.answer_section(solution, answers, system)
+    if not lecture:
+        _figures(figures, page)
+    _on_request(problem, solution, page)
+    _derivation(problem.solver, solution)
+
+
 def _leave_legacy_pages_mode() -> None:
     """Streamlit runs a deep-linked ``pages/<id>.py`` by itself (its legacy pages-folder mode) until
     app.py has called st.navigation once in the process, so a student opening a shared link on a
@@ -235,7 +265,6 @@ def _leave_legacy_pages_mode() -> None:
 def problem_page(problem_id: str) -> None:
     _leave_legacy_pages_mode()
     problem = BY_ID[problem_id]
-    solver = problem.solver
     link = assignments.student_link(problem)  # None unless opened with a signed assignment link
     seed, seed_warning = (link.identity.seed, None) if link and link.identity else seed_from_url()
     instructor = is_instructor()  # before mirror_to_url drops ?instructor=KEY from the address
@@ -255,7 +284,7 @@ def problem_page(problem_id: str) -> None:
     if seed is None and not practice:  # the lesson page: the stage and all that follows it in a fragment
         st.sidebar.markdown("### Parameters")
         warnings = more_parameters(problem, system, None, st.sidebar)
-        st.session_state[f"{problem.id}__notices"] = [w for w in (seed_warning, *warnings) if w]  # said once
+        _heading(problem, heading, [w for w in (seed_warning, *warnings) if w], print_link=False)  # (the fragment's)
         _lesson(problem.id, system, lecture)
         return
     head = st.container()  # the title, filled once the state is known
@@ -264,34 +293,21 @@ def problem_page(problem_id: str) -> None:
         base = {}
         params, warnings = parameter_panel(problem, system)
     else:  # a variant's givens are fixed, as on an assignment link: a nudged control would be another problem
-        base = variant(solver, problem.id, seed)
+        base = variant(problem.solver, problem.id, seed)
         params, warnings = fixed_parameters(problem, system, base, seed)
     _mirror(problem, params, system, lecture, practice, seed, base)
-    notices = [w for w in (seed_warning, *warnings) if w]
-    try:
-        check_in_range(problem, params, system)
-        solution, figures = _solve_and_draw(problem, params, system)
-    except ValueError as error:
-        with head:
-            _heading(problem, heading, notices)
-        results.refused(error, system, solver.LIMIT_LABELS)
-        if isinstance(error, PhysicalLimitError):
-            _beside_refusal(problem, params, practice)
-        return
-    answers = problem.answers_of(solution)
+    solved = _solved_or_refused(problem, params, system, practice=practice)
     with head:
-        _heading(problem, heading, notices)
+        _heading(problem, heading, [w for w in (seed_warning, *warnings) if w])
+    if solved is None:
+        return
+    solution, figures = solved
+    answers = problem.answers_of(solution)
     if practice and not practice_panel(problem, solution, answers, system):
         takehome.downloads(problem, solution, answers, system, exercise=True)  # the statement and the method
         instructor_export(problem)  # the statement, the method and the answer box, nothing more
         return
-    if lecture:
-        _figures(figures, lecture=True, fit_first=True)
-    results.answer_section(solution, answers, system)
-    if not lecture:
-        _figures(figures)
-    _on_request(problem, solution, figures)
-    _derivation(solver, solution)
+    _results(problem, solution, answers, system, figures, figures, lecture, fit_first=True)
     takehome.downloads(problem, solution, answers, system)
     if practice:
         instructor_export(problem)
@@ -311,35 +327,22 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     A fragment: moving a lesson control reruns this alone, not the page's navigation, view, units
     and sidebar (what a change does not touch); those run it again when they change."""
     problem = BY_ID[problem_id]
-    solver = problem.solver
     if widget_values.take_refusals():
         refused_values_notice()
-    head = st.container()  # the title, filled once the address holds the state (its print link)
-    motion_column, stage_column = st.container(key="dl_stage").columns([7, 3], gap="medium")
-    params = lesson_parameters(problem, system, None, stage_column.container(key="dl_stage_controls"))
+    stage = st.container(key="dl_stage", horizontal=True, wrap=False, gap="medium")  # a row (STAGE_CSS), not columns: two elements fewer a run
+    motion_column = stage.container(key="dl_motion")
+    params = lesson_parameters(problem, system, None, stage.container(key="dl_stage_controls"))
     _mirror(problem, params, system, lecture, False, None, {})
-    with head:
-        _heading(problem, HEADING.format(p=problem), st.session_state.pop(f"{problem.id}__notices", []))
-    try:
-        check_in_range(problem, params, system)
-        solution, figures = _solve_and_draw(problem, params, system)
-    except ValueError as error:
-        with motion_column:
-            results.refused(error, system, solver.LIMIT_LABELS)
-        if isinstance(error, PhysicalLimitError):
-            _beside_refusal(problem, params)
+    solved = _solved_or_refused(problem, params, system, motion_column)
+    if solved is None:
+        takehome.lesson_links(problem, downloads=False)
         return
+    solution, figures = solved
     answers = problem.answers_of(solution)
     with motion_column:  # the motion on the stage, fitted to the first screen; its companions below
         show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True)
-    if lecture:
-        _figures(figures[1:], figures, lecture=True)
-    results.answer_section(solution, answers, system)
-    if not lecture:
-        _figures(figures[1:], figures)
-    _on_request(problem, solution, figures)
-    _derivation(solver, solution)
-    takehome.download_links(problem)
+    _results(problem, solution, answers, system, figures[1:], figures, lecture)
+    takehome.lesson_links(problem)
     live.show(problem, solution, answers, system, figures[0])  # the answers follow a dragged control (never in Practice)
 
 
@@ -389,10 +392,10 @@ def _beside_refusal(problem: Problem, params: dict, practice: bool = False) -> N
                            slips=problem.solver.ERRATA)
 
 
-def _heading(problem: Problem, heading: str, notices: list[str]) -> None:
+def _heading(problem: Problem, heading: str, notices: list[str], print_link: bool = True) -> None:
     """The title and blurb, with the link that reproduces the page on paper (the page has mirrored
-    its state into the address by now)."""
-    st.markdown(heading + takehome.print_link(problem), unsafe_allow_html=True)
+    its state into the address by now; the lesson's fragment gives its own, takehome.lesson_links)."""
+    st.markdown(heading + (takehome.print_link(problem) if print_link else ""), unsafe_allow_html=True)
     for notice in notices:
         st.warning(notice, icon=":material/link_off:")
 

@@ -201,7 +201,9 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
         hi = float(p.ui_high if p.ui_high is not None else p.high)
         current = float(st.session_state[key])
         st.session_state[key] = current
-        return container.slider(_label(p, system), min(lo, current), max(hi, current), key=key,
+        # ``value``: the state's own (the state wins anyway); given, Streamlit does not copy the whole
+        # session state to guess the slider's kind, a good part of a run's cost (BENCHMARKS.md §1)
+        return container.slider(_label(p, system), min(lo, current), max(hi, current), current, key=key,
                                 step=float(p.step or 0.01), format=display_format(p), help=p.help or None)
     factor = units.to_display(1.0, p.dimension, system)
     step = float(f"{(p.step or 0.01) * factor:.1g}")

@@ -14,6 +14,7 @@ import urllib.parse
 
 import streamlit as st
 
+from edge import base_path
 from solvers.core import Solution
 from ui import documents, notebook
 from ui.catalog import Problem
@@ -50,14 +51,19 @@ def catalogue(problem: Problem, exercise: bool = False) -> list[tuple[str, str, 
     return out
 
 
+def maker(problem: Problem, solution: Solution, answers, system: str, link: str, kind: str, exercise: bool = False):
+    """A function that makes the text of the download of ``kind`` (``catalogue``'s last field)."""
+    doc = lambda: documents.document(problem, solution, answers, system, link, exercise)  # noqa: E731
+    return {"latex": lambda: documents.latex(doc()), "markdown": lambda: documents.markdown(doc()),
+            "notebook": lambda: notebook.notebook(problem, solution, link),
+            "script": lambda: notebook.script(problem, solution, link)}[kind]
+
+
 def files(problem: Problem, solution: Solution, answers, system: str, link: str,
           exercise: bool = False) -> list[tuple[str, str, str, object]]:
     """(button label, file name, MIME type, a function that makes the file's text) per download."""
-    doc = lambda: documents.document(problem, solution, answers, system, link, exercise)  # noqa: E731
-    makers = {"latex": lambda: documents.latex(doc()), "markdown": lambda: documents.markdown(doc()),
-              "notebook": lambda: notebook.notebook(problem, solution, link),
-              "script": lambda: notebook.script(problem, solution, link)}
-    return [(label, name, mime, makers[kind]) for label, name, mime, kind in catalogue(problem, exercise)]
+    return [(label, name, mime, maker(problem, solution, answers, system, link, kind, exercise))
+            for label, name, mime, kind in catalogue(problem, exercise)]
 
 
 HELP = {True: "The statement with your givens and the method's steps, without the solution (LaTeX compiles with "
@@ -67,7 +73,7 @@ HELP = {True: "The statement with your givens and the method's steps, without th
                "To print the page itself, use the browser's Print: it prints without the controls."}
 
 
-# The lesson page's downloads are links (``download_links``), served by ``DownloadServer`` at
+# The lesson page's downloads are links (``lesson_links``), served by ``DownloadServer`` at
 # <base>/download/<problem>/<file name>?<the page's query>.
 DOWNLOAD = re.compile(r"/download/([a-z_]{1,40})/([A-Za-z0-9_.-]{1,80})$")
 MAX_QUERY = 4096  # bytes: a page's query is a few hundred
@@ -81,23 +87,32 @@ TAKEHOME_CSS = """
   .dl-download-icon { font-weight: 700; }
   .dl-downloads a:hover { border-color: var(--primary-color, #005A8C); color: var(--primary-color, #005A8C); }
   .dl-downloads a:focus-visible { outline: 2px solid var(--primary-color, #005A8C); outline-offset: 2px; }
-  @media print { .dl-downloads { display: none !important; } }
+  @media print {
+    .dl-downloads { display: none !important; }
+    /* the lesson's print link comes last in its fragment (lesson_links): on paper, first, under the
+       title, in room the fragment keeps at its top (two lines: a long query wraps once) */
+    [data-testid='stVerticalBlock']:has(> [data-testid='stElementContainer'] .dl-lesson-links) {
+      position: relative !important; padding-top: 2.8rem; }
+    [data-testid='stElementContainer']:has(.dl-lesson-links) { position: absolute !important; top: 0; left: 0; right: 0; }
+  }
 </style>
 """
 
 
-def download_links(problem: Problem) -> None:
-    """The lesson page's downloads in one element: links that carry the page's own query (every
-    parameter, the units), so a run registers no widget for them and a click makes the file from
-    the very link the file cites (``DownloadServer``)."""
-    base = "/".join(p for p in (st.get_option("server.baseUrlPath") or "").split("/") if p)
-    prefix = f"/{base}" if base else ""
-    query = _query()
+def lesson_links(problem: Problem, downloads: bool = True) -> None:
+    """The lesson page's links that carry its state, in one element at its end: the downloads,
+    links with the page's own query (every parameter, the units), so a run registers no widget for
+    them and a click makes the file from the very link the file cites (``DownloadServer``); and the
+    link that reproduces the page, shown only on paper, where TAKEHOME_CSS puts it first (under the
+    title, which stays outside the lesson's fragment: it does not change with the controls).
+    ``downloads=False``: the print link alone (a state the model refuses has no files)."""
+    prefix, query = base_path(), _query()
     title = html.escape(HELP[False])
     links = "".join(
         f'<a href="{html.escape(f"{prefix}/download/{problem.id}/{name}{query}")}" download="{name}" '
         f'title="{title}">{ICON}{html.escape(label)}</a>' for label, name, _, _ in catalogue(problem))
-    st.html(f'<div class="dl-downloads" role="group" aria-label="Downloads">{links}</div>')
+    st.html((f'<div class="dl-downloads" role="group" aria-label="Downloads">{links}</div>' if downloads else "")
+            + f'<div class="dl-lesson-links">{print_link(problem).strip()}</div>')
 
 
 def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[int, str, bytes]:
@@ -125,9 +140,8 @@ def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[
         solution = within_model_range(problem.solver.solve)(**values)
     except ValueError as error:
         return 400, plain_text, f"These numbers have no solution in this model: {error}".encode()
-    mime, _ = listed[name]
-    make = {n: m for _, n, _, m in files(problem, solution, problem.answers_of(solution), system, page_url)}[name]
-    text = make()
+    mime, kind = listed[name]
+    text = maker(problem, solution, problem.answers_of(solution), system, page_url, kind)()
     return 200, f"{mime}; charset=utf-8", text.encode() if isinstance(text, str) else text
 
 
