@@ -90,6 +90,8 @@ class Figure {
     this.root.className = "dl-figure";
     this.root.tabIndex = -1;  // a click on the figure gives it the keys; no extra tab stop
     this.root.innerHTML = HTML;
+    this.root.dlFigure = this;  // for ui/plotly_component/live.js: the pose at the key instant while a control is dragged
+    this.held = null;  // (the frame shown before, while held at the key instant)
     parent.appendChild(this.root);
     const $ = (c) => this.root.querySelector(c);
     this.title = $(".dl-title");
@@ -178,7 +180,7 @@ class Figure {
   // browser draws the frame due at that moment, and a frame whose time has passed while the last
   // one was drawn is skipped. A slow machine drops frames, not time.
   play() {
-    if (!this.frameNames.length) return;
+    if (!this.frameNames.length || this.held) return;  // held at its key instant while a control is dragged
     const last = this.frameNames.length - 1, frameMs = Number(this.graph.dataset.frameMs || 60);
     const from = this.frameIndex >= last ? 0 : this.frameIndex;
     const start = performance.now() - from * frameMs, seq = ++this.playSeq;
@@ -205,6 +207,19 @@ class Figure {
   pause() {
     this.playing = false;
     this.playSeq++;
+  }
+  // Held at the key instant while a lesson control is dragged (live.js moves its bodies there), and
+  // back to the frame it showed when the drag ends without a new figure.
+  hold() {
+    if (this.held) return;
+    this.pause();
+    this.held = {frame: this.frameIndex};
+    this.showFrame(this.keyFrame);
+  }
+  release() {
+    const held = this.held;
+    this.held = null;
+    if (held) this.showFrame(held.frame);
   }
 
   // The motion on the stage (ui/page.py) fills what is left of the first screen below its top, so
@@ -275,6 +290,7 @@ class Figure {
       layout.margin.b = Math.min(layout.margin.b, Math.ceil(axisRoom(layout, (layout.yaxis2 ? layout.xaxis2 : layout.xaxis) || {})));
     applied(layout, stacked(layout, plotHeight(layout)));
     this.pause();
+    this.held = null;
     this.printing = false;
     // One update in place: data, layout and the frames replaced together (no new plot).
     await Plotly.react(this.graph, {data: spec.data, layout: layout, frames: frames,

@@ -112,6 +112,25 @@ export function headlineText(parts, values, groupedBelow) {
   return text;
 }
 
+// numpy's round(x, digits), as viz.common.r rounds every coordinate a figure draws: x·10^digits to the
+// nearest integer, a tie to even (Math.round breaks a tie upward), then divided back.
+export function roundedLike(x, digits) {
+  if (x === null || !Number.isFinite(x)) return null;  // a gap (NaN) in a polyline
+  const scale = 10 ** digits, y = x * scale, floor = Math.floor(y), rest = y - floor;
+  const whole = rest > 0.5 || (rest === 0.5 && floor % 2 !== 0) ? floor + 1 : floor;
+  return whole / scale;
+}
+
+// A generated pose (solvers/live.pose_source: trace -> [xs, ys]) for parameters ``p`` and the live
+// values, rounded as the figure's own coordinates are; null where an input is missing.
+export function poseOf(fn, p, values, digits) {
+  const drawn = fn(p, values);
+  if (!drawn) return null;
+  const out = {};
+  for (const [name, rows] of Object.entries(drawn)) out[name] = rows.map((row) => row.map((x) => roundedLike(x, digits)));
+  return out;
+}
+
 // The generated function from its source (made by solvers/live.py on the server, never from anything
 // typed), loaded as a module: in the page from a blob (the app's Content-Security-Policy allows blob:
 // scripts, not eval), in node (tests/test_live.py) from a data: URL.
@@ -144,8 +163,8 @@ const answersTable = () => document.querySelector(".dl-text.dl-answers table");
 function staleParts() {
   const answers = document.querySelector(".dl-text.dl-answers");
   const own = answers ? [answers.querySelector("h3"), answersTable(), answers.querySelector(".dl-live-status")] : [];
-  const caption = state.caption && state.caption.el;
-  return [...$$(".dl-figure > :not(.dl-live-badge)").filter((el) => el !== caption), ...(answers ? [...answers.children].filter((el) => !own.includes(el)) : []),
+  const caption = state.caption && state.caption.el, posed = state.pose && state.pose.fig.graph;
+  return [...$$(".dl-figure > :not(.dl-live-badge)").filter((el) => el !== caption && el !== posed), ...(answers ? [...answers.children].filter((el) => !own.includes(el)) : []),
           ...$$(".dl-text.dl-derivation")];
 }
 
@@ -177,6 +196,7 @@ function begin() {
   state.live = true;
   document.body.classList.add("dl-live-dragging");
   liveCaption();
+  holdPose();
   for (const el of staleParts()) el.classList.add("dl-live-stale");
   const fig = document.querySelector(".st-key-dl_stage .dl-figure");
   // Over the figure's title, not dimmed with it, and taking no room: nothing under the finger moves.
@@ -184,7 +204,7 @@ function begin() {
     const badge = Object.assign(document.createElement("p"), {className: "dl-live-badge"});
     badge.append(Object.assign(document.createElement("strong"), {className: "dl-live-headline"}),
                  Object.assign(document.createElement("span"), {className: "dl-live-said"}),
-                 Object.assign(document.createElement("span"), {className: "dl-live-note", textContent: "the motion is updating…"}));
+                 Object.assign(document.createElement("span"), {className: "dl-live-note", textContent: MOTION_UPDATING}));
     fig.prepend(badge);
   }
 }
@@ -211,10 +231,82 @@ function drawCaption(params, result) {
   if (head.textContent !== shown) head.textContent = shown;
 }
 
+// ------------------------------------------------------------------ the figure's pose at its key instant
+// The stage figure's moving bodies at its key instant (the impact, θ₂…) follow the drag: the viz
+// module's own key_pose, generated for the browser (solvers/live.pose_source: never typed here),
+// evaluated with the live values and rounded as the figure's coordinates are. While a drag lasts the
+// figure is paused at its key frame (Play waits), those traces are moved there (plotly's animate, the
+// path Play takes), every other trace (a trail, the plots against time, the surfaces) is dimmed, and
+// the axes keep their ranges (a pose leaving them is clipped). Outside the run's regime, or before the
+// generated code is here, the whole graph is dimmed as "updating…", never shown as if it were live.
+const MOTION_UPDATING = "the motion is updating…";
+const DIMMED = 0.3;
+
+function stageFigure() {
+  const el = document.querySelector(".st-key-dl_stage .dl-figure");
+  return el && el.dlFigure && el.dlFigure.Plotly && el.dlFigure.frames.length ? el.dlFigure : null;
+}
+
+function holdPose() {
+  const fig = state.data.pose && stageFigure();
+  if (!fig) return;
+  fig.hold();  // paused at its key frame, as the server drew it
+  const names = fig.graph.data.map((t) => t.name);
+  state.pose = {fig, drawn: fig.current, names, live: null, traces: null};
+}
+
+function drawPose(params, result) {
+  const pose = state.pose;
+  if (!pose || pose.fig.current !== pose.drawn) return;
+  const drawn = state.poseFn && result.regime === state.regime && result.values
+    ? poseOf(state.poseFn, params, result.values, state.data.pose.digits) : null;
+  const live = drawn !== null;
+  if (live !== pose.live) {
+    pose.live = live;
+    pose.fig.graph.classList.toggle("dl-live-stale", !live);
+    setText(".dl-live-note", live ? "the figure at its key instant follows; the motion is updating…" : MOTION_UPDATING);
+  }
+  if (!live) return;
+  if (!pose.traces) {  // the posed traces, and the others dimmed
+    pose.traces = Object.keys(drawn).map((name) => pose.names.indexOf(name));
+    pose.others = pose.fig.frames[0].traces.filter((t) => !pose.traces.includes(t));
+    const others = pose.names.map((_, i) => i).filter((i) => !pose.traces.includes(i));
+    // (before any pose is drawn: plotly's animate while a restyle redraws loses the other subplot's traces)
+    pose.ready = others.length ? pose.fig.Plotly.restyle(pose.fig.graph, {opacity: DIMMED}, others) : Promise.resolve();
+  }
+  pose.next = Object.values(drawn).map(([x, y]) => ({x, y}));
+  // with the animation's other moving traces as they stand (the key frame's): plotly's animate redraws
+  // only the subplots of the traces it is given, and empties the others
+  for (const t of pose.others) pose.next.push({x: pose.fig.graph.data[t].x, y: pose.fig.graph.data[t].y});
+  if (pose.waiting) return;  // one pose drawn at a time, the newest
+  pose.waiting = true;
+  pose.ready.then(() => {
+    pose.waiting = false;
+    if (state.pose !== pose || pose.fig.current !== pose.drawn) return;
+    quiet(pose.fig.Plotly.animate(pose.fig.graph, {data: pose.next, traces: [...pose.traces, ...pose.others]},
+                                  {mode: "immediate", frame: {duration: 0, redraw: false}, transition: {duration: 0}}));
+  }, () => { pose.waiting = false; });
+}
+
+// The server's figure again: its frame and trace opacities back (unless the run drew a new figure).
+function releasePose() {
+  const pose = state.pose;
+  if (!pose) return;
+  state.pose = null;
+  pose.fig.graph.classList.remove("dl-live-stale");
+  if (pose.fig.current === pose.drawn) {
+    if (pose.traces) quiet(pose.fig.Plotly.restyle(pose.fig.graph, {opacity: null}));
+    pose.fig.release();
+  } else pose.fig.held = false;
+}
+
+function quiet(promise) { if (promise && promise.catch) promise.catch(() => {}); }
+
 // Back to the server's drawing: every live value and mark gone.
 function end() {
   if (!state || !state.live) return;
   state.live = false;
+  releasePose();
   if (state.caption) {  // (unless the run has written the figure's new caption already)
     const {el, text, said} = state.caption;
     if (el.querySelector(".dl-live-caption")) el.textContent = text;
@@ -269,6 +361,7 @@ function draw() {
   setText(".dl-live-headline", main ? `${main[4]}: ${Number.isFinite(x) ? quantity(x, main, state.data.grouped_below) : UPDATING}` : "");
   setText(".dl-live-said", regimeText ? ` · ${regimeText}` : "");
   drawCaption(params, result);
+  drawPose(params, result);
   performance.measure("dl-live-draw", {start: started});  // its own cost, for bench/live_drag.py
 }
 
@@ -467,9 +560,10 @@ export function render({data, parentElement}) {
   const wasLive = state && state.live;
   if (state) end();
   performance.clearMeasures("dl-live-draw");  // one drag's worth kept, not a session's
-  state = {data: d, params, regime: d.regime, live: false, fn: null, caption: null};
+  state = {data: d, params, regime: d.regime, live: false, fn: null, caption: null, pose: null, poseFn: null};
   const mine = state;
   load(d.source).then((fn) => { mine.fn = fn; });
+  if (d.pose) load(d.pose.source).then((fn) => { mine.poseFn = fn; });
   if (wasLive) requestAnimationFrame(announce);
   watch();
   watchRuns();
