@@ -82,6 +82,11 @@ class _Printer(JavascriptCodePrinter):
     def _print_NaN(self, expr):  # a gap in a drawn polyline (a pose's arrow of no length)
         return "NaN"
 
+    def _print_Function(self, expr):
+        if isinstance(expr, _Rounded):
+            return f"round({self._print(expr.args[0])})"
+        return super()._print_Function(expr)
+
 
 def _js(expr, printer=_Printer()) -> str:
     return printer.doprint(expr)
@@ -214,6 +219,8 @@ class _Symbolic:
     minimum = staticmethod(_elementwise(sp.Min, 2))
     maximum = staticmethod(_elementwise(sp.Max, 2))
     less = staticmethod(_elementwise(lambda a, b: sp.StrictLessThan(a, b), 2))
+    # rounded as viz.common.r rounds (numpy's round to DIGITS): the pose function's ``round`` argument
+    rounded = staticmethod(_elementwise(lambda a: _Rounded(a), 1))
     # a gap (NaN) where the condition holds: a Piecewise (the printer's ternary)
     where = staticmethod(_elementwise(lambda c, a, b: sp.Piecewise((_expr(a), c), (_expr(b), True)), 3))
 
@@ -221,6 +228,10 @@ class _Symbolic:
     def scalar(x):
         """One value as the shapes take it: an array of one expression."""
         return np.array([x], dtype=object)
+
+
+class _Rounded(sp.Function):
+    """A value rounded as the figure's coordinates are (printed as a call of the pose's ``round``)."""
 
 
 SYMBOLIC = _Symbolic()
@@ -239,9 +250,10 @@ class _Values(dict):
 
 
 def pose_source(key_pose: Callable, params: Mapping[str, object], system: str) -> str:
-    """The JavaScript of ``key_pose`` (a viz module's) for these options: ``(p, v) => ({trace: [xs,
-    ys]}) | null`` (``p``: the parameters in SI, ``v``: the live function's values; null if one it
-    uses is not a finite number). Numbers in ``params`` are symbols, options (strings) as given."""
+    """The JavaScript of ``key_pose`` (a viz module's) for these options: ``(p, v, round) => ({trace:
+    [xs, ys]}) | null`` (``p``: the parameters in SI, ``v``: the live function's values; null if one
+    it uses is not a finite number; ``round``: the figure's rounding, for a shape drawn from rounded
+    numbers, a spring's turns). Numbers in ``params`` are symbols, options (strings) as given."""
     symbols = {name: sp.Symbol(_safe("p_", name)) if not isinstance(value, str) else value
                for name, value in params.items()}
     values = _Values()
@@ -268,4 +280,4 @@ def pose_source(key_pose: Callable, params: Mapping[str, object], system: str) -
     body = ", ".join(f"{name!r}: [" + ", ".join("[" + ", ".join(cell(reduced[i]) for i in range(start, start + n)) + "]"
                                             for start, n in parts) + "]" for name, parts in shapes.items())
     lines.append(f"return {{{body}}};")
-    return "(p, v) => {\n" + "\n".join("  " + line for line in lines) + "\n}"
+    return "(p, v, round) => {\n" + "\n".join("  " + line for line in lines) + "\n}"

@@ -242,7 +242,7 @@ POSE = ("const fns = await Promise.all(input.map(([source]) => live.load(source)
         " const r = fns[i](p); return r.values ? live.poseOf(poses[i], p, r.values, input[i][3]) : null; })));")
 # Stage figures whose key pose is not live (dimmed while dragging), and why.
 NOT_POSED = {pid: "not yet generated: the figure stays dimmed while dragging"
-             for pid in ("disk_wall", "stick_ball", "rod_disk_spring", "sliding_ladder", "driven_cart", "eulers_disk")}
+             for pid in ("disk_wall", "stick_ball", "sliding_ladder", "driven_cart", "eulers_disk")}
 
 
 @pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
@@ -276,7 +276,9 @@ def test_the_key_pose_follows_as_the_figure_draws_it(pid, tmp_path_factory):
         got = node(tmp_path_factory.mktemp("pose"), POSE, [c for _, c in cases])
         for (solution, _), pose in zip(cases, got):
             expected = viz.key_pose(solution.params, solution.answers, system)
-            assert pose is not None and set(pose) == set(expected), (solution.params, pose and set(pose))
+            assert pose is not None, solution.params
+            hidden = {name for name, rows in pose.items() if all(v is None for row in rows for v in row)}
+            assert set(expected) <= set(pose) and set(pose) - set(expected) <= hidden, (solution.params, set(pose))
             scale = max(abs(v) for xy in expected.values() for row in xy for v in row if not math.isnan(v))
             for name, rows in expected.items():
                 for axis, want, have in zip("xy", rows, pose[name]):
@@ -289,9 +291,10 @@ def test_the_key_pose_follows_as_the_figure_draws_it(pid, tmp_path_factory):
             spec = json.loads(stage.json())
             anim = spec["animation"]
             rows_of = {spec["data"][j]["name"]: unpacked(c, len(anim["times"])) for j, c in zip(anim["traces"], anim["coords"])}
+            static = {t["name"]: {k: [t[k]] * len(anim["times"]) for k in "xy"} for t in spec["data"] if t.get("x") is not None}
             for name, rows in expected.items():
                 for axis, want in zip("xy", rows):
-                    have = np.array(rows_of[name][axis][stage.key_frame], dtype=float)
+                    have = np.array((rows_of.get(name) or static[name])[axis][stage.key_frame], dtype=float)
                     assert np.allclose(have, want, rtol=0, atol=2e-4 * max(1.0, scale), equal_nan=True), (
                         solution.params, name, axis, have, want)
     check()

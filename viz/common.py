@@ -168,18 +168,21 @@ class Spirals(list):
         self.shape_of = shape_of
 
 
-def spiral_rows(inner: float, outer: float, turns, start, n: int) -> tuple[np.ndarray, np.ndarray]:
+def spiral_rows(inner: float, outer: float, turns, start, n: int, xp=np) -> tuple[np.ndarray, np.ndarray]:
     """Flat spirals about the origin, one row per frame: ``turns[i]`` turns from ``inner`` to
     ``outer`` radius, starting at angle ``start[i]`` (unrounded; ui/plotly_component draws the same)."""
     s = np.linspace(0.0, 1.0, n)[None, :]
-    phase = np.asarray(start, dtype=float)[:, None] + 2 * np.pi * np.asarray(turns, dtype=float)[:, None] * s
+    phase = _array(start)[:, None] + 2 * np.pi * _array(turns)[:, None] * s
     rad = inner + (outer - inner) * s
-    return rad * np.cos(phase), rad * np.sin(phase)
+    return rad * xp.cos(phase), rad * xp.sin(phase)
 
 
-def spirals(inner: float, outer: float, turns, start, n: int = 48) -> tuple[Spirals, Spirals]:
-    """Flat spirals about the origin (a torsional spring), one row per frame (at least 0.05 turn)."""
-    turns, start = np.broadcast_arrays(np.maximum(np.asarray(turns, dtype=float), 0.05), np.asarray(start, dtype=float))
+def spirals(inner: float, outer: float, turns, start, n: int = 48, xp=np) -> tuple[Spirals, Spirals]:
+    """Flat spirals about the origin (a torsional spring), one row per frame (at least 0.05 turn),
+    drawn from their turns and start rounded as sent."""
+    turns, start = np.broadcast_arrays(xp.maximum(_array(turns), 0.05), _array(start))
+    if symbolic(turns):  # a pose being generated: the same rows, as expressions
+        return spiral_rows(inner, outer, xp.rounded(turns), xp.rounded(start), n, xp)
     shape_of = {"inner": float(inner), "outer": float(outer), "turns": r(turns), "start": r(start), "n": n}
     x, y = spiral_rows(inner, outer, shape_of["turns"], shape_of["start"], n)
     return Spirals(r(x), shape_of), Spirals(r(y), shape_of)

@@ -124,7 +124,7 @@ export function roundedLike(x, digits) {
 // A generated pose (solvers/live.pose_source: trace -> [xs, ys]) for parameters ``p`` and the live
 // values, rounded as the figure's own coordinates are; null where an input is missing.
 export function poseOf(fn, p, values, digits) {
-  const drawn = fn(p, values);
+  const drawn = fn(p, values, (x) => roundedLike(x, digits));
   if (!drawn) return null;
   const out = {};
   for (const [name, rows] of Object.entries(drawn)) out[name] = rows.map((row) => row.map((x) => roundedLike(x, digits)));
@@ -258,8 +258,13 @@ function holdPose() {
 function drawPose(params, result) {
   const pose = state.pose;
   if (!pose || pose.fig.current !== pose.drawn) return;
-  const drawn = state.poseFn && result.regime === state.regime && result.values
+  let drawn = state.poseFn && result.regime === state.regime && result.values
     ? poseOf(state.poseFn, params, result.values, state.data.pose.digits) : null;
+  // a body the server's figure does not have (a spring where the run had none): not drawn, unless it shows
+  if (drawn) for (const [name, rows] of Object.entries(drawn)) if (!pose.names.includes(name)) {
+    if (rows.some((row) => row.some((v) => v !== null))) { drawn = null; break; }
+    delete drawn[name];
+  }
   const live = drawn !== null;
   if (live !== pose.live) {
     pose.live = live;
