@@ -96,7 +96,12 @@ def symbolic(values) -> bool:
 
 
 def _array(values) -> np.ndarray:
-    return values if symbolic(values) else np.asarray(values, dtype=float)
+    if symbolic(values):
+        return values
+    try:
+        return np.asarray(values, dtype=float)
+    except TypeError:  # an expression (a pose being generated)
+        return np.asarray(values, dtype=object)
 
 
 # Shapes for every frame at once: each returns (x, y) arrays with one row per frame, rounded, which
