@@ -241,8 +241,7 @@ POSE = ("const fns = await Promise.all(input.map(([source]) => live.load(source)
         "console.log(JSON.stringify(input.map(([, , params], i) => { const p = live.fromJSON(params);"
         " const r = fns[i](p); return r.values ? live.poseOf(poses[i], p, r.values, input[i][3]) : null; })));")
 # Stage figures whose key pose is not live (dimmed while dragging), and why.
-NOT_POSED = {pid: "not yet generated: the figure stays dimmed while dragging"
-             for pid in ("eulers_disk",)}
+NOT_POSED: dict[str, str] = {}
 
 
 @pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
@@ -281,7 +280,8 @@ def test_the_key_pose_follows_as_the_figure_draws_it(pid, tmp_path_factory):
             assert set(expected) <= set(pose) and set(pose) - set(expected) <= hidden, (solution.params, set(pose))
             scale = max(abs(v) for xy in expected.values() for row in xy for v in row if not math.isnan(v))
             for name, rows in expected.items():
-                for axis, want, have in zip("xy", rows, pose[name]):
+                assert len(rows) == len(pose[name]), name
+                for axis, want, have in zip("xyz", rows, pose[name]):
                     assert len(want) == len(have), (name, axis)
                     for w, h in zip(want, have):
                         assert (h is None) == math.isnan(w) and (h is None or close(h, w, scale)), (
@@ -291,9 +291,10 @@ def test_the_key_pose_follows_as_the_figure_draws_it(pid, tmp_path_factory):
             spec = json.loads(stage.json())
             anim = spec["animation"]
             rows_of = {spec["data"][j]["name"]: unpacked(c, len(anim["times"])) for j, c in zip(anim["traces"], anim["coords"])}
-            static = {t["name"]: {k: [t[k]] * len(anim["times"]) for k in "xy"} for t in spec["data"] if t.get("x") is not None}
+            static = {t["name"]: {k: [t[k]] * len(anim["times"]) for k in "xyz" if k in t} for t in spec["data"]
+                      if t.get("x") is not None}
             for name, rows in expected.items():
-                for axis, want in zip("xy", rows):
+                for axis, want in zip("xyz", rows):
                     have = np.array((rows_of.get(name) or static[name])[axis][stage.key_frame], dtype=float)
                     assert np.allclose(have, want, rtol=0, atol=2e-4 * max(1.0, scale), equal_nan=True), (
                         solution.params, name, axis, have, want)

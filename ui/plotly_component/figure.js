@@ -160,21 +160,34 @@ class Figure {
   // animation frame; the graph's data follow, so a later redraw (a resize) shows the same frame.
   // False where plotly.js's scene is not as expected: then plotly's own animate draws it.
   sceneFrame(index) {
-    const scene = this.graph._fullLayout && this.graph._fullLayout.scene && this.graph._fullLayout.scene._scene;
     const frame = this.frames[index];
-    if (!scene || !scene.glplot || !scene.traces || !frame) return false;
-    const targets = frame.traces.map((t) => {
+    return !!frame && this.sceneUpdate(frame.traces, frame.data);
+  }
+  sceneUpdate(traces, data) {
+    const scene = this.graph._fullLayout && this.graph._fullLayout.scene && this.graph._fullLayout.scene._scene;
+    if (!scene || !scene.glplot || !scene.traces) return false;
+    const targets = traces.map((t) => {
       const full = (this.graph._fullData || [])[t];
       const object = full && scene.traces[full.uid];
       return object && typeof object.update === "function" ? [t, full, object] : null;
     });
     if (targets.some((target) => !target)) return false;
     targets.forEach(([t, full, object], n) => {
-      for (const k of ["x", "y", "z"]) if (frame.data[n][k]) full[k] = this.graph.data[t][k] = frame.data[n][k];
+      for (const k of ["x", "y", "z"]) if (data[n][k]) full[k] = this.graph.data[t][k] = data[n][k];
       object.update(full);
     });
     scene.glplot.redraw();
     return true;
+  }
+  // Traces drawn at these coordinates at once (live.js: the bodies at the key instant while a lesson
+  // control is dragged): a 3-D scene's in place, anything else through plotly's animate, given every
+  // moving trace (it redraws only the subplots of the traces it gets, and empties the others).
+  pose(traces, data) {
+    if (this.sceneUpdate(traces, data)) return Promise.resolve();
+    const others = (this.frames[0] ? this.frames[0].traces : []).filter((t) => !traces.includes(t));
+    return this.Plotly.animate(this.graph, {data: [...data, ...others.map((t) => ({x: this.graph.data[t].x, y: this.graph.data[t].y}))],
+                                            traces: [...traces, ...others]},
+                               {mode: "immediate", frame: {duration: 0, redraw: false}, transition: {duration: 0}});
   }
   // Play keeps the animation's stated time (frames × frame time): each animation frame of the
   // browser draws the frame due at that moment, and a frame whose time has passed while the last

@@ -235,7 +235,7 @@ function drawCaption(params, result) {
 // The stage figure's moving bodies at its key instant (the impact, θ₂…) follow the drag: the viz
 // module's own key_pose, generated for the browser (solvers/live.pose_source: never typed here),
 // evaluated with the live values and rounded as the figure's coordinates are. While a drag lasts the
-// figure is paused at its key frame (Play waits), those traces are moved there (plotly's animate, the
+// figure is paused at its key frame (Play waits), those traces are moved there (figure.js: pose, the
 // path Play takes), every other trace (a trail, the plots against time, the surfaces) is dimmed, and
 // the axes keep their ranges (a pose leaving them is clipped). Outside the run's regime, or before the
 // generated code is here, the whole graph is dimmed as "updating…", never shown as if it were live.
@@ -274,22 +274,17 @@ function drawPose(params, result) {
   if (!live) return;
   if (!pose.traces) {  // the posed traces, and the others dimmed
     pose.traces = Object.keys(drawn).map((name) => pose.names.indexOf(name));
-    pose.others = pose.fig.frames[0].traces.filter((t) => !pose.traces.includes(t));
     const others = pose.names.map((_, i) => i).filter((i) => !pose.traces.includes(i));
     // (before any pose is drawn: plotly's animate while a restyle redraws loses the other subplot's traces)
     pose.ready = others.length ? pose.fig.Plotly.restyle(pose.fig.graph, {opacity: DIMMED}, others) : Promise.resolve();
   }
-  pose.next = Object.values(drawn).map(([x, y]) => ({x, y}));
-  // with the animation's other moving traces as they stand (the key frame's): plotly's animate redraws
-  // only the subplots of the traces it is given, and empties the others
-  for (const t of pose.others) pose.next.push({x: pose.fig.graph.data[t].x, y: pose.fig.graph.data[t].y});
+  pose.next = Object.values(drawn).map(([x, y, z]) => (z ? {x, y, z} : {x, y}));
   if (pose.waiting) return;  // one pose drawn at a time, the newest
   pose.waiting = true;
   pose.ready.then(() => {
     pose.waiting = false;
     if (state.pose !== pose || pose.fig.current !== pose.drawn) return;
-    quiet(pose.fig.Plotly.animate(pose.fig.graph, {data: pose.next, traces: [...pose.traces, ...pose.others]},
-                                  {mode: "immediate", frame: {duration: 0, redraw: false}, transition: {duration: 0}}));
+    quiet(pose.fig.pose(pose.traces, pose.next));
   }, () => { pose.waiting = false; });
 }
 
