@@ -457,7 +457,7 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     graph = page.locator(".st-key-dl_stage .dl-figure .dl-graph")
     pose_is_the_servers(dragged_to)
     assert "dl-live-stale" not in graph.get_attribute("class")
-    assert "key instant follows" in page.locator(".dl-live-note").inner_text()
+    assert "key instant live" in page.locator(".dl-live-note").inner_text()
 
     page.mouse.move(x_of(-70), y)  # below the impact angle (−35.7°): no impact, nothing to show
     page.wait_for_timeout(200)
@@ -602,8 +602,17 @@ def test_a_phone_steps_a_stage_slider_one_step_a_tap(browser, app_url):
         higher.tap()
         page.wait_for_timeout(60)
     page.wait_for_timeout(40)
+    # (at once: the burst is committed 250 ms after the last tap) The live badge over the figure stays on one
+    # line, clear of Play (it wrapped over it on a phone), and the figure at its key instant (θ₂) is live.
+    badge, play, line, graph = page.evaluate(
+        "() => { const box = (el) => { const r = el.getBoundingClientRect(); return {y: r.y, height: r.height}; };"
+        " const badge = document.querySelector('.dl-live-badge'), fig = document.querySelector('.st-key-dl_stage .dl-figure');"
+        " const css = getComputedStyle(badge); return [box(badge), box(fig.querySelector('.dl-play')),"
+        " parseFloat(css.lineHeight) || 1.6 * parseFloat(css.fontSize), fig.querySelector('.dl-graph').className]; }")
     assert shown() == start + 3 and page.evaluate("window.__runs") == 0
     assert page.evaluate(LIVE_CELLS) == expected(start + 3)
+    assert badge["height"] <= 1.6 * line and badge["y"] + badge["height"] <= play["y"] + 1, (badge, play, line)
+    assert "dl-live-stale" not in graph
     settled(1)
     page.wait_for_timeout(400)
     assert page.evaluate("window.__runs") == 1 and shown() == start + 3

@@ -221,19 +221,39 @@ class Figure {
     this.playing = false;
     this.playSeq++;
   }
-  // Held at the key instant while a lesson control is dragged (live.js moves its bodies there), and
-  // back to the frame it showed when the drag ends without a new figure.
+  // Held while a lesson control is dragged: paused (Play waits). live.js then shows the key frame with
+  // the traces ``dimmed`` (one redraw) and moves its bodies there; on release the frame shown before and
+  // every trace's own opacity come back, again in one redraw (none if the key frame was never shown).
   hold() {
     if (this.held) return;
     this.pause();
-    this.held = {frame: this.frameIndex};
-    this.showFrame(this.keyFrame);
+    this.held = {frame: this.frameIndex, shown: false};
+  }
+  showHeld(dimmed, opacity) {
+    if (!this.held || this.held.shown) return Promise.resolve();
+    this.held.shown = true;
+    return this.restyleFrame(this.keyFrame, dimmed.map(() => opacity), dimmed);
   }
   release() {
     const held = this.held;
     this.held = null;
-    if (held) this.showFrame(held.frame);
+    if (held && held.shown) quiet(this.restyleFrame(held.frame, this.graph.data.map(() => null), this.graph.data.map((_, i) => i)));
   }
+  // Frame ``index``'s moving traces, and these traces' opacities, in one restyle.
+  restyleFrame(index, opacities, traces) {
+    const frame = this.frames[index];
+    if (!frame) return Promise.resolve();
+    const all = [...new Set([...frame.traces, ...traces])], update = {opacity: all.map((t) => {
+      const n = traces.indexOf(t);
+      return n < 0 ? undefined : opacities[n];
+    })};
+    for (const [n, d] of frame.data.entries())
+      for (const k of Object.keys(d)) if (k !== "type") (update[k] ??= all.map(() => undefined))[all.indexOf(frame.traces[n])] = d[k];
+    this.frameIndex = index;
+    this.showTime(index);
+    return this.Plotly.restyle(this.graph, update, all);
+  }
+
 
   // The motion on the stage (ui/page.py) fills what is left of the first screen below its top, so
   // the whole figure and its Play button show without scrolling (the page's scroll offset is added

@@ -19,7 +19,9 @@
 const STYLE = `
 .dl-live-stale { opacity: 0.35 !important; transition: none; }  /* over the caption's own .75 */
 .dl-figure { position: relative; }
-.dl-live-badge { position: absolute; top: 0; left: 0; right: 0; z-index: 5; font-size: 1rem; padding: 0.15em 0.6em; margin: 0 0 0.3rem 0; border-radius: 0.4em;
+/* one line over the figure's title, clear of Play below it (a long note is cut short: …) */
+.dl-live-badge { position: absolute; top: 0; left: 0; right: 0; z-index: 5; font-size: 1rem; line-height: 1.35; padding: 0.05em 0.6em; margin: 0 0 0.3rem 0; border-radius: 0.4em;
+  white-space: nowrap; overflow: hidden; text-overflow: ellipsis;
   background: var(--st-orange-background-color, #FFF3E0); color: var(--st-orange-text-color, #9B4519); }
 .dl-live-badge .dl-live-note { font-size: 0.8rem; margin-left: 0.6em; opacity: 0.9; }
 .dl-live-status { font-size: 0.95rem; margin: 0 0 0.5rem 0; color: var(--st-orange-text-color, #9B4519); font-weight: 600; }
@@ -35,6 +37,9 @@ const STYLE = `
   .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: -2px; width: 44px; height: 44px; padding: 0;
     font-size: 1.4rem; line-height: 1; border-radius: 0.5rem; cursor: pointer; touch-action: manipulation;
     border: 1px solid rgba(128, 128, 128, 0.6); background: rgba(128, 128, 128, 0.12); color: inherit; }  /* the theme's text, light or dark */
+  /* the track's end values in the room up to the −/+ (a half-width track is too short for both at full size) */
+  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: -6px; margin-right: -6px; }
+  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] p { font-size: 0.75rem; }
   .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: 0; }
   .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: 0; }
 }
@@ -240,6 +245,7 @@ function drawCaption(params, result) {
 // the axes keep their ranges (a pose leaving them is clipped). Outside the run's regime, or before the
 // generated code is here, the whole graph is dimmed as "updating…", never shown as if it were live.
 const MOTION_UPDATING = "the motion is updating…";
+const POSE_LIVE = "key instant live · the motion is updating…";
 const DIMMED = 0.3;
 
 function stageFigure() {
@@ -250,7 +256,7 @@ function stageFigure() {
 function holdPose() {
   const fig = state.data.pose && stageFigure();
   if (!fig) return;
-  fig.hold();  // paused at its key frame, as the server drew it
+  fig.hold();  // paused (Play waits); its key frame is shown with the first live pose
   const names = fig.graph.data.map((t) => t.name);
   state.pose = {fig, drawn: fig.current, names, live: null, traces: null};
 }
@@ -269,15 +275,21 @@ function drawPose(params, result) {
   if (live !== pose.live) {
     pose.live = live;
     pose.fig.graph.classList.toggle("dl-live-stale", !live);
-    setText(".dl-live-note", live ? "the figure at its key instant follows; the motion is updating…" : MOTION_UPDATING);
+    setText(".dl-live-note", live ? POSE_LIVE : MOTION_UPDATING);
   }
   if (!live) return;
   if (!pose.traces) {  // the posed traces, and the others dimmed
     pose.traces = Object.keys(drawn).map((name) => pose.names.indexOf(name));
     const others = pose.names.map((_, i) => i).filter((i) => !pose.traces.includes(i));
-    // (before any pose is drawn: plotly's animate while a restyle redraws loses the other subplot's traces)
-    pose.ready = others.length ? pose.fig.Plotly.restyle(pose.fig.graph, {opacity: DIMMED}, others) : Promise.resolve();
+    // the key frame with the others dimmed, in one redraw, before any pose is drawn (plotly's animate while
+    // a restyle redraws loses the other subplot's traces)
+    pose.ready = pose.fig.showHeld(others, DIMMED);
   }
+  // Only a changed pose is drawn, and none while a key burst is committed (its step back and forth):
+  // plotly's animate then would delay the page's rendering of the run that follows.
+  const key = JSON.stringify(drawn);
+  if (key === pose.key || performance.now() - committing < 200) return;
+  pose.key = key;
   pose.next = Object.values(drawn).map(([x, y, z]) => (z ? {x, y, z} : {x, y}));
   if (pose.waiting) return;  // one pose drawn at a time, the newest
   pose.waiting = true;
@@ -294,10 +306,10 @@ function releasePose() {
   if (!pose) return;
   state.pose = null;
   pose.fig.graph.classList.remove("dl-live-stale");
-  if (pose.fig.current === pose.drawn) {
-    if (pose.traces) quiet(pose.fig.Plotly.restyle(pose.fig.graph, {opacity: null}));
-    pose.fig.release();
-  } else pose.fig.held = false;
+  // After this task: a run's new figure (drawn in its place, nothing to restore) may come with this render.
+  setTimeout(() => {
+    if (pose.fig.current === pose.drawn) pose.fig.release(); else pose.fig.held = null;
+  }, 0);
 }
 
 function quiet(promise) { if (promise && promise.catch) promise.catch(() => {}); }
@@ -443,6 +455,7 @@ const COMMIT_AFTER = 250;
 const MOVES = {ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1, PageUp: "page", PageDown: "-page", Home: "min", End: "max"};
 const REPLAYED = Symbol("dl-replayed");
 let held = null;  // {input, timer}: the slider moved by keys (or taps) and not yet committed
+let committing = -Infinity;  // when the last burst was committed
 
 // The value's own setter (React watches the element's), as a person's input would set it.
 const setValue = (input, value) => Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, "value").set.call(input, value);
@@ -491,6 +504,7 @@ function commit() {
   const {input} = held;
   clearTimeout(held.timer);
   held = null;
+  committing = performance.now();  // its step back and forth: the pose stays as drawn
   if (!input.isConnected) return;
   const value = Number(input.value), min = Number(input.min), max = Number(input.max);
   if (!(max > min)) return;
