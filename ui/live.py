@@ -40,8 +40,8 @@ def show(problem: Problem, solution: Solution, answers, system: str, stage: Figu
     data["params"] = {k: ("inf" if isinstance(v, float) and math.isinf(v) else v) for k, v in data["params"].items()}
     data["regime"] = solution.regime
     pose = pose_source(problem.id, live.options_of(problem.id, solution.params), system) if stage is not None else None
-    if pose is not None:
-        data["pose"] = {"source": pose, "digits": DIGITS}
+    if pose is not None:  # (a module of its own, kept by the browser: a few kB a run less)
+        data["pose"] = {"url": figure.generated_module("pose", f"export default {pose};\n"), "digits": DIGITS}
     if stage is not None and stage.headline:
         data["headline"] = {"parts": stage.headline,
                             "text": headline_text(stage.headline, {**solution.params, **solution.answers})}

@@ -151,6 +151,14 @@ export function load(source) {
   return fn;
 }
 
+// A generated module served by the app (ui/figure.generated_module: a figure's pose), by its path.
+const loadedModules = new Map();
+function loadModule(path) {
+  let fn = loadedModules.get(path);
+  if (!fn) loadedModules.set(path, fn = import(new URL(path, location.href).href).then((m) => m.default));
+  return fn;
+}
+
 // The parameters as JSON carries them: an infinite one (μ = ∞) as the word "inf" (ui/live.py).
 export const fromJSON = (params) => Object.fromEntries(Object.entries(params).map(([k, v]) => [k, v === "inf" ? Infinity : v]));
 
@@ -293,11 +301,12 @@ function drawPose(params, result) {
   pose.next = Object.values(drawn).map(([x, y, z]) => (z ? {x, y, z} : {x, y}));
   if (pose.waiting) return;  // one pose drawn at a time, the newest
   pose.waiting = true;
-  pose.ready.then(() => {
+  // after this frame is painted: the answers first, the figure (plotly's redraw) just after
+  pose.ready.then(() => setTimeout(() => {
     pose.waiting = false;
     if (state.pose !== pose || pose.fig.current !== pose.drawn) return;
     quiet(pose.fig.pose(pose.traces, pose.next));
-  }, () => { pose.waiting = false; });
+  }, 0), () => { pose.waiting = false; });
 }
 
 // The server's figure again: its frame and trace opacities back (unless the run drew a new figure).
@@ -577,7 +586,7 @@ export function render({data, parentElement}) {
   state = {data: d, params, regime: d.regime, live: false, fn: null, caption: null, pose: null, poseFn: null};
   const mine = state;
   load(d.source).then((fn) => { mine.fn = fn; });
-  if (d.pose) load(d.pose.source).then((fn) => { mine.poseFn = fn; });
+  if (d.pose) loadModule(d.pose.url).then((fn) => { mine.poseFn = fn; }, () => {});  // (none: the figure stays dimmed)
   if (wasLive) requestAnimationFrame(announce);
   watch();
   watchRuns();
