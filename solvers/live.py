@@ -23,6 +23,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
+import numpy as np
 import sympy as sp
 from sympy.printing.jscode import JavascriptCodePrinter
 
@@ -77,6 +78,14 @@ class _Printer(JavascriptCodePrinter):
 
     def _print_Float(self, expr):
         return repr(float(expr))
+
+    def _print_NaN(self, expr):  # a gap in a drawn polyline (a pose's arrow of no length)
+        return "NaN"
+
+    def _print_Function(self, expr):
+        if isinstance(expr, _Rounded):
+            return f"round({self._print(expr.args[0])})"
+        return super()._print_Function(expr)
 
 
 def _js(expr, printer=_Printer()) -> str:
@@ -187,3 +196,88 @@ def payload(pid: str, params: Mapping[str, object], answers, system: str, contro
     said = {case.regime: case.said for case in cases(pid, options)}
     return {"source": function_source(pid, options), "params": dict(params), "follows": follows,
             "answers": rows, "said": said, "grouped_below": GROUPED_BELOW}
+
+
+# ------------------------------------------------------------------ the figure's pose at its key instant
+# A viz module draws its stage figure's key instant with ``key_pose(params, answers, system, xp)``:
+# numpy (``xp=np``) for the figure, and here the same function on symbols (``xp=SYMBOLIC``, arrays of
+# expressions: dtype object) gives each point of each moving body as an expression in the parameters
+# and the live values, printed to JavaScript as the values are (``sympy.cse``, the same printer).
+
+def _elementwise(fn, nargs: int):
+    return np.frompyfunc(fn, nargs, 1)
+
+
+class _Symbolic:
+    """The few numpy functions the figures' shapes use (viz.common: ``arrows``, ``xp=``), on arrays
+    of sympy expressions."""
+
+    cos = staticmethod(_elementwise(sp.cos, 1))
+    sin = staticmethod(_elementwise(sp.sin, 1))
+    abs = staticmethod(_elementwise(sp.Abs, 1))
+    hypot = staticmethod(_elementwise(lambda a, b: sp.sqrt(a**2 + b**2), 2))
+    minimum = staticmethod(_elementwise(sp.Min, 2))
+    maximum = staticmethod(_elementwise(sp.Max, 2))
+    less = staticmethod(_elementwise(lambda a, b: sp.StrictLessThan(a, b), 2))
+    # rounded as viz.common.r rounds (numpy's round to DIGITS): the pose function's ``round`` argument
+    rounded = staticmethod(_elementwise(lambda a: _Rounded(a), 1))
+    # a gap (NaN) where the condition holds: a Piecewise (the printer's ternary)
+    where = staticmethod(_elementwise(lambda c, a, b: sp.Piecewise((_expr(a), c), (_expr(b), True)), 3))
+
+    @staticmethod
+    def scalar(x):
+        """One value as the shapes take it: an array of one expression."""
+        return np.array([x], dtype=object)
+
+
+class _Rounded(sp.Function):
+    """A value rounded as the figure's coordinates are (printed as a call of the pose's ``round``)."""
+
+
+SYMBOLIC = _Symbolic()
+
+
+def _expr(x):
+    return sp.nan if isinstance(x, float) and np.isnan(x) else sp.sympify(x)
+
+
+class _Values(dict):
+    """The live values by name (``answers`` for a pose): a symbol for each name asked for."""
+
+    def __missing__(self, name: str) -> sp.Symbol:
+        self[name] = sym = sp.Symbol(_safe("v_", name))
+        return sym
+
+
+def pose_source(key_pose: Callable, params: Mapping[str, object], system: str) -> str:
+    """The JavaScript of ``key_pose`` (a viz module's) for these options: ``(p, v, round) => ({trace:
+    [xs, ys]}) | null`` (``p``: the parameters in SI, ``v``: the live function's values; null if one
+    it uses is not a finite number; ``round``: the figure's rounding, for a shape drawn from rounded
+    numbers, a spring's turns). Numbers in ``params`` are symbols, options (strings) as given."""
+    symbols = {name: sp.Symbol(_safe("p_", name)) if not isinstance(value, str) else value
+               for name, value in params.items()}
+    values = _Values()
+    drawn = key_pose(symbols, values, system, SYMBOLIC)
+    cells = []  # every coordinate: an expression, or a number (a gap is NaN)
+    shapes = {}
+    for name, coords in drawn.items():
+        rows = [list(np.ravel(np.asarray(c, dtype=object))) for c in coords]
+        shapes[name] = [(len(cells) + sum(map(len, rows[:i])), len(row)) for i, row in enumerate(rows)]
+        cells += [c for row in rows for c in row]
+    exprs = [sp.sympify(c) for c in cells]
+    replacements, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("c_"), order="none")
+    used = set().union(*(e.free_symbols for e in exprs))
+    inputs = ([(sym, f"p[{name!r}]") for name, sym in symbols.items() if isinstance(sym, sp.Symbol) and sym in used]
+              + [(sym, f"v[{name!r}]") for name, sym in values.items() if sym in used])
+    lines = [f"const {sym} = {source};" for sym, source in inputs]
+    if inputs:
+        lines.append(f"if (!({' && '.join(f'Number.isFinite({sym})' for sym, _ in inputs)})) return null;")
+    lines += [f"const {s} = {_js(e)};" for s, e in replacements]
+
+    def cell(e) -> str:
+        return "null" if e is sp.nan else repr(float(e)) if e.is_number and not e.has(sp.Piecewise) else _js(e)
+
+    body = ", ".join(f"{name!r}: [" + ", ".join("[" + ", ".join(cell(reduced[i]) for i in range(start, start + n)) + "]"
+                                            for start, n in parts) + "]" for name, parts in shapes.items())
+    lines.append(f"return {{{body}}};")
+    return "(p, v, round) => {\n" + "\n".join("  " + line for line in lines) + "\n}"

@@ -377,6 +377,13 @@ RUN_COUNTER = ("() => { window.__runs = 0; const app = document.querySelector(\"
                " new MutationObserver((ms) => { for (const m of ms) if (m.oldValue === 'running') window.__runs++; })"
                ".observe(app, {attributes: true, attributeOldValue: true, attributeFilter: ['data-test-script-state']}); }")
 LIVE_CELLS = ("() => [...document.querySelector('.dl-answers table').tBodies[0].rows].map((r) => r.cells[2].innerText)")
+# The stage graph's traces as plotly holds them now (name -> [x, y]), its key frame's (from the frames
+# the figure was drawn with), and whether the graph is dimmed.
+STAGE_GRAPH = "document.querySelector('.st-key-dl_stage .dl-figure .dl-graph')"
+POSED_NOW = (f"() => Object.fromEntries({STAGE_GRAPH}.data.map((t) => [t.name, [Array.from(t.x || []), Array.from(t.y || []),"
+             " t.opacity ?? 1]]))")
+KEY_FRAME = (f"() => {{ const g = {STAGE_GRAPH}, fig = g.closest('.dl-figure').dlFigure, f = fig.frames[fig.keyFrame];"
+             " return Object.fromEntries(f.traces.map((t, n) => [g.data[t].name, [f.data[n].x, f.data[n].y]])); }")
 
 
 def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(browser, app_url):
@@ -384,13 +391,15 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     solver's for the value the slider shows, with no server run; past the impact angle every answer waits ("updating…") and the
     regime is said; on release one run replaces everything. Practice loads no live module; axe stays
     at zero."""
+    import numpy as np
+
     from solvers.pendulum_rebound import solve
     from solvers import units
     from tests.test_where_used import serious_violations
     from ui.results import answer_rows
     from ui.catalog import BY_ID
     from viz.common import headline_text
-    from viz.pendulum_rebound import figures
+    from viz.pendulum_rebound import figures, key_pose
 
     context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound")
     loaded = []
@@ -432,23 +441,48 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     assert caption.locator(".dl-live-caption").inner_text() == caption_headline(dragged_to)
     assert caption.locator(".dl-live-caption.dl-live-stale").count() == 0
     assert caption.locator(".dl-live-stale").count() == 1 and caption.get_attribute("aria-live") == "off"
+    # The figure at its key instant (the first impact) follows: its bodies where the server draws them for
+    # the value shown (viz key_pose, rounded as the figure is), the graph itself not dimmed, the rest of it
+    # (the sphere's path, the θ(t) plot, the floor) dimmed.
+    def pose_is_the_servers(degrees: float) -> dict:
+        solution = solve(theta0=units.to_si(degrees, "angle"))
+        want, now = key_pose(solution.params, solution.answers), page.evaluate(POSED_NOW)
+        for name, (x, y) in want.items():
+            for axis, a, b in (("x", now[name][0], x), ("y", now[name][1], y)):
+                a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+                assert a.shape == b.shape and np.allclose(a, b, rtol=1e-9, atol=1e-12, equal_nan=True), (degrees, name, axis, a, b)
+            assert now[name][2] == 1, name
+        assert {name for name, (_, _, opacity) in now.items() if opacity == 1} == set(want), now.keys()
+        return {name: now[name][:2] for name in want}
+
+    graph = page.locator(".st-key-dl_stage .dl-figure .dl-graph")
+    pose_is_the_servers(dragged_to)
+    assert "dl-live-stale" not in graph.get_attribute("class")
+    assert "key instant live" in page.locator(".dl-live-note").inner_text()
 
     page.mouse.move(x_of(-70), y)  # below the impact angle (−35.7°): no impact, nothing to show
     page.wait_for_timeout(200)
     assert set(page.evaluate(LIVE_CELLS)) == {"updating…"}
     assert "no impact" in page.locator(".dl-live-status").inner_text()
     assert caption.locator(".dl-live-caption.dl-live-stale").count() == 1  # another regime: its words would be wrong
+    assert "dl-live-stale" in graph.get_attribute("class")  # no impact: no pose to show, the figure waits
 
     page.mouse.move(x_of(-12), y)
     page.wait_for_timeout(200)
     released_at = shown()
     live_values = page.evaluate(LIVE_CELLS)
+    assert "dl-live-stale" not in graph.get_attribute("class")  # back in the run's regime: the pose follows again
+    live_pose = pose_is_the_servers(released_at)
     page.mouse.up()
     page.wait_for_function("() => window.__runs >= 1 && !document.querySelector('.dl-live-value')", timeout=30_000)
     wait_until_idle(page)
     page.wait_for_timeout(300)
     assert page.evaluate("window.__runs") == 1  # one server run for the whole drag
     assert page.evaluate(LIVE_CELLS) == live_values == expected(released_at)
+    drawn = page.evaluate(KEY_FRAME)  # the server's new figure, its key frame (rows rebuilt from the compact form)
+    for name, (x, y) in live_pose.items():
+        for a, b in ((drawn[name][0], x), (drawn[name][1], y)):
+            assert np.allclose(np.asarray(a, dtype=float), np.asarray(b, dtype=float), rtol=0, atol=2e-4, equal_nan=True), name
     assert page.locator(".dl-live-stale, .dl-live-badge, .dl-live-caption").count() == 0
     assert caption.inner_text().startswith(caption_headline(released_at)) and caption.get_attribute("aria-live") == "polite"
     assert page.locator("#dl-live-announce").inner_text().strip()  # the main answer, said once
@@ -569,8 +603,17 @@ def test_a_phone_steps_a_stage_slider_one_step_a_tap(browser, app_url):
         higher.tap()
         page.wait_for_timeout(60)
     page.wait_for_timeout(40)
+    # (at once: the burst is committed 250 ms after the last tap) The live badge over the figure stays on one
+    # line, clear of Play (it wrapped over it on a phone), and the figure at its key instant (θ₂) is live.
+    badge, play, line, graph = page.evaluate(
+        "() => { const box = (el) => { const r = el.getBoundingClientRect(); return {y: r.y, height: r.height}; };"
+        " const badge = document.querySelector('.dl-live-badge'), fig = document.querySelector('.st-key-dl_stage .dl-figure');"
+        " const css = getComputedStyle(badge); return [box(badge), box(fig.querySelector('.dl-play')),"
+        " parseFloat(css.lineHeight) || 1.6 * parseFloat(css.fontSize), fig.querySelector('.dl-graph').className]; }")
     assert shown() == start + 3 and page.evaluate("window.__runs") == 0
     assert page.evaluate(LIVE_CELLS) == expected(start + 3)
+    assert badge["height"] <= 1.6 * line and badge["y"] + badge["height"] <= play["y"] + 1, (badge, play, line)
+    assert "dl-live-stale" not in graph
     settled(1)
     page.wait_for_timeout(400)
     assert page.evaluate("window.__runs") == 1 and shown() == start + 3

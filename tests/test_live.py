@@ -15,6 +15,7 @@ import shutil
 import subprocess
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
@@ -233,3 +234,68 @@ def test_fixed_decimals_are_written_as_the_captions_write_them(tmp_path_factory,
     got = node(tmp_path_factory.mktemp("fixed"), "console.log(JSON.stringify(input.map(([x, d]) => live.plainFixed(x, d))));",
                pairs)
     assert got == [plain_fixed(x, d) for x, d in pairs]
+
+
+POSE = ("const fns = await Promise.all(input.map(([source]) => live.load(source)));\n"
+        "const poses = await Promise.all(input.map(([, pose]) => live.load(pose)));\n"
+        "console.log(JSON.stringify(input.map(([, , params], i) => { const p = live.fromJSON(params);"
+        " const r = fns[i](p); return r.values ? live.poseOf(poses[i], p, r.values, input[i][3]) : null; })));")
+# Stage figures whose key pose is not live (dimmed while dragging), and why.
+NOT_POSED: dict[str, str] = {}
+
+
+@pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
+def test_the_key_pose_follows_as_the_figure_draws_it(pid, tmp_path_factory):
+    """The stage figure's key instant while a control is dragged: the browser's pose (generated from
+    the viz module's own ``key_pose`` on symbols, evaluated by node with the live function's values)
+    is ``key_pose`` with numpy for the dragged values to 1e-9 relative, and the figure the server
+    draws for those values shows that pose at its key frame (to the figure's rounding)."""
+    from ui.live import pose_source
+    from viz.common import DIGITS, unpacked
+
+    viz = importlib.import_module(f"viz.{pid}")
+    if not hasattr(viz, "key_pose"):
+        assert pid in NOT_POSED, f"{pid}: no key_pose (or say why in NOT_POSED)"
+        return
+
+    @settings(max_examples=2, deadline=None, suppress_health_check=list(HealthCheck),
+              phases=(Phase.explicit, Phase.reuse, Phase.generate))
+    @given(st.lists(dragged(pid), min_size=6, max_size=6), st.sampled_from(["si", "us"]))
+    def check(samples, system):
+        cases = []
+        for p in samples:
+            kind, solution = outcome(pid, p)
+            if kind != "values":
+                continue
+            options = live.options_of(pid, solution.params)
+            cases.append((solution, [live.function_source(pid, options), pose_source(pid, options, system),
+                                     as_json(solution.params), DIGITS]))
+        if not cases:
+            return
+        got = node(tmp_path_factory.mktemp("pose"), POSE, [c for _, c in cases])
+        for (solution, _), pose in zip(cases, got):
+            expected = viz.key_pose(solution.params, solution.answers, system)
+            assert pose is not None, solution.params
+            hidden = {name for name, rows in pose.items() if all(v is None for row in rows for v in row)}
+            assert set(expected) <= set(pose) and set(pose) - set(expected) <= hidden, (solution.params, set(pose))
+            scale = max(abs(v) for xy in expected.values() for row in xy for v in row if not math.isnan(v))
+            for name, rows in expected.items():
+                assert len(rows) == len(pose[name]), name
+                for axis, want, have in zip("xyz", rows, pose[name]):
+                    assert len(want) == len(have), (name, axis)
+                    for w, h in zip(want, have):
+                        assert (h is None) == math.isnan(w) and (h is None or close(h, w, scale)), (
+                            solution.params, name, axis, h, w)
+            # the figure as sent (its rows compacted, rebuilt as the browser does) draws that pose at its key frame
+            stage = viz.figures(solution, system)[0]
+            spec = json.loads(stage.json())
+            anim = spec["animation"]
+            rows_of = {spec["data"][j]["name"]: unpacked(c, len(anim["times"])) for j, c in zip(anim["traces"], anim["coords"])}
+            static = {t["name"]: {k: [t[k]] * len(anim["times"]) for k in "xyz" if k in t} for t in spec["data"]
+                      if t.get("x") is not None}
+            for name, rows in expected.items():
+                for axis, want in zip("xyz", rows):
+                    have = np.array((rows_of.get(name) or static[name])[axis][stage.key_frame], dtype=float)
+                    assert np.allclose(have, want, rtol=0, atol=2e-4 * max(1.0, scale), equal_nan=True), (
+                        solution.params, name, axis, have, want)
+    check()

@@ -165,7 +165,21 @@ def stepper_faults(page, height: int) -> list[str]:
             for end in (track["x"], track["x"] + track["width"]):  # the thumb at either end of its track
                 if overlaps(b, {**thumb, "x": end - half}):
                     faults.append(f"{step.get_attribute('aria-label')}: under the thumb at the track's end")
+        # The track's end values (shown while it is touched) clear of each other and of the −/+ (their text's
+        # own box, with a gap): a half-width track at 360 px ran "0.00" into "1.00" and the +.
+        ends = slider.locator("[data-testid='stSliderTickBar'] p").evaluate_all(INK)
+        if len(ends) != 2:
+            faults.append(f"{name}: {len(ends)} end values")
+        for n, end in enumerate(ends):
+            near = {**end, "x": end["x"] - 2, "width": end["width"] + 4}
+            for other in [box(s) for s in steps] + ends[n + 1:]:
+                if overlaps(near, other):
+                    faults.append(f"{name}: the end value {end['text']!r} touches its neighbour")
     return faults
+
+
+INK = ("(ps) => ps.map((p) => { const r = document.createRange(); r.selectNodeContents(p);"
+       " const b = r.getBoundingClientRect(); return {x: b.x, y: b.y, width: b.width, height: b.height, text: p.textContent}; })")
 
 
 def test_the_motion_its_play_and_the_lesson_s_controls_share_a_laptop_s_first_screen(browser, app_url):

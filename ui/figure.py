@@ -37,10 +37,10 @@ KINDS = ("basic", "gl3d")
 YEAR = 365 * 24 * 3600
 
 
-def _keyed(source: Path, stem: str, suffix: str) -> tuple[str, bytes]:
-    """A file's content under a name keyed by its hash, written beside the component's module so
-    that Streamlit's own component route can serve it too (without serve.py)."""
-    data = source.read_bytes()
+def _keyed(source: Path | bytes, stem: str, suffix: str) -> tuple[str, bytes]:
+    """A file's content (or these bytes) under a name keyed by its hash, written beside the component's
+    module so that Streamlit's own component route can serve it too (without serve.py)."""
+    data = source if isinstance(source, bytes) else source.read_bytes()
     name = f"{stem}.{hashlib.sha256(data).hexdigest()[:16]}{suffix}"
     target = _DIR / name
     if not target.exists() or target.stat().st_size != len(data):
@@ -110,6 +110,12 @@ class BundleServer:
 def url(name: str) -> str:
     """A served file's path on this server (Streamlit's component route, under the base path)."""
     return f"{base_path()}/component/{__name__}.{NAME}/{name}"
+
+
+def generated_module(stem: str, text: str) -> str:
+    """A generated JavaScript module (ui/live.py: a figure's pose) served beside the component's files
+    under a name keyed by its content (the browser imports it once, not with every run): its path."""
+    return url(_keyed(text.encode(), stem, ".js")[0])
 
 
 @cache

@@ -83,8 +83,25 @@ def headline_text(parts: tuple, values) -> str:
 
 def r(values) -> np.ndarray:
     """Round for JSON: arrays to DIGITS decimals; NaN (a gap in a polyline, or None given) is
-    written as null by orjson."""
+    written as null by orjson. An array of symbols (a pose being generated, ``key_pose``) stays as it is."""
+    if symbolic(values):
+        return values
     return np.asarray(values, dtype=float).round(DIGITS)
+
+
+def symbolic(values) -> bool:
+    """An array of expressions (dtype object): the shapes below drawing a pose for solvers.live to
+    turn into the browser's code, not numbers."""
+    return isinstance(values, np.ndarray) and values.dtype == object
+
+
+def _array(values) -> np.ndarray:
+    if symbolic(values):
+        return values
+    try:
+        return np.asarray(values, dtype=float)
+    except TypeError:  # an expression (a pose being generated)
+        return np.asarray(values, dtype=object)
 
 
 # Shapes for every frame at once: each returns (x, y) arrays with one row per frame, rounded, which
@@ -96,7 +113,7 @@ _UNIT = {n: (np.cos(np.linspace(0, 2 * np.pi, n)), np.sin(np.linspace(0, 2 * np.
 def circles(cx, cy, radius: float, n: int = 32) -> tuple[np.ndarray, np.ndarray]:
     """Circles of one radius at many centres (one row each)."""
     c, s = _UNIT[n]
-    return r(np.asarray(cx, dtype=float)[:, None] + radius * c), r(np.asarray(cy, dtype=float)[:, None] + radius * s)
+    return r(_array(cx)[:, None] + radius * c), r(_array(cy)[:, None] + radius * s)
 
 
 def column(values) -> np.ndarray:
@@ -106,27 +123,26 @@ def column(values) -> np.ndarray:
 
 def segments(x0, y0, x1, y1) -> tuple[np.ndarray, np.ndarray]:
     """A straight segment per frame from (x0, y0) to (x1, y1); scalars stand for every frame."""
-    x0, x1, y0, y1 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x0, x1, y0, y1)))
+    x0, x1, y0, y1 = np.broadcast_arrays(*(_array(v) for v in (x0, x1, y0, y1)))
     return r(np.stack([x0, x1], axis=1)), r(np.stack([y0, y1], axis=1))
 
 
-def arrows(x0, y0, dx, dy, head: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+def arrows(x0, y0, dx, dy, head: float | None = None, xp=np) -> tuple[np.ndarray, np.ndarray]:
     """An arrow per frame as one polyline: shaft, a gap, then a V-shaped head (a quarter of the
-    length, at most 0.45 of it). A frame whose arrow has no length draws nothing."""
-    x0, y0, dx, dy = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float)) for v in (x0, y0, dx, dy)))
-    length = np.hypot(dx, dy)
-    none = length < 1e-12
-    h = np.minimum(0.25 * length if head is None else head, 0.45 * length)
+    length, at most 0.45 of it). A frame whose arrow has no length draws nothing. ``xp``: numpy, or
+    solvers.live's namespace for expressions (a pose being generated)."""
+    x0, y0, dx, dy = np.broadcast_arrays(*(np.atleast_1d(_array(v)) for v in (x0, y0, dx, dy)))
+    length = xp.hypot(dx, dy)
+    none = xp.less(length, 1e-12)
+    h = xp.minimum(0.25 * length if head is None else head, 0.45 * length)
     with np.errstate(invalid="ignore", divide="ignore"):
         ux, uy = dx / length, dy / length
     x1, y1 = x0 + dx, y0 + dy
     wing = 0.5
-    gap = np.full_like(x0, np.nan)
+    gap = np.full(x0.shape, np.nan, dtype=x0.dtype)
     xs = np.stack([x0, x1, gap, x1 - h * (ux - wing * uy), x1, x1 - h * (ux + wing * uy)], axis=1)
     ys = np.stack([y0, y1, gap, y1 - h * (uy + wing * ux), y1, y1 - h * (uy - wing * ux)], axis=1)
-    xs[none] = np.nan
-    ys[none] = np.nan
-    return r(xs), r(ys)
+    return r(xp.where(none[:, None], np.nan, xs)), r(xp.where(none[:, None], np.nan, ys))
 
 
 def joined(*polylines: tuple[np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
@@ -157,18 +173,21 @@ class Spirals(list):
         self.shape_of = shape_of
 
 
-def spiral_rows(inner: float, outer: float, turns, start, n: int) -> tuple[np.ndarray, np.ndarray]:
+def spiral_rows(inner: float, outer: float, turns, start, n: int, xp=np) -> tuple[np.ndarray, np.ndarray]:
     """Flat spirals about the origin, one row per frame: ``turns[i]`` turns from ``inner`` to
     ``outer`` radius, starting at angle ``start[i]`` (unrounded; ui/plotly_component draws the same)."""
     s = np.linspace(0.0, 1.0, n)[None, :]
-    phase = np.asarray(start, dtype=float)[:, None] + 2 * np.pi * np.asarray(turns, dtype=float)[:, None] * s
+    phase = _array(start)[:, None] + 2 * np.pi * _array(turns)[:, None] * s
     rad = inner + (outer - inner) * s
-    return rad * np.cos(phase), rad * np.sin(phase)
+    return rad * xp.cos(phase), rad * xp.sin(phase)
 
 
-def spirals(inner: float, outer: float, turns, start, n: int = 48) -> tuple[Spirals, Spirals]:
-    """Flat spirals about the origin (a torsional spring), one row per frame (at least 0.05 turn)."""
-    turns, start = np.broadcast_arrays(np.maximum(np.asarray(turns, dtype=float), 0.05), np.asarray(start, dtype=float))
+def spirals(inner: float, outer: float, turns, start, n: int = 48, xp=np) -> tuple[Spirals, Spirals]:
+    """Flat spirals about the origin (a torsional spring), one row per frame (at least 0.05 turn),
+    drawn from their turns and start rounded as sent."""
+    turns, start = np.broadcast_arrays(xp.maximum(_array(turns), 0.05), _array(start))
+    if symbolic(turns):  # a pose being generated: the same rows, as expressions
+        return spiral_rows(inner, outer, xp.rounded(turns), xp.rounded(start), n, xp)
     shape_of = {"inner": float(inner), "outer": float(outer), "turns": r(turns), "start": r(start), "n": n}
     x, y = spiral_rows(inner, outer, shape_of["turns"], shape_of["start"], n)
     return Spirals(r(x), shape_of), Spirals(r(y), shape_of)

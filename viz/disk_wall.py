@@ -23,7 +23,6 @@ def figures(solution, system: str = "si") -> list[Figure]:
     p, a = solution.params, solution.answers
     m = solver.motion(solution)
     R = p["R"]
-    scale = 1.6 * R / max(p["V"], a["speed1"])  # velocity arrows: the faster one is 1.6 R long
     x_lo, x_hi = padded(min(m["x"].min(), -2 * R) - R, max(m["x"].max(), 2 * R) + R)
     y_lo = min(m["y"].min(), -R) - 1.2 * R
     y_hi = m["wall_y"] + 0.8 * R
@@ -32,19 +31,14 @@ def figures(solution, system: str = "si") -> list[Figure]:
     foot = np.linspace(x_lo - wide, x_hi + wide, 168)
     hatch = line(*as_one(*segments(foot, m["wall_y"], foot + 0.25 * R, m["wall_y"] + 0.25 * R)),
                  "wall (hatched)", COLORS["ground"], width=1, show_legend=False)
-    x, y, angle = m["x"], m["y"], m["angle"]
-    impulse_scale = 1.6 * R / max(math.hypot(a["impulse_t"], a["impulse_n"]), 1e-12)
     at_impact = np.arange(len(m["t"])) == m["impact_index"]  # the impulse is drawn in that frame only
+    drawn = _bodies(m["x"], m["y"], m["angle"], m["vx"], m["vy"], at_impact, m["wall_y"], p, a)
     moving_traces = [
-        moving(line(None, None, "path of the centre", COLORS["trail"], width=2, dash="dot"), *trails(x, y)),
-        moving(line(None, None, "disk", COLORS["body"], width=3, fill="toself"), *circles(x, y, R)),
-        moving(line(None, None, "marked radius", COLORS["accent"], width=4),
-               *segments(x, y, x + R * np.cos(angle), y + R * np.sin(angle))),
-        moving(line(None, None, "velocity of the centre", COLORS["velocity"], width=3),
-               *arrows(x, y, m["vx"] * scale, m["vy"] * scale)),
-        moving(line(None, None, "impulse on the disk at B", COLORS["impulse"], width=5),
-               *arrows(0.0, m["wall_y"], at_impact * a["impulse_t"] * impulse_scale,
-                       at_impact * a["impulse_n"] * impulse_scale)),
+        moving(line(None, None, "path of the centre", COLORS["trail"], width=2, dash="dot"), *trails(m["x"], m["y"])),
+        moving(line(None, None, "disk", COLORS["body"], width=3, fill="toself"), *drawn["disk"]),
+        moving(line(None, None, "marked radius", COLORS["accent"], width=4), *drawn["marked radius"]),
+        moving(line(None, None, "velocity of the centre", COLORS["velocity"], width=3), *drawn["velocity of the centre"]),
+        moving(line(None, None, "impulse on the disk at B", COLORS["impulse"], width=5), *drawn["impulse on the disk at B"]),
     ]
     layout = base_layout(equal_axes=True, x_range=(x_lo, x_hi), y_range=(y_lo, y_hi),
                          x_title="x, along the wall (m)", y_title="y, toward the wall (m)")
@@ -62,3 +56,26 @@ def figures(solution, system: str = "si") -> list[Figure]:
     return [Figure("disk_wall_motion", "The impact, slowed down", spec, description, height=520,
                    key_frame=int(m["impact_index"]), key_caption="the impact: the wall's impulse on the disk at B",
                    headline=head)]
+
+
+def _bodies(x, y, angle, vx, vy, impulse_shown, wall_y, p, a, xp=np) -> dict:
+    """The disk, its marked radius and velocity at centres (x, y), angles and velocities (one per frame),
+    and the wall's impulse at B where ``impulse_shown`` (1 or 0 per frame)."""
+    R = p["R"]
+    scale = 1.6 * R / xp.maximum(p["V"], a["speed1"])  # velocity arrows: the faster one is 1.6 R long
+    impulse_scale = 1.6 * R / xp.maximum(xp.hypot(a["impulse_t"], a["impulse_n"]), 1e-12)
+    return {"disk": circles(x, y, R), "marked radius": segments(x, y, x + R * xp.cos(angle), y + R * xp.sin(angle)),
+            "velocity of the centre": arrows(x, y, vx * scale, vy * scale, xp=xp),
+            "impulse on the disk at B": arrows(0.0, wall_y, impulse_shown * a["impulse_t"] * impulse_scale,
+                                               impulse_shown * a["impulse_n"] * impulse_scale, xp=xp)}
+
+
+def key_pose(p, a, system: str = "si", xp=np) -> dict:
+    """The stage figure at its key instant, the impact: in the motion's frame (solvers.disk_wall.motion:
+    the impact at t = 0 with the centre at the origin, not yet turned, the wall at y = R), the disk
+    arriving at V along θ and the wall's impulse on it, each a (x, y) row (numpy for the figure,
+    solvers.live's symbols for the browser's drag)."""
+    zero = np.zeros(1) if isinstance(p["V"], (int, float)) else np.zeros(1, dtype=object)
+    drawn = _bodies(zero, zero, zero, p["V"] * xp.sin(p["theta"]) + zero, p["V"] * xp.cos(p["theta"]) + zero,
+                    zero + 1, p["R"], p, a, xp)
+    return {name: (x[0], y[0]) for name, (x, y) in drawn.items()}

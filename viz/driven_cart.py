@@ -26,35 +26,19 @@ def _animation(solution) -> Figure:
     p, a = solution.params, solution.answers
     m = solver.motion(solution)
     b, h = p["b"], p["a"]
-    wheel = min(0.3 * b, 0.6 * h)
-    body_bottom, body_top = 0.9 * wheel, max(2 * h, 2.2 * wheel)  # the CM (height a) inside the body
-    weight = p["m"] * p["g"]
-    force_scale = 1.2 * b / weight  # the whole weight mg would be drawn 1.2 b long
-    driven = {"front": (b,), "rear": (-b,), "all": (-b, b)}[p["drive"]]
-    traction_per_axle = a["F_drive"] / len(driven)
+    wheel, body_top, force_scale, driven, traction_per_axle = _sizes(p, a)
     x_end = m["x"][-1]
     ground = line(r([min(-b, min(driven) - traction_per_axle * force_scale) - 1.5 * wheel, x_end + b + 1.5 * wheel]),
                   [0, 0], "ground", COLORS["ground"], width=4)
-    x = m["x"]
-    frames = len(x)
-    spin = -x / wheel  # rolling: the wheels turn clockwise as the cart moves forward
-    corners = np.array([-b - wheel, b + wheel, b + wheel, -b - wheel, -b - wheel])
-    body = (r(x[:, None] + corners), r(np.tile([body_bottom, body_bottom, body_top, body_top, body_bottom], (frames, 1))))
-    wheels = joined(*(circles(x + xa, np.full(frames, wheel), wheel, 28) for xa in (-b, b)))
-    spokes = joined(*(segments(x + xa - wheel * np.cos(spin), wheel - wheel * np.sin(spin),
-                               x + xa + wheel * np.cos(spin), wheel + wheel * np.sin(spin)) for xa in (-b, b)))
-    normals = joined(*(arrows(x + xa, -2 * N * force_scale, 0.0, 2 * N * force_scale)
-                       for xa, N in ((-b, a["N_rear"]), (b, a["N_front"]))))
-    traction = joined(*(arrows(x + xa - traction_per_axle * force_scale, 0.0, traction_per_axle * force_scale, 0.0)
-                        for xa in driven))
+    drawn = _bodies(m["x"], p, a)
     moving_traces = [
-        moving(line(None, None, "cart body", COLORS["body"], width=3, fill="toself"), *body),
-        moving(line(None, None, "wheels", COLORS["ink"], width=3), *wheels),
-        moving(line(None, None, "marked spokes", COLORS["accent"], width=3), *spokes),
-        moving(points(None, None, "centre of mass", COLORS["marker"], size=12, symbol="circle-x"),
-               column(x), column(np.full(frames, h))),
-        moving(line(None, None, "normal force per axle (2N)", COLORS["force"], width=4), *normals),
-        moving(line(None, None, "traction at the driven wheels", COLORS["impulse"], width=4), *traction),
+        moving(line(None, None, "cart body", COLORS["body"], width=3, fill="toself"), *drawn["cart body"]),
+        moving(line(None, None, "wheels", COLORS["ink"], width=3), *drawn["wheels"]),
+        moving(line(None, None, "marked spokes", COLORS["accent"], width=3), *drawn["marked spokes"]),
+        moving(points(None, None, "centre of mass", COLORS["marker"], size=12, symbol="circle-x"), *drawn["centre of mass"]),
+        moving(line(None, None, "normal force per axle (2N)", COLORS["force"], width=4), *drawn["normal force per axle (2N)"]),
+        moving(line(None, None, "traction at the driven wheels", COLORS["impulse"], width=4),
+               *drawn["traction at the driven wheels"]),
     ]
     y_lo = -2 * max(a["N_rear"], a["N_front"]) * force_scale - 0.15 * b
     arrow_tail = min(xa for xa in driven) - traction_per_axle * force_scale  # the traction arrow's tail at rest
@@ -67,7 +51,47 @@ def _animation(solution) -> Figure:
                    f"each axle, {n(2 * a['N_rear'])} N at the rear and {n(2 * a['N_front'])} N at the front, drawn to "
                    "scale below the ground line; red: the traction. Acceleration moves load to the rear.")
     return Figure("cart_motion", "Accelerating from rest (forces to scale)", spec, description, height=440,
-                  key_frame=frames - 1, key_caption="under way: the forces are the same at every instant", headline=head)
+                  key_frame=0, key_caption="at the start: the forces are the same at every instant", headline=head)
+
+
+def _sizes(p, a, xp=np):
+    """The wheels' radius, the body's top, the forces' scale, the driven axles and each one's traction."""
+    b, h = p["b"], p["a"]
+    wheel = xp.minimum(0.3 * b, 0.6 * h)
+    body_top = xp.maximum(2 * h, 2.2 * wheel)  # the CM (height a) inside the body
+    force_scale = 1.2 * b / (p["m"] * p["g"])  # the whole weight mg would be drawn 1.2 b long
+    driven = {"front": (b,), "rear": (-b,), "all": (-b, b)}[p["drive"]]
+    return wheel, body_top, force_scale, driven, a["F_drive"] / len(driven)
+
+
+def _bodies(x, p, a, xp=np) -> dict:
+    """The cart with its centre at ``x`` (one per frame), its wheels rolling, and the forces on it to scale."""
+    b, h = p["b"], p["a"]
+    wheel, body_top, force_scale, driven, traction_per_axle = _sizes(p, a, xp)
+    frames = len(x)
+    one = np.ones(frames, dtype=x.dtype)
+    spin = -x / wheel  # rolling: the wheels turn clockwise as the cart moves forward
+    body_bottom = 0.9 * wheel
+    corners = np.array([-b - wheel, b + wheel, b + wheel, -b - wheel, -b - wheel])
+    body = (r(x[:, None] + corners), r(np.tile(np.array([body_bottom, body_bottom, body_top, body_top, body_bottom]), (frames, 1))))
+    wheels = joined(*(circles(x + xa, wheel * one, wheel, 28) for xa in (-b, b)))
+    c, s = xp.cos(spin), xp.sin(spin)
+    spokes = joined(*(segments(x + xa - wheel * c, wheel - wheel * s, x + xa + wheel * c, wheel + wheel * s) for xa in (-b, b)))
+    normals = joined(*(arrows(x + xa, -2 * N * force_scale * one, 0.0, 2 * N * force_scale * one, xp=xp)
+                       for xa, N in ((-b, a["N_rear"]), (b, a["N_front"]))))
+    traction = joined(*(arrows(x + xa - traction_per_axle * force_scale, 0.0, traction_per_axle * force_scale * one, 0.0, xp=xp)
+                        for xa in driven))
+    return {"cart body": body, "wheels": wheels, "marked spokes": spokes, "centre of mass": (column(x), column(h * one)),
+            "normal force per axle (2N)": normals, "traction at the driven wheels": traction}
+
+
+def key_pose(p, a, system: str = "si", xp=np) -> dict:
+    """The stage figure at its key instant, the start (x = 0: the forces are the same at every instant):
+    the cart, its wheels and the wheel loads and traction to scale, each a (x, y) row (numpy for the
+    figure, solvers.live's symbols for the browser's drag)."""
+    x = np.zeros(1) if isinstance(p["b"], (int, float)) else np.zeros(1, dtype=object)
+    drawn = _bodies(x, p, a, xp)
+    return {name: (xs[0], ys[0]) for name, (xs, ys) in drawn.items()}
 
 
 def _versus_mu(solution) -> Figure:

@@ -39,14 +39,10 @@ def _scatter3d(xyz, name, color, width=6, mode="lines", size=6):
 
 def _animation(solution) -> Figure:
     p, a = solution.params, solution.answers
-    m = solver.motion(solution)
+    m = solver.motion(solution, rim_points=RIM_POINTS)
     rad = p["r"] * MM
     slow = PLAY_SECONDS / a["period"]
-    circle_angles = np.linspace(0, 2 * np.pi, 60)
-    contact_circle = rad * math.cos(p["theta"])
-    table = _scatter3d(np.stack([contact_circle * np.cos(circle_angles), contact_circle * np.sin(circle_angles),
-                                 np.zeros_like(circle_angles)], axis=1), "path of the contact point",
-                       COLORS["trail"], width=4)
+    table = _scatter3d(np.stack(_contact_path(p), axis=1), "path of the contact point", COLORS["trail"], width=4)
     G = _scatter3d([np.asarray(m["G"]) * MM], "centre of mass G (at rest)", COLORS["ink"], mode="markers", size=5)
     def xyz(path):  # (frames, points, 3) -> one (frames, points) array per coordinate
         path = r(np.asarray(path) * MM)
@@ -92,6 +88,33 @@ def _animation(solution) -> Figure:
     return Figure("eulers_disk_motion", f"One precession, slowed down {slow:.0f}×", spec, description,
                   height=560, extra={"slow_motion": slow},
                   key_caption="the steady precession: every instant looks alike, turned about the vertical")
+
+
+RIM_POINTS = 36  # the rim drawn as a polygon of this many points (the last the first again)
+
+
+def _contact_path(p, xp=np):
+    """The contact point's circle on the table (mm): radius r cos θ about the origin."""
+    angles = np.linspace(0, 2 * np.pi, 60)
+    radius = p["r"] * MM * xp.cos(p["theta"])
+    return radius * np.cos(angles), radius * np.sin(angles), 0 * radius * angles
+
+
+def key_pose(p, a, system: str = "si", xp=np) -> dict:
+    """The stage figure at its key instant, its first frame (t = 0: every instant of the steady
+    precession looks alike, turned about the vertical): the disk tilted θ from the table (attitude
+    Rx(θ), before any precession or spin: solvers.eulers_disk.orientations at t = 0), its marked radius
+    along body x, the contact point at the rim's lowest point, G at height r sin θ and the contact's
+    circle, in mm, each an (x, y, z) row: numpy for the figure, solvers.live's symbols for the drag."""
+    r_, c, s = p["r"] * MM, xp.cos(p["theta"]), xp.sin(p["theta"])
+    angles = np.linspace(0.0, 2 * np.pi, RIM_POINTS)
+    height = r_ * s  # G above the origin
+    rim = (r_ * np.cos(angles), r_ * np.sin(angles) * c, r_ * np.sin(angles) * s + height)
+    drawn = {"disk rim": rim, "marked radius": (np.array([0 * r_, r_]), np.array([0 * r_, 0 * r_]), np.array([height, height])),
+            "contact point": (np.array([0 * r_]), np.array([-r_ * c]), np.array([height - r_ * s])),
+            "centre of mass G (at rest)": (np.array([0 * r_]), np.array([0 * r_]), np.array([height])),
+            "path of the contact point": _contact_path(p, xp)}
+    return {name: tuple(r(np.asarray(v)) for v in xyz) for name, xyz in drawn.items()}  # rounded as drawn
 
 
 def _versus_tilt(solution) -> Figure:

@@ -25,7 +25,6 @@ def figures(solution, system: str = "si") -> list[Figure]:
     m = solver.motion(solution)
     k = units.to_display(1.0, "length", system)  # lengths drawn in the page's unit
     L, rad = p["L"] * k, p["r"] * k
-    reach = L + 2 * rad
     u = units.unit("length", system)
     floor = p["surface"] == "floor"
     contact = ({"x": [0.0], "y": [-p["d"] * k]} if floor else {"x": [-rad], "y": [0.0]})  # where the surface is
@@ -35,19 +34,19 @@ def figures(solution, system: str = "si") -> list[Figure]:
                  xaxis="x2", yaxis="y2")  # dense, with a point at each impact: the cusps land on θ_I
     impact_line = line(r([m["t"][0], m["t"][-1]]), r([math.degrees(a["theta_impact"])] * 2),
                        "impact angle θ_I", COLORS["ground"], width=1, dash="dash", xaxis="x2", yaxis="y2")
-    v_scale = 0.35 * reach / max(abs(a["omega_impact"]) * (p["L"] + p["r"]), 1e-12)
-    theta = m["theta"]
-    c, s = np.cos(theta), np.sin(theta)
-    cx, cy = (L + rad) * c, (L + rad) * s
-    speed = m["omega"] * (p["L"] + p["r"])
+    first_impact = int(np.argmin(np.abs(m["t"] - m["impact_times"][0]))) if m["impact_times"] else 0
+    # The first impact's frame is drawn at the closed form's instant (the key pose, below): the same
+    # numbers the browser's generated pose gives while a control is dragged.
+    theta, omega = m["theta"].copy(), m["omega"].copy()
+    theta[first_impact], omega[first_impact] = a["theta_impact"], a["omega_impact"]
+    cx, cy = (L + rad) * np.cos(theta), (L + rad) * np.sin(theta)
+    drawn = _bodies(theta, omega, p, a, k)
     moving_traces = [
         moving(line(None, None, "path of the sphere", COLORS["trail"], width=2, dash="dot"), *trails(cx, cy, keep=25)),
-        moving(line(None, None, "rod", COLORS["ink"], width=5), *segments(0.0, 0.0, L * c, L * s)),
-        moving(line(None, None, "sphere", COLORS["body"], width=3, fill="toself"), *circles(cx, cy, rad)),
-        moving(line(None, None, "marked radius", COLORS["accent"], width=4),
-               *segments(cx, cy, cx - rad * s, cy + rad * c)),
-        moving(line(None, None, "velocity of the centre", COLORS["velocity"], width=3),
-               *arrows(cx, cy, -s * speed * v_scale * k, c * speed * v_scale * k)),
+        moving(line(None, None, "rod", COLORS["ink"], width=5), *drawn["rod"]),
+        moving(line(None, None, "sphere", COLORS["body"], width=3, fill="toself"), *drawn["sphere"]),
+        moving(line(None, None, "marked radius", COLORS["accent"], width=4), *drawn["marked radius"]),
+        moving(line(None, None, "velocity of the centre", COLORS["velocity"], width=3), *drawn["velocity of the centre"]),
         moving(points(None, None, "now", COLORS["impulse"], size=10, xaxis="x2", yaxis="y2"),
                column(m["t"]), column(theta_deg)),
     ]
@@ -71,10 +70,30 @@ def figures(solution, system: str = "si") -> list[Figure]:
                     f"the sphere strikes the {p['surface']} at θ_I = ", ("theta_impact", "deg", 1))
     description = (headline_text(head, {**p, **a}) + f", {_rebounds(p, a, solution.extras['bounce_peaks'])}. "
                    "Below: θ against time, with the impact angle dashed.")
-    first_impact = int(np.argmin(np.abs(m["t"] - m["impact_times"][0]))) if m["impact_times"] else 0
     return [Figure("pendulum_motion", "Release, bounce, rebound", spec, description, height=700,
                    key_frame=first_impact, key_caption=f"the first impact, at θ_I = {deg(a['theta_impact'])}",
                    headline=head)]
+
+
+def _bodies(theta, omega, p, a, k: float, xp=np) -> dict:
+    """The rod, the sphere, its marked radius and its velocity at angles ``theta`` and rates ``omega``
+    (one per frame), lengths drawn ``k`` times their SI value (the page's unit)."""
+    L, rad = p["L"] * k, p["r"] * k
+    c, s = xp.cos(theta), xp.sin(theta)
+    cx, cy = (L + rad) * c, (L + rad) * s
+    v_scale = 0.35 * (L + 2 * rad) / xp.maximum(xp.abs(a["omega_impact"]) * (p["L"] + p["r"]), 1e-12)
+    speed = omega * (p["L"] + p["r"])
+    return {"rod": segments(0.0, 0.0, L * c, L * s), "sphere": circles(cx, cy, rad),
+            "marked radius": segments(cx, cy, cx - rad * s, cy + rad * c),
+            "velocity of the centre": arrows(cx, cy, -s * speed * v_scale * k, c * speed * v_scale * k, xp=xp)}
+
+
+def key_pose(p, a, system: str = "si", xp=np) -> dict:
+    """The stage figure's moving bodies at its key instant, the first impact (θ = θ_I, θ̇ = θ̇_I⁻),
+    each a (x, y) row: numpy for the figure, solvers.live's symbols for the browser's drag."""
+    drawn = _bodies(np.array([a["theta_impact"]]), np.array([a["omega_impact"]]), p, a,
+                    units.to_display(1.0, "length", system), xp)
+    return {name: (x[0], y[0]) for name, (x, y) in drawn.items()}
 
 
 def _rebounds(p, a, peaks) -> str:

@@ -8,7 +8,7 @@ import numpy as np
 from solvers import rod_disk_spring as solver
 from solvers.core import plain_fixed, plain_number as n
 from viz.common import (COLORS, Figure, headline, headline_text, animated, base_layout, circles, fitted, line, moving, points, r, segments,
-                         spirals, thumbnail)
+                         spirals, symbolic, thumbnail)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     f'<path d="M70,60 m-10,0 a10,10 0 1 0 20,0 a14,14 0 1 0 -28,0 a18,18 0 1 0 36,0" fill="none" stroke="{COLORS["force"]}" stroke-width="2"/>'
@@ -20,30 +20,23 @@ THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
 
 def figures(solution, system: str = "si") -> list[Figure]:
     p, a = solution.params, solution.answers
-    m = solver.motion(solution)
-    L, R = p["L"], p["R"]
-    reach = L + 2 * R
-    coil = min(0.16 * reach, 0.8 * L)  # the spring's outer radius: clear of the disk, which starts at L
+    m, at_theta2 = _with_theta2(solver.motion(solution), p["theta2"])
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
-    theta2_mark = line(r([0, reach * 1.05 * math.sin(p["theta2"])]), r([0, reach * 1.05 * math.cos(p["theta2"])]),
-                       "θ₂", COLORS["ground"], width=1, dash="dash")
     top = float(max((m["kinetic"] + m["gravity"] + m["spring"]).max(), 1e-9))
     theta = m["theta"]
-    s, c = np.sin(theta), np.cos(theta)
-    cx, cy = (L + R) * s, (L + R) * c
-    spin = theta if p["disk"] == "welded" else np.zeros_like(theta)  # a pinned disk keeps its orientation
+    drawn = _bodies(theta, p)
+    theta2_mark = line(*(row[0] for row in drawn.pop("θ₂")), "θ₂", COLORS["ground"], width=1, dash="dash")
     energy = r(np.stack([m["kinetic"], m["gravity"], m["spring"]], axis=1))
     bars = {"type": "bar", "x": ["kinetic", "gravity", "spring"],
             "marker": {"color": [COLORS["velocity"], COLORS["body"], COLORS["force"]]},
             "name": "energy (J)", "xaxis": "x2", "yaxis": "y2", "showlegend": False, "hoverinfo": "skip"}
     spring = [moving(line(None, None, "torsional spring", COLORS["force"], width=2),
-                     *spirals(0.25 * coil, coil, 1.5 + theta / (2 * math.pi), math.pi / 2 - theta))] * (p["k"] > 0)
+                     *drawn["torsional spring"])] * (p["k"] > 0)
     moving_traces = [
         *spring,  # k = 0: there is no spring to draw
-        moving(line(None, None, "rod", COLORS["ink"], width=5), *segments(0.0, 0.0, L * s, L * c)),
-        moving(line(None, None, "disk", COLORS["body"], width=3, fill="toself"), *circles(cx, cy, R)),
-        moving(line(None, None, "marked radius", COLORS["accent"], width=4),
-               *segments(cx, cy, cx + R * np.sin(spin), cy + R * np.cos(spin))),
+        moving(line(None, None, "rod", COLORS["ink"], width=5), *drawn["rod"]),
+        moving(line(None, None, "disk", COLORS["body"], width=3, fill="toself"), *drawn["disk"]),
+        moving(line(None, None, "marked radius", COLORS["accent"], width=4), *drawn["marked radius"]),
         moving(bars, y=energy),
     ]
     # The stage fits the motion (the pivot, the spring, the rod and the disk over every frame) and the θ₂ mark.
@@ -61,10 +54,55 @@ def figures(solution, system: str = "si") -> list[Figure]:
     description = (headline_text(head, {**p, **a}) + f" {_release(p, m)}, it falls, {_after(p, m)}. "
                    "Bars: kinetic, gravitational (zero hanging straight down) and spring energy; their sum stays "
                    "constant.")
-    at_theta2 = int(np.argmax(theta >= p["theta2"])) if (theta >= p["theta2"]).any() else len(theta) - 1
     return [Figure("rod_disk_spring_motion", "The fall and the swing back, with the energy", spec, description,
                    height=700, key_frame=at_theta2,
                    key_caption=f"passing θ₂ = {deg(p['theta2'])}, where the speed is asked for", headline=head)]
+
+
+def _with_theta2(m: dict, theta2: float) -> tuple[dict, int]:
+    """The frames with one at θ₂ itself, where the falling rod first passes it (the key instant: the
+    pose the browser's generated code draws while a control is dragged), between the frames either
+    side of it (its time and energies interpolated between theirs); and that frame's index."""
+    theta = m["theta"]
+    reached = theta >= theta2
+    if not reached.any():
+        return m, len(theta) - 1
+    i = int(np.argmax(reached))
+    if theta[i] == theta2 or i == 0:
+        return {**m, "theta": np.where(np.arange(len(theta)) == i, theta2, theta)}, i
+    w = (theta2 - theta[i - 1]) / (theta[i] - theta[i - 1])
+    per_frame = [k for k, v in m.items() if isinstance(v, np.ndarray) and v.shape == theta.shape]
+    out = {**m, **{k: np.insert(m[k], i, m[k][i - 1] + w * (m[k][i] - m[k][i - 1])) for k in per_frame}}
+    out["theta"][i] = theta2
+    return out, i
+
+
+def _bodies(theta, p, xp=np) -> dict:
+    """The spring, the rod, the disk and its marked radius at angles ``theta`` (one per frame), and
+    the dashed θ₂ mark."""
+    L, R = p["L"], p["R"]
+    reach = L + 2 * R
+    coil = xp.minimum(0.16 * reach, 0.8 * L)  # the spring's outer radius: clear of the disk, which starts at L
+    s, c = xp.sin(theta), xp.cos(theta)
+    cx, cy = (L + R) * s, (L + R) * c
+    spin = theta if p["disk"] == "welded" else 0 * theta  # a pinned disk keeps its orientation
+    mark = 1.05 * reach * np.ones(1)
+    return {"torsional spring": spirals(0.25 * coil, coil, 1.5 + theta / (2 * math.pi), math.pi / 2 - theta, xp=xp),
+            "rod": segments(0.0, 0.0, L * s, L * c), "disk": circles(cx, cy, R),
+            "marked radius": segments(cx, cy, cx + R * xp.sin(spin), cy + R * xp.cos(spin)),
+            "θ₂": segments(0.0, 0.0, mark * xp.sin(p["theta2"]), mark * xp.cos(p["theta2"]))}
+
+
+def key_pose(p, a, system: str = "si", xp=np) -> dict:
+    """The stage figure at its key instant, passing θ₂: the spring (if any), rod, disk, its marked radius
+    and the θ₂ mark, each a (x, y) row (numpy for the figure, solvers.live's symbols for the drag)."""
+    drawn = _bodies(np.array([p["theta2"]]), p, xp)
+    x, y = drawn.pop("torsional spring")
+    if symbolic(x):  # the browser's: drawn where k > 0 only, as the figure is
+        drawn["torsional spring"] = tuple(xp.where(xp.less(-p["k"] + 0 * v, 0), v, np.nan) for v in (x, y))
+    elif p["k"] > 0:
+        drawn["torsional spring"] = (x, y)
+    return {name: (x[0], y[0]) for name, (x, y) in drawn.items()}
 
 
 def deg(angle: float) -> str:

@@ -34,29 +34,31 @@ def figures(solution, system: str = "si") -> list[Figure]:
 def _animation(solution, m) -> Figure:
     p, a = solution.params, solution.answers
     L = p["L"]
-    th = m["theta"]
-    away = np.stack([np.sin(th), np.cos(th)], axis=1) * THICKNESS * L  # the strip's offset, away from the corner
-    xs = np.stack([m["x_A"], m["x_B"], m["x_B"] + away[:, 0], m["x_A"] + away[:, 0], m["x_A"]], axis=1)
-    ys = np.stack([m["y_A"], m["y_B"], m["y_B"] + away[:, 1], m["y_A"] + away[:, 1], m["y_A"]], axis=1)
+    k = m["leave_frame"]
+    # The frame where the top leaves the wall is drawn at the closed form's instant (θ_leave, G on its
+    # circle about the corner): the key pose the browser's generated code draws while a control is dragged.
+    th, x_G, y_G = (m[name].copy() for name in ("theta", "x_G", "y_G"))
+    th[k], x_G[k], y_G[k] = _leaving(p, a)
+    drawn = _bodies(th, x_G, y_G, L)
+    xs = drawn["ladder"][0]
     x_far = float(max(np.max(xs), L)) * 1.08
     band = 0.1 * L
     force_scale = 0.4 * L / (p["m"] * p["g"])  # the weight mg would be drawn 0.4 L long
     at_frames = np.interp(m["t"], m["curve_t"], m["N_wall"]), np.interp(m["t"], m["curve_t"], m["N_floor"])
-    wall_arrow = arrows(-at_frames[0] * force_scale, m["y_A"], at_frames[0] * force_scale, 0.0)
-    floor_arrow = arrows(m["x_B"], -at_frames[1] * force_scale, 0.0, at_frames[1] * force_scale)
-    k = m["leave_frame"]
+    x_A, y_A, x_B, _ = _ends(th, x_G, y_G, L)
+    wall_arrow = arrows(-at_frames[0] * force_scale, y_A, at_frames[0] * force_scale, 0.0)
+    floor_arrow = arrows(x_B, -at_frames[1] * force_scale, 0.0, at_frames[1] * force_scale)
     far = 10 * x_far  # the wall and the floor run on beyond the view, however the equal axes widen it
     static = [
         line(r([-far, 0, 0, far, far, -far, -far]), r([far, far, 0, 0, -far, -far, far]), "smooth wall and floor",
              COLORS["ground"], width=1, fill="toself"),
         line(r(m["x_G"]), r(m["y_G"]), "path of G", COLORS["accent"], width=2, dash="dot"),
-        line(r([m["x_A"][k], m["x_B"][k]]), r([m["y_A"][k], m["y_B"][k]]), "where the top leaves the wall",
+        line(*(row[k] for row in drawn["where the top leaves the wall"]), "where the top leaves the wall",
              COLORS["impulse"], width=2, dash="dash"),
     ]
     moving_traces = [
-        moving(line(None, None, "ladder", COLORS["body"], width=1, fill="toself"), r(xs), r(ys)),
-        moving(points(None, None, "G", COLORS["marker"], size=11, symbol="circle-x", show_legend=False),
-               column(m["x_G"]), column(m["y_G"])),
+        moving(line(None, None, "ladder", COLORS["body"], width=1, fill="toself"), *drawn["ladder"]),
+        moving(points(None, None, "G", COLORS["marker"], size=11, symbol="circle-x", show_legend=False), *drawn["G"]),
         moving(line(None, None, "wall's push N_A", COLORS["force"], width=4), *wall_arrow),
         moving(line(None, None, "floor's push N_B", COLORS["velocity"], width=4), *floor_arrow),
     ]
@@ -75,6 +77,39 @@ def _animation(solution, m) -> Figure:
     return Figure("sliding_ladder_motion", "Sliding down, leaving the wall, landing flat", spec, description,
                   height=560, key_frame=k, key_caption="the top leaves the wall, at two-thirds of its initial height",
                   headline=head)
+
+
+def _ends(th, x_G, y_G, L, xp=np):
+    """The top A (on the wall's side) and the foot B of a ladder with centre G at angle θ from the floor."""
+    c, s = xp.cos(th), xp.sin(th)
+    return x_G - L / 2 * c, y_G + L / 2 * s, x_G + L / 2 * c, y_G - L / 2 * s
+
+
+def _leaving(p, a, xp=np):
+    """θ and G where the top leaves the wall: G still on its circle of radius L/2 about the corner."""
+    th = a["theta_leave"]
+    return th, p["L"] / 2 * xp.cos(th), p["L"] / 2 * xp.sin(th)
+
+
+def _bodies(th, x_G, y_G, L, xp=np) -> dict:
+    """The ladder (a strip THICKNESS × L wide on the side away from the corner, its edge through A and
+    B the modelled rod), G, and the ladder's edge as a line, at angles θ and centres G (one per frame)."""
+    x_A, y_A, x_B, y_B = _ends(th, x_G, y_G, L, xp)
+    away_x, away_y = xp.sin(th) * THICKNESS * L, xp.cos(th) * THICKNESS * L  # away from the corner
+    xs = np.stack([x_A, x_B, x_B + away_x, x_A + away_x, x_A], axis=1)
+    ys = np.stack([y_A, y_B, y_B + away_y, y_A + away_y, y_A], axis=1)
+    return {"ladder": (r(xs), r(ys)), "G": (column(x_G), column(y_G)),
+            "where the top leaves the wall": (r(np.stack([x_A, x_B], axis=1)), r(np.stack([y_A, y_B], axis=1)))}
+
+
+def key_pose(p, a, system: str = "si", xp=np) -> dict:
+    """The stage figure at its key instant, the top leaving the wall: the ladder, G and the dashed line
+    where it leaves, each a (x, y) row (numpy for the figure, solvers.live's symbols for the browser's
+    drag). The reactions there are the integration's (the wall's is zero, the floor's not a closed
+    form here): those arrows wait, dimmed."""
+    th, x_G, y_G = (np.array([v]) for v in _leaving(p, a, xp))
+    drawn = _bodies(th, x_G, y_G, p["L"], xp)
+    return {name: (x[0], y[0]) for name, (x, y) in drawn.items()}
 
 
 def _reactions(solution, m) -> Figure:

@@ -25,13 +25,13 @@ def figures(solution, system: str = "si") -> list[Figure]:
     x_range, y_range = padded(xs.min() - ball_r, xs.max() + ball_r), padded(ys.min() - ball_r, ys.max() + ball_r)
     cm_path = line(r(m["cm"][0]), r(m["cm"][1]), "path of the combined CM (straight)", COLORS["velocity"],
                    width=2, dash="dash")
+    drawn = _bodies(m["bottom"], m["top"], m["ball"], m["mid"], m["cm"], ball_r)
     moving_traces = [
         moving(line(None, None, "trail of the stick's end", COLORS["trail"], width=2, dash="dot"), *trails(*m["top"])),
-        moving(line(None, None, "stick", COLORS["body"], width=7), *segments(*m["bottom"], *m["top"])),
-        moving(line(None, None, "ball", COLORS["impulse"], width=2, fill="toself"), *circles(*m["ball"], ball_r, 24)),
-        moving(points(None, None, "stick's midpoint", COLORS["ink"], size=7), column(m["mid"][0]), column(m["mid"][1])),
-        moving(points(None, None, "combined CM", COLORS["marker"], size=12, symbol="circle-x"),
-               column(m["cm"][0]), column(m["cm"][1])),
+        moving(line(None, None, "stick", COLORS["body"], width=7), *drawn["stick"]),
+        moving(line(None, None, "ball", COLORS["impulse"], width=2, fill="toself"), *drawn["ball"]),
+        moving(points(None, None, "stick's midpoint", COLORS["ink"], size=7), *drawn["stick's midpoint"]),
+        moving(points(None, None, "combined CM", COLORS["marker"], size=12, symbol="circle-x"), *drawn["combined CM"]),
     ]
     layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range)
     spec = animated([cm_path], moving_traces, m["t"], layout)
@@ -41,6 +41,28 @@ def figures(solution, system: str = "si") -> list[Figure]:
     impact = int(np.argmin(np.abs(m["t"])))  # the impact is at t = 0
     return [Figure("stick_ball_motion", "Impact, then free motion (top view)", spec, description, height=520,
                    key_frame=impact, key_caption="the impact: the ball meets the stick", headline=head)]
+
+
+def _bodies(bottom, top, ball, mid, cm, ball_r) -> dict:
+    """The stick from its bottom to its top end, the ball (its centre), the stick's midpoint and the
+    combined centre of mass, each an (x, y) pair with one value per frame."""
+    return {"stick": segments(*bottom, *top), "ball": circles(*ball, ball_r, 24),
+            "stick's midpoint": (column(mid[0]), column(mid[1])), "combined CM": (column(cm[0]), column(cm[1]))}
+
+
+def key_pose(p, a, system: str = "si", xp=np) -> dict:
+    """The stage figure at its key instant, the impact, in the motion's frame (solvers.stick_ball.motion:
+    the stick along y at x = 0, its midpoint at the origin, the ball's front touching it at y = s; when
+    the ball attaches, the combined centre of mass at d_cm along the stick), each a (x, y) row: numpy
+    for the figure, solvers.live's symbols for the browser's drag. (After a bounce the combined centre
+    is the model's mass average, not a live value: that marker waits, dimmed.)"""
+    one = np.ones(1) if isinstance(p["l"], (int, float)) else np.ones(1, dtype=object)
+    zero, rho = 0 * one, solver.BALL_RADIUS * p["l"]
+    drawn = _bodies((zero, -p["l"] / 2 * one), (zero, p["l"] / 2 * one), (zero - rho, p["s"] * one), (zero, zero),
+                    (zero, a["d_cm"] * one) if p["mode"] == "stick" else (zero, zero), rho)
+    if p["mode"] != "stick":
+        del drawn["combined CM"]
+    return {name: (x[0], y[0]) for name, (x, y) in drawn.items()}
 
 
 def _after(p, a, m) -> str:

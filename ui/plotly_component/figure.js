@@ -90,6 +90,8 @@ class Figure {
     this.root.className = "dl-figure";
     this.root.tabIndex = -1;  // a click on the figure gives it the keys; no extra tab stop
     this.root.innerHTML = HTML;
+    this.root.dlFigure = this;  // for ui/plotly_component/live.js: the pose at the key instant while a control is dragged
+    this.held = null;  // (the frame shown before, while held at the key instant)
     parent.appendChild(this.root);
     const $ = (c) => this.root.querySelector(c);
     this.title = $(".dl-title");
@@ -158,27 +160,40 @@ class Figure {
   // animation frame; the graph's data follow, so a later redraw (a resize) shows the same frame.
   // False where plotly.js's scene is not as expected: then plotly's own animate draws it.
   sceneFrame(index) {
-    const scene = this.graph._fullLayout && this.graph._fullLayout.scene && this.graph._fullLayout.scene._scene;
     const frame = this.frames[index];
-    if (!scene || !scene.glplot || !scene.traces || !frame) return false;
-    const targets = frame.traces.map((t) => {
+    return !!frame && this.sceneUpdate(frame.traces, frame.data);
+  }
+  sceneUpdate(traces, data) {
+    const scene = this.graph._fullLayout && this.graph._fullLayout.scene && this.graph._fullLayout.scene._scene;
+    if (!scene || !scene.glplot || !scene.traces) return false;
+    const targets = traces.map((t) => {
       const full = (this.graph._fullData || [])[t];
       const object = full && scene.traces[full.uid];
       return object && typeof object.update === "function" ? [t, full, object] : null;
     });
     if (targets.some((target) => !target)) return false;
     targets.forEach(([t, full, object], n) => {
-      for (const k of ["x", "y", "z"]) if (frame.data[n][k]) full[k] = this.graph.data[t][k] = frame.data[n][k];
+      for (const k of ["x", "y", "z"]) if (data[n][k]) full[k] = this.graph.data[t][k] = data[n][k];
       object.update(full);
     });
     scene.glplot.redraw();
     return true;
   }
+  // Traces drawn at these coordinates at once (live.js: the bodies at the key instant while a lesson
+  // control is dragged): a 3-D scene's in place, anything else through plotly's animate, given every
+  // moving trace (it redraws only the subplots of the traces it gets, and empties the others).
+  pose(traces, data) {
+    if (this.sceneUpdate(traces, data)) return Promise.resolve();
+    const others = (this.frames[0] ? this.frames[0].traces : []).filter((t) => !traces.includes(t));
+    return this.Plotly.animate(this.graph, {data: [...data, ...others.map((t) => ({x: this.graph.data[t].x, y: this.graph.data[t].y}))],
+                                            traces: [...traces, ...others]},
+                               {mode: "immediate", frame: {duration: 0, redraw: false}, transition: {duration: 0}});
+  }
   // Play keeps the animation's stated time (frames × frame time): each animation frame of the
   // browser draws the frame due at that moment, and a frame whose time has passed while the last
   // one was drawn is skipped. A slow machine drops frames, not time.
   play() {
-    if (!this.frameNames.length) return;
+    if (!this.frameNames.length || this.held) return;  // held at its key instant while a control is dragged
     const last = this.frameNames.length - 1, frameMs = Number(this.graph.dataset.frameMs || 60);
     const from = this.frameIndex >= last ? 0 : this.frameIndex;
     const start = performance.now() - from * frameMs, seq = ++this.playSeq;
@@ -206,6 +221,39 @@ class Figure {
     this.playing = false;
     this.playSeq++;
   }
+  // Held while a lesson control is dragged: paused (Play waits). live.js then shows the key frame with
+  // the traces ``dimmed`` (one redraw) and moves its bodies there; on release the frame shown before and
+  // every trace's own opacity come back, again in one redraw (none if the key frame was never shown).
+  hold() {
+    if (this.held) return;
+    this.pause();
+    this.held = {frame: this.frameIndex, shown: false};
+  }
+  showHeld(dimmed, opacity) {
+    if (!this.held || this.held.shown) return Promise.resolve();
+    this.held.shown = true;
+    return this.restyleFrame(this.keyFrame, dimmed.map(() => opacity), dimmed);
+  }
+  release() {
+    const held = this.held;
+    this.held = null;
+    if (held && held.shown) quiet(this.restyleFrame(held.frame, this.graph.data.map(() => null), this.graph.data.map((_, i) => i)));
+  }
+  // Frame ``index``'s moving traces, and these traces' opacities, in one restyle.
+  restyleFrame(index, opacities, traces) {
+    const frame = this.frames[index];
+    if (!frame) return Promise.resolve();
+    const all = [...new Set([...frame.traces, ...traces])], update = {opacity: all.map((t) => {
+      const n = traces.indexOf(t);
+      return n < 0 ? undefined : opacities[n];
+    })};
+    for (const [n, d] of frame.data.entries())
+      for (const k of Object.keys(d)) if (k !== "type") (update[k] ??= all.map(() => undefined))[all.indexOf(frame.traces[n])] = d[k];
+    this.frameIndex = index;
+    this.showTime(index);
+    return this.Plotly.restyle(this.graph, update, all);
+  }
+
 
   // The motion on the stage (ui/page.py) fills what is left of the first screen below its top, so
   // the whole figure and its Play button show without scrolling (the page's scroll offset is added
@@ -275,6 +323,7 @@ class Figure {
       layout.margin.b = Math.min(layout.margin.b, Math.ceil(axisRoom(layout, (layout.yaxis2 ? layout.xaxis2 : layout.xaxis) || {})));
     applied(layout, stacked(layout, plotHeight(layout)));
     this.pause();
+    this.held = null;
     this.printing = false;
     // One update in place: data, layout and the frames replaced together (no new plot).
     await Plotly.react(this.graph, {data: spec.data, layout: layout, frames: frames,

@@ -19,7 +19,9 @@
 const STYLE = `
 .dl-live-stale { opacity: 0.35 !important; transition: none; }  /* over the caption's own .75 */
 .dl-figure { position: relative; }
-.dl-live-badge { position: absolute; top: 0; left: 0; right: 0; z-index: 5; font-size: 1rem; padding: 0.15em 0.6em; margin: 0 0 0.3rem 0; border-radius: 0.4em;
+/* one line over the figure's title, clear of Play below it (a long note is cut short: …) */
+.dl-live-badge { position: absolute; top: 0; left: 0; right: 0; z-index: 5; font-size: 1rem; line-height: 1.35; padding: 0.05em 0.6em; margin: 0 0 0.3rem 0; border-radius: 0.4em;
+  white-space: nowrap; overflow: hidden; text-overflow: ellipsis;
   background: var(--st-orange-background-color, #FFF3E0); color: var(--st-orange-text-color, #9B4519); }
 .dl-live-badge .dl-live-note { font-size: 0.8rem; margin-left: 0.6em; opacity: 0.9; }
 .dl-live-status { font-size: 0.95rem; margin: 0 0 0.5rem 0; color: var(--st-orange-text-color, #9B4519); font-weight: 600; }
@@ -35,6 +37,9 @@ const STYLE = `
   .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: -2px; width: 44px; height: 44px; padding: 0;
     font-size: 1.4rem; line-height: 1; border-radius: 0.5rem; cursor: pointer; touch-action: manipulation;
     border: 1px solid rgba(128, 128, 128, 0.6); background: rgba(128, 128, 128, 0.12); color: inherit; }  /* the theme's text, light or dark */
+  /* the track's end values in the room up to the −/+ (a half-width track is too short for both at full size) */
+  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: -6px; margin-right: -6px; }
+  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] p { font-size: 0.75rem; }
   .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: 0; }
   .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: 0; }
 }
@@ -112,6 +117,25 @@ export function headlineText(parts, values, groupedBelow) {
   return text;
 }
 
+// numpy's round(x, digits), as viz.common.r rounds every coordinate a figure draws: x·10^digits to the
+// nearest integer, a tie to even (Math.round breaks a tie upward), then divided back.
+export function roundedLike(x, digits) {
+  if (x === null || !Number.isFinite(x)) return null;  // a gap (NaN) in a polyline
+  const scale = 10 ** digits, y = x * scale, floor = Math.floor(y), rest = y - floor;
+  const whole = rest > 0.5 || (rest === 0.5 && floor % 2 !== 0) ? floor + 1 : floor;
+  return whole / scale;
+}
+
+// A generated pose (solvers/live.pose_source: trace -> [xs, ys]) for parameters ``p`` and the live
+// values, rounded as the figure's own coordinates are; null where an input is missing.
+export function poseOf(fn, p, values, digits) {
+  const drawn = fn(p, values, (x) => roundedLike(x, digits));
+  if (!drawn) return null;
+  const out = {};
+  for (const [name, rows] of Object.entries(drawn)) out[name] = rows.map((row) => row.map((x) => roundedLike(x, digits)));
+  return out;
+}
+
 // The generated function from its source (made by solvers/live.py on the server, never from anything
 // typed), loaded as a module: in the page from a blob (the app's Content-Security-Policy allows blob:
 // scripts, not eval), in node (tests/test_live.py) from a data: URL.
@@ -124,6 +148,14 @@ export function load(source) {
       : "data:text/javascript," + encodeURIComponent(text);
     loadedFunctions.set(source, fn = import(url).then((m) => m.default));
   }
+  return fn;
+}
+
+// A generated module served by the app (ui/figure.generated_module: a figure's pose), by its path.
+const loadedModules = new Map();
+function loadModule(path) {
+  let fn = loadedModules.get(path);
+  if (!fn) loadedModules.set(path, fn = import(new URL(path, location.href).href).then((m) => m.default));
   return fn;
 }
 
@@ -144,8 +176,8 @@ const answersTable = () => document.querySelector(".dl-text.dl-answers table");
 function staleParts() {
   const answers = document.querySelector(".dl-text.dl-answers");
   const own = answers ? [answers.querySelector("h3"), answersTable(), answers.querySelector(".dl-live-status")] : [];
-  const caption = state.caption && state.caption.el;
-  return [...$$(".dl-figure > :not(.dl-live-badge)").filter((el) => el !== caption), ...(answers ? [...answers.children].filter((el) => !own.includes(el)) : []),
+  const caption = state.caption && state.caption.el, posed = state.pose && state.pose.fig.graph;
+  return [...$$(".dl-figure > :not(.dl-live-badge)").filter((el) => el !== caption && el !== posed), ...(answers ? [...answers.children].filter((el) => !own.includes(el)) : []),
           ...$$(".dl-text.dl-derivation")];
 }
 
@@ -177,6 +209,7 @@ function begin() {
   state.live = true;
   document.body.classList.add("dl-live-dragging");
   liveCaption();
+  holdPose();
   for (const el of staleParts()) el.classList.add("dl-live-stale");
   const fig = document.querySelector(".st-key-dl_stage .dl-figure");
   // Over the figure's title, not dimmed with it, and taking no room: nothing under the finger moves.
@@ -184,7 +217,7 @@ function begin() {
     const badge = Object.assign(document.createElement("p"), {className: "dl-live-badge"});
     badge.append(Object.assign(document.createElement("strong"), {className: "dl-live-headline"}),
                  Object.assign(document.createElement("span"), {className: "dl-live-said"}),
-                 Object.assign(document.createElement("span"), {className: "dl-live-note", textContent: "the motion is updating…"}));
+                 Object.assign(document.createElement("span"), {className: "dl-live-note", textContent: MOTION_UPDATING}));
     fig.prepend(badge);
   }
 }
@@ -211,10 +244,90 @@ function drawCaption(params, result) {
   if (head.textContent !== shown) head.textContent = shown;
 }
 
+// ------------------------------------------------------------------ the figure's pose at its key instant
+// The stage figure's moving bodies at its key instant (the impact, θ₂…) follow the drag: the viz
+// module's own key_pose, generated for the browser (solvers/live.pose_source: never typed here),
+// evaluated with the live values and rounded as the figure's coordinates are. While a drag lasts the
+// figure is paused at its key frame (Play waits), those traces are moved there (figure.js: pose, the
+// path Play takes), every other trace (a trail, the plots against time, the surfaces) is dimmed, and
+// the axes keep their ranges (a pose leaving them is clipped). Outside the run's regime, or before the
+// generated code is here, the whole graph is dimmed as "updating…", never shown as if it were live.
+const MOTION_UPDATING = "the motion is updating…";
+const POSE_LIVE = "key instant live · the motion is updating…";
+const DIMMED = 0.3;
+
+function stageFigure() {
+  const el = document.querySelector(".st-key-dl_stage .dl-figure");
+  return el && el.dlFigure && el.dlFigure.Plotly && el.dlFigure.frames.length ? el.dlFigure : null;
+}
+
+function holdPose() {
+  const fig = state.data.pose && stageFigure();
+  if (!fig) return;
+  fig.hold();  // paused (Play waits); its key frame is shown with the first live pose
+  const names = fig.graph.data.map((t) => t.name);
+  state.pose = {fig, drawn: fig.current, names, live: null, traces: null};
+}
+
+function drawPose(params, result) {
+  const pose = state.pose;
+  if (!pose || pose.fig.current !== pose.drawn) return;
+  let drawn = state.poseFn && result.regime === state.regime && result.values
+    ? poseOf(state.poseFn, params, result.values, state.data.pose.digits) : null;
+  // a body the server's figure does not have (a spring where the run had none): not drawn, unless it shows
+  if (drawn) for (const [name, rows] of Object.entries(drawn)) if (!pose.names.includes(name)) {
+    if (rows.some((row) => row.some((v) => v !== null))) { drawn = null; break; }
+    delete drawn[name];
+  }
+  const live = drawn !== null;
+  if (live !== pose.live) {
+    pose.live = live;
+    pose.fig.graph.classList.toggle("dl-live-stale", !live);
+    setText(".dl-live-note", live ? POSE_LIVE : MOTION_UPDATING);
+  }
+  if (!live) return;
+  if (!pose.traces) {  // the posed traces, and the others dimmed
+    pose.traces = Object.keys(drawn).map((name) => pose.names.indexOf(name));
+    const others = pose.names.map((_, i) => i).filter((i) => !pose.traces.includes(i));
+    // the key frame with the others dimmed, in one redraw, before any pose is drawn (plotly's animate while
+    // a restyle redraws loses the other subplot's traces)
+    pose.ready = pose.fig.showHeld(others, DIMMED);
+  }
+  // Only a changed pose is drawn, and none while a key burst is committed (its step back and forth):
+  // plotly's animate then would delay the page's rendering of the run that follows.
+  const key = JSON.stringify(drawn);
+  if (key === pose.key || performance.now() - committing < 200) return;
+  pose.key = key;
+  pose.next = Object.values(drawn).map(([x, y, z]) => (z ? {x, y, z} : {x, y}));
+  if (pose.waiting) return;  // one pose drawn at a time, the newest
+  pose.waiting = true;
+  // after this frame is painted: the answers first, the figure (plotly's redraw) just after
+  pose.ready.then(() => setTimeout(() => {
+    pose.waiting = false;
+    if (state.pose !== pose || pose.fig.current !== pose.drawn) return;
+    quiet(pose.fig.pose(pose.traces, pose.next));
+  }, 0), () => { pose.waiting = false; });
+}
+
+// The server's figure again: its frame and trace opacities back (unless the run drew a new figure).
+function releasePose() {
+  const pose = state.pose;
+  if (!pose) return;
+  state.pose = null;
+  pose.fig.graph.classList.remove("dl-live-stale");
+  // After this task: a run's new figure (drawn in its place, nothing to restore) may come with this render.
+  setTimeout(() => {
+    if (pose.fig.current === pose.drawn) pose.fig.release(); else pose.fig.held = null;
+  }, 0);
+}
+
+function quiet(promise) { if (promise && promise.catch) promise.catch(() => {}); }
+
 // Back to the server's drawing: every live value and mark gone.
 function end() {
   if (!state || !state.live) return;
   state.live = false;
+  releasePose();
   if (state.caption) {  // (unless the run has written the figure's new caption already)
     const {el, text, said} = state.caption;
     if (el.querySelector(".dl-live-caption")) el.textContent = text;
@@ -269,6 +382,7 @@ function draw() {
   setText(".dl-live-headline", main ? `${main[4]}: ${Number.isFinite(x) ? quantity(x, main, state.data.grouped_below) : UPDATING}` : "");
   setText(".dl-live-said", regimeText ? ` · ${regimeText}` : "");
   drawCaption(params, result);
+  drawPose(params, result);
   performance.measure("dl-live-draw", {start: started});  // its own cost, for bench/live_drag.py
 }
 
@@ -350,6 +464,7 @@ const COMMIT_AFTER = 250;
 const MOVES = {ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1, PageUp: "page", PageDown: "-page", Home: "min", End: "max"};
 const REPLAYED = Symbol("dl-replayed");
 let held = null;  // {input, timer}: the slider moved by keys (or taps) and not yet committed
+let committing = -Infinity;  // when the last burst was committed
 
 // The value's own setter (React watches the element's), as a person's input would set it.
 const setValue = (input, value) => Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, "value").set.call(input, value);
@@ -398,6 +513,7 @@ function commit() {
   const {input} = held;
   clearTimeout(held.timer);
   held = null;
+  committing = performance.now();  // its step back and forth: the pose stays as drawn
   if (!input.isConnected) return;
   const value = Number(input.value), min = Number(input.min), max = Number(input.max);
   if (!(max > min)) return;
@@ -467,9 +583,10 @@ export function render({data, parentElement}) {
   const wasLive = state && state.live;
   if (state) end();
   performance.clearMeasures("dl-live-draw");  // one drag's worth kept, not a session's
-  state = {data: d, params, regime: d.regime, live: false, fn: null, caption: null};
+  state = {data: d, params, regime: d.regime, live: false, fn: null, caption: null, pose: null, poseFn: null};
   const mine = state;
   load(d.source).then((fn) => { mine.fn = fn; });
+  if (d.pose) loadModule(d.pose.url).then((fn) => { mine.poseFn = fn; }, () => {});  // (none: the figure stays dimmed)
   if (wasLive) requestAnimationFrame(announce);
   watch();
   watchRuns();
