@@ -24,12 +24,15 @@ ROOT = Path(__file__).resolve().parent
 
 
 def warm() -> float:
-    """Solve every problem for every option (deriving each sympy chain once) and build its figures."""
+    """Solve every problem for every option (deriving each sympy chain once), build its figures and
+    generate its live view's function and pose module (for each unit system it is offered in)."""
     import importlib
 
     from practice.worker import shared_worker
     from solvers import registry
     from solvers.core import Choice
+    from ui import live
+    from ui.catalog import BY_ID
     from ui.page import _requested
 
     started = time.perf_counter()
@@ -40,6 +43,8 @@ def warm() -> float:
         for combination in itertools.product(*(c.options for c in choices)):
             solution = solver.solve(**dict(zip((c.name for c in choices), combination)))
             viz.figures(solution)
+            for system in ("si", "us") if BY_ID[pid].us_units else ("si",):
+                live.warm(pid, solution.params, system)  # the live view's function and pose module
         for params in solver.WARM:  # the states no option combination reaches, or a slider's every position
             viz.figures(solver.solve(**params))
         if hasattr(viz, "on_request"):  # a costly figure on request, for the textbook's numbers

@@ -30,6 +30,22 @@ def pose_source(pid: str, options: tuple[tuple[str, str], ...], system: str) -> 
     return live.pose_source(key_pose, params, system)
 
 
+def pose_module(pid: str, options: tuple[tuple[str, str], ...], system: str) -> str | None:
+    """The path of the pose's module (generated once, served under its content's key), or None."""
+    pose = pose_source(pid, options, system)
+    return None if pose is None else figure.generated_module("pose", f"export default {pose};\n")
+
+
+def warm(pid: str, params, system: str) -> None:
+    """Generate what the live view of this state sends, before anyone asks (serve.py): the values'
+    function, and the pose's module, which every replica must serve under the same name, since a
+    browser may fetch it from another replica than the one whose page named it."""
+    if live.declared(pid) is not None:
+        options = live.options_of(pid, params)
+        live.function_source(pid, options)
+        pose_module(pid, options, system)
+
+
 def show(problem: Problem, solution: Solution, answers, system: str, stage: Figure | None = None) -> None:
     """``stage``: the figure on the stage, whose caption's headline follows too (viz.common.headline)."""
     if live.declared(problem.id) is None:
@@ -39,9 +55,9 @@ def show(problem: Problem, solution: Solution, answers, system: str, stage: Figu
     # JSON has no infinity (μ = ∞ on the disk's page): sent as a word, read back by live.js
     data["params"] = {k: ("inf" if isinstance(v, float) and math.isinf(v) else v) for k, v in data["params"].items()}
     data["regime"] = solution.regime
-    pose = pose_source(problem.id, live.options_of(problem.id, solution.params), system) if stage is not None else None
+    pose = pose_module(problem.id, live.options_of(problem.id, solution.params), system) if stage is not None else None
     if pose is not None:  # (a module of its own, kept by the browser: a few kB a run less)
-        data["pose"] = {"url": figure.generated_module("pose", f"export default {pose};\n"), "digits": DIGITS}
+        data["pose"] = {"url": pose, "digits": DIGITS}
     if stage is not None and stage.headline:
         data["headline"] = {"parts": stage.headline,
                             "text": headline_text(stage.headline, {**solution.params, **solution.answers})}
