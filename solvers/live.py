@@ -238,7 +238,7 @@ SYMBOLIC = _Symbolic()
 
 
 def _expr(x):
-    return sp.nan if isinstance(x, float) and np.isnan(x) else sp.sympify(x)
+    return sp.nan if isinstance(x, float) and np.isnan(x) else sp.sympify(x, strict=True)  # numbers and expressions only, never text
 
 
 class _Values(dict):
@@ -264,7 +264,7 @@ def pose_source(key_pose: Callable, params: Mapping[str, object], system: str) -
         rows = [list(np.ravel(np.asarray(c, dtype=object))) for c in coords]
         shapes[name] = [(len(cells) + sum(map(len, rows[:i])), len(row)) for i, row in enumerate(rows)]
         cells += [c for row in rows for c in row]
-    exprs = [sp.sympify(c) for c in cells]
+    exprs = [sp.sympify(c, strict=True) for c in cells]  # the viz's numbers and expressions: never text
     replacements, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("c_"), order="none")
     used = set().union(*(e.free_symbols for e in exprs))
     inputs = ([(sym, f"p[{name!r}]") for name, sym in symbols.items() if isinstance(sym, sp.Symbol) and sym in used]
