@@ -1,4 +1,4 @@
-
+"""The server's edge (installed by serve.py): what every request and websocket meets first."""
 
 
 def base_path() -> str:
