@@ -31,18 +31,17 @@ def free_port() -> int:
 
 
 def start_app(port: int, extra: list[str] | None = None, env: dict | None = None,
-              entry: list[str] | None = None, log: Path | None = None) -> subprocess.Popen:
+              entry: list[str] | None = None) -> subprocess.Popen:
     """The production entry point (serve.py: warm, then Streamlit), so tests see what ships.
     ``entry`` replaces it, e.g. with a benchmark's baseline served by the same code. Its output
-    goes to ``log`` (a new temporary file if not given; ``proc.log``), never to a pipe: a server
-    that outlives many tests would fill a pipe nobody reads and stall on its next log line."""
+    goes to a new temporary file (``proc.log``), never to a pipe: a server that outlives many tests
+    would fill a pipe nobody reads and stall on its next log line."""
     cmd = [sys.executable, *(entry or [str(ROOT / "serve.py")]), "--server.headless", "true",
            "--server.port", str(port), "--server.address", "127.0.0.1",
            "--browser.gatherUsageStats", "false", "--server.fileWatcherType", "none", *(extra or [])]
-    if log is None:
-        handle, name = tempfile.mkstemp(prefix="dl-app-", suffix=".log")
-        os.close(handle)
-        log = Path(name)
+    handle, name = tempfile.mkstemp(prefix="dl-app-", suffix=".log")
+    os.close(handle)
+    log = Path(name)
     with open(log, "ab") as out:
         proc = subprocess.Popen(cmd, cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, env={**os.environ, **(env or {})})
     proc.log = log
@@ -89,6 +88,7 @@ class Starting:
             self.proc.wait(10)
         except subprocess.TimeoutExpired:
             self.proc.kill()
+        self.proc.log.unlink(missing_ok=True)
 
 
 @contextlib.contextmanager

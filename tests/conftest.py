@@ -50,10 +50,10 @@ def _shipped_env() -> dict:
 
 
 # Servers the collected tests will need, started as soon as they are collected: each warms for some
-# 20 s on the second core while the first tests (AppTest's, without a server) run.
+# 20 s on the second core while the first tests (AppTest's, without a server) run. By name, the
+# settings each starts with (made when it starts: the shared one's data directory).
 _EARLY: dict = {}
-
-
+_SETTINGS = {"shipped": _shipped_env, "fresh": dict}
 SERVED = {"shipped_server", "app_url", "fresh_server", "browser"}
 
 
@@ -69,9 +69,9 @@ def pytest_collection_finish(session):
 
     used = {name for item in session.items for name in getattr(item, "fixturenames", ())}
     if "shipped_server" in used or ("app_url" in used and not os.environ.get("APP_URL")):
-        _EARLY["shipped"] = Starting(env=_shipped_env())
+        _EARLY["shipped"] = Starting(env=_SETTINGS["shipped"]())
     if "fresh_server" in used:
-        _EARLY["fresh"] = Starting()
+        _EARLY["fresh"] = Starting(env=_SETTINGS["fresh"]())
 
 
 def pytest_unconfigure(config):
@@ -80,10 +80,10 @@ def pytest_unconfigure(config):
 
 
 @contextlib.contextmanager
-def _early(name: str, env: dict | None = None):
+def _early(name: str):
     from scripts.live_app import Starting
 
-    starting = _EARLY.pop(name, None) or Starting(env=env)
+    starting = _EARLY.pop(name, None) or Starting(env=_SETTINGS[name]())
     try:
         yield starting.ready()
     finally:
@@ -96,7 +96,7 @@ def shipped_server():
     (a start is some 20 s of warming): ``scripts.live_app.Server`` (its URL, its log, its pid), with
     an instructor key, a course secret and a data directory of its own (its records in SQLite there).
     A test that needs other settings starts its own."""
-    with _early("shipped", _shipped_env()) as server:
+    with _early("shipped") as server:
         yield server
 
 
