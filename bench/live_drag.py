@@ -1,13 +1,15 @@
 """Live dragging (issue 27): from an input event to the next painted frame that shows the new values,
-on each page's first lesson control, against a bare page whose drag updates one number.
+on each page's first lesson control, against a bare page whose control updates one number.
 
 For each problem, Chromium opens its page (Study, 1400×1000), installs a probe, and moves the first
-number of ``ABOUT.primary`` across its range: a slider by the mouse held down (one move per step),
-a number box by typing (each keystroke an input event). The probe takes each event's timeStamp and
-the time of the first task after the next animation frame in which the answers table's text changed
-(the frame that paints it). The baseline is a plain HTML page whose range input writes its value
-into one element on the next animation frame, dragged the same way. Also counted: the server runs
-while the control moves (they should be none) and after the release (at most one).
+number of ``ABOUT.primary`` across its range: a slider by the mouse held down (each move a whole
+number of steps, so each gives a new value), a number box by typing (each keystroke an input event;
+those that leave a new number in the box are counted). The probe takes each such event's timeStamp
+and the time of the first task after the next animation frame in which the answers table's text
+changed (the frame that paints it). The baseline is a plain HTML page whose range input (and text
+box) writes its value into one element on the next animation frame, dragged (typed in) the same
+way: a slider is compared with the dragged one, a box with the typed one. Also counted: the server
+runs while the control moves (they should be none) and after the release (at most one).
 
     flock /tmp/dl-browser.lock .venv/bin/python bench/live_drag.py [--moves 60] [--pages disk_wall ...]
 """
@@ -15,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import statistics
 import sys
 from pathlib import Path
@@ -28,29 +31,47 @@ from scripts.live_app import launch_browser, running_app, wait_until_idle  # noq
 from bench.controls import lesson_control  # noqa: E402
 from ui.catalog import PROBLEMS  # noqa: E402
 
-# Each input event's time, and the first task after the next frame in which ``watched`` changed text.
+# Each input event that gives the control a new value: its time, and the first task after the next
+# animation frame in which ``watched`` changed text. A pointer move of the drag always does (the drag
+# moves a whole number of steps at a time); a typed character does when the box's number is a new one
+# ("2.0" after "2." after "2" is the same number, nothing to redraw: not counted, else its wait would
+# run on to the next number's frame).
 PROBE = """(watched) => {
   window.__lat = []; window.__runs = 0;
   const app = document.querySelector("[data-testid='stApp']");
   if (app) new MutationObserver((ms) => { for (const m of ms) if (m.oldValue === 'running') window.__runs++; })
     .observe(app, {attributes: true, attributeOldValue: true, attributeFilter: ['data-test-script-state']});
   const text = () => (document.querySelector(watched) || {}).textContent;
-  const seen = (t0, before, tries) => requestAnimationFrame(() => setTimeout(() => {
+  // the first task after the frame: a user-blocking one (a plain task would wait behind the page's
+  // own tasks queued before it, e.g. React's render of the slider after the frame that showed the values)
+  const after = (task) => window.scheduler && scheduler.postTask ? scheduler.postTask(task, {priority: 'user-blocking'}) : setTimeout(task, 0);
+  const seen = (t0, before, tries) => requestAnimationFrame(() => after(() => {
     if (text() !== before) window.__lat.push(performance.now() - t0);
     else if (tries < 10) seen(t0, before, tries + 1);
-  }, 0));
-  for (const type of ['pointermove', 'keydown'])
-    window.addEventListener(type, (e) => { if (type === 'pointermove' && !e.buttons) return; seen(e.timeStamp, text(), 0); }, true);
+  }));
+  let typed = NaN;  // the number in the box being typed in
+  const number = (box) => box.value.trim() === '' ? NaN : Number(box.value);
+  window.addEventListener('focusin', (e) => { if (e.target.value !== undefined) typed = number(e.target); }, true);
+  window.addEventListener('pointermove', (e) => { if (e.buttons) seen(e.timeStamp, text(), 0); }, true);
+  window.addEventListener('input', (e) => {
+    if (e.target.type === 'range') return;  // (the bare page's slider: its pointer moves are counted)
+    const x = number(e.target);
+    if (Number.isFinite(x) && x !== typed) { typed = x; seen(e.timeStamp, text(), 0); }
+  }, true);
 }"""
 
 DRAWS = "performance.getEntriesByName('dl-live-draw').map((e) => e.duration)"  # live.js's own time per frame
 BARE = """<!doctype html><html><body style="font-family: sans-serif; padding: 40px">
 <p>value: <strong id="out">50</strong></p>
 <input id="slider" type="range" min="0" max="100" step="1" value="50" style="width: 600px">
+<p>number: <strong id="typed">2</strong></p>
+<input id="box" type="text" value="2">
 <script>
 const slider = document.getElementById('slider'), out = document.getElementById('out');
+const box = document.getElementById('box'), typed = document.getElementById('typed');
 let frame = 0;
 slider.addEventListener('input', () => { if (!frame) frame = requestAnimationFrame(() => { frame = 0; out.textContent = slider.value; }); });
+box.addEventListener('input', () => { if (!frame) frame = requestAnimationFrame(() => { frame = 0; typed.textContent = String(Number(box.value)); }); });
 </script></body></html>"""
 
 
@@ -58,26 +79,54 @@ def p90(values: list[float]) -> float:
     return statistics.quantiles(values, n=10)[-1] if len(values) >= 10 else float("nan")
 
 
-def drag_slider(page, track: dict, moves: int) -> None:
+def drag_slider(page, track: dict, moves: int, steps: int = 100) -> None:
+    """Held down on the middle of ``track`` (a slider of ``steps`` steps), then ``moves`` moves that
+    each change the value: a whole number of steps at a time (at least one, and 2.25 % of the track,
+    the pace of a quick drag), to and fro within the middle 90 % of the range."""
     y = track["y"] + track["height"] / 2
-    x = lambda f: track["x"] + f * track["width"]  # noqa: E731
-    page.mouse.move(x(0.5), y)
+    per_move = max(1, math.ceil(0.0225 * steps))
+    low, high, at, way = math.ceil(0.05 * steps), math.floor(0.95 * steps), round(steps / 2), 1
+    page.mouse.move(track["x"] + at / steps * track["width"], y)
     page.mouse.down()
-    for i in range(moves):  # across the range and back
-        f = 0.5 + 0.45 * (1 - abs(2 * i / moves - 1)) * (1 if i < moves / 2 else -1)
-        page.mouse.move(x(f), y)
+    for _ in range(moves):
+        if not low <= at + way * per_move <= high:
+            way = -way
+        at += way * per_move
+        page.mouse.move(track["x"] + at / steps * track["width"], y)
         page.wait_for_timeout(20)
 
 
-def bare(browser, moves: int) -> list[float]:
-    page = browser.new_page(viewport={"width": 1400, "height": 1000})
-    page.set_content(BARE)
-    page.evaluate(PROBE, "#out")
-    drag_slider(page, page.locator("#slider").bounding_box(), moves)
-    page.mouse.up()
-    page.wait_for_timeout(300)
-    lat = page.evaluate("window.__lat")
-    page.close()
+def type_box(box, keystrokes: int) -> None:
+    """Values 1 %, 2 %, … above the box's own typed into it digit by digit (each keystroke an input
+    event), about ``keystrokes`` keystrokes in all, not committed."""
+    box.click()
+    start = float(box.input_value())
+    for i in range(keystrokes // 4):
+        box.press("Control+a")
+        box.type(f"{start * (1 + 0.01 * (i + 1)):.4g}", delay=20)
+
+
+def slider_steps(control) -> int:
+    """How many steps a Streamlit slider's range holds (its range input's min, max and step)."""
+    low, high, step = (float(control.locator("input[type='range']").get_attribute(a)) for a in ("min", "max", "step"))
+    return round((high - low) / step)
+
+
+def bare(browser, moves: int) -> dict[str, list[float]]:
+    """The bare page's latencies: its slider dragged, its box typed in, as the app's controls are."""
+    lat = {}
+    for kind, watched in (("slider", "#out"), ("box", "#typed")):
+        page = browser.new_page(viewport={"width": 1400, "height": 1000})
+        page.set_content(BARE)
+        page.evaluate(PROBE, watched)
+        if kind == "slider":
+            drag_slider(page, page.locator("#slider").bounding_box(), moves)
+            page.mouse.up()
+        else:
+            type_box(page.locator("#box"), moves)
+        page.wait_for_timeout(300)
+        lat[kind] = page.evaluate("window.__lat")
+        page.close()
     return lat
 
 
@@ -92,17 +141,13 @@ def live_page(browser, url: str, problem, moves: int) -> dict:
     page.evaluate(PROBE, ".dl-answers table")  # the answers (the headline may not depend on this control)
     if kind == "slider":
         track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
-        drag_slider(page, track, moves)
+        drag_slider(page, track, moves, slider_steps(control))
         during = page.evaluate("window.__runs")
         draws = page.evaluate(DRAWS)  # before the run after release clears them
         page.mouse.up()
     else:  # a number box: typed, digit by digit (each keystroke one input event), not committed
         box = control.locator("input")
-        box.click()
-        start = float(box.input_value())
-        for i in range(moves // 4):
-            box.press("Control+a")
-            box.type(f"{start * (1 + 0.01 * (i + 1)):.4g}", delay=20)
+        type_box(box, moves)
         during = page.evaluate("window.__runs")
         draws = page.evaluate(DRAWS)
         box.press("Enter")
@@ -110,7 +155,7 @@ def live_page(browser, url: str, problem, moves: int) -> dict:
     wait_until_idle(page)
     page.wait_for_timeout(500)
     result = {"draw_ms": statistics.median(draws) if draws else float("nan"), "control": key.rsplit("__", 1)[-1],
-              "kind": "slider" if kind == "slider" else "box", "lat": page.evaluate("window.__lat"),
+              "kind": kind if kind == "slider" else "box", "lat": page.evaluate("window.__lat"),
               "runs_while_moving": during, "runs_after_release": page.evaluate("window.__runs") - during}
     page.close()
     return result
@@ -125,14 +170,18 @@ def main() -> None:
     with running_app() as url, sync_playwright() as pw:
         browser = launch_browser(pw)
         base = bare(browser, args.moves)
-        rows["bare page"] = {"p90": p90(base), "median": statistics.median(base), "n": len(base)}
+        for kind, lat in base.items():
+            rows[f"bare page ({kind})"] = {"control": "range input" if kind == "slider" else "text box", "kind": kind,
+                                           "p90": p90(lat), "median": statistics.median(lat), "n": len(lat)}
         for problem in PROBLEMS:
             if problem.id not in args.pages:
                 continue
+            print(problem.id, file=sys.stderr, flush=True)  # (where a run that never ends stopped)
             r = live_page(browser, url, problem, args.moves)
+            bare_p90 = rows[f"bare page ({r['kind']})"]["p90"]  # a slider against a dragged one, a box against a typed one
             rows[problem.id] = {"control": r["control"], "kind": r["kind"], "p90": p90(r["lat"]),
                                 "median": statistics.median(r["lat"]) if r["lat"] else float("nan"), "n": len(r["lat"]),
-                                "ratio_p90": p90(r["lat"]) / rows["bare page"]["p90"],
+                                "ratio_p90": p90(r["lat"]) / bare_p90,
                                 "draw_median": r["draw_ms"], "runs_while_moving": r["runs_while_moving"], "runs_after_release": r["runs_after_release"]}
         browser.close()
     print(json.dumps(rows, indent=1))

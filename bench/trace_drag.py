@@ -1,8 +1,8 @@
 """Where a dragged lesson slider's frames go in the browser: one drag (40 moves, as
-bench/live_drag.py drags) traced in Chromium, the renderer main thread's time by event, and the
+bench/live_drag.py drags; a number box typed in, about 40 keystrokes) traced in Chromium, the renderer main thread's time by event, and the
 script's by function and file.
 
-    python bench/trace_drag.py [PAGE]      (default pendulum_rebound; a page whose first lesson control is a slider)
+    python bench/trace_drag.py [PAGE]      (default pendulum_rebound)
 """
 import collections
 import json
@@ -13,7 +13,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from playwright.sync_api import sync_playwright
 from scripts.live_app import running_app, launch_browser, wait_until_idle
 from bench.controls import lesson_control
-from bench.live_drag import drag_slider
+from bench.live_drag import drag_slider, slider_steps, type_box
 pid = sys.argv[1] if len(sys.argv) > 1 else "pendulum_rebound"
 TRACE = Path(tempfile.gettempdir()) / f"dl-drag-{pid}.trace.json"
 with running_app() as url, sync_playwright() as pw:
@@ -21,10 +21,13 @@ with running_app() as url, sync_playwright() as pw:
     page = b.new_page(viewport={"width": 1400, "height": 1000})
     page.goto(f"{url}/{pid}"); wait_until_idle(page); page.locator(".dl-answers table").first.wait_for()
     page.wait_for_timeout(1000)
-    key = lesson_control(pid)[0]
-    track = page.locator(f".st-key-{key}").locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
+    key, _, kind, _ = lesson_control(pid)
+    control = page.locator(f".st-key-{key}")
     b.start_tracing(page=page, path=str(TRACE), categories=["devtools.timeline", "disabled-by-default-devtools.timeline", "v8.execute", "blink.user_timing"])
-    drag_slider(page, track, 40)
+    if kind == "slider":
+        drag_slider(page, control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box(), 40, slider_steps(control))
+    else:  # a number box, typed in as bench/live_drag.py types
+        type_box(control.locator("input"), 40)
     b.stop_tracing()
     page.mouse.up()
     b.close()

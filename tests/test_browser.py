@@ -501,6 +501,101 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     context.close()
 
 
+# Each pointer move's answers as the frame it came with paints them (live.js draws in that frame's
+# animation-frame callbacks; a user-blocking task after them runs once the frame is done).
+FRAME_CELLS = ("() => { window.__frames = []; window.addEventListener('pointermove', (e) => { if (!e.buttons) return;"
+               " requestAnimationFrame(() => scheduler.postTask(() => window.__frames.push("
+               "[...document.querySelector('.dl-answers table').tBodies[0].rows].map((r) => r.cells[2].innerText)),"
+               " {priority: 'user-blocking'})); }, true); }")
+
+
+@pytest.mark.parametrize("pid", ["pendulum_rebound", "sliding_ladder"])
+def test_a_drag_s_values_are_painted_in_the_frame_the_pointer_moved_in(browser, app_url, pid):
+    """Issue 27: the answers a drag's pointer move gives are drawn in the frame that move came with,
+    not one frame later when React has moved the thumb; and they are the values of what react-aria
+    then shows (live.js works the value out from the pointer as react-aria does: the thumb's place
+    when the move starts plus the pointer's travel, in whole steps, within the range). Moves of
+    random length, fractions of a pixel, past either end of the track, on two sliders of other steps."""
+    import random
+
+    from bench.controls import lesson_control
+
+    context, page, errors = open_page(browser, f"{app_url}/{pid}")
+    page.locator(".dl-answers table").first.wait_for()
+    page.evaluate(RUN_COUNTER)
+    page.evaluate(FRAME_CELLS)
+    control = page.locator(f".st-key-{lesson_control(pid)[0]}")
+    thumb = control.locator("input[type='range']")
+    track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
+    y = track["y"] + track["height"] / 2
+    rng = random.Random(pid)
+    x = track["x"] + rng.uniform(0.2, 0.8) * track["width"]
+    page.mouse.move(x, y)
+    page.mouse.down()
+    settled, new_values = [], 0
+    for _ in range(24):
+        x = min(max(x + rng.uniform(-0.25, 0.25) * track["width"], track["x"] - 40), track["x"] + track["width"] + 40)
+        page.mouse.move(round(x, 2), y)
+        page.wait_for_timeout(150)  # React has drawn the thumb, and live.js the values of what it shows
+        settled.append((thumb.input_value(), page.evaluate(LIVE_CELLS)))
+        new_values += len(settled) > 1 and settled[-1][0] != settled[-2][0]
+    frames = page.evaluate("window.__frames")
+    page.mouse.up()
+    assert len(frames) == len(settled) and new_values >= 10, (len(frames), new_values)  # so a late frame would show
+    for n, (frame, (value, cells)) in enumerate(zip(frames, settled)):
+        assert frame == cells, (n, value, frame, cells)
+    assert page.evaluate("window.__runs") == 0
+    page.wait_for_function("() => window.__runs >= 1 && !document.querySelector('.dl-live-value')", timeout=30_000)
+    assert not errors, errors
+    context.close()
+
+
+def test_a_posed_figure_is_drawn_as_plotly_draws_it(browser, app_url):
+    """Issue 27: the pose a drag moves (ui/plotly_component/figure.js svgUpdate: the SVG of the posed
+    traces set at once, instead of plotly's animate of every moving trace) draws what plotly draws for
+    the same coordinates: on each 2-D stage, the frame on screen written again by svgUpdate leaves every
+    line, fill and marker where plotly put it (plotly drops points of a line that lie on it within a
+    pixel's fraction; the points it keeps are among the ones written, to a twentieth of a pixel)."""
+    import numpy as np
+
+    REDRAWN = """() => {
+      const fig = document.querySelector('.st-key-dl_stage .dl-figure').dlFigure, gd = fig.graph;
+      const frame = fig.frames[fig.frameIndex];  // its moving traces that are bodies (not a bar chart's)
+      const posed = frame.traces.filter((t) => gd._fullData[t].type === 'scatter');
+      const drawn = () => [...gd.querySelectorAll('.scatterlayer .trace')].filter((g) => posed.includes(g.__data__[0].trace.index))
+        .map((g) => [...g.querySelectorAll('.js-line, .js-fill, .point')].map((e) => e.getAttribute('d') || e.getAttribute('transform')));
+      const before = drawn();
+      const written = fig.svgUpdate(posed, posed.map((t) => {
+        const d = frame.data[frame.traces.indexOf(t)];
+        return {x: d.x || gd.data[t].x, y: d.y || gd.data[t].y};
+      }));
+      return {written, before, after: drawn()};
+    }"""
+    points = lambda path: np.array([[float(v) for v in xy.split(",")] for xy in re.findall(r"-?[\d.]+,-?[\d.]+", path or "")]).reshape(-1, 2)  # noqa: E731
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    page = context.new_page()
+    for problem in PROBLEMS:
+        if problem.id == "eulers_disk":  # a 3-D scene: its pose is set on its WebGL objects (sceneUpdate)
+            continue
+        page.goto(f"{app_url}/{problem.id}")
+        wait_until_idle(page)
+        page.locator(".st-key-dl_stage .dl-figure .main-svg").first.wait_for()
+        got = page.evaluate(REDRAWN)
+        assert got["written"], problem.id
+        compared = 0
+        for before, after in zip(got["before"], got["after"], strict=True):
+            assert len(before) == len(after), problem.id
+            for plotly_path, ours in zip(before, after):
+                theirs, mine = points(plotly_path), points(ours)
+                assert len(theirs) <= len(mine) and np.allclose(theirs[[0, -1]] if len(theirs) else theirs,
+                                                                mine[[0, -1]] if len(mine) else mine, atol=0.05), problem.id
+                for xy in theirs:
+                    assert np.abs(mine - xy).max(axis=1).min() <= 0.05, (problem.id, xy)
+                compared += len(theirs)
+        assert compared > 20, problem.id
+    context.close()
+
+
 def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, app_url):
     """Issue 27: ArrowRight held on the stage's first slider (rod_disk_spring's θ₂) for about a second
     moves the thumb and its value, and the answers follow the solver during the hold with no run; the

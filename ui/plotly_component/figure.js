@@ -179,11 +179,55 @@ class Figure {
     scene.glplot.redraw();
     return true;
   }
+  // 2-D traces (lines, 'toself' fills, markers) drawn at these coordinates by setting their SVG as
+  // plotly.js draws it (each run of points between gaps a path, on the axes as they stand), in a
+  // fraction of a millisecond: plotly's animate redraws every moving trace of the figure, 6–16 ms a
+  // pose here, longer than a frame leaves. A run fewer than drawn (an arrow gone at a zero force)
+  // leaves its path empty; false where a trace's drawing is of another kind, has fewer paths than it
+  // needs (an arrow that was not drawn) or other markers: then plotly's animate draws it, and the next
+  // pose is written here again. Plotly's next redraw (the frame held, or the
+  // run's new figure) draws these traces afresh.
+  svgUpdate(traces, data) {
+    const layout = this.graph._fullLayout, groups = new Map();
+    if (!layout) return false;
+    for (const g of this.graph.querySelectorAll(".scatterlayer .trace")) {
+      const trace = g.__data__ && g.__data__[0] && g.__data__[0].trace;
+      if (trace) groups.set(trace.index, [g, trace]);
+    }
+    const writes = [];  // [element, attribute, value], written once every trace is known to be drawable
+    for (const [n, t] of traces.entries()) {
+      const [g, trace] = groups.get(t) || [];
+      const xa = trace && layout[trace.xaxis.replace("x", "xaxis")], ya = trace && layout[trace.yaxis.replace("y", "yaxis")];
+      const {x, y} = data[n];
+      if (!g || !xa || !ya || !x || !y || x.length !== y.length || !["lines", "markers"].includes(trace.mode)) return false;
+      const at = (i) => `${Math.round(xa.c2p(x[i]) * 100) / 100},${Math.round(ya.c2p(y[i]) * 100) / 100}`;
+      const runs = [];
+      let run = [];
+      for (let i = 0; i <= x.length; i++) {
+        if (i < x.length && x[i] !== null && y[i] !== null) run.push(at(i));
+        else if (run.length) { runs.push(run); run = []; }
+      }
+      if (trace.mode === "markers") {
+        const marks = g.querySelectorAll(".points .point"), shown = runs.flat();
+        if (marks.length !== shown.length) return false;
+        marks.forEach((mark, i) => writes.push([mark, "transform", `translate(${shown[i]})`]));
+        continue;
+      }
+      const lines = g.querySelectorAll(".js-line"), fill = g.querySelector(".js-fill");
+      if (lines.length < runs.length || !["none", "toself"].includes(trace.fill) || (trace.fill === "toself" && !fill && runs.length)) return false;
+      const paths = runs.map((points) => "M" + points.join("L"));
+      lines.forEach((line, i) => writes.push([line, "d", paths[i] || ""]));
+      if (fill) writes.push([fill, "d", paths.map((path) => path + "Z").join("")]);
+    }
+    for (const [el, name, value] of writes) el.setAttribute(name, value);
+    traces.forEach((t, n) => Object.assign(this.graph.data[t], {x: data[n].x, y: data[n].y}));  // so a redraw (a resize) keeps the pose
+    return true;
+  }
   // Traces drawn at these coordinates at once (live.js: the bodies at the key instant while a lesson
   // control is dragged): a 3-D scene's in place, anything else through plotly's animate, given every
   // moving trace (it redraws only the subplots of the traces it gets, and empties the others).
   pose(traces, data) {
-    if (this.sceneUpdate(traces, data)) return Promise.resolve();
+    if (this.sceneUpdate(traces, data) || this.svgUpdate(traces, data)) return Promise.resolve();
     const others = (this.frames[0] ? this.frames[0].traces : []).filter((t) => !traces.includes(t));
     return this.Plotly.animate(this.graph, {data: [...data, ...others.map((t) => ({x: this.graph.data[t].x, y: this.graph.data[t].y}))],
                                             traces: [...traces, ...others]},

@@ -185,8 +185,71 @@ function controlValue(name) {
   const key = state.data.follows.find(([n]) => n === name)[1];
   const box = document.querySelector(`.st-key-${CSS.escape(key)} input`);
   if (!box) return null;
+  if (dragged && dragged.input === box && dragged.value !== null && box.value === dragged.seen) return dragged.value;
   const shown = box.value === "" ? NaN : Number(box.value);
   return shown;
+}
+
+// ------------------------------------------------------------------ a drag, in the frame it moves in
+// The pointer's move comes with a frame (Chromium hands continuous input to the page just before its
+// animation frame), but react-aria moves the thumb in a React render after that frame: read from the
+// input, the answers would follow one frame behind. So a drag's value is worked out here from the
+// pointer, as react-aria's slider works it out (useSlider's move: the thumb's place when the move
+// starts plus the pointer's travel, over the track's width; useSliderState: to whole steps within the
+// range), and used until React has drawn a value of its own. The pointer is captured by the track for
+// the drag, as a touch is: the page is not hit-tested on every move, nor its hover styles redrawn.
+let dragged = null;  // {input, track, pageX, start, seen, value}: the stage slider being dragged
+
+const clamp = (x, min, max) => Math.min(Math.max(x, min), max);
+
+// @react-stately/utils' roundToStepPrecision and snapValueToStep
+function roundToStep(value, step) {
+  const text = String(step), e = text.toLowerCase().indexOf("e-"), point = text.indexOf(".");
+  const precision = e > 0 ? Math.abs(Math.floor(Math.log10(Math.abs(step)))) + e : point >= 0 ? text.length - point : 0;
+  if (precision <= 0) return value;
+  const scale = 10 ** precision;
+  return Math.round(value * scale) / scale;
+}
+export function snapToStep(value, min, max, step) {
+  const remainder = (value - min) % step;
+  let snapped = roundToStep(Math.abs(remainder) * 2 >= step ? value + Math.sign(remainder) * (step - Math.abs(remainder)) : value - remainder, step);
+  if (snapped < min) snapped = min;
+  else if (snapped > max) snapped = min + Math.floor(roundToStep((max - min) / step, step)) * step;
+  return roundToStep(snapped, step);
+}
+
+// The value react-aria gives a thumb dragged ``travel`` px over a track ``size`` px wide from ``start`` (0–1).
+export function draggedValue(start, travel, size, min, max, step) {
+  const percent = clamp((start * size + travel) / size, 0, 1), atPercent = percent * (max - min) + min;
+  return snapToStep(clamp(Math.round((atPercent - min) / step) * step + min, min, max), min, max, step);
+}
+
+function onDragStart(event) {
+  const slider = event.target.closest && event.target.closest(".st-key-dl_stage_controls [data-testid='stSlider']");
+  if (!slider || !event.isPrimary || event.button !== 0 || event.target.closest(".dl-step")) return;
+  const input = slider.querySelector("input[type='range']"), track = input && input.closest("[role='group'] > [data-orientation]");
+  if (!track) return;
+  dragged = {input, track, pageX: event.pageX, start: null, seen: null, value: null};
+  try { track.setPointerCapture(event.pointerId); } catch (e) { /* a pointer already gone */ }
+  window.addEventListener("pointermove", onDragMove, true);
+  for (const type of ["pointerup", "pointercancel"]) window.addEventListener(type, onDragEnd, true);
+}
+
+function onDragMove(event) {
+  if (!dragged || !event.isPrimary) return;
+  const {input, track} = dragged, min = Number(input.min), max = Number(input.max), step = Number(input.step) || 1;
+  if (!(max > min)) return;
+  if (dragged.start === null) dragged.start = (Number(input.value) - min) / (max - min);  // after the press's render
+  dragged.value = draggedValue(dragged.start, event.pageX - dragged.pageX, track.getBoundingClientRect().width, min, max, step);
+  dragged.seen = input.value;  // what React shows until it draws this move
+  schedule();
+}
+
+function onDragEnd() {
+  dragged = null;
+  window.removeEventListener("pointermove", onDragMove, true);
+  for (const type of ["pointerup", "pointercancel"]) window.removeEventListener(type, onDragEnd, true);
+  schedule();
 }
 
 function shownParams() {
@@ -416,6 +479,7 @@ function watch() {
   controls.addEventListener("keyup", onKeyUp, true);
   controls.addEventListener("focusout", onFocusOut, true);
   controls.addEventListener("pointerdown", onPointerDown, true);
+  controls.addEventListener("pointerdown", onDragStart, true);
 }
 
 // The run after a release: when the app is idle again, the server's drawing stands.
