@@ -228,7 +228,7 @@ function onDragStart(event) {
   const slider = event.target.closest && event.target.closest(".st-key-dl_stage_controls [data-testid='stSlider']");
   if (!slider || !event.isPrimary || event.button !== 0 || event.target.closest(".dl-step")) return;
   const input = slider.querySelector("input[type='range']"), track = input && input.closest("[role='group'] > [data-orientation]");
-  if (!track) return;
+  if (!track || !track.contains(event.target)) return;  // (a press on the label starts no drag)
   dragged = {input, track, pageX: event.pageX, start: null, seen: null, value: null};
   try { track.setPointerCapture(event.pointerId); } catch (e) { /* a pointer already gone */ }
   window.addEventListener("pointermove", onDragMove, true);
