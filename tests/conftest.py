@@ -1,6 +1,7 @@
 """Test-wide settings: Hypothesis runs derandomized in CI (reproducible, no flaky deadlines)."""
 import contextlib
 import os
+import shutil
 import tempfile
 
 import pytest
@@ -44,9 +45,13 @@ def browser():
 INSTRUCTOR_KEY, COURSE_SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
 
 
+_DATA_DIRS: list[str] = []  # the shared servers' data directories, removed when the session ends
+
+
 def _shipped_env() -> dict:
+    _DATA_DIRS.append(tempfile.mkdtemp(prefix="dl-app-data-"))
     return {"DL_INSTRUCTOR_KEY": INSTRUCTOR_KEY, "DL_COURSE_SECRET": COURSE_SECRET,
-            "DL_DATA_DIR": tempfile.mkdtemp(prefix="dl-app-data-"), "DL_DATABASE_URL": ""}
+            "DL_DATA_DIR": _DATA_DIRS[-1], "DL_DATABASE_URL": ""}
 
 
 # Servers the collected tests will need, started as soon as they are collected: each warms for some
@@ -77,6 +82,8 @@ def pytest_collection_finish(session):
 def pytest_unconfigure(config):
     for starting in _EARLY.values():  # started for tests that did not run (-x, a keyboard interrupt)
         starting.stop()
+    for path in _DATA_DIRS:
+        shutil.rmtree(path, ignore_errors=True)
 
 
 @contextlib.contextmanager
