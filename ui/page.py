@@ -284,7 +284,7 @@ def problem_page(problem_id: str) -> None:
     if seed is None and not practice:  # the lesson page: the stage and all that follows it in a fragment
         st.sidebar.markdown("### Parameters")
         warnings = more_parameters(problem, system, None, st.sidebar)
-        _heading(problem, heading, [w for w in (seed_warning, *warnings) if w], print_link=False)  # (the fragment's)
+        _heading(problem, heading, (seed_warning, *warnings), print_link=False)  # (the fragment's)
         _lesson(problem.id, system, lecture)
         return
     head = st.container()  # the title, filled once the state is known
@@ -298,7 +298,7 @@ def problem_page(problem_id: str) -> None:
     _mirror(problem, params, system, lecture, practice, seed, base)
     solved = _solved_or_refused(problem, params, system, practice=practice)
     with head:
-        _heading(problem, heading, [w for w in (seed_warning, *warnings) if w])
+        _heading(problem, heading, (seed_warning, *warnings))
     if solved is None:
         return
     solution, figures = solved
@@ -392,11 +392,12 @@ def _beside_refusal(problem: Problem, params: dict, practice: bool = False) -> N
                            slips=problem.solver.ERRATA)
 
 
-def _heading(problem: Problem, heading: str, notices: list[str], print_link: bool = True) -> None:
+def _heading(problem: Problem, heading: str, notices, print_link: bool = True) -> None:
     """The title and blurb, with the link that reproduces the page on paper (the page has mirrored
-    its state into the address by now; the lesson's fragment gives its own, takehome.lesson_links)."""
+    its state into the address by now; the lesson's fragment gives its own, takehome.lesson_links),
+    and what the address asked that the page could not do (``notices``: the words, or None)."""
     st.markdown(heading + (takehome.print_link(problem) if print_link else ""), unsafe_allow_html=True)
-    for notice in notices:
+    for notice in filter(None, notices):
         st.warning(notice, icon=":material/link_off:")
 
 
