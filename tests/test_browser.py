@@ -411,7 +411,7 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     low, high = -89, 89
     x_of = lambda degrees: track["x"] + (degrees - low) / (high - low) * track["width"]  # noqa: E731
     y = track["y"] + track["height"] / 2
-    shown = lambda: float(control.locator("input[type='range']").input_value())  # noqa: E731
+    shown = lambda: float(control.locator("[data-testid='stSliderThumbValue']").inner_text())  # noqa: E731  (the thumb's own)
 
     def expected(degrees: float) -> list[str]:
         solution = solve(theta0=units.to_si(degrees, "angle"))
@@ -501,21 +501,24 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     context.close()
 
 
-# Each pointer move's answers as the frame it came with paints them (live.js draws in that frame's
-# animation-frame callbacks; a user-blocking task after them runs once the frame is done).
-FRAME_CELLS = ("() => { window.__frames = []; window.addEventListener('pointermove', (e) => { if (!e.buttons) return;"
-               " requestAnimationFrame(() => scheduler.postTask(() => window.__frames.push("
-               "[...document.querySelector('.dl-answers table').tBodies[0].rows].map((r) => r.cells[2].innerText)),"
-               " {priority: 'user-blocking'})); }, true); }")
+# Each pointer move's frame as painted (live.js draws in that frame's animation-frame callbacks; a
+# user-blocking task after them runs once the frame is done): the answers, the thumb's value and place.
+FRAME_DRAWN = ("() => { window.__frames = []; window.addEventListener('pointermove', (e) => { if (!e.buttons) return;"
+               " requestAnimationFrame(() => scheduler.postTask(() => { const t = document.querySelector("
+               "'.st-key-dl_stage_controls [data-testid=stSlider] [data-testid=stSliderThumbValue]');"
+               " window.__frames.push([[...document.querySelector('.dl-answers table').tBodies[0].rows].map((r) => r.cells[2].innerText),"
+               " t.innerText, t.parentElement.style.left]); }, {priority: 'user-blocking'})); }, true); }")
 
 
 @pytest.mark.parametrize("pid", ["pendulum_rebound", "sliding_ladder"])
 def test_a_drag_s_values_are_painted_in_the_frame_the_pointer_moved_in(browser, app_url, pid):
-    """Issue 27: the answers a drag's pointer move gives are drawn in the frame that move came with,
-    not one frame later when React has moved the thumb; and they are the values of what react-aria
-    then shows (live.js works the value out from the pointer as react-aria does: the thumb's place
-    when the move starts plus the pointer's travel, in whole steps, within the range). Moves of
-    random length, fractions of a pixel, past either end of the track, on two sliders of other steps."""
+    """Issue 27: each move of a dragged stage slider is drawn in the frame that move came with: the
+    thumb at its value, the value it shows, and the answers for it (live.js works the value out from
+    the pointer as react-aria does and draws the thumb itself: React's render of the slider for each
+    move came after that frame). On release react-aria commits exactly the value drawn last (its own
+    computation, from the pointer's travel), the run's answers are the ones shown while dragging, and
+    the thumb is React's again. Moves of random length, fractions of a pixel, past either end of the
+    track, on two sliders of other steps; several drags, each released somewhere else."""
     import random
 
     from bench.controls import lesson_control
@@ -523,29 +526,42 @@ def test_a_drag_s_values_are_painted_in_the_frame_the_pointer_moved_in(browser, 
     context, page, errors = open_page(browser, f"{app_url}/{pid}")
     page.locator(".dl-answers table").first.wait_for()
     page.evaluate(RUN_COUNTER)
-    page.evaluate(FRAME_CELLS)
     control = page.locator(f".st-key-{lesson_control(pid)[0]}")
     thumb = control.locator("input[type='range']")
+    low, high = (float(thumb.get_attribute(a)) for a in ("min", "max"))
     track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
     y = track["y"] + track["height"] / 2
     rng = random.Random(pid)
-    x = track["x"] + rng.uniform(0.2, 0.8) * track["width"]
-    page.mouse.move(x, y)
-    page.mouse.down()
-    settled, new_values = [], 0
-    for _ in range(24):
-        x = min(max(x + rng.uniform(-0.25, 0.25) * track["width"], track["x"] - 40), track["x"] + track["width"] + 40)
-        page.mouse.move(round(x, 2), y)
-        page.wait_for_timeout(150)  # React has drawn the thumb, and live.js the values of what it shows
-        settled.append((thumb.input_value(), page.evaluate(LIVE_CELLS)))
-        new_values += len(settled) > 1 and settled[-1][0] != settled[-2][0]
-    frames = page.evaluate("window.__frames")
-    page.mouse.up()
-    assert len(frames) == len(settled) and new_values >= 10, (len(frames), new_values)  # so a late frame would show
-    for n, (frame, (value, cells)) in enumerate(zip(frames, settled)):
-        assert frame == cells, (n, value, frame, cells)
-    assert page.evaluate("window.__runs") == 0
-    page.wait_for_function("() => window.__runs >= 1 && !document.querySelector('.dl-live-value')", timeout=30_000)
+    moved = 0
+    page.evaluate(FRAME_DRAWN)
+    for drag in range(4):
+        page.evaluate("window.__frames = []")
+        x = track["x"] + rng.uniform(0.2, 0.8) * track["width"]
+        page.mouse.move(x, y)
+        page.mouse.down()
+        for _ in range(5):
+            x = min(max(x + rng.uniform(-0.25, 0.25) * track["width"], track["x"] - 40), track["x"] + track["width"] + 40)
+            page.mouse.move(round(x, 2), y)
+            page.wait_for_timeout(60)
+        frames = page.evaluate("window.__frames")
+        assert page.evaluate("window.__runs") == drag  # none while moving
+        page.mouse.up()
+        page.wait_for_function(f"() => window.__runs >= {drag + 1} && !document.querySelector('.dl-live-value')", timeout=30_000)
+        wait_until_idle(page)
+        assert len(frames) == 5, frames
+        for cells, shown, left in frames:  # the thumb where its value is, in the frame of the move
+            assert abs(float(left.rstrip("%")) - (float(shown) - low) / (high - low) * 100) < 1e-3, (shown, left)  # (CSS keeps 4 decimals)
+            assert "updating…" in cells or len(set(cells)) > 1, cells
+        moved += len({shown for _, shown, _ in frames}) > 1
+        committed = float(thumb.input_value())  # react-aria's, from the pointer's whole travel
+        last_cells, last_shown, _ = frames[-1]
+        assert committed == float(last_shown), (drag, committed, last_shown)
+        assert control.locator("[data-testid='stSliderThumbValue']").inner_text() == last_shown
+        served = page.evaluate(LIVE_CELLS)  # the run's answers for that value: the last frame's where it computed them
+        assert all(live in ("updating…", ran) for live, ran in zip(last_cells, served, strict=True)), (last_cells, served)
+        assert page.evaluate(f"() => document.querySelector('.st-key-{lesson_control(pid)[0]} [data-orientation] > :first-child').style.backgroundImage") == ""
+    assert moved >= 3  # the values changed within the drags, so a frame late would have shown
+    assert page.evaluate("window.__runs") == 4  # one run a drag
     assert not errors, errors
     context.close()
 

@@ -198,7 +198,16 @@ function controlValue(name) {
 // starts plus the pointer's travel, over the track's width; useSliderState: to whole steps within the
 // range), and used until React has drawn a value of its own. The pointer is captured by the track for
 // the drag, as a touch is: the page is not hit-tested on every move, nor its hover styles redrawn.
-let dragged = null;  // {input, track, pageX, start, seen, value}: the stage slider being dragged
+//
+// And the moves are kept from react-aria: its render of Streamlit's slider for each one took 6–8 ms
+// after the move's frame (the slider's styled components insert a CSS rule for each new value, and
+// the whole page is restyled), so a move now and then missed its frame. live.js draws what that
+// render would, on each frame: the thumb at the value, its value as the thumb writes it (to the
+// decimals it shows), the track's filled part (its gradient's stops) and the value's place at the
+// ends of the track (as Streamlit's own layout effect places it). On release, one move to where the
+// pointer is tells react-aria the value, and its release commits it as after any drag (a cancelled
+// drag puts the thumb back). Where the slider is not drawn as expected, react-aria keeps the moves.
+let dragged = null;  // {input, track, pageX, start, seen, value, drawn, last}: the stage slider being dragged
 
 const clamp = (x, min, max) => Math.min(Math.max(x, min), max);
 
@@ -229,7 +238,7 @@ function onDragStart(event) {
   if (!slider || !event.isPrimary || event.button !== 0 || event.target.closest(".dl-step")) return;
   const input = slider.querySelector("input[type='range']"), track = input && input.closest("[role='group'] > [data-orientation]");
   if (!track || !track.contains(event.target)) return;  // (a press on the label starts no drag)
-  dragged = {input, track, pageX: event.pageX, start: null, seen: null, value: null};
+  dragged = {input, track, pageX: event.pageX, start: null, seen: null, value: null, drawn: drawnParts(slider, track, input), last: null};
   try { track.setPointerCapture(event.pointerId); } catch (e) { /* a pointer already gone */ }
   window.addEventListener("pointermove", onDragMove, true);
   for (const type of ["pointerup", "pointercancel"]) window.addEventListener(type, onDragEnd, true);
@@ -241,15 +250,62 @@ function onDragMove(event) {
   if (!(max > min)) return;
   if (dragged.start === null) dragged.start = (Number(input.value) - min) / (max - min);  // after the press's render
   dragged.value = draggedValue(dragged.start, event.pageX - dragged.pageX, track.getBoundingClientRect().width, min, max, step);
-  dragged.seen = input.value;  // what React shows until it draws this move
+  dragged.seen = input.value;  // what React shows until it draws this move (never, when drawn here)
+  if (dragged.drawn) {
+    event.stopImmediatePropagation();  // react-aria's own listener is the window's too, after this one
+    dragged.last = event;
+  }
   schedule();
 }
 
-function onDragEnd() {
+function onDragEnd(event) {
+  const ended = dragged;
   dragged = null;
   window.removeEventListener("pointermove", onDragMove, true);
   for (const type of ["pointerup", "pointercancel"]) window.removeEventListener(type, onDragEnd, true);
+  if (ended && ended.drawn && ended.last) {
+    if (event.type === "pointerup") {  // react-aria has seen none of the moves: one, to here, before its release
+      const {pointerId, pointerType, isPrimary} = ended.last, {clientX, clientY, screenX, screenY} = event;
+      ended.track.dispatchEvent(new PointerEvent("pointermove", {bubbles: true, cancelable: true, composed: true,
+        pointerId, pointerType, isPrimary, clientX, clientY, screenX, screenY, buttons: 1}));
+    } else {
+      Object.assign(ended.drawn.thumb.style, {left: ended.drawn.left});
+      setThumbText(ended.drawn, ended.drawn.text);
+    }
+    setTimeout(() => { ended.drawn.fill.style.backgroundImage = ""; }, 0);  // the slider's own again, from React's render
+  }
   schedule();
+}
+
+// The parts of a stage slider that a drag moves, as Streamlit 1.67 draws them, or null.
+function drawnParts(slider, track, input) {
+  const thumb = [...track.children].find((child) => child.contains(input) && child.style.left);
+  const label = thumb && thumb.querySelector("[data-testid='stSliderThumbValue']");
+  const text = label && label.querySelector("p"), shown = text && /^-?\d+(?:\.(\d+))?$/.exec(text.textContent);
+  const fill = track.firstElementChild, gradient = fill ? getComputedStyle(fill).backgroundImage : "";
+  if (!shown || !(text.firstChild instanceof Text) || (gradient.match(/-?[\d.]+%/g) || []).length !== 4) return null;
+  return {root: slider, thumb, label, fill, gradient, decimals: (shown[1] || "").length, left: thumb.style.left, text: text.textContent};
+}
+
+// The thumb, its value and the filled track at ``value``, as the slider's own render would draw them.
+function drawThumb({input, drawn, value}) {
+  const min = Number(input.min), max = Number(input.max), percent = ((value - min) / (max - min)) * 100;
+  drawn.thumb.style.left = `${percent}%`;
+  setThumbText(drawn, value.toFixed(drawn.decimals));
+  let stop = 0;  // [fill start, fill start, fill end, fill end]: the end moves
+  drawn.fill.style.backgroundImage = drawn.gradient.replace(/-?[\d.]+%/g, (at) => (stop++ >= 2 ? `${percent}%` : at));
+  // Streamlit's layout effect: the value kept within the slider at either end of the track
+  const box = drawn.root.getBoundingClientRect(), thumb = drawn.thumb.getBoundingClientRect(), label = drawn.label.getBoundingClientRect();
+  const half = thumb.width / 2, centre = thumb.left + half;
+  if (Math.round(centre - label.width / 2) < Math.round(box.left)) Object.assign(drawn.label.style, {left: `${box.left - centre + half}px`, right: ""});
+  else if (Math.round(centre + label.width / 2) > Math.round(box.right)) Object.assign(drawn.label.style, {left: "", right: `${centre + half - box.right}px`});
+  else Object.assign(drawn.label.style, {left: "", right: ""});
+}
+
+// React's own text node (a node put in its place would be left standing when React writes the next value).
+function setThumbText(drawn, text) {
+  const node = drawn.label.querySelector("p") && drawn.label.querySelector("p").firstChild;
+  if (node instanceof Text && node.data !== text) node.data = text;
 }
 
 function shownParams() {
@@ -408,6 +464,7 @@ function end() {
 // One frame: the values for what the controls show now.
 function draw() {
   frame = 0;
+  if (dragged && dragged.drawn && dragged.value !== null) drawThumb(dragged);
   if (!state) return;
   const started = performance.now();
   const params = shownParams(), moved = changed(params);
