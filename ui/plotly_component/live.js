@@ -496,6 +496,10 @@ function watchRuns() {
 
 function settle() {
   if (!state) return;
+  // A run that drew no live view (a refused value: no answers, no figure) has taken its element away,
+  // without a call to the cleanup render returned: the server's page stands, nothing live on it, and
+  // nothing follows a control until a run draws the view again.
+  if (!state.parent.isConnected) { end(); state = null; return; }
   const params = shownParams();
   if (state.live && !changed(params)) end();
 }
@@ -647,7 +651,7 @@ export function render({data, parentElement}) {
   const wasLive = state && state.live;
   if (state) end();
   performance.clearMeasures("dl-live-draw");  // one drag's worth kept, not a session's
-  state = {data: d, params, regime: d.regime, live: false, fn: null, caption: null, pose: null, poseFn: null};
+  state = {data: d, parent: parentElement, params, regime: d.regime, live: false, fn: null, caption: null, pose: null, poseFn: null};
   const mine = state;
   load(d.source).then((fn) => { mine.fn = fn; });
   if (d.pose) loadModule(d.pose.url).then((fn) => { mine.poseFn = fn; }, () => {});  // (none: the figure stays dimmed)
