@@ -491,6 +491,22 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     assert serious_violations(page) == []
     assert not errors, errors
     assert csp_violations(page) == []
+    # Released below the impact angle: the solver refuses, the run draws no answers, no figure and no
+    # live view, and nothing live is left on its page (its derivation not dimmed as if updating).
+    middle = track["y"] + track["height"] / 2  # (y is a pose's coordinates by now)
+    page.mouse.move(x_of(-12), middle)
+    page.mouse.down()
+    for degrees in (-30, -50, -70):
+        page.mouse.move(x_of(degrees), middle)
+    page.mouse.up()
+    page.wait_for_function("() => window.__runs >= 2", timeout=30_000)
+    wait_until_idle(page)
+    page.wait_for_timeout(300)
+    assert page.locator(".dl-answers table").count() == 0 and shown() < -35.7
+    assert page.locator(".dl-derivation").count() >= 1  # (so the check below can fail)
+    assert page.locator(".dl-live-stale, .dl-live-badge, .dl-live-value, .dl-live-caption").count() == 0
+    assert page.evaluate("() => document.body.classList.contains('dl-live-dragging')") is False
+    assert not errors, errors
     context.close()
 
     context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound?practice=1")

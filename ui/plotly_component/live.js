@@ -551,8 +551,28 @@ function watchRuns() {
   }).observe(app, {attributes: true, attributeFilter: ["data-test-script-state"]});
 }
 
+// A run that drew no live view (a refused value: no answers, no figure) takes its element away without
+// a call to the cleanup render returned: the server's page stands, nothing live on it, and nothing
+// follows a control until a run draws the view again. Watched on the page itself (when the run's state
+// attribute changes is no sure moment: the element may go after it).
+let dropped = false;  // (the run that draws the view again says its main answer, as after any release)
+function gone() {
+  if (!state || state.parent.isConnected) return false;
+  dropped = dropped || state.live;
+  end();
+  state = null;
+  return true;
+}
+let watchingPage = false;
+function watchPage() {
+  if (watchingPage) return;
+  watchingPage = true;
+  new MutationObserver(() => { if (state && state.live) gone(); }).observe(document.body, {childList: true, subtree: true});
+}
+
 function settle() {
   if (!state) return;
+  if (gone()) return;
   const params = shownParams();
   if (state.live && !changed(params)) end();
 }
@@ -701,15 +721,17 @@ export function render({data, parentElement}) {
     document.head.append(Object.assign(document.createElement("style"), {id: "dl-live-style", textContent: STYLE}));
   parentElement.replaceChildren();
   const params = fromJSON(d.params);
-  const wasLive = state && state.live;
+  const wasLive = (state && state.live) || dropped;
+  dropped = false;
   if (state) end();
   performance.clearMeasures("dl-live-draw");  // one drag's worth kept, not a session's
-  state = {data: d, params, regime: d.regime, live: false, fn: null, caption: null, pose: null, poseFn: null};
+  state = {data: d, parent: parentElement, params, regime: d.regime, live: false, fn: null, caption: null, pose: null, poseFn: null};
   const mine = state;
   load(d.source).then((fn) => { mine.fn = fn; });
   if (d.pose) loadModule(d.pose.url).then((fn) => { mine.poseFn = fn; }, () => {});  // (none: the figure stays dimmed)
   if (wasLive) requestAnimationFrame(announce);
   watch();
   watchRuns();
+  watchPage();
   return () => { if (state && state.data === d) { end(); state = null; } };
 }
