@@ -210,6 +210,8 @@ function controlValue(name) {
 let dragged = null;  // {input, track, pageX, start, seen, value, drawn, last}: the stage slider being dragged
 
 const clamp = (x, min, max) => Math.min(Math.max(x, min), max);
+// A range input's bounds and step as numbers (a step of "any" or none: one).
+const rangeOf = (input) => ({min: Number(input.min), max: Number(input.max), step: Number(input.step) || 1});
 
 // @react-stately/utils' roundToStepPrecision and snapValueToStep
 function roundToStep(value, step) {
@@ -246,7 +248,7 @@ function onDragStart(event) {
 
 function onDragMove(event) {
   if (!dragged || !event.isPrimary) return;
-  const {input, track} = dragged, min = Number(input.min), max = Number(input.max), step = Number(input.step) || 1;
+  const {input, track} = dragged, {min, max, step} = rangeOf(input);
   if (!(max > min)) return;
   if (dragged.start === null) dragged.start = (Number(input.value) - min) / (max - min);  // after the press's render
   dragged.value = draggedValue(dragged.start, event.pageX - dragged.pageX, track.getBoundingClientRect().width, min, max, step);
@@ -289,7 +291,7 @@ function drawnParts(slider, track, input) {
 
 // The thumb, its value and the filled track at ``value``, as the slider's own render would draw them.
 function drawThumb({input, drawn, value}) {
-  const min = Number(input.min), max = Number(input.max), percent = ((value - min) / (max - min)) * 100;
+  const {min, max} = rangeOf(input), percent = ((value - min) / (max - min)) * 100;
   drawn.thumb.style.left = `${percent}%`;
   setThumbText(drawn, value.toFixed(drawn.decimals));
   let stop = 0;  // [fill start, fill start, fill end, fill end]: the end moves
@@ -304,7 +306,7 @@ function drawThumb({input, drawn, value}) {
 
 // React's own text node (a node put in its place would be left standing when React writes the next value).
 function setThumbText(drawn, text) {
-  const node = drawn.label.querySelector("p") && drawn.label.querySelector("p").firstChild;
+  const node = drawn.label.querySelector("p")?.firstChild;
   if (node instanceof Text && node.data !== text) node.data = text;
 }
 
@@ -620,7 +622,7 @@ function stageSlider(el) {
 
 // The value the slider takes (the input sanitises it to its range and steps) and tells React of it.
 function moveTo(input, how) {
-  const min = Number(input.min), max = Number(input.max), step = Number(input.step) || 1;
+  const {min, max, step} = rangeOf(input);
   if (how === "min" || how === "max") setValue(input, String(how === "min" ? min : max));
   else {
     const steps = typeof how === "number" ? how : (how[0] === "-" ? -1 : 1) * Math.round(pageSize(min, max, step) / step);
@@ -656,7 +658,7 @@ function commit() {
   held = null;
   committing = performance.now();  // its step back and forth: the pose stays as drawn
   if (!input.isConnected) return;
-  const value = Number(input.value), min = Number(input.min), max = Number(input.max);
+  const value = Number(input.value), {min, max} = rangeOf(input);
   if (!(max > min)) return;
   const key = value > min ? "ArrowRight" : "ArrowLeft";
   moveTo(input, value > min ? -1 : 1);
