@@ -31,7 +31,8 @@ r, m, g, c = sp.symbols("r m g c", positive=True)
 
 @functools.cache
 def equations():
-    """Mass matrix M(q, u) and forcing f(q, u) of M [q̇; u̇] = f (full form), lambdified once."""
+    """The state's rate [q̇; u̇] (Kane's equations solved for u̇, the kinematic ones for q̇) and the
+    precession rate q̇1, each compiled once: ``rate(y, r, m, g, c)`` for y = [q1, q2, q3, u1, u2, u3]."""
     N = me.ReferenceFrame("N")
     Y = N.orientnew("Y", "Axis", [q1, N.z])
     L = Y.orientnew("L", "Axis", [q2, Y.x])
@@ -48,23 +49,27 @@ def equations():
     loads = [(G, -m * g * Y.z), (R, -c * (u1 * L.x + u2 * L.y + u3 * L.z))]
     kane = me.KanesMethod(N, q_ind=[q1, q2, q3], u_ind=[u1, u2, u3], kd_eqs=kinematic)
     kane.kanes_equations([disk], loads)
-    states = [q1, q2, q3, u1, u2, u3]
-    args = (states, r, m, g, c)
-    mass = sp.lambdify(args, kane.mass_matrix_full, modules="numpy")
-    forcing = sp.lambdify(args, kane.forcing_full, modules="numpy")
-    yaw_rate = sp.solve(kinematic, [q1.diff(), q2.diff(), q3.diff()])[q1.diff()]
-    precession = sp.lambdify(args, yaw_rate, modules="numpy")
-    return mass, forcing, precession
+    q_dot = kane.kindiffdict()
+    rates = [q_dot[q.diff()] for q in (q1, q2, q3)] + list(kane.mass_matrix.LUsolve(kane.forcing))
+    y = sp.symbols("q1:4 u1:4")  # plain symbols for the state, in its order
+    plain = dict(zip((q1, q2, q3, u1, u2, u3), y))
+    args = (y, r, m, g, c)
+    # scalar code (math, common subexpressions once), M's inverse worked out: a run-down calls it some
+    # 250,000 times (a numeric solve of M [q̇; u̇] = f at each call took 7× as long)
+    rate = sp.lambdify(args, [e.subs(plain) for e in rates], modules="math", cse=True)
+    precession = sp.lambdify(args, rates[0].subs(plain), modules="numpy")
+    return rate, precession
 
 
-def _rhs(params: dict, damping: float):
-    mass, forcing, _ = equations()
+def _rate(params: dict, damping: float):
+    """The state's rate for these parameters, f(y, t) (odeint's order)."""
+    rate, _ = equations()
     consts = (params["r"], params["m"], params["g"], damping)
 
-    def rhs(t, y):
-        return np.linalg.solve(np.asarray(mass(y, *consts), dtype=float),
-                               np.asarray(forcing(y, *consts), dtype=float).ravel())
-    return rhs
+    def rate_of(y, t):
+        return rate(y, *consts)
+    rate_of.consts = consts
+    return rate_of
 
 
 def steady_state(params: dict, omega_p: float) -> np.ndarray:
@@ -74,7 +79,7 @@ def steady_state(params: dict, omega_p: float) -> np.ndarray:
 
 
 def precession_rate(params: dict, state: np.ndarray) -> float:
-    _, _, precession = equations()
+    _, precession = equations()
     return float(precession(state, params["r"], params["m"], params["g"], 0.0))
 
 
@@ -83,36 +88,12 @@ def integrate_steady(params: dict, omega_p: float, periods: float = 2.0) -> dict
     precession rate along the way."""
     y0 = steady_state(params, omega_p)
     span = periods * 2 * math.pi / omega_p
-    rhs = _rhs(params, 0.0)
     # odeint (compiled LSODA) costs a fraction of solve_ivp's Python stepping; same tolerances.
-    y = odeint(lambda state, t: rhs(t, state), y0, np.linspace(0.0, span, 9), rtol=1e-11, atol=1e-12).T
+    y = odeint(_rate(params, 0.0), y0, np.linspace(0.0, span, 9), rtol=1e-11, atol=1e-12).T
     tilt = math.pi / 2 - y[1]
     rates = [precession_rate(params, y[:, i]) for i in range(y.shape[1])]
     return {"tilt_drift": float(np.max(np.abs(tilt - params["theta"]))), "precession": rates,
             "yaw_turned": float(y[0, -1])}
-
-
-@functools.lru_cache(maxsize=64)
-def _decay(key: tuple, damping: float, t_max: float, stop_tilt: float):
-    params = dict(key)
-    omega_p = math.sqrt(4 * params["g"] / (params["r"] * math.sin(params["theta"])))
-    y0 = steady_state(params, omega_p)
-
-    def flat(t, y):
-        return (math.pi / 2 - y[1]) - stop_tilt
-    flat.terminal, flat.direction = True, -1
-    sol = solve_ivp(_rhs(params, damping), (0.0, t_max), y0, method="LSODA", rtol=1e-8, atol=1e-10,
-                    events=flat, dense_output=True)
-    t = np.linspace(0.0, sol.t[-1], 200)
-    y = sol.sol(t)
-    tilt = math.pi / 2 - y[1]
-    rates = np.array([precession_rate(params, y[:, i]) for i in range(y.shape[1])])
-    kinetic = 0.5 * params["m"] * params["r"] ** 2 * (y[3] ** 2 / 4 + y[4] ** 2 / 2 + y[5] ** 2 / 4)
-    # G's velocity is ω × r L.z: add its translational energy, and the weight's potential energy
-    kinetic += 0.5 * params["m"] * params["r"] ** 2 * (y[3] ** 2 + y[4] ** 2)
-    energy = kinetic + params["m"] * params["g"] * params["r"] * np.sin(tilt)
-    return {"t": t, "tilt": tilt, "precession": np.abs(rates), "energy": energy,
-            "reached": bool(sol.t_events[0].size), "time_to_stop": float(sol.t[-1])}
 
 
 def decay(params: dict, damping: float, t_max: float = 60.0, stop_tilt: float = math.radians(1.0)) -> dict:
@@ -120,3 +101,30 @@ def decay(params: dict, damping: float, t_max: float = 60.0, stop_tilt: float = 
     tilt falls to ``stop_tilt`` (the disk's clatter and stop) or ``t_max``."""
     key = tuple(sorted((k, float(v)) for k, v in params.items() if k in ("m", "r", "theta", "g")))
     return _decay(key, float(damping), float(t_max), float(stop_tilt))
+
+
+@functools.lru_cache(maxsize=64)
+def _decay(key: tuple, damping: float, t_max: float, stop_tilt: float):
+    params = dict(key)
+    omega_p = math.sqrt(4 * params["g"] / (params["r"] * math.sin(params["theta"])))
+    y0 = steady_state(params, omega_p)
+    rate = _rate(params, damping)
+
+    def flat(t, y):
+        return (math.pi / 2 - y[1]) - stop_tilt
+    flat.terminal, flat.direction = True, -1
+    # solve_ivp for its events, looked for after every step: the tilt nods as it falls, below 1° for
+    # a few ms within one nod (an integration sampled every few ms missed such dips)
+    sol = solve_ivp(lambda t, y: rate(y, t), (0.0, t_max), y0, method="LSODA", rtol=1e-8, atol=1e-10,
+                    events=flat, dense_output=True)
+    t = np.linspace(0.0, sol.t[-1], 200)
+    y = sol.sol(t)
+    tilt = math.pi / 2 - y[1]
+    _, precession = equations()
+    rates = np.asarray(precession(y, *rate.consts), dtype=float)
+    kinetic = 0.5 * params["m"] * params["r"] ** 2 * (y[3] ** 2 / 4 + y[4] ** 2 / 2 + y[5] ** 2 / 4)
+    # G's velocity is ω × r L.z: add its translational energy, and the weight's potential energy
+    kinetic += 0.5 * params["m"] * params["r"] ** 2 * (y[3] ** 2 + y[4] ** 2)
+    energy = kinetic + params["m"] * params["g"] * params["r"] * np.sin(tilt)
+    return {"t": t, "tilt": tilt, "precession": np.abs(rates), "energy": energy,
+            "reached": bool(sol.t_events[0].size), "time_to_stop": float(sol.t[-1])}

@@ -126,6 +126,27 @@ def test_dissipation_drains_energy_and_the_contact_whirls_faster():
     assert undamped["energy"][-1] == pytest.approx(undamped["energy"][0], rel=1e-6)  # conserved without it
 
 
+@settings(max_examples=6, deadline=None)
+@given(tilt=st.floats(3, 60), damping=st.floats(2e-4, 2e-3))
+def test_the_run_down_stops_the_first_time_the_tilt_reaches_one_degree(tilt, damping):
+    """The tilt nods as it falls (it crosses 1° several times within one nod): the run-down ends at
+    the first crossing, as one finely sampled integration at tighter tolerances finds it."""
+    from scipy.integrate import odeint
+
+    from solvers import eulers_disk_dynamics as dynamics
+
+    s = eulers_disk.solve(theta=math.radians(tilt))
+    params = dict(s.params)
+    run = dynamics.decay(params, damping=damping, t_max=30.0)
+    assert run["reached"]
+    t = np.arange(0.0, run["time_to_stop"] + 0.05, 2e-4)
+    y = odeint(dynamics._rate(params, damping), dynamics.steady_state(params, s.answers["omega_p"]), t,
+               rtol=1e-11, atol=1e-13, mxstep=10**6)
+    first = t[np.argmax(math.pi / 2 - y[:, 1] <= math.radians(1))]
+    assert first - 2e-4 <= run["time_to_stop"] <= first + 1e-9
+    assert math.degrees(run["tilt"][-1]) == pytest.approx(1.0, abs=1e-6)
+
+
 def test_the_animation_reports_its_slow_motion():
     from viz import eulers_disk as viz
     solution = eulers_disk.solve()
