@@ -170,6 +170,8 @@ def test_an_assignment_end_to_end(browser, course_url):
         text = check(apage, typo, "This is not counted as an attempt")
         assert "Recorded" not in text
     text = check(apage, v1x(ann), "Right, and it counts")
+    # The due time moves (below) to the first whole minute after Ann's answer: the editor sets minutes.
+    moment = (dt.datetime.now(dt.timezone.utc) + dt.timedelta(minutes=1)).replace(second=0, microsecond=0)
     assert "attempt 1 of 3" in text and "Velocity after, along the wall done (right)" in banner(apage)
     for name in SIZES:
         apage.set_viewport_size(dict(zip(("width", "height"), SIZES[name])))
@@ -194,10 +196,9 @@ def test_an_assignment_end_to_end(browser, course_url):
     assert tpage.get_by_role("button", name="Check").count() == 0
     tctx.close()
 
-    # The instructor moves the due time to the start of this minute (after Ann's answer), and gives
-    # Cem an extension of two days.
-    page.wait_for_timeout(max(0, 61 - dt.datetime.now(dt.timezone.utc).second) * 1000)
-    moment = dt.datetime.now(dt.timezone.utc).replace(second=0, microsecond=0)
+    # The instructor moves the due time to that minute, once it has begun (after Ann's answer, before
+    # Bea's right one), and gives Cem an extension of two days.
+    page.wait_for_timeout(max(0, (moment - dt.datetime.now(dt.timezone.utc)).total_seconds() + 1) * 1000)
     page.get_by_text("Edit: due time, attempts").click()
     edit = page.locator("[data-testid='stExpander']").filter(has_text="Save the changes")
     for part, value in (("year", "%Y"), ("month", "%m"), ("day", "%d")):

@@ -136,8 +136,8 @@ def test_every_request_stays_on_the_app_s_own_server(browser, app_url):
     for path in ("/", f"/{PROBLEMS[0].id}"):
         page.goto(app_url + path)
         wait_until_idle(page)
-        page.wait_for_timeout(500)
-    assert page.locator("[data-testid='stMain'] .js-plotly-plot").count() >= 1  # the page was really drawn
+    page.locator("[data-testid='stMain'] .js-plotly-plot").first.wait_for(timeout=30_000)  # really drawn
+    page.wait_for_timeout(500)  # and what it asks for after drawing
     assert not elsewhere, elsewhere
     context.close()
 
