@@ -62,10 +62,15 @@ _SETTINGS = {"shipped": _shipped_env, "fresh": dict}
 SERVED = {"shipped_server", "app_url", "fresh_server", "browser"}
 
 
+@pytest.hookimpl(tryfirst=True)  # before ``-m`` selects by the mark
 def pytest_collection_modifyitems(session, config, items):
-    """The modules that need a live server or a browser run after the others (each module's tests
-    kept together and in order), so the servers started below warm while AppTest's tests run."""
+    """The modules that need a live server or a browser are marked ``served`` and run after the
+    others (each module's tests kept together and in order), so the servers started below warm
+    while AppTest's tests run."""
     served = {item.module.__name__ for item in items if SERVED & set(getattr(item, "fixturenames", ()))}
+    for item in items:
+        if item.module.__name__ in served:
+            item.add_marker("served")
     items.sort(key=lambda item: item.module.__name__ in served)
 
 
