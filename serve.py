@@ -33,7 +33,7 @@ def warm() -> float:
     from solvers.core import Choice
     from ui import live
     from ui.catalog import BY_ID
-    from ui.page import _requested
+    from viz import on_request
 
     started = time.perf_counter()
     shared_worker().warm()
@@ -48,7 +48,7 @@ def warm() -> float:
         for params in solver.WARM:  # the states no option combination reaches, or a slider's every position
             viz.figures(solver.solve(**params))
         if hasattr(viz, "on_request"):  # a costly figure on request, for the textbook's numbers
-            _requested(pid, tuple(sorted(solver.solve().params.items())))  # (shared by every session)
+            on_request.figure(pid, tuple(sorted(solver.solve().params.items())))  # (its worker started)
     return time.perf_counter() - started
 
 

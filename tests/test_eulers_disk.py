@@ -147,6 +147,35 @@ def test_the_run_down_stops_the_first_time_the_tilt_reaches_one_degree(tilt, dam
     assert math.degrees(run["tilt"][-1]) == pytest.approx(1.0, abs=1e-6)
 
 
+def test_a_run_down_computed_for_one_student_leaves_the_others_at_their_pace():
+    """The integration runs in the worker process (viz.on_request): a script thread beside it keeps
+    its pace (in a thread of the server's own process, a 2 ms run took 370 ms beside it)."""
+    import random
+    import threading
+    import time
+
+    from solvers import eulers_disk_dynamics as dynamics
+    from viz import on_request
+
+    params = dict(eulers_disk.solve(theta=math.radians(random.uniform(8, 12))).params)  # not kept anywhere
+    on_request.in_worker(dynamics.decay, params, 2e-3, 0.5)  # the worker started and warm
+
+    def pace() -> float:
+        started = time.perf_counter()
+        sum(math.sin(i) * math.cos(i) for i in range(200_000))  # another session's run, in Python
+        return time.perf_counter() - started
+
+    alone = min(pace() for _ in range(3))
+    running = threading.Thread(target=on_request.in_worker, args=(dynamics.decay, params, 5e-6, 60.0))
+    running.start()
+    time.sleep(0.2)
+    beside = [pace() for _ in range(3)]
+    measured_while_it_ran = running.is_alive()
+    running.join()
+    assert measured_while_it_ran
+    assert max(beside) < 5 * alone, (alone, beside)
+
+
 def test_the_animation_reports_its_slow_motion():
     from viz import eulers_disk as viz
     solution = eulers_disk.solve()

@@ -16,6 +16,7 @@ from ui.practice import instructor_export, is_instructor, practice_panel, seed_f
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
 from ui.figure import show as show_figure
+from viz import on_request
 from edge import widget_values
 from ui.params import (check_in_range, fixed_parameters, lesson_parameters, mirror_to_url, more_parameters,
                        parameter_panel, refused_values_notice)
@@ -188,13 +189,13 @@ def _solve_and_draw(problem: Problem, params: dict, system: str):
 
 def _on_request(problem: Problem, solution, figures) -> None:
     """A costly extra figure some problems offer (e.g. Euler's disk running down), drawn only when
-    asked for and cached by parameters across sessions; drawn with the plotly.js of the page's
-    ``figures``."""
+    asked for, in a worker process (viz.on_request), and kept by parameters across sessions; drawn
+    with the plotly.js of the page's ``figures``."""
     viz = importlib.import_module(f"viz.{problem.id}")
     if hasattr(viz, "on_request") and st.toggle(viz.on_request.__doc__.split(":")[0],
                                                 key=f"{problem.id}__on_request"):
         with st.spinner("Integrating the equations of motion…"):
-            show_figure(_requested(problem.id, tuple(sorted(solution.params.items()))), page=figures)
+            show_figure(on_request.figure(problem.id, tuple(sorted(solution.params.items()))), page=figures)
 
 
 def _on_request_flag(problem: Problem) -> dict[str, str]:
@@ -207,12 +208,6 @@ def _on_request_flag(problem: Problem) -> dict[str, str]:
     if key not in st.session_state:
         st.session_state[key] = st.query_params.get(flag) == "1"
     return {flag: "1" if st.session_state[key] else ""}
-
-
-@functools.lru_cache(maxsize=64)
-def _requested(problem_id: str, key: tuple):
-    solution = BY_ID[problem_id].solver.solve(**dict(key))
-    return importlib.import_module(f"viz.{problem_id}").on_request(solution)
 
 
 def _figures(figures, page=None, lecture: bool = False, fit_first: bool = False) -> None:
