@@ -98,7 +98,8 @@ def integrate_steady(params: dict, omega_p: float, periods: float = 2.0) -> dict
 
 def decay(params: dict, damping: float, t_max: float = 60.0, stop_tilt: float = math.radians(1.0)) -> dict:
     """With a resisting torque −c ω: the tilt, precession rate and energy against time, until the
-    tilt falls to ``stop_tilt`` (the disk's clatter and stop) or ``t_max``."""
+    tilt falls to ``stop_tilt`` (the disk's clatter and stop) or ``t_max``; a start at or below
+    ``stop_tilt``: the start alone, at t = 0."""
     key = tuple(sorted((k, float(v)) for k, v in params.items() if k in ("m", "r", "theta", "g")))
     return _decay(key, float(damping), float(t_max), float(stop_tilt))
 
@@ -115,10 +116,14 @@ def _decay(key: tuple, damping: float, t_max: float, stop_tilt: float):
     flat.terminal, flat.direction = True, -1
     # solve_ivp for its events, looked for after every step: the tilt nods as it falls, below 1° for
     # a few ms within one nod (an integration sampled every few ms missed such dips)
-    sol = solve_ivp(lambda t, y: rate(y, t), (0.0, t_max), y0, method="LSODA", rtol=1e-8, atol=1e-10,
-                    events=flat, dense_output=True)
-    t = np.linspace(0.0, sol.t[-1], 200)
-    y = sol.sol(t)
+    if params["theta"] <= stop_tilt:  # it starts where a run-down ends: nothing to integrate (the event
+        # below never fires, and 120 s of whirling at 0.5° held the one worker for minutes)
+        t, y, reached = np.zeros(1), np.asarray(y0, dtype=float)[:, None], True
+    else:
+        sol = solve_ivp(lambda t, y: rate(y, t), (0.0, t_max), y0, method="LSODA", rtol=1e-8, atol=1e-10,
+                        events=flat, dense_output=True)
+        t = np.linspace(0.0, sol.t[-1], 200)
+        y, reached = sol.sol(t), bool(sol.t_events[0].size)
     tilt = math.pi / 2 - y[1]
     _, precession = equations()
     rates = np.asarray(precession(y, *rate.consts), dtype=float)
@@ -127,4 +132,4 @@ def _decay(key: tuple, damping: float, t_max: float, stop_tilt: float):
     kinetic += 0.5 * params["m"] * params["r"] ** 2 * (y[3] ** 2 + y[4] ** 2)
     energy = kinetic + params["m"] * params["g"] * params["r"] * np.sin(tilt)
     return {"t": t, "tilt": tilt, "precession": np.abs(rates), "energy": energy,
-            "reached": bool(sol.t_events[0].size), "time_to_stop": float(sol.t[-1])}
+            "reached": reached, "time_to_stop": float(t[-1])}

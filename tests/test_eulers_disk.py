@@ -147,6 +147,41 @@ def test_the_run_down_stops_the_first_time_the_tilt_reaches_one_degree(tilt, dam
     assert math.degrees(run["tilt"][-1]) == pytest.approx(1.0, abs=1e-6)
 
 
+@settings(max_examples=8, deadline=2000)
+@given(tilt=st.floats(0.05, 1.0), radius=st.floats(0.005, 0.5))
+def test_a_run_down_that_starts_at_or_below_one_degree_is_its_start_alone(tilt, radius):
+    """Below 1° the event that ends a run-down never fires: the slider's lowest tilt (0.5°) with its
+    smallest radius integrated 120 s of a 950 rad/s whirl for minutes, and every run-down asked for
+    after it waited. The start is all there is, at once: the steady state's ω_p = √(4g / (r sin θ))."""
+    from viz import eulers_disk as viz
+
+    s = eulers_disk.solve(theta=math.radians(tilt), r=radius)
+    figure = viz.on_request(s)
+    tilt_trace, rate_trace = figure.spec["data"]
+    assert list(tilt_trace["x"]) == [0.0] and tilt_trace["y"][0] == pytest.approx(tilt, abs=1e-4)  # (rounded for JSON)
+    assert rate_trace["y"][0] == pytest.approx(math.sqrt(4 * 9.81 / (radius * math.sin(math.radians(tilt)))), rel=1e-4)
+    assert tilt_trace["mode"] == rate_trace["mode"] == "markers"  # one point: a line would draw nothing
+    assert "nothing is left to run down" in figure.description
+
+
+@pytest.mark.parametrize("tilt, radius, direction", [(10.0, 0.005, "grown"), (60.0, 0.1, "fallen")])
+def test_the_run_down_caption_says_what_its_plot_shows(tilt, radius, direction):
+    """The caption's ω_p 'from … to …' are the plotted ends, and whether it grew or fell is read from
+    them: at a steep tilt the precession slows as the disk settles (it said 'grown from 21.3 to 16')."""
+    from solvers.core import plain_number
+    from viz import eulers_disk as viz
+
+    figure = viz.on_request(eulers_disk.solve(theta=math.radians(tilt), r=radius))
+    tilt_trace, rate_trace = figure.spec["data"]
+    first, last = rate_trace["y"][0], rate_trace["y"][-1]
+    assert (last > first) == (direction == "grown")
+    said = f"ω_p {direction} from {plain_number(first, 3)} to {plain_number(last, 3)} rad/s"
+    assert said in figure.description, figure.description
+    if "reaches 1°" in figure.description:
+        assert tilt_trace["y"][-1] == pytest.approx(1.0, abs=1e-3)
+        assert f"after {plain_number(tilt_trace['x'][-1], 3)} s" in figure.description
+
+
 def test_a_run_down_computed_for_one_student_leaves_the_others_at_their_pace():
     """The integration runs in the worker process (viz.on_request): a script thread beside it keeps
     its pace (in a thread of the server's own process, a 2 ms run took 370 ms beside it)."""

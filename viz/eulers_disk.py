@@ -179,10 +179,18 @@ def on_request(solution, damping: float = 5e-6) -> Figure:
     layout["xaxis2"] = {"anchor": "y2", "title": {"text": "t (s)"}}
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.45], "title": {"text": "ω_p (rad/s)"}}
     layout["margin"]["b"] = 60
-    ending = (f"the tilt reaches 1° after {n(d['time_to_stop'], 3)} s" if d["reached"] else
-              f"after {n(d['time_to_stop'], 3)} s the tilt is {plain_fixed(math.degrees(d['tilt'][-1]), 1)}°")
+    start, end = n(d["precession"][0], 3), n(d["precession"][-1], 3)
+    if d["time_to_stop"] == 0:  # it starts where a run-down ends: the start alone, as points
+        for trace in data:
+            trace["mode"] = "markers"
+        said = (f"it starts at {plain_fixed(math.degrees(d['tilt'][0]), 1)}°, at or below the 1° where a run-down "
+                f"ends (the disk's clatter and stop): nothing is left to run down, ω_p = {start} rad/s.")
+    else:
+        ending = (f"the tilt reaches 1° after {n(d['time_to_stop'], 3)} s" if d["reached"] else
+                  f"after {n(d['time_to_stop'], 3)} s the tilt is {plain_fixed(math.degrees(d['tilt'][-1]), 1)}°")
+        grown = "grown" if d["precession"][-1] > d["precession"][0] else "fallen"  # (it falls at a steep tilt)
+        said = f"energy drains and the disk settles; {ending}, with ω_p {grown} from {start} to {end} rad/s."
     description = (f"Kane's equations of the rolling disk integrated with a resisting torque −cω (c = {n(damping)} "
-                   f"N·m·s): energy drains, the disk settles and the contact whirls faster; {ending}, with ω_p "
-                   f"grown from {n(d['precession'][0], 3)} to {n(d['precession'][-1], 3)} rad/s.")
+                   f"N·m·s): {said}")
     return Figure("eulers_disk_decay", "Letting it run down (full equations, with dissipation)",
                   {"data": data, "layout": layout}, description, animated=False, height=420)
