@@ -211,6 +211,26 @@ def test_a_run_down_computed_for_one_student_leaves_the_others_at_their_pace():
     assert max(beside) < 5 * alone, (alone, beside)
 
 
+def test_the_worker_counts_the_requests_a_new_one_waits_behind():
+    """The run-down's spinner says how many figures other students asked for first (three asked at
+    once waited 4, 14 and 16 s behind the same words): viz.on_request counts them while they last."""
+    import threading
+    import time
+
+    from viz import on_request
+
+    on_request.in_worker(time.sleep, 0.0)  # the worker started
+    before = on_request.waiting()
+    asked = [threading.Thread(target=on_request.in_worker, args=(time.sleep, 0.6)) for _ in range(2)]
+    for thread in asked:
+        thread.start()
+    time.sleep(0.3)
+    assert on_request.waiting() == before + 2  # one in the worker, one queued behind it
+    for thread in asked:
+        thread.join()
+    assert on_request.waiting() == before
+
+
 def test_the_animation_reports_its_slow_motion():
     from viz import eulers_disk as viz
     solution = eulers_disk.solve()

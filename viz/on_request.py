@@ -18,6 +18,7 @@ from concurrent.futures.process import BrokenProcessPool
 
 _lock = threading.Lock()
 _pool: ProcessPoolExecutor | None = None
+_asked = 0  # requests in the worker or queued for it: what a new one waits behind
 
 
 def _worker() -> ProcessPoolExecutor:
@@ -38,14 +39,26 @@ def _replace(broken: ProcessPoolExecutor) -> None:
 def in_worker(function, *args):
     """``function(*args)`` computed in the worker process (after the requests queued before it); a
     worker that died (killed, out of memory) is replaced once."""
-    for attempt in (1, 2):
-        pool = _worker()
-        try:
-            return pool.submit(function, *args).result()
-        except BrokenProcessPool:
-            _replace(pool)
-            if attempt == 2:
-                raise
+    global _asked
+    with _lock:
+        _asked += 1
+    try:
+        for attempt in (1, 2):
+            pool = _worker()
+            try:
+                return pool.submit(function, *args).result()
+            except BrokenProcessPool:
+                _replace(pool)
+                if attempt == 2:
+                    raise
+    finally:
+        with _lock:
+            _asked -= 1
+
+
+def waiting() -> int:
+    """How many requests are in the worker or queued for it now."""
+    return _asked
 
 
 def drawn(problem_id: str, params: tuple):
