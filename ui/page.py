@@ -196,7 +196,7 @@ def _on_request(problem: Problem, solution, figures) -> None:
                                                 key=f"{problem.id}__on_request"):
         ahead = on_request.waiting()  # (a figure already drawn is shown at once: the spinner never appears)
         words = ("Integrating the equations of motion: usually 5 to 15 s"
-                 + (f", after the {ahead} run{'s' if ahead > 1 else ''} other students asked for first" if ahead else "") + "…")
+                 + (f", after {ahead} run{'s' if ahead > 1 else ''} other students asked for first" if ahead else "") + "…")
         with st.spinner(words, show_time=True):
             show_figure(on_request.figure(problem.id, tuple(sorted(solution.params.items()))), page=figures)
 
