@@ -261,6 +261,21 @@ def test_the_run_down_switch_is_kept_in_the_url():
     assert again.toggle(key="eulers_disk__on_request").value is True
 
 
+def test_a_run_down_whose_worker_died_twice_is_said_not_a_traceback(monkeypatch):
+    """in_worker replaces a killed worker once; killed again (out of memory twice), the page says so."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    from viz import on_request
+
+    def died(*_):
+        raise BrokenProcessPool("killed")
+    monkeypatch.setattr(on_request, "figure", died)
+    at = run_page("eulers_disk", {"rundown": "1"})
+    assert not at.exception
+    assert any("could not be computed" in e.value and "off and on again" in e.value for e in at.error), at.error
+    assert at.toggle(key="eulers_disk__on_request").value is True  # kept: switching it off and on retries
+
+
 def test_log_and_run_down_axes_label_their_ticks_in_full():
     solution, figs = figures("eulers_disk")
     log_axis = figs[1].spec["layout"]["yaxis"]

@@ -5,6 +5,7 @@ import contextlib
 import functools
 import importlib
 import math
+from concurrent.futures.process import BrokenProcessPool
 
 import streamlit as st
 
@@ -192,13 +193,19 @@ def _on_request(problem: Problem, solution, figures) -> None:
     asked for, in a worker process (viz.on_request), and kept by parameters across sessions; drawn
     with the plotly.js of the page's ``figures``."""
     viz = importlib.import_module(f"viz.{problem.id}")
-    if hasattr(viz, "on_request") and st.toggle(viz.on_request.__doc__.split(":")[0],
-                                                key=f"{problem.id}__on_request"):
+    label = viz.on_request.__doc__.split(":")[0] if hasattr(viz, "on_request") else ""
+    if label and st.toggle(label, key=f"{problem.id}__on_request"):
         ahead = on_request.waiting()  # (a figure already drawn is shown at once: the spinner never appears)
         words = ("Integrating the equations of motion: usually 5 to 15 s"
                  + (f", after {ahead} run{'s' if ahead > 1 else ''} other students asked for first" if ahead else "") + "…")
         with st.spinner(words, show_time=True):
-            show_figure(on_request.figure(problem.id, tuple(sorted(solution.params.items()))), page=figures)
+            try:
+                drawn = on_request.figure(problem.id, tuple(sorted(solution.params.items())))
+            except BrokenProcessPool:  # its worker died twice (killed, out of memory): said, never a traceback
+                st.error(f"“{label}” could not be computed: its worker process stopped twice. Switch it off "
+                         "and on again to retry.", icon=":material/error:")
+                return
+        show_figure(drawn, page=figures)
 
 
 def _on_request_flag(problem: Problem) -> dict[str, str]:
