@@ -390,6 +390,16 @@ KEY_FRAME = (f"() => {{ const g = {STAGE_GRAPH}, fig = g.closest('.dl-figure').d
              " return Object.fromEntries(f.traces.map((t, n) => [g.data[t].name, [f.data[n].x, f.data[n].y]])); }")
 
 
+def live_ready(page) -> None:
+    """Wait until the stage's live view can pose the figure: live.js imports the pose module the page
+    names (pose.<hash>.js) when the page mounts, and a move before it arrives shows the figure marked
+    "updating" (right, but not what these tests look at). Awaiting the same import resolves after live.js's."""
+    page.wait_for_function("() => performance.getEntriesByType('resource').some((r) => /\\/pose\\.[0-9a-f]+\\.js/.test(r.name))",
+                           timeout=30_000)
+    page.evaluate("async () => { for (const r of performance.getEntriesByType('resource'))"
+                  " if (/\\/pose\\.[0-9a-f]+\\.js/.test(r.name)) await import(r.name); }")
+
+
 def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(browser, app_url):
     """Issue 27: while θ₀ is dragged (the mouse held down) the answers, and the caption's headline, are the
     solver's for the value the slider shows, with no server run; past the impact angle every answer waits ("updating…") and the
@@ -410,6 +420,7 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     page.on("request", lambda r: loaded.append(r.url))
     page.locator(".dl-answers table").first.wait_for()
     page.evaluate(RUN_COUNTER)
+    live_ready(page)
     control = page.locator(".st-key-pendulum_rebound__si__theta0")
     track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
     low, high = -89, 89
@@ -546,6 +557,7 @@ def test_a_drag_s_values_are_painted_in_the_frame_the_pointer_moved_in(browser, 
     context, page, errors = open_page(browser, f"{app_url}/{pid}")
     page.locator(".dl-answers table").first.wait_for()
     page.evaluate(RUN_COUNTER)
+    live_ready(page)
     control = page.locator(f".st-key-{lesson_control(pid)[0]}")
     thumb = control.locator("input[type='range']")
     low, high = (float(thumb.get_attribute(a)) for a in ("min", "max"))
@@ -646,6 +658,7 @@ def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, 
     context, page, errors = open_page(browser, f"{app_url}/rod_disk_spring")
     page.locator(".dl-answers table").first.wait_for()
     page.evaluate(RUN_COUNTER)
+    live_ready(page)
     thumb = page.locator(".st-key-dl_stage_controls [data-testid='stSlider'] input[type='range']").first
     assert thumb.evaluate("(el) => el.closest('.st-key-rod_disk_spring__si__theta2') !== null")
     shown = lambda: float(thumb.input_value())  # noqa: E731
@@ -715,6 +728,7 @@ def test_a_phone_steps_a_stage_slider_one_step_a_tap(browser, app_url):
     context, page, errors = open_page(browser, f"{app_url}/rod_disk_spring", 390, 844, phone=True)
     page.locator(".dl-answers table").first.wait_for()
     page.evaluate(RUN_COUNTER)
+    live_ready(page)
     slider = page.locator(".st-key-rod_disk_spring__si__theta2")
     shown = lambda: float(slider.locator("input[type='range']").input_value())  # noqa: E731
     higher = slider.get_by_role("button", name="θ₂ one step higher")
