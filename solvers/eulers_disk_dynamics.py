@@ -68,7 +68,6 @@ def _rate(params: dict, damping: float):
 
     def rate_of(y, t):
         return rate(y, *consts)
-    rate_of.consts = consts
     return rate_of
 
 
@@ -78,9 +77,10 @@ def steady_state(params: dict, omega_p: float) -> np.ndarray:
     return np.array([0.0, math.pi / 2 - tilt, 0.0, 0.0, 0.0, omega_p * math.sin(tilt)])
 
 
-def precession_rate(params: dict, state: np.ndarray) -> float:
+def precession_rate(params: dict, state: np.ndarray):
+    """q̇1 at a state, or at each column of states (one per instant)."""
     _, precession = equations()
-    return float(precession(state, params["r"], params["m"], params["g"], 0.0))
+    return precession(state, params["r"], params["m"], params["g"], 0.0)
 
 
 def integrate_steady(params: dict, omega_p: float, periods: float = 2.0) -> dict:
@@ -91,7 +91,7 @@ def integrate_steady(params: dict, omega_p: float, periods: float = 2.0) -> dict
     # odeint (compiled LSODA) costs a fraction of solve_ivp's Python stepping; same tolerances.
     y = odeint(_rate(params, 0.0), y0, np.linspace(0.0, span, 9), rtol=1e-11, atol=1e-12).T
     tilt = math.pi / 2 - y[1]
-    rates = [precession_rate(params, y[:, i]) for i in range(y.shape[1])]
+    rates = [float(precession_rate(params, y[:, i])) for i in range(y.shape[1])]
     return {"tilt_drift": float(np.max(np.abs(tilt - params["theta"]))), "precession": rates,
             "yaw_turned": float(y[0, -1])}
 
@@ -125,8 +125,7 @@ def _decay(key: tuple, damping: float, t_max: float, stop_tilt: float):
         t = np.linspace(0.0, sol.t[-1], 200)
         y, reached = sol.sol(t), bool(sol.t_events[0].size)
     tilt = math.pi / 2 - y[1]
-    _, precession = equations()
-    rates = np.asarray(precession(y, *rate.consts), dtype=float)
+    rates = np.asarray(precession_rate(params, y), dtype=float)
     kinetic = 0.5 * params["m"] * params["r"] ** 2 * (y[3] ** 2 / 4 + y[4] ** 2 / 2 + y[5] ** 2 / 4)
     # G's velocity is ω × r L.z: add its translational energy, and the weight's potential energy
     kinetic += 0.5 * params["m"] * params["r"] ** 2 * (y[3] ** 2 + y[4] ** 2)
