@@ -13,7 +13,6 @@ import functools
 import math
 
 import numpy as np
-from scipy.interpolate import CubicHermiteSpline
 import sympy as sp
 
 from .core import (
@@ -38,7 +37,7 @@ from .core import (
 )
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
-from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, integrate_leg
+from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg
 
 ABOUT = About(
     title="Rod-and-sphere pendulum bounces off the floor",
@@ -340,8 +339,7 @@ def motion(solution: Solution, frames: int = 60, bounces: int = 3, curve_points:
     impact_times = [ti for ti, _ in impacts]
     t_frames = np.union1d(np.linspace(t[0], t[-1], frames), impact_times)
     t_curve = np.union1d(np.linspace(t[0], t[-1], curve_points), impact_times)
-    # Both sets of times in one pass, so each leg's curve is built once (scipy's construction is most
-    # of the drawing's cost on a new value of e); each time gets the value it would get on its own.
+    # Both sets of times in one pass over the legs; each time gets the value it would get on its own.
     both = np.concatenate([t_frames, t_curve])
     order = np.argsort(both, kind="stable")
     theta_both, omega_both = np.empty_like(both), np.empty_like(both)
@@ -361,8 +359,7 @@ def _on_legs(legs, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         stop = int(np.searchsorted(times, t_leg[-1], side="right"))
         inside = slice(start, stop)
         if len(t_leg) > 1:
-            curve = CubicHermiteSpline(t_leg, leg.theta[keep], leg.omega[keep])
-            theta[inside], omega[inside] = curve(times[inside]), curve(times[inside], 1)
+            theta[inside], omega[inside] = hermite_on_knots(t_leg, leg.theta[keep], leg.omega[keep], times[inside])
         else:
             theta[inside], omega[inside] = leg.theta[0], leg.omega[0]
         start = stop

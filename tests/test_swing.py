@@ -70,3 +70,25 @@ def test_crossing_time_estimates_the_integrated_time(a, k, start, omega0):
     assume((rate_squared(qs) > 1e-6).all() and (omega0 > 1e-2 or acc(start) > 1e-3))
     t_cross, _ = reference(acc, start, omega0, until_rest=False, angle=math.pi / 2)
     assert crossing_time(rate_squared, start, math.pi / 2) == pytest.approx(t_cross, rel=0.02)
+
+
+@settings(max_examples=80, deadline=None)
+@given(knots=st.lists(st.tuples(st.floats(0.01, 2), st.floats(-5, 5), st.floats(-20, 20)), min_size=2, max_size=30),
+       fractions=st.lists(st.floats(0, 1), min_size=1, max_size=50))
+def test_hermite_on_knots_is_scipy_s_cubic_hermite_spline(knots, fractions):
+    """The pendulum's legs are drawn through their knots by hermite_on_knots: the same curve and
+    derivative as scipy's CubicHermiteSpline (its own construction, PPoly's evaluation), at the
+    knots themselves and between them."""
+    from scipy.interpolate import CubicHermiteSpline
+
+    from solvers.swing import hermite_on_knots
+
+    t = np.cumsum([0.0] + [gap for gap, _, _ in knots[1:]])
+    y, dy = np.array([v for _, v, _ in knots]), np.array([d for _, _, d in knots])
+    times = np.sort(np.concatenate([t, t[0] + (t[-1] - t[0]) * np.array(fractions)]))
+    value, rate = hermite_on_knots(t, y, dy, times)
+    curve = CubicHermiteSpline(t, y, dy)
+    scale = 1 + np.abs(y).max() + np.abs(dy).max() * (t[-1] - t[0])
+    assert np.allclose(value, curve(times), rtol=1e-12, atol=1e-12 * scale)
+    assert np.allclose(rate, curve(times, 1), rtol=1e-10, atol=1e-10 * scale / np.diff(t).min())
+    assert np.allclose(hermite_on_knots(t, y, dy, t)[0], y, rtol=1e-12, atol=1e-12 * scale)  # through every knot
