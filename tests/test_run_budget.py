@@ -20,20 +20,20 @@ from ui import figure as component
 STUB_BYTES = 400  # the module a run carries: an import of plotly_component/figure.<hash>.js
 
 
-def counted(at) -> tuple[int, list, list, list, list]:
-    """(Markdown elements, figure elements, answer elements, derivation elements, live-value elements)
-    in the main area."""
+def counted(at) -> tuple[int, list, list, list]:
+    """(Markdown elements, figure elements, answer elements, derivation elements) in the main area."""
     markdown = sum(1 for e in at.main if getattr(e, "type", None) == "markdown")
     ours = [e.proto for e in at.main if getattr(e, "type", None) == "bidi_component"]
-    figures, answers, derivations, live = ([p for p in ours if p.component_name == name]
-                                           for name in (component.NAME, component.ANSWERS, component.DERIVATION,
-                                                        component.LIVE))
-    assert len(figures) + len(answers) + len(derivations) + len(live) == len(ours)
-    return markdown, figures, answers, derivations, live
+    figures, answers, derivations = ([p for p in ours if p.component_name == name]
+                                     for name in (component.NAME, component.ANSWERS, component.DERIVATION))
+    assert len(figures) + len(answers) + len(derivations) == len(ours)
+    return markdown, figures, answers, derivations
 
 
 @pytest.mark.parametrize("pid", IDS)
 def test_a_run_sends_the_heading_the_answers_the_derivation_and_each_figure_once(pid):
+    import orjson
+
     at = run_page(pid)
     solution = importlib.import_module(f"solvers.{pid}").solve()
     shown = importlib.import_module(f"viz.{pid}").figures(solution)
@@ -41,16 +41,17 @@ def test_a_run_sends_the_heading_the_answers_the_derivation_and_each_figure_once
     live_module = f"/live.{component.module('live.js')[0].split('.')[1]}.js"
     for state in ("first run", "after a change"):
         assert_clean(at)
-        markdown, figures, answers, derivations, live = counted(at)
+        markdown, figures, answers, derivations = counted(at)
         assert markdown == 1, (pid, state, markdown)  # the heading
         assert len(figures) == len(shown), (pid, state)
         for text in (*answers, *derivations):
             assert len(text.js_content) <= STUB_BYTES and text_module in text.js_content
         assert len(answers) == 1 and len(derivations) == 1
-        # the live values' element: its module imported, its data (the generated function, the
-        # followed controls, the answers' units) a few kB
-        assert len(live) == 1 and len(live[0].js_content) <= STUB_BYTES and live_module in live[0].js_content
-        assert len(live[0].bytes) <= 8_000, len(live[0].bytes)
+        # the live values ride with the answers (no element of their own): live.js's path, and its data
+        # (the generated function, the followed controls, the answers' units) a few kB
+        live = orjson.loads(answers[0].bytes)["live"]
+        assert live["module"].endswith(live_module) and len(orjson.dumps(live["data"])) <= 8_000
+        assert "live" not in orjson.loads(derivations[0].bytes)
         for proto in figures:
             assert proto.component_name == component.NAME and not proto.isolate_styles
             assert len(proto.js_content) <= STUB_BYTES, len(proto.js_content)
@@ -74,3 +75,18 @@ def test_the_payload_is_one_json_object_around_the_figure():
     assert sent["spec"] == orjson.loads(figure.json_bytes())
     assert (sent["title"], sent["description"], sent["height"], sent["bundle"], sent["style"]) == (
         figure.title, figure.description, figure.height, "/b.js", component.LECTURE)
+
+
+@pytest.mark.parametrize("query", [{"practice": "1"}, {"seed": "7"}], ids=["practice", "variant"])
+def test_answers_shown_after_show_the_solution_carry_no_live_view(query):
+    """The live function would give the answers away before "Show the solution": Practice and a
+    variant link send none, before or after the solution is shown; the lesson page does."""
+    from tests.test_pages import shown
+
+    assert "live" in shown(run_page("stick_ball"), component.ANSWERS)[0]
+    at = run_page("stick_ball", query)
+    assert_clean(at)
+    assert not shown(at, component.ANSWERS)  # the answers wait for "Show the solution"
+    at.button(key="stick_ball__reveal").click().run()
+    answers = shown(at, component.ANSWERS)
+    assert len(answers) == 1 and "live" not in answers[0]

@@ -57,10 +57,11 @@ def bundles() -> dict[str, tuple[str, bytes]]:
 DERIVATION = "dynamics_lab_derivation"
 ANSWERS = "dynamics_lab_answers"
 # Each component's name and the module that draws it (plotly_component/<file>): this file's figure,
-# the answers and the derivation that ui/results.py shows (one module, text.js, for both), and the
-# live values while a lesson control is dragged (ui/live.py).
-LIVE = "dynamics_lab_live"
-COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js", LIVE: "live.js"}
+# and the answers and the derivation that ui/results.py shows (one module, text.js, for both).
+COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js"}
+# Modules the components import: the live values while a lesson control is dragged (ui/live.py),
+# which ride with the answers they follow (an element of their own cost every run two widgets' work).
+IMPORTED = ("live.js",)
 
 
 @cache
@@ -85,7 +86,7 @@ class BundleServer:
         # Streamlit names the component after its module too (ui.figure.dynamics_lab_figure), so a
         # file is known by the end of its path: /component/<component's name>/<file's name>.
         self.files = {f".{NAME}/{name}": (data, gzip.compress(data, 9))
-                      for name, data in (*bundles().values(), *map(module, set(COMPONENTS.values())), katex())}
+                      for name, data in (*bundles().values(), *map(module, {*COMPONENTS.values(), *IMPORTED}), katex())}
 
     async def __call__(self, scope, receive, send):
         if scope["type"] == "http" and scope["method"] in ("GET", "HEAD"):
@@ -110,6 +111,11 @@ class BundleServer:
 def url(name: str) -> str:
     """A served file's path on this server (Streamlit's component route, under the base path)."""
     return f"{base_path()}/component/{__name__}.{NAME}/{name}"
+
+
+def module_url(file: str) -> str:
+    """The served path of a component's module or one it imports (plotly_component/<file>)."""
+    return url(module(file)[0])
 
 
 def generated_module(stem: str, text: str) -> str:

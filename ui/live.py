@@ -1,15 +1,14 @@
 """Live values while a lesson control is dragged: the page's part (the generated functions and what
 they follow are solvers/live.py's; the browser's part is ui/plotly_component/live.js).
 
-Mounted on the lesson page only (Study and Lecture), never in Practice, on a variant link or in an
-assignment: it would give the answers away. A problem without ``LIVE`` gets nothing."""
+Carried by the answers' element on the lesson page only (Study and Lecture), never in Practice, on a
+variant link or in an assignment: it would give the answers away. A problem without ``LIVE`` gets
+nothing."""
 from __future__ import annotations
 
 import functools
 import importlib
 import math
-
-import orjson
 
 from solvers import live, registry
 from solvers.core import Solution
@@ -30,6 +29,7 @@ def pose_source(pid: str, options: tuple[tuple[str, str], ...], system: str) -> 
     return live.pose_source(key_pose, params, system)
 
 
+@functools.lru_cache(maxsize=64)
 def pose_module(pid: str, options: tuple[tuple[str, str], ...], system: str) -> str | None:
     """The path of the pose's module (generated once, served under its content's key), or None."""
     pose = pose_source(pid, options, system)
@@ -46,10 +46,13 @@ def warm(pid: str, params, system: str) -> None:
         pose_module(pid, options, system)
 
 
-def show(problem: Problem, solution: Solution, answers, system: str, stage: Figure | None = None) -> None:
-    """``stage``: the figure on the stage, whose caption's headline follows too (viz.common.headline)."""
+def payload(problem: Problem, solution: Solution, answers, system: str, stage: Figure | None = None) -> dict | None:
+    """What the answers' element carries for live.js (ui.results.answer_section: the values follow a
+    dragged control on the lesson page, never elsewhere), or None for a problem without ``LIVE``.
+    ``stage``: the figure on the stage, whose caption's headline and key pose follow too
+    (viz.common.headline, ``key_pose``)."""
     if live.declared(problem.id) is None:
-        return
+        return None
     keys = {name: control_key(problem, system, name) for name in problem.primary}
     data = live.payload(problem.id, solution.params, answers, system, keys)
     # JSON has no infinity (μ = ∞ on the disk's page): sent as a word, read back by live.js
@@ -61,4 +64,4 @@ def show(problem: Problem, solution: Solution, answers, system: str, stage: Figu
     if stage is not None and stage.headline:
         data["headline"] = {"parts": stage.headline,
                             "text": headline_text(stage.headline, {**solution.params, **solution.answers})}
-    figure.declared(figure.LIVE)(data=orjson.dumps(data), key="live")
+    return {"module": figure.module_url("live.js"), "data": data}

@@ -242,12 +242,14 @@ def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=N
         return None
 
 
-def _results(problem: Problem, solution, answers, system: str, figures, page, lecture: bool, fit_first: bool = False) -> None:
+def _results(problem: Problem, solution, answers, system: str, figures, page, lecture: bool, fit_first: bool = False,
+             live_view: dict | None = None) -> None:
     """The answers and ``figures`` (before the answers on the projector, after them in Study), the
-    costly figure on request and the derivation. ``page``: every figure of the page."""
+    costly figure on request and the derivation. ``page``: every figure of the page; ``live_view``:
+    what makes the answers follow a dragged lesson control (ui.live.payload)."""
     if lecture:
         _figures(figures, page, lecture=True, fit_first=fit_first)
-    results.answer_section(solution, answers, system)
+    results.answer_section(solution, answers, system, live_view)
     if not lecture:
         _figures(figures, page)
     _on_request(problem, solution, page)
@@ -346,9 +348,10 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     answers = problem.answers_of(solution)
     with motion_column:  # the motion on the stage, fitted to the first screen; its companions below
         show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True)
-    _results(problem, solution, answers, system, figures[1:], figures, lecture)
+    # the answers follow a dragged control (never in Practice)
+    _results(problem, solution, answers, system, figures[1:], figures, lecture,
+             live_view=live.payload(problem, solution, answers, system, figures[0]))
     takehome.lesson_links(problem)
-    live.show(problem, solution, answers, system, figures[0])  # the answers follow a dragged control (never in Practice)
 
 
 def _assignment(problem: Problem, link, system: str) -> None:

@@ -17,13 +17,16 @@ LEDGER_HEADING = "Across the impact"
 CHECKS_HEADING = "Checked a second way"
 
 
-def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str) -> None:
+def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str, live: dict | None = None) -> None:
     """Answers, notes, the ledger across an impact and the checks, in one element of our own
     (ui/plotly_component/text.js, as the derivation): the values go as data, each symbol is typeset
-    once in the browser, and a cell a new value does not change is left alone."""
+    once in the browser, and a cell a new value does not change is left alone. ``live``: what makes
+    them follow a dragged lesson control (ui.live.payload; the lesson page's only)."""
     payload = {"view": "answers", "heading": ANSWERS_HEADING, "answers": answer_rows(solution, answers, system),
                "notes": list(solution.notes), "ledger_heading": LEDGER_HEADING, "ledger": ledger(solution, system),
                "checks_heading": CHECKS_HEADING, "checks": checks(solution), "katex": figure.katex_url()}
+    if live is not None:
+        payload["live"] = live
     figure.declared(figure.ANSWERS)(data=orjson.dumps(payload), key="answers")
 
 

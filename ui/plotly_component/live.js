@@ -1,6 +1,6 @@
-// Live values while a lesson control is dragged (ui/live.py), a Streamlit components-v2 module on the
-// lesson page only (Study and Lecture: never in Practice, a variant or an assignment, where it would
-// give the answers away).
+// Live values while a lesson control is dragged (ui/live.py), imported by the answers' element (text.js)
+// on the lesson page only (Study and Lecture: never in Practice, a variant or an assignment, where it
+// would give the answers away).
 //
 // Streamlit reruns the page when a slider is released; while it is dragged (mouse or touch) its thumb's
 // value changes in the page alone, and here a key held on it (or pressed again and again) does the same
@@ -715,10 +715,9 @@ function onStep(event) {
   schedule();
 }
 
-const decoder = new TextDecoder();
-
-export function render({data, parentElement}) {
-  const d = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
+// The answers' element (text.js) hands over what the run sent (ui/live.py) and an element of its own;
+// the function returned ends the live view when the answers come without it.
+export function follow(d, parentElement) {
   if (!document.getElementById("dl-live-style"))
     document.head.append(Object.assign(document.createElement("style"), {id: "dl-live-style", textContent: STYLE}));
   parentElement.replaceChildren();

@@ -245,4 +245,18 @@ export async function render({data, parentElement}) {
   view.update(katex, d);
   if (katex === asTeX)  // drawn without KaTeX: drawn again on the next run (headings keep their place)
     for (const el of parentElement.querySelectorAll(":not(h3, h4)")) delete el.dlShown;
+  if (d.live || following.has(parentElement)) await followLive(parentElement, d.live);
+}
+
+// The answers follow a dragged lesson control (live.js, imported on the lesson page only), with these
+// answers on the page already: the run's values, which a screen reader is told once after a release.
+const following = new WeakMap();  // the answers' element -> live.js's end of the live view
+async function followLive(parentElement, live) {
+  const stop = following.get(parentElement);
+  following.delete(parentElement);
+  if (!live) { if (stop) stop(); return; }
+  let holder = parentElement.querySelector(":scope > .dl-live-holder");
+  if (!holder) parentElement.append(holder = make("div", "dl-live-holder"));
+  const module = await import(new URL(live.module, location.href).href);
+  following.set(parentElement, module.follow(live.data, holder));
 }
