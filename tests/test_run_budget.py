@@ -90,3 +90,26 @@ def test_answers_shown_after_show_the_solution_carry_no_live_view(query):
     at.button(key="stick_ball__reveal").click().run()
     answers = shown(at, component.ANSWERS)
     assert len(answers) == 1 and "live" not in answers[0]
+
+
+def test_the_live_view_s_modules_follow_the_base_path_set_after_warming():
+    """serve.py warms (every state's pose module generated) before the command line sets
+    ``server.baseUrlPath``: the paths a run sends are made with the base path as it is then."""
+    from streamlit import config
+
+    from solvers.pendulum_rebound import solve
+    from ui import live
+    from ui.catalog import BY_ID
+
+    problem, solution = BY_ID["pendulum_rebound"], solve()
+    shown = importlib.import_module("viz.pendulum_rebound").figures(solution)
+    answers = problem.answers_of(solution)
+    at_root = live.payload(problem, solution, answers, "si", shown[0])  # warmed at the root
+    config.set_option("server.baseUrlPath", "dynamics-lab")
+    try:
+        prefixed = live.payload(problem, solution, answers, "si", shown[0])
+    finally:
+        config.set_option("server.baseUrlPath", "")
+    assert not at_root["module"].startswith("/dynamics-lab/") and not at_root["data"]["pose"]["url"].startswith("/dynamics-lab/")
+    assert prefixed["module"].startswith("/dynamics-lab/component/")
+    assert prefixed["data"]["pose"]["url"] == "/dynamics-lab" + at_root["data"]["pose"]["url"]

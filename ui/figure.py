@@ -118,10 +118,11 @@ def module_url(file: str) -> str:
     return url(module(file)[0])
 
 
-def generated_module(stem: str, text: str) -> str:
-    """A generated JavaScript module (ui/live.py: a figure's pose) served beside the component's files
-    under a name keyed by its content (the browser imports it once, not with every run): its path."""
-    return url(_keyed(text.encode(), stem, ".js")[0])
+def generated_file(stem: str, text: str) -> str:
+    """A generated JavaScript module (ui/live.py: a figure's pose) written beside the component's files
+    under a name keyed by its content (the browser imports it once, not with every run): its name
+    (``url`` gives its path)."""
+    return _keyed(text.encode(), stem, ".js")[0]
 
 
 @cache

@@ -30,10 +30,16 @@ def pose_source(pid: str, options: tuple[tuple[str, str], ...], system: str) -> 
 
 
 @functools.lru_cache(maxsize=64)
-def pose_module(pid: str, options: tuple[tuple[str, str], ...], system: str) -> str | None:
-    """The path of the pose's module (generated once, served under its content's key), or None."""
+def _pose_file(pid: str, options: tuple[tuple[str, str], ...], system: str) -> str | None:
     pose = pose_source(pid, options, system)
-    return None if pose is None else figure.generated_module("pose", f"export default {pose};\n")
+    return None if pose is None else figure.generated_file("pose", f"export default {pose};\n")
+
+
+def pose_module(pid: str, options: tuple[tuple[str, str], ...], system: str) -> str | None:
+    """The path of the pose's module (generated once, served under its content's key), or None: under
+    the server's base path as it is now (serve.py warms before the command line sets it)."""
+    name = _pose_file(pid, options, system)
+    return None if name is None else figure.url(name)
 
 
 def warm(pid: str, params, system: str) -> None:

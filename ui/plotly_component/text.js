@@ -230,6 +230,7 @@ const decoder = new TextDecoder();
 
 export async function render({data, parentElement}) {
   const d = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
+  const liveModule = d.live ? import(new URL(d.live.module, location.href).href) : null;  // beside KaTeX's
   // KaTeX's script (UMD) sets window.katex when it runs; loaded once per page.
   katexPromise ??= import(new URL(d.katex, location.href).href).then(() => window.katex)
     .catch(() => { katexPromise = null; return asTeX; });
@@ -245,18 +246,21 @@ export async function render({data, parentElement}) {
   view.update(katex, d);
   if (katex === asTeX)  // drawn without KaTeX: drawn again on the next run (headings keep their place)
     for (const el of parentElement.querySelectorAll(":not(h3, h4)")) delete el.dlShown;
-  if (d.live || following.has(parentElement)) await followLive(parentElement, d.live);
+  if (d.live || following.has(parentElement)) followLive(parentElement, d.live, liveModule);
 }
 
 // The answers follow a dragged lesson control (live.js, imported on the lesson page only), with these
 // answers on the page already: the run's values, which a screen reader is told once after a release.
-const following = new WeakMap();  // the answers' element -> live.js's end of the live view
-async function followLive(parentElement, live) {
-  const stop = following.get(parentElement);
-  following.delete(parentElement);
-  if (!live) { if (stop) stop(); return; }
-  let holder = parentElement.querySelector(":scope > .dl-live-holder");
-  if (!holder) parentElement.append(holder = make("div", "dl-live-holder"));
-  const module = await import(new URL(live.module, location.href).href);
-  following.set(parentElement, module.follow(live.data, holder));
+// Each run's view starts after the last one's (a run without it, Practice, ends it); a view that cannot
+// load leaves the answers as the server drew them.
+const following = new WeakMap();  // the answers' element -> the promise of live.js's end of its view
+function followLive(parentElement, live, module) {
+  const last = following.get(parentElement) || Promise.resolve(null);
+  const next = last.then((stop) => {  // (a run's follow takes over the last view itself: it says the answer once)
+    if (!live) { if (stop) stop(); return null; }
+    let holder = parentElement.querySelector(":scope > .dl-live-holder");
+    if (!holder) parentElement.append(holder = make("div", "dl-live-holder"));
+    return module.then((m) => m.follow(live.data, holder));
+  }).catch(() => null);
+  following.set(parentElement, next);
 }
