@@ -43,13 +43,17 @@ class Leg:
         return float(self.t[-1]), float(self.theta[-1]), float(self.omega[-1])
 
 
+def _hermite_basis(s):
+    """The cubic Hermite basis (h00, h10, h01, h11) at the fraction ``s`` of an interval (a number or an array)."""
+    return 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2
+
+
 def _hermite(t0, t1, y0, y1, d0, d1):
     """Cubic Hermite interpolant through (t0, y0, y0'), (t1, y1, y1')."""
     h = t1 - t0
 
     def value(t):
-        s = (t - t0) / h
-        h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2
+        h00, h10, h01, h11 = _hermite_basis((t - t0) / h)
         return h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1
     return value
 
@@ -57,15 +61,16 @@ def _hermite(t0, t1, y0, y1, d0, d1):
 def hermite_on_knots(t: np.ndarray, y: np.ndarray, dy: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The piecewise cubic Hermite curve through the knots (t, y, y') (t increasing) and its
     derivative at ``times`` (within [t[0], t[-1]]): each time on the interval it falls in, the
-    last one closed. What scipy's CubicHermiteSpline gives, evaluated in a few whole-array steps
-    (its construction costs more than a new state's whole drawing on the pendulum's page)."""
+    last one closed; ``_hermite`` on every interval at once. What scipy's CubicHermiteSpline gives,
+    evaluated in a few whole-array steps (its construction costs more than a new state's whole
+    drawing on the pendulum's page)."""
     i = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 2)
     h = t[i + 1] - t[i]
     s = (times - t[i]) / h
-    y0, y1, m0, m1 = y[i], y[i + 1], h * dy[i], h * dy[i + 1]
-    s2, s3 = s * s, s * s * s
-    value = (2 * s3 - 3 * s2 + 1) * y0 + (s3 - 2 * s2 + s) * m0 + (3 * s2 - 2 * s3) * y1 + (s3 - s2) * m1
-    rate = ((6 * s2 - 6 * s) * (y0 - y1) + (3 * s2 - 4 * s + 1) * m0 + (3 * s2 - 2 * s) * m1) / h
+    y0, y1, d0, d1 = y[i], y[i + 1], dy[i], dy[i + 1]
+    h00, h10, h01, h11 = _hermite_basis(s)
+    value = h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1
+    rate = (6 * s**2 - 6 * s) * (y0 - y1) / h + (3 * s**2 - 4 * s + 1) * d0 + (3 * s**2 - 2 * s) * d1  # d/dt of value
     return value, rate
 
 
