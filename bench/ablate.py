@@ -32,14 +32,18 @@ def _replaced(variant: str) -> None:
     from ui import figure
 
     if "controls" in variant:
+        drawn = page.lesson_parameters
+
         def lesson_parameters(problem, system, base, stage):
-            first, rest = params._split(problem)
-            known = params._known(problem, base or {})
-            values = {p.name: params._in_si(p, st.session_state[params.control_key(problem, system, p.name)], system,
-                                            known[p.name]) for p in first}
-            values.update({p.name: params._stored(problem, p, system, known) for p in rest})
-            values = {p.name: values[p.name] for p in problem.solver.PARAMS}
-            st.session_state[f"{problem.id}__si"] = dict(values)
+            """The page's own, with each control's value read from its state instead of drawn, and one
+            element carrying them all."""
+            control, params._control = params._control, lambda p, problem, system, _: st.session_state[
+                params.control_key(problem, system, p.name)]
+            try:
+                values = drawn(problem, system, base, stage)
+            finally:
+                params._control = control
+            first, _ = params._split(problem)
             with stage:
                 figure.declared(figure.DERIVATION)(data=orjson.dumps({"controls": [[p.name, params._label(p, system),
                                                                                     values[p.name]] for p in first]}),
@@ -85,7 +89,7 @@ def main() -> None:
     from serve import warm
     warm()
     _replaced(args.variant)
-    print(f"| page | variant | page ms | empty ms | × empty |\n|---|---|---|---|---|")
+    print("| page | variant | page ms | empty ms | × empty |\n|---|---|---|---|---|")
     for pid in args.pages:
         p, e, ratio = measure(pid, args.variant, args.changes)
         print(f"| {pid} | {args.variant} | {1000 * p:.1f} | {1000 * e:.1f} | {ratio:.2f} |", flush=True)
