@@ -371,7 +371,8 @@ class Figure {
     this.printing = false;
     // One update in place: data, layout and the frames replaced together (no new plot).
     await Plotly.react(this.graph, {data: spec.data, layout: layout, frames: frames,
-                                    config: {displayModeBar: false, responsive: true}});
+                                    config: {displayModeBar: false, responsive: true,
+                                            plotGlPixelRatio: glPixelRatio()}});
     if (seq !== this.seq) return;
     this.frames = frames;
     this.frameNames = frames.map(f => f.name);
@@ -654,6 +655,11 @@ function outlines(xa, ya, data, frames, widths) {
 
 // The motion's outlines follow the stage's width: drawn for about 700 px, down to half as thick on a
 // phone, so a small sphere stays a sphere, not a ring.
+// WebGL draws a 3-D scene at plotly's plotGlPixelRatio, 2 by default: on a screen of one device pixel
+// a CSS pixel that is four pixels drawn for each shown, which a machine without a GPU rasterises on
+// every pose of a drag. The screen's own ratio (1 to 3, as plotly allows) draws what is shown.
+function glPixelRatio() { return Math.min(3, Math.max(1, Math.round(window.devicePixelRatio || 1))); }
+
 function outlineScale(width) { return Math.max(0.5, Math.min(1, width / 700)); }
 
 // ------------------------------------------------------------------ on paper
