@@ -252,6 +252,29 @@ def test_euler_s_disk_stays_on_the_table(p):
     assert min(min(row) for row in rim) >= -DRAWN * (1 + p["r"])
 
 
+@EXAMPLES
+@given(VALID)
+def test_the_whole_disk_stands_inside_the_scene_s_box_drawn_to_one_scale(p):
+    """WebGL clips a 3-D scene to its axes' ranges: every frame's rim, radius and contact point lie
+    inside them (a tilt of 68° put the rim's top, 2r sin θ above the table, above a box r high), and
+    the box's aspect ratio is its ranges' (one scale on x, y and z)."""
+    import json
+    from viz.common import unpacked
+    _, figs = figures("eulers_disk", **p)
+    spec = json.loads(figs[0].json())
+    scene, anim = spec["layout"]["scene"], spec["animation"]
+    ranges = {k: scene[f"{k}axis"]["range"] for k in "xyz"}
+    for coords in anim["coords"]:
+        frames = unpacked(coords, len(anim["times"]))
+        for k in "xyz":
+            values = np.asarray(frames[k], dtype=float)
+            assert np.nanmin(values) >= ranges[k][0] - 1e-9 * abs(ranges[k][0]) - DRAWN
+            assert np.nanmax(values) <= ranges[k][1] * (1 + 1e-3) + DRAWN  # (the range rounded as drawn)
+    extent = {k: ranges[k][1] - ranges[k][0] for k in "xyz"}
+    for k in "yz":
+        assert scene["aspectratio"][k] / scene["aspectratio"]["x"] == pytest.approx(extent[k] / extent["x"], rel=2e-3)
+
+
 def test_the_run_down_switch_is_kept_in_the_url():
     at = run_page("eulers_disk")
     at.toggle(key="eulers_disk__on_request").set_value(True).run()

@@ -55,7 +55,9 @@ def _animation(solution) -> Figure:
                *xyz(m["contact"][:, None, :])),
     ]
     span = 1.05 * rad
+    top = max(span, 1.05 * 2 * rad * math.sin(p["theta"]))  # the rim's highest point, 2r sin θ, inside the box
     tick = _nice_below(span / 2)  # three labels a side (−20, 0, 20), clear of the corners where two axes meet
+    z_ticks = [tick * k for k in range(1, int(top / tick) + 1)]
     axis = lambda lo, hi, ticks: {"range": r([lo, hi]), "title": {"text": ""}, "tickvals": ticks}  # noqa: E731
     layout = {
         "height": 560, "margin": {"l": 0, "r": 0, "t": 10, "b": 90},
@@ -67,14 +69,14 @@ def _animation(solution) -> Figure:
         # anchored at its axis (x and y at the middle of the edge that carries their ticks, beyond
         # the tick labels; z above its top), text the page lays out and keeps inside the graph.
         "scene": {"xaxis": axis(-span, span, [-tick, 0, tick]), "yaxis": axis(-span, span, [-tick, 0, tick]),
-                  "zaxis": axis(0, span, [tick, 2 * tick]), "aspectmode": "manual",
-                  "aspectratio": {"x": 1.1, "y": 1.1, "z": 0.55},
+                  "zaxis": axis(0, top, z_ticks), "aspectmode": "manual",  # one scale on all three axes
+                  "aspectratio": {"x": 1.1, "y": 1.1, "z": r(1.1 * top / (2 * span))},
                   "camera": {"eye": {"x": 0.95, "y": -0.95, "z": 0.62}, "center": {"x": -0.04, "y": -0.04, "z": -0.05},
                              "projection": {"type": "orthographic"}},
                   "annotations": [
                       {"x": 0, "y": r(-span), "z": 0, "text": "x (mm)", "showarrow": False, "xshift": -40, "yshift": -42},
                       {"x": r(span), "y": 0, "z": 0, "text": "y (mm)", "showarrow": False, "xshift": 40, "yshift": -42},
-                      {"x": r(-span), "y": r(-span), "z": r(span), "text": "z (mm)", "showarrow": False,
+                      {"x": r(-span), "y": r(-span), "z": r(top), "text": "z (mm)", "showarrow": False,
                        "xanchor": "left", "yanchor": "bottom", "xshift": 4}]},
     }
     # 3-D traces need redraw; the frame duration sets the slow motion.
