@@ -644,6 +644,62 @@ def test_a_posed_figure_is_drawn_as_plotly_draws_it(browser, app_url):
     context.close()
 
 
+def test_a_held_3d_scene_s_pose_is_drawn_where_webgl_draws_it(browser, app_url):
+    """Issue 27: while a lesson control is dragged, Euler's disk's bodies are drawn in an SVG over its
+    3-D scene (figure.js sceneOverlay: each point projected by the scene's camera), not by redrawing
+    the scene in WebGL for each pose. Held at the frame on screen, the overlay's rim, marked radius,
+    contact point and G land on the pixels WebGL drew for them: each colour's pixels within 2 px of
+    the other drawing's, both ways, nearly all of them (the SVG has no depth: where the contact's path
+    passes in front of the rim, WebGL draws it over, the overlay under)."""
+    import io
+
+    import numpy as np
+    from PIL import Image
+    from scipy.ndimage import distance_transform_edt
+
+    HOLD = """async () => {
+      const fig = document.querySelector('.st-key-dl_stage .dl-figure').dlFigure, gd = fig.graph;
+      const frame = fig.frames[fig.frameIndex];
+      const posed = gd._fullData.map((t, i) => i);
+      const data = posed.map((t) => {
+        const n = frame.traces.indexOf(t), d = n < 0 ? {} : frame.data[n];
+        return {x: d.x || gd.data[t].x, y: d.y || gd.data[t].y, z: d.z || gd.data[t].z};
+      });
+      fig.hold();
+      await fig.showHeld([], 0.3, posed);
+      return {drawn: fig.sceneOverlay(posed, data),
+              colours: gd._fullData.map((t) => (t.mode.includes('lines') ? t.line.color : t.marker.color))};
+    }"""
+    context, page, errors = open_page(browser, f"{app_url}/eulers_disk")
+    graph = page.locator(".st-key-dl_stage .dl-figure .dl-graph")
+    page.locator(".st-key-dl_stage .dl-figure .gl-container canvas").first.wait_for()
+    page.wait_for_timeout(500)
+    webgl = np.asarray(Image.open(io.BytesIO(graph.screenshot())).convert("RGB"), dtype=int)
+    held = page.evaluate(HOLD)
+    assert held["drawn"]
+    page.wait_for_timeout(300)
+    assert page.locator(".dl-scene-pose path").count() >= 3
+    overlay = np.asarray(Image.open(io.BytesIO(graph.screenshot())).convert("RGB"), dtype=int)
+    assert webgl.shape == overlay.shape
+    compared = 0
+    for colour in set(held["colours"]):
+        rgb = np.array([int(colour.lstrip("#")[i:i + 2], 16) for i in (0, 2, 4)])
+        # (the colour itself: an edge blended with white would pass for a lighter colour)
+        a, b = (np.abs(img - rgb).sum(axis=2) < 30 for img in (webgl, overlay))
+        assert a.sum() > 20 and b.sum() > 20, colour
+        for one, other in ((a, b), (b, a)):
+            near = distance_transform_edt(~other)[one] <= 2.0  # each pixel's distance to the other drawing's nearest
+            assert near.mean() >= 0.95, (colour, near.mean())
+        compared += 1
+    assert compared >= 3
+    # released: WebGL draws the bodies again, the overlay gone
+    page.evaluate("() => document.querySelector('.st-key-dl_stage .dl-figure').dlFigure.release()")
+    page.wait_for_timeout(300)
+    assert page.locator(".dl-scene-pose").count() == 0
+    assert not errors, errors
+    context.close()
+
+
 def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, app_url):
     """Issue 27: ArrowRight held on the stage's first slider (rod_disk_spring's θ₂) for about a second
     moves the thumb and its value, and the answers follow the solver during the hold with no run; the

@@ -25,6 +25,8 @@ const CSS = `
 .dl-figure.dl-lecture .dl-controls button { font-size: 20px; padding: 6px 18px; }
 .dl-figure.dl-lecture .dl-hint, .dl-figure.dl-lecture .dl-description, .dl-figure.dl-lecture .dl-readout { font-size: 18px; }
 .dl-figure.dl-lecture h4.dl-title { font-size: 1.6rem; }
+/* the traces drawn over a held 3-D scene: hidden in WebGL, not in its legend */
+.dl-figure .dl-scene-held .legend .traces { opacity: 1 !important; }
 .dl-figure .dl-key { display: none; font-size: 14px; font-style: italic; margin: 0.2rem 0; }
 @media (hover: none) { .dl-figure .dl-hint { display: none; } }
 /* A phone's stage: the caption's first two lines under the motion, the whole of it on a tap (the graph's
@@ -179,6 +181,54 @@ class Figure {
     scene.glplot.redraw();
     return true;
   }
+  // A held 3-D scene's posed traces (lines, markers) drawn in an SVG laid over the scene, each point
+  // projected as plotly.js projects a 3-D annotation (the scene's camera, model and data scale, onto
+  // its domain): WebGL hides them for the hold (showHeld) and is not redrawn while the control moves.
+  // Each redraw of the scene in software WebGL took 7–9 ms a pose, and the next move waited for it.
+  sceneOverlay(traces, data) {
+    const held = this.held, layout = this.graph._fullLayout;
+    const scene = layout && layout.scene && layout.scene._scene;
+    if (!held || !held.overlay || traces.some((t) => !held.overlay.includes(t))) return false;
+    if (!scene || !scene.glplot || !scene.glplot.cameraParams || !scene.dataScale) return false;
+    const project = sceneProjection(scene.glplot.cameraParams, scene.dataScale, layout._size, layout.scene.domain);
+    if (!held.svg) {
+      const svg = held.svg = document.createElementNS(SVG, "svg");
+      svg.setAttribute("class", "dl-scene-pose");
+      svg.setAttribute("aria-hidden", "true");
+      Object.assign(svg.style, {position: "absolute", left: "0", top: "0", pointerEvents: "none", overflow: "hidden",
+                                width: layout.width + "px", height: layout.height + "px"});
+      const gl = this.graph.querySelector(".gl-container");
+      if (!gl) return false;
+      // Clipped to the plot area clear of the legend (WebGL clips to the scene's box, which a bigger
+      // tilt than the run's outgrows: the overlay shows it whole, off the legend's rows above or column beside).
+      let {l, t, w, h} = layout._size;
+      const legend = this.graph.querySelector(".legend"), here = this.graph.getBoundingClientRect();
+      const key = legend && legend.getBoundingClientRect();
+      if (key && key.height && key.bottom - here.top <= t + h / 2) [t, h] = [key.bottom - here.top + 2, t + h - (key.bottom - here.top + 2)];
+      else if (key && key.width && key.left - here.left >= l + w / 2) w = key.left - here.left - 2 - l;
+      const clip = `dl-scene-clip-${++overlays}`;
+      svg.innerHTML = `<clipPath id="${clip}"><rect x="${l}" y="${t}" width="${Math.max(0, w)}" height="${Math.max(0, h)}"/></clipPath>` +
+        `<g clip-path="url(#${clip})"><g></g><g></g></g>`;
+      gl.after(svg);  // above the scene, below the legend and annotations
+      held.layers = [...svg.lastChild.children];  // the markers over every line, as WebGL's depth shows them here
+      held.marks = new Map();
+    }
+    const [lines, markers] = held.layers;
+    traces.forEach((t, n) => {
+      const full = this.graph._fullData[t], {x, y, z} = data[n];
+      if (!held.marks.has(t)) held.marks.set(t, [lines, markers].map((layer) => layer.appendChild(document.createElementNS(SVG, "g"))));
+      const [line, mark] = held.marks.get(t);
+      const points = x.map((_, i) => (x[i] === null || y[i] === null || z[i] === null ? null : project(x[i], y[i], z[i])));
+      // WebGL's widths: a scatter3d line is drawn half its width in pixels, a marker about 1.4 its size across
+      line.innerHTML = full.mode.includes("lines")
+        ? `<path d="${points.map((p, i) => (p ? (i && points[i - 1] ? "L" : "M") + p.join(",") : "")).join("")}" fill="none" ` +
+          `stroke="${full.line.color}" stroke-width="${full.line.width / 2}" stroke-linejoin="round" stroke-linecap="round"/>` : "";
+      mark.innerHTML = full.mode.includes("markers")
+        ? points.filter((p) => p).map((p) => `<circle cx="${p[0]}" cy="${p[1]}" r="${0.7 * full.marker.size}" fill="${full.marker.color}"/>`).join("") : "";
+      Object.assign(this.graph.data[t], {x, y, z});  // so the frame held and released is the one drawn
+    });
+    return true;
+  }
   // 2-D traces (lines, 'toself' fills, markers) drawn at these coordinates by setting their SVG as
   // plotly.js draws it (each run of points between gaps a path, on the axes as they stand), in a
   // fraction of a millisecond: plotly's animate redraws every moving trace of the figure, 6–16 ms a
@@ -224,10 +274,11 @@ class Figure {
     return true;
   }
   // Traces drawn at these coordinates at once (live.js: the bodies at the key instant while a lesson
-  // control is dragged): a 3-D scene's in place, anything else through plotly's animate, given every
-  // moving trace (it redraws only the subplots of the traces it gets, and empties the others).
+  // control is dragged): a held 3-D scene's over it (sceneOverlay), another 3-D scene's in place, 2-D
+  // ones in their SVG, anything else through plotly's animate, given every moving trace (it redraws
+  // only the subplots of the traces it gets, and empties the others).
   pose(traces, data) {
-    if (this.sceneUpdate(traces, data) || this.svgUpdate(traces, data)) return Promise.resolve();
+    if (this.sceneOverlay(traces, data) || this.sceneUpdate(traces, data) || this.svgUpdate(traces, data)) return Promise.resolve();
     const others = (this.frames[0] ? this.frames[0].traces : []).filter((t) => !traces.includes(t));
     return this.Plotly.animate(this.graph, {data: [...data, ...others.map((t) => ({x: this.graph.data[t].x, y: this.graph.data[t].y}))],
                                             traces: [...traces, ...others]},
@@ -273,24 +324,36 @@ class Figure {
     this.pause();
     this.held = {frame: this.frameIndex, shown: false};
   }
-  showHeld(dimmed, opacity) {
+  // A 3-D scene's ``posed`` traces are hidden there (drawn over it by sceneOverlay while held).
+  showHeld(dimmed, opacity, posed = []) {
     if (!this.held || this.held.shown) return Promise.resolve();
     this.held.shown = true;
-    return this.restyleFrame(this.keyFrame, dimmed.map(() => opacity), dimmed);
+    const layout = this.graph._fullLayout, overlay = layout && layout.scene && layout.scene._scene ? posed : [];
+    this.held.overlay = overlay.length ? overlay : null;
+    this.graph.classList.toggle("dl-scene-held", !!this.held.overlay);
+    return this.restyleFrame(this.keyFrame, dimmed.map(() => opacity), dimmed, overlay, "legendonly");
   }
   release() {
     const held = this.held;
     this.held = null;
-    if (held && held.shown) quiet(this.restyleFrame(held.frame, this.graph.data.map(() => null), this.graph.data.map((_, i) => i)));
+    this.dropOverlay(held);
+    if (held && held.shown) quiet(this.restyleFrame(held.frame, this.graph.data.map(() => null), this.graph.data.map((_, i) => i),
+                                                    held.overlay || [], true));
   }
-  // Frame ``index``'s moving traces, and these traces' opacities, in one restyle.
-  restyleFrame(index, opacities, traces) {
+  dropOverlay(held) {
+    if (held && held.svg) held.svg.remove();
+    this.graph.classList.remove("dl-scene-held");
+  }
+  // Frame ``index``'s moving traces, these traces' opacities, and the ``shown`` traces' visibility, in
+  // one restyle.
+  restyleFrame(index, opacities, traces, shown = [], visible = true) {
     const frame = this.frames[index];
     if (!frame) return Promise.resolve();
-    const all = [...new Set([...frame.traces, ...traces])], update = {opacity: all.map((t) => {
+    const all = [...new Set([...frame.traces, ...traces, ...shown])], update = {opacity: all.map((t) => {
       const n = traces.indexOf(t);
       return n < 0 ? undefined : opacities[n];
     })};
+    if (shown.length) update.visible = all.map((t) => (shown.includes(t) ? visible : undefined));
     for (const [n, d] of frame.data.entries())
       for (const k of Object.keys(d)) if (k !== "type") (update[k] ??= all.map(() => undefined))[all.indexOf(frame.traces[n])] = d[k];
     this.frameIndex = index;
@@ -367,6 +430,7 @@ class Figure {
       layout.margin.b = Math.min(layout.margin.b, Math.ceil(axisRoom(layout, (layout.yaxis2 ? layout.xaxis2 : layout.xaxis) || {})));
     applied(layout, stacked(layout, plotHeight(layout)));
     this.pause();
+    this.dropOverlay(this.held);
     this.held = null;
     this.printing = false;
     // One update in place: data, layout and the frames replaced together (no new plot).
@@ -659,6 +723,23 @@ function outlines(xa, ya, data, frames, widths) {
 // a CSS pixel that is four pixels drawn for each shown, which a machine without a GPU rasterises on
 // every pose of a drag. The screen's own ratio (1 to 3, as plotly allows) draws what is shown.
 function glPixelRatio() { return Math.min(3, Math.max(1, Math.round(window.devicePixelRatio || 1))); }
+
+const SVG = "http://www.w3.org/2000/svg";
+let overlays = 0;  // a page's 3-D overlays so far (each one's clip path its own id)
+
+// A 3-D point (data units) to the graph's pixels, as plotly.js places a 3-D annotation: projection ×
+// view × model (column-major, WebGL's) of the point times the scene's data scale, then the clip
+// coordinates onto the scene's domain of the plot area.
+function sceneProjection(camera, dataScale, size, domain) {
+  const times = (m, v) => [0, 1, 2, 3].map((row) => m[row] * v[0] + m[4 + row] * v[1] + m[8 + row] * v[2] + m[12 + row] * v[3]);
+  const left = size.l + domain.x[0] * size.w, width = size.w * (domain.x[1] - domain.x[0]);
+  const top = size.t + (1 - domain.y[1]) * size.h, height = size.h * (domain.y[1] - domain.y[0]);
+  return (x, y, z) => {
+    const p = times(camera.projection, times(camera.view, times(camera.model, [x * dataScale[0], y * dataScale[1], z * dataScale[2], 1])));
+    return [Math.round((left + 0.5 * (1 + p[0] / p[3]) * width) * 100) / 100,
+            Math.round((top + 0.5 * (1 - p[1] / p[3]) * height) * 100) / 100];
+  };
+}
 
 function outlineScale(width) { return Math.max(0.5, Math.min(1, width / 700)); }
 

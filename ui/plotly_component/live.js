@@ -412,7 +412,7 @@ function drawPose(params, result) {
     const others = pose.names.map((_, i) => i).filter((i) => !pose.traces.includes(i));
     // the key frame with the others dimmed, in one redraw, before any pose is drawn (plotly's animate while
     // a restyle redraws loses the other subplot's traces)
-    pose.ready = pose.fig.showHeld(others, DIMMED);
+    pose.ready = pose.fig.showHeld(others, DIMMED, pose.traces);
   }
   // Only a changed pose is drawn, and none while a key burst is committed (its step back and forth):
   // plotly's animate then would delay the page's rendering of the run that follows.
