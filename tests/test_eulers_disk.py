@@ -275,6 +275,17 @@ def test_the_whole_disk_stands_inside_the_scene_s_box_drawn_to_one_scale(p):
         assert scene["aspectratio"][k] / scene["aspectratio"]["x"] == pytest.approx(extent[k] / extent["x"], rel=2e-3)
 
 
+@pytest.mark.parametrize("tilt", [5.0, 10.0, 40.0, 68.0, 89.5])
+def test_the_caption_says_how_far_the_disk_turns_and_barely_only_where_it_does(tilt):
+    """Rolling without slip, the rim rolls 2πr cos θ (the contact's circle) a precession, so the disk
+    turns 2πr(1 − cos θ)/r relative to the table: 360°(1 − cos θ). "Barely turns" only below a quarter turn."""
+    from viz import eulers_disk as viz
+    caption = viz.figures(eulers_disk.solve(theta=math.radians(tilt)))[0].description
+    turn = 360 * (1 - math.cos(math.radians(tilt)))
+    assert f"turns {'only ' if turn < 90 else ''}{turn:.1f}°" in caption
+    assert ("barely turns" in caption) == (turn < 90)
+
+
 def test_the_run_down_switch_is_kept_in_the_url():
     at = run_page("eulers_disk")
     at.toggle(key="eulers_disk__on_request").set_value(True).run()

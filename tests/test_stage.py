@@ -196,3 +196,23 @@ def test_the_motion_its_play_and_the_lesson_s_controls_share_a_laptop_s_first_sc
     assert found == {}
     assert not errors, errors
     context.close()
+
+
+@pytest.mark.parametrize("query", ["theta=68", "theta=89.5&r=0.5"])
+def test_a_disk_tilted_near_upright_stands_whole_in_the_projector_s_first_screen(browser, app_url, query):
+    """Euler's disk tilted near upright stands up to 2r tall: its box grows to hold it (the rim's top
+    was cut off at a lid r high), drawn smaller so the box, its tick labels and its axis titles stay
+    inside the graph in the lecture view's first screen (1280×720), as the laptop's and phone's do."""
+    width, height = 1280, 720
+    problem = next(p for p in PROBLEMS if p.id == "eulers_disk")
+    context, page, errors = open_page(browser, f"{app_url}/eulers_disk?lecture=1&{query}", width, height)
+    wait_until_idle(page)
+    assert stage_faults(page, problem, height) == []
+    graph = box(page.locator(f"{STAGE} .dl-figure .dl-graph"))
+    titles = page.locator(f"{STAGE} .dl-figure .infolayer .annotation-text")
+    assert titles.count() == 3
+    for title in titles.all():  # x (mm), y (mm) below the box, z (mm) above it
+        b = box(title)
+        assert graph["y"] <= b["y"] and b["y"] + b["height"] <= min(height, graph["y"] + graph["height"]) + 1, (title.text_content(), b, graph)
+    assert not errors, errors
+    context.close()

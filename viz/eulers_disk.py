@@ -70,9 +70,7 @@ def _animation(solution) -> Figure:
         # the tick labels; z above its top), text the page lays out and keeps inside the graph.
         "scene": {"xaxis": axis(-span, span, [-tick, 0, tick]), "yaxis": axis(-span, span, [-tick, 0, tick]),
                   "zaxis": axis(0, top, z_ticks), "aspectmode": "manual",  # one scale on all three axes
-                  "aspectratio": {"x": 1.1, "y": 1.1, "z": r(1.1 * top / (2 * span))},
-                  "camera": {"eye": {"x": 0.95, "y": -0.95, "z": 0.62}, "center": {"x": -0.04, "y": -0.04, "z": -0.05},
-                             "projection": {"type": "orthographic"}},
+                  "aspectratio": _box(1.1 * top / (2 * span)), "camera": CAMERA,
                   "annotations": [
                       {"x": 0, "y": r(-span), "z": 0, "text": "x (mm)", "showarrow": False, "xshift": -40, "yshift": -42},
                       {"x": r(span), "y": 0, "z": 0, "text": "y (mm)", "showarrow": False, "xshift": 40, "yshift": -42},
@@ -83,13 +81,36 @@ def _animation(solution) -> Figure:
     frame_ms = round(1000 * PLAY_SECONDS / (len(m["t"]) - 1))  # from the first frame to the last
     spec = animated([table, G], moving_traces, m["t"], layout, frame_ms=frame_ms, redraw=True)
     turn = math.degrees(solution.extras["turn_per_precession"])
+    # The disk turns 360°(1 − cos θ) a precession (solvers.eulers_disk): little at a small tilt, most
+    # of a turn near upright, where "barely turns" would be false.
+    turned = (f"only {turn:.1f}° relative to the table: the contact whirls, the disk itself barely turns"
+              if turn < 90 else f"{turn:.1f}° relative to the table: at this tilt the disk turns with it, "
+              "and the smaller the tilt, the less it turns")
     description = (f"Slowed down {slow:.0f}×: one precession takes {n(a['period'] * 1000, 3)} ms in reality and "
                    f"{PLAY_SECONDS:.0f} s on screen. The contact point (red) runs once round its circle while "
-                   f"the marked radius turns only {turn:.1f}° relative to the table: the contact whirls, the disk "
-                   "itself barely turns.")
+                   f"the marked radius turns {turned}.")
     return Figure("eulers_disk_motion", f"One precession, slowed down {slow:.0f}×", spec, description,
                   height=560, extra={"slow_motion": slow},
                   key_caption="the steady precession: every instant looks alike, turned about the vertical")
+
+
+def _box(height: float) -> dict:
+    """The scene box's aspect ratio for a box 1.1 wide and ``height`` tall (one scale on all three
+    axes), as large as a box 0.55 tall draws, and smaller as a taller box (a disk tilted past about
+    32°) stands taller on screen from the camera: by that factor to the power 0.75, so the box and its
+    labels fit a projector's first screen while the disk still fills half the scene (tests/test_stage.py).
+    An orthographic camera's size is the box's aspect ratio, not the eye's distance."""
+    elevation = math.atan2(CAMERA["eye"]["z"], math.hypot(CAMERA["eye"]["x"], CAMERA["eye"]["y"]))
+    depth = 1.1 * math.sqrt(2) * math.sin(elevation)  # the floor's diagonal on screen
+    taller = (height * math.cos(elevation) + depth) / (0.55 * math.cos(elevation) + depth)
+    shrink = taller ** 0.75
+    return {"x": r(1.1 / shrink), "y": r(1.1 / shrink), "z": r(height / shrink)}
+
+
+# Aimed a little left of centre; orthographic (no perspective: the near corner's labels are no larger
+# than the far ones').
+CAMERA = {"eye": {"x": 0.95, "y": -0.95, "z": 0.62}, "center": {"x": -0.04, "y": -0.04, "z": -0.05},
+          "projection": {"type": "orthographic"}}
 
 
 RIM_POINTS = 36  # the rim drawn as a polygon of this many points (the last the first again)

@@ -191,21 +191,22 @@ class Figure {
     if (!held || !held.overlay || traces.some((t) => !held.overlay.includes(t))) return false;
     if (!scene || !scene.glplot || !scene.glplot.cameraParams || !scene.dataScale) return false;
     const project = sceneProjection(scene.glplot.cameraParams, scene.dataScale, layout._size, layout.scene.domain);
+    const gl = this.graph.querySelector(".gl-container");
+    if (!held.svg && !gl) return false;
     if (!held.svg) {
       const svg = held.svg = document.createElementNS(SVG, "svg");
       svg.setAttribute("class", "dl-scene-pose");
       svg.setAttribute("aria-hidden", "true");
       Object.assign(svg.style, {position: "absolute", left: "0", top: "0", pointerEvents: "none", overflow: "hidden",
                                 width: layout.width + "px", height: layout.height + "px"});
-      const gl = this.graph.querySelector(".gl-container");
-      if (!gl) return false;
       // Clipped to the plot area clear of the legend (WebGL clips to the scene's box, which a bigger
       // tilt than the run's outgrows: the overlay shows it whole, off the legend's rows above or column beside).
       let {l, t, w, h} = layout._size;
       const legend = this.graph.querySelector(".legend"), here = this.graph.getBoundingClientRect();
       const key = legend && legend.getBoundingClientRect();
-      if (key && key.height && key.bottom - here.top <= t + h / 2) [t, h] = [key.bottom - here.top + 2, t + h - (key.bottom - here.top + 2)];
-      else if (key && key.width && key.left - here.left >= l + w / 2) w = key.left - here.left - 2 - l;
+      if (key && key.width && key.left - here.left >= l + w / 2) w = Math.min(w, key.left - here.left - 2 - l);  // a column beside
+      else if (key && key.height && key.bottom - here.top <= t + h / 2)  // rows above
+        [t, h] = [Math.max(t, key.bottom - here.top + 2), t + h - Math.max(t, key.bottom - here.top + 2)];
       const clip = `dl-scene-clip-${++overlays}`;
       svg.innerHTML = `<clipPath id="${clip}"><rect x="${l}" y="${t}" width="${Math.max(0, w)}" height="${Math.max(0, h)}"/></clipPath>` +
         `<g clip-path="url(#${clip})"><g></g><g></g></g>`;
