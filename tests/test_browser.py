@@ -700,6 +700,37 @@ def test_a_held_3d_scene_s_pose_is_drawn_where_webgl_draws_it(browser, app_url):
     context.close()
 
 
+@pytest.mark.parametrize("size,query", [((1280, 720), "lecture=1"), ((390, 844), "")], ids=["projector", "phone"])
+def test_the_live_headline_covers_the_figure_s_title_and_keeps_its_unit(browser, app_url, size, query):
+    """While Euler's disk's tilt is dragged, the live headline over the figure's title hides all of it
+    (the lecture view's title is taller than the headline's line: its lower half showed through) and
+    shows the whole headline, its unit included (a phone cut "… 36.57 rad…")."""
+    width, height = size
+    context, page, errors = open_page(browser, f"{app_url}/eulers_disk?{query}", width, height, phone=width < 640)
+    page.locator(".st-key-dl_stage .dl-figure .gl-container canvas").first.wait_for()
+    control = page.locator(".st-key-eulers_disk__si__theta")
+    control.scroll_into_view_if_needed()
+    track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
+    x, y = track["x"] + 0.3 * track["width"], track["y"] + track["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for i in range(1, 6):
+        page.mouse.move(x + 0.05 * i * track["width"], y)
+        page.wait_for_timeout(40)
+    page.wait_for_timeout(200)
+    badge, title, headline = page.evaluate("""() => {
+      const box = (el) => { const r = el.getBoundingClientRect(); return {top: r.top, bottom: r.bottom}; };
+      const badge = document.querySelector('.dl-live-badge');
+      return [{...box(badge), cut: badge.scrollWidth > badge.clientWidth}, box(document.querySelector('.st-key-dl_stage .dl-title')),
+              badge.querySelector('.dl-live-headline').textContent];
+    }""")
+    page.mouse.up()
+    assert badge["top"] <= title["top"] + 0.5 and badge["bottom"] >= title["bottom"] - 0.5, (badge, title)
+    assert not badge["cut"] and headline.endswith("rad/s"), (badge, headline)
+    assert not errors, errors
+    context.close()
+
+
 def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, app_url):
     """Issue 27: ArrowRight held on the stage's first slider (rod_disk_spring's θ₂) for about a second
     moves the thumb and its value, and the answers follow the solver during the hold with no run; the

@@ -24,6 +24,8 @@ const STYLE = `
   white-space: nowrap; overflow: hidden; text-overflow: ellipsis;
   background: var(--st-orange-background-color, #FFF3E0); color: var(--st-orange-text-color, #9B4519); }
 .dl-live-badge .dl-live-note { font-size: 0.8rem; margin-left: 0.6em; opacity: 0.9; }
+.dl-figure.dl-lecture .dl-live-badge { font-size: 1.3rem; }  /* read from the back of the room, as the title it covers */
+@media (max-width: 640px) { .dl-live-badge .dl-live-note { display: none; } }  /* a phone: the headline and its unit whole (the figure is dimmed) */
 .dl-live-status { font-size: 0.95rem; margin: 0 0 0.5rem 0; color: var(--st-orange-text-color, #9B4519); font-weight: 600; }
 .dl-live-status:empty { display: none; }
 .dl-live-value { font-variant-numeric: tabular-nums; }
@@ -340,6 +342,8 @@ function begin() {
                  Object.assign(document.createElement("span"), {className: "dl-live-said"}),
                  Object.assign(document.createElement("span"), {className: "dl-live-note", textContent: MOTION_UPDATING}));
     fig.prepend(badge);
+    const title = fig.querySelector(".dl-title");  // all of it covered (the projector's is taller than a line)
+    if (title) badge.style.minHeight = `${title.offsetTop + title.offsetHeight}px`;
   }
 }
 
