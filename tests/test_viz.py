@@ -66,11 +66,49 @@ def check_figures(figures):
         assert len(moving) < len(spec["data"]) + 1
         # nothing plays by itself: no autoplay, and the slider starts at the first frame
         assert spec["layout"]["sliders"][0]["active"] == 0
+        assert not cut_by_the_axes(spec), (f.key, cut_by_the_axes(spec)[:3])
+
+
+def cut_by_the_axes(spec) -> list:
+    """The moving traces (bodies, arrows, paths) of a planar animation that reach past its axes'
+    ranges in some frame: (frame, trace, how many points). Scenery (a wall, a floor: static lines that
+    run off the plot by design) is not counted."""
+    xa, ya = spec["layout"].get("xaxis", {}), spec["layout"].get("yaxis", {})
+    if "scene" in spec["layout"] or "range" not in xa or "range" not in ya:
+        return []
+    (x0, x1), (y0, y1) = sorted(xa["range"]), sorted(ya["range"])
+    slack = 1e-6 * max(x1 - x0, y1 - y0)
+    cut = []
+    for frame in spec["frames"]:
+        for t, d in zip(frame["traces"], frame["data"]):
+            trace = {**spec["data"][t], **d}
+            if trace.get("xaxis", "x") != "x" or trace.get("yaxis", "y") != "y":
+                continue
+            x, y = (np.array([np.nan if v is None else v for v in trace[k]], dtype=float) for k in ("x", "y"))
+            out = (x < x0 - slack) | (x > x1 + slack) | (y < y0 - slack) | (y > y1 + slack)
+            if out.any():
+                cut.append((frame["name"], trace.get("name"), int(out.sum())))
+    return cut
 
 
 @pytest.mark.parametrize("pid", IDS)
 def test_figures_of_the_defaults(pid):
     check_figures(build(pid))
+
+
+@pytest.mark.parametrize("pid,params", [("disk_wall", {}), ("disk_wall", {"V": 10, "omega": -50}),
+                                        ("driven_cart", {"a": 3, "b": 0.1}), ("driven_cart", {"a": 0.05, "b": 3})])
+def test_no_arrow_or_body_runs_past_the_axes(pid, params):
+    """Found in Chromium: disk_wall's velocity arrow ran through the plot's foot in its last frames,
+    and the cart's arrowheads past its ends where a small wheel set the margin (a = 0.05 m, b = 3 m);
+    a cart 6 m tall and 0.2 m long drew its wheel loads 0.1 m long. Every frame inside the axes, and
+    the weight drawn at least 1.2 × the cart's larger dimension."""
+    spec = expanded(json.loads(build(pid, **params)[0].json()))
+    assert cut_by_the_axes(spec) == []
+    if pid == "driven_cart":
+        normals = next(t for t in spec["data"] if t["name"].startswith("normal force"))
+        lengths = [abs(v) for v in normals["y"] if v is not None]
+        assert max(lengths) >= 0.5 * 1.2 * max(params["a"], params["b"]), lengths  # the larger axle's 2N ≥ mg/2
 
 
 @pytest.mark.parametrize("pid", IDS)

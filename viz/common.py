@@ -418,6 +418,13 @@ def base_layout(title: str = "", equal_axes: bool = True, x_range=None, y_range=
     return layout
 
 
+def holding(x_range, y_range, traces: Sequence[Moving | dict], pad: float = 0.03) -> tuple[tuple[float, float], tuple[float, float]]:
+    """``x_range`` and ``y_range`` widened where ``traces`` (every frame of each) reach past them, by
+    ``pad`` of the larger span beyond their farthest point: an arrow or a body is never cut by the axes."""
+    (fx_lo, fx_hi), (fy_lo, fy_hi) = fitted(traces, pad)
+    return (min(x_range[0], fx_lo), max(x_range[1], fx_hi)), (min(y_range[0], fy_lo), max(y_range[1], fy_hi))
+
+
 def fitted(traces: Sequence[Moving | dict], pad: float = 0.08) -> tuple[tuple[float, float], tuple[float, float]]:
     """The x and y ranges that hold every point of ``traces`` (moving ones over all their frames,
     static ones as drawn), each widened by ``pad`` of the larger span: the stage fits the motion, so

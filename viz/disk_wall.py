@@ -7,7 +7,7 @@ import numpy as np
 
 from solvers import disk_wall as solver
 from solvers.core import plain_number as n
-from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, as_one, base_layout, circles, line, moving, padded,
+from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, as_one, base_layout, circles, holding, line, moving, padded,
                          r, segments, thumbnail, trails)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -40,6 +40,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
         moving(line(None, None, "velocity of the centre", COLORS["velocity"], width=3), *drawn["velocity of the centre"]),
         moving(line(None, None, "impulse on the disk at B", COLORS["impulse"], width=5), *drawn["impulse on the disk at B"]),
     ]
+    (x_lo, x_hi), (y_lo, y_hi) = holding((x_lo, x_hi), (y_lo, y_hi), moving_traces)  # the arrows' tips too
     layout = base_layout(equal_axes=True, x_range=(x_lo, x_hi), y_range=(y_lo, y_hi),
                          x_title="x, along the wall (m)", y_title="y, toward the wall (m)")
     spec = animated([wall, hatch], moving_traces, m["t"], layout)

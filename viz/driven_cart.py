@@ -6,7 +6,7 @@ import numpy as np
 
 from solvers import driven_cart as solver
 from solvers.core import plain_number as n
-from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, circles, column, joined, line, moving,
+from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, circles, column, holding, joined, line, moving,
                          points, r, segments, thumbnail)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -42,8 +42,9 @@ def _animation(solution) -> Figure:
     ]
     y_lo = -2 * max(a["N_rear"], a["N_front"]) * force_scale - 0.15 * b
     arrow_tail = min(xa for xa in driven) - traction_per_axle * force_scale  # the traction arrow's tail at rest
-    layout = base_layout(equal_axes=True, x_range=(min(-b - 2 * wheel, arrow_tail - wheel), x_end + b + 2 * wheel),
-                         y_range=(y_lo, body_top * 1.4), x_title="x (m)", y_title="height (m)")
+    x_range, y_range = holding((min(-b - 2 * wheel, arrow_tail - wheel), x_end + b + 2 * wheel), (y_lo, body_top * 1.4),
+                               moving_traces)  # the arrowheads too (wider than a small wheel's margin)
+    layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range, x_title="x (m)", y_title="height (m)")
     spec = animated([ground], moving_traces, m["t"], layout, frame_ms=70)
     head = headline("Side view, front to the right. From rest the cart accelerates at ", ("accel", "n", 4),
                     f" m/s² ({p['drive']}-wheel drive)")
@@ -59,7 +60,7 @@ def _sizes(p, a, xp=np):
     b, h = p["b"], p["a"]
     wheel = xp.minimum(0.3 * b, 0.6 * h)
     body_top = xp.maximum(2 * h, 2.2 * wheel)  # the CM (height a) inside the body
-    force_scale = 1.2 * b / (p["m"] * p["g"])  # the whole weight mg would be drawn 1.2 b long
+    force_scale = 1.2 * xp.maximum(b, h) / (p["m"] * p["g"])  # mg would be drawn 1.2 b long (1.2 a, a tall cart's)
     driven = {"front": (b,), "rear": (-b,), "all": (-b, b)}[p["drive"]]
     return wheel, body_top, force_scale, driven, a["F_drive"] / len(driven)
 
