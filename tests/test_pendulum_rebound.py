@@ -212,3 +212,30 @@ def test_the_pendulum_s_energy_loss_check_rests_on_the_integrated_motion(monkeyp
     energy = next(c for c in solver._checks(p, answers) if c.name.startswith("energy lost"))
     assert not energy.ok
     assert energy.closed_form == pytest.approx(answers["energy_loss"])
+
+
+def test_in_feet_the_figure_is_the_metric_one_scaled():
+    """?units=us draws the pendulum in feet: every moving trace of the motion in every frame, and the
+    axes' ranges, are the metric figure's times 1 ft/0.3048 m (the velocity arrow was scaled by it twice,
+    3.3 times too long, and the view fitted to it was twice too wide)."""
+    import json
+
+    from solvers import pendulum_rebound as solver
+    from viz import pendulum_rebound as viz
+    from viz.common import expanded
+
+    solution = solver.solve()
+    si, us = (expanded(json.loads(viz.figures(solution, system)[0].json())) for system in ("si", "us"))
+    ft = 1 / 0.3048
+    for axis in ("xaxis", "yaxis"):
+        assert np.allclose(us["layout"][axis]["range"], np.asarray(si["layout"][axis]["range"]) * ft, rtol=1e-3)
+    compared = 0
+    for frame_si, frame_us in zip(si["frames"], us["frames"], strict=True):
+        for t, a, b in zip(frame_si["traces"], frame_si["data"], frame_us["data"], strict=True):
+            if si["data"][t].get("xaxis", "x") != "x":
+                continue  # θ(t) below: degrees and seconds in both
+            for k in ("x", "y"):
+                x, y = (np.array([np.nan if v is None else v for v in d[k]], dtype=float) for d in (a, b))
+                assert np.allclose(y, x * ft, rtol=1e-3, atol=2e-4, equal_nan=True), (si["data"][t]["name"], k)
+                compared += 1
+    assert compared > 100

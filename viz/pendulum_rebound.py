@@ -85,7 +85,7 @@ def _bodies(theta, omega, p, a, k: float, xp=np) -> dict:
     speed = omega * (p["L"] + p["r"])
     return {"rod": segments(0.0, 0.0, L * c, L * s), "sphere": circles(cx, cy, rad),
             "marked radius": segments(cx, cy, cx - rad * s, cy + rad * c),
-            "velocity of the centre": arrows(cx, cy, -s * speed * v_scale * k, c * speed * v_scale * k, xp=xp)}
+            "velocity of the centre": arrows(cx, cy, -s * speed * v_scale, c * speed * v_scale, xp=xp)}
 
 
 def key_pose(p, a, system: str = "si", xp=np) -> dict:
