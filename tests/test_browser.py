@@ -376,6 +376,26 @@ def test_the_time_slider_scrubs_by_keyboard_and_follows_play(browser, app_url):
     context.close()
 
 
+def test_the_time_readout_tells_the_frames_apart(browser, app_url):
+    """Stick and ball bouncing with e = 0 meet again 1.3 ms after the impact: 36 of the animation's
+    frames read "t = 0.00 s" at two decimals. The readout takes as many decimals (up to five) as tell
+    the frames apart, and two where they already do (the pendulum)."""
+    context, page, errors = open_page(browser, f"{app_url}/stick_ball?mode=bounce&e=0")
+    figure = page.locator(".dl-figure").first
+    figure.locator(".main-svg").first.wait_for()
+    shown = figure.evaluate("""(el) => { const fig = el.dlFigure, out = [];
+      for (let i = 0; i < fig.times.length; i++) { fig.showTime(i); out.push(el.querySelector('.dl-readout').textContent); }
+      fig.showTime(0); return out; }""")
+    assert len(shown) >= 30 and len(set(shown)) >= 0.9 * len(shown), shown
+    page.goto(f"{app_url}/pendulum_rebound")
+    wait_until_idle(page)
+    readout = page.locator(".dl-figure .dl-readout").first
+    readout.wait_for()
+    assert re.fullmatch(r"t = -?\d+\.\d\d s", readout.inner_text()), readout.inner_text()
+    assert not errors, errors
+    context.close()
+
+
 # The runs the page asks for from now on: its messages on the app's websocket (CSP_WATCH counts them).
 # (Streamlit's script-state attribute can miss a fragment's run that starts and ends within one render.)
 RUN_COUNTER = ("() => { const from = window.__sent;"

@@ -310,7 +310,7 @@ class Figure {
   showTime(index) {
     this.scrub.value = String(index);
     const t = this.times[index];
-    this.readout.textContent = t === undefined ? "" : this.timeLabel[0] + t.toFixed(2) + this.timeLabel[1];
+    this.readout.textContent = t === undefined ? "" : this.timeLabel[0] + t.toFixed(this.timeDigits || 2) + this.timeLabel[1];
     this.scrub.setAttribute("aria-valuetext", this.readout.textContent);
   }
   pause() {
@@ -442,10 +442,11 @@ class Figure {
     this.frames = frames;
     this.frameNames = frames.map(f => f.name);
     this.times = spec.animation ? spec.animation.times : [];
+    this.timeDigits = timeDigits(this.times);
     this.keyFrame = Math.min(args.key_frame || 0, Math.max(0, frames.length - 1));
     const t = this.times[this.keyFrame];
     this.keyCaption.textContent = frames.length && args.key_caption
-      ? `Printed at t = ${t.toFixed(2)} s: ${args.key_caption}.` : "";
+      ? `Printed at t = ${t.toFixed(this.timeDigits)} s: ${args.key_caption}.` : "";
     this.scrub.max = String(Math.max(0, this.times.length - 1));
     this.scrub.setAttribute("aria-label", (args.title ? args.title + ": " : "") + "time");
     this.showTime(0);
@@ -724,6 +725,14 @@ function outlines(xa, ya, data, frames, widths) {
 // a CSS pixel that is four pixels drawn for each shown, which a machine without a GPU rasterises on
 // every pose of a drag. The screen's own ratio (1 to 3, as plotly allows) draws what is shown.
 function glPixelRatio() { return Math.min(3, Math.max(1, Math.round(window.devicePixelRatio || 1))); }
+
+// Decimals of the time readout: two, or as many as tell most of the frames apart (stick and ball's
+// second impact 1.3 ms after the first: 36 frames all read "t = 0.00 s"), at most five.
+function timeDigits(times) {
+  const steps = times.slice(1).map((t, i) => Math.abs(t - times[i])).filter((dt) => dt > 0).sort((a, b) => a - b);
+  const typical = steps.length ? steps[Math.floor(steps.length / 2)] : 1;
+  return Math.min(5, Math.max(2, Math.ceil(-Math.log10(typical))));
+}
 
 const SVG = "http://www.w3.org/2000/svg";
 let overlays = 0;  // a page's 3-D overlays so far (each one's clip path its own id)
