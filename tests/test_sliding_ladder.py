@@ -361,3 +361,18 @@ def test_a_move_of_the_slider_on_the_page_finds_its_angle_warmed():
         at.slider(key="sliding_ladder__si__theta0").set_value(float(degrees)).run()
         assert not at.exception
     assert (ladder.integrated.cache_info().misses, ladder._sampled.cache_info().misses) == before
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(math.radians(5), math.radians(89)), st.floats(0.5, 12), st.floats(0.5, 100))
+def test_the_floor_pushes_a_quarter_of_the_weight_as_the_top_leaves_the_wall(theta0, length, mass):
+    """The integration's reactions where the top leaves the wall, against the figure's closed form
+    (viz.sliding_ladder._pushes_leaving: the wall's zero, the floor's mg/4, which the live drag draws)."""
+    from viz.sliding_ladder import _pushes_leaving
+
+    solution = ladder.solve(theta0=theta0, L=length, m=mass)
+    m, p = ladder.motion(solution), solution.params
+    wall, floor = (np.interp(m["t_leave"], m["curve_t"], m[k]) for k in ("N_wall", "N_floor"))
+    want_wall, want_floor = _pushes_leaving(p)
+    weight = p["m"] * p["g"]
+    assert abs(wall - want_wall) <= 1e-9 * weight and abs(floor - want_floor) <= 1e-9 * weight, (wall, floor, weight)

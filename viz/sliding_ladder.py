@@ -43,11 +43,9 @@ def _animation(solution, m) -> Figure:
     xs = drawn["ladder"][0]
     x_far = float(max(np.max(xs), L)) * 1.08
     band = 0.1 * L
-    force_scale = 0.4 * L / (p["m"] * p["g"])  # the weight mg would be drawn 0.4 L long
     at_frames = np.interp(m["t"], m["curve_t"], m["N_wall"]), np.interp(m["t"], m["curve_t"], m["N_floor"])
-    x_A, y_A, x_B, _ = _ends(th, x_G, y_G, L)
-    wall_arrow = arrows(-at_frames[0] * force_scale, y_A, at_frames[0] * force_scale, 0.0)
-    floor_arrow = arrows(x_B, -at_frames[1] * force_scale, 0.0, at_frames[1] * force_scale)
+    at_frames[0][k], at_frames[1][k] = _pushes_leaving(p)  # the closed form's, as the key pose draws them
+    wall_arrow, floor_arrow = _pushes(th, x_G, y_G, *at_frames, p).values()
     far = 10 * x_far  # the wall and the floor run on beyond the view, however the equal axes widen it
     static = [
         line(r([-far, 0, 0, far, far, -far, -far]), r([far, far, 0, 0, -far, -far, far]), "smooth wall and floor",
@@ -59,9 +57,10 @@ def _animation(solution, m) -> Figure:
     moving_traces = [
         moving(line(None, None, "ladder", COLORS["body"], width=1, fill="toself"), *drawn["ladder"]),
         moving(points(None, None, "G", COLORS["marker"], size=11, symbol="circle-x", show_legend=False), *drawn["G"]),
-        moving(line(None, None, "wall's push N_A", COLORS["force"], width=4), *wall_arrow),
-        moving(line(None, None, "floor's push N_B", COLORS["velocity"], width=4), *floor_arrow),
+        moving(line(None, None, WALL_PUSH, COLORS["force"], width=4), *wall_arrow),
+        moving(line(None, None, FLOOR_PUSH, COLORS["velocity"], width=4), *floor_arrow),
     ]
+    force_scale = _force_scale(p)
     y_low = -max(float(np.max(at_frames[1])) * force_scale, band) - 0.05 * L
     x_low = -max(float(np.max(at_frames[0])) * force_scale, band) - 0.05 * L
     layout = base_layout(equal_axes=True, x_range=(x_low, x_far), y_range=(y_low, 1.18 * L))
@@ -103,13 +102,37 @@ def _bodies(th, x_G, y_G, L, xp=np) -> dict:
 
 
 def key_pose(p, a, system: str = "si", xp=np) -> dict:
-    """The stage figure at its key instant, the top leaving the wall: the ladder, G and the dashed line
-    where it leaves, each a (x, y) row (numpy for the figure, solvers.live's symbols for the browser's
-    drag). The reactions there are the integration's (the wall's is zero, the floor's not a closed
-    form here): those arrows wait, dimmed."""
+    """The stage figure at its key instant, the top leaving the wall: the ladder, G, the dashed line
+    where it leaves and the two pushes there (the wall's zero, the floor's mg/4), each a (x, y) row
+    (numpy for the figure, solvers.live's symbols for the browser's drag)."""
     th, x_G, y_G = (np.array([v]) for v in _leaving(p, a, xp))
-    drawn = _bodies(th, x_G, y_G, p["L"], xp)
+    wall, floor = _pushes_leaving(p)
+    drawn = {**_bodies(th, x_G, y_G, p["L"], xp), **_pushes(th, x_G, y_G, wall + 0 * th, floor + 0 * th, p, xp)}
     return {name: (x[0], y[0]) for name, (x, y) in drawn.items()}
+
+
+WALL_PUSH, FLOOR_PUSH = "wall's push N_A", "floor's push N_B"
+
+
+def _force_scale(p):
+    return 0.4 * p["L"] / (p["m"] * p["g"])  # the weight mg would be drawn 0.4 L long
+
+
+def _pushes_leaving(p):
+    """The wall's and the floor's push as the top leaves the wall: the wall's is zero (that is the
+    instant), the floor's mg/4. G's height (L/2) sin θ falls with ÿ = −(3g/4) cos²θ − (L/2) sin θ θ̇²
+    (θ̈ = −(3g/2L) cos θ, θ̇² = 3g (sin θ₀ − sin θ)/L), and at sin θ = (2/3) sin θ₀ the floor's push
+    m (g + ÿ) is mg (1 − 3/4 + s₀²/3 − s₀²/3) = mg/4 whatever θ₀ (tests: the integration's, to 1e-9)."""
+    return 0 * p["m"], p["m"] * p["g"] / 4
+
+
+def _pushes(th, x_G, y_G, N_wall, N_floor, p, xp=np) -> dict:
+    """The wall's push at the top A and the floor's at the foot B, to scale, at angles θ and centres
+    G with these reactions (one per frame)."""
+    scale = _force_scale(p)
+    _, y_A, x_B, _ = _ends(th, x_G, y_G, p["L"], xp)
+    return {WALL_PUSH: arrows(-N_wall * scale, y_A, N_wall * scale, 0.0, xp=xp),
+            FLOOR_PUSH: arrows(x_B, -N_floor * scale, 0.0, N_floor * scale, xp=xp)}
 
 
 def _reactions(solution, m) -> Figure:
