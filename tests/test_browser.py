@@ -44,6 +44,8 @@ def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: b
     return context, page, errors
 
 
+TRACK = "[data-orientation='horizontal'][style*='position: relative']"  # a Streamlit slider's track (within its control)
+
 # Every Content-Security-Policy violation a page meets, kept for csp_violations(page).
 CSP_WATCH = ("window.__csp = []; document.addEventListener('securitypolicyviolation', "
              "e => window.__csp.push(e.violatedDirective + ' ' + e.blockedURI));"
@@ -442,7 +444,7 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     page.evaluate(RUN_COUNTER)
     live_ready(page)
     control = page.locator(".st-key-pendulum_rebound__si__theta0")
-    track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
+    track = control.locator(TRACK).bounding_box()
     low, high = -89, 89
     x_of = lambda degrees: track["x"] + (degrees - low) / (high - low) * track["width"]  # noqa: E731
     y = track["y"] + track["height"] / 2
@@ -581,7 +583,7 @@ def test_a_drag_s_values_are_painted_in_the_frame_the_pointer_moved_in(browser, 
     control = page.locator(f".st-key-{lesson_control(pid)[0]}")
     thumb = control.locator("input[type='range']")
     low, high = (float(thumb.get_attribute(a)) for a in ("min", "max"))
-    track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
+    track = control.locator(TRACK).bounding_box()
     y = track["y"] + track["height"] / 2
     rng = random.Random(pid)
     moved = 0
@@ -730,7 +732,7 @@ def test_the_live_headline_covers_the_figure_s_title_and_keeps_its_unit(browser,
     page.locator(".st-key-dl_stage .dl-figure .gl-container canvas").first.wait_for()
     control = page.locator(".st-key-eulers_disk__si__theta")
     control.scroll_into_view_if_needed()
-    track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
+    track = control.locator(TRACK).bounding_box()
     x, y = track["x"] + 0.3 * track["width"], track["y"] + track["height"] / 2
     page.mouse.move(x, y)
     page.mouse.down()

@@ -45,7 +45,7 @@ def _animation(solution, m) -> Figure:
     band = 0.1 * L
     at_frames = np.interp(m["t"], m["curve_t"], m["N_wall"]), np.interp(m["t"], m["curve_t"], m["N_floor"])
     at_frames[0][k], at_frames[1][k] = _pushes_leaving(p)  # the closed form's, as the key pose draws them
-    wall_arrow, floor_arrow = _pushes(th, x_G, y_G, *at_frames, p).values()
+    pushes = _pushes(th, x_G, y_G, *at_frames, p)
     far = 10 * x_far  # the wall and the floor run on beyond the view, however the equal axes widen it
     static = [
         line(r([-far, 0, 0, far, far, -far, -far]), r([far, far, 0, 0, -far, -far, far]), "smooth wall and floor",
@@ -57,8 +57,8 @@ def _animation(solution, m) -> Figure:
     moving_traces = [
         moving(line(None, None, "ladder", COLORS["body"], width=1, fill="toself"), *drawn["ladder"]),
         moving(points(None, None, "G", COLORS["marker"], size=11, symbol="circle-x", show_legend=False), *drawn["G"]),
-        moving(line(None, None, WALL_PUSH, COLORS["force"], width=4), *wall_arrow),
-        moving(line(None, None, FLOOR_PUSH, COLORS["velocity"], width=4), *floor_arrow),
+        moving(line(None, None, WALL_PUSH, COLORS["force"], width=4), *pushes[WALL_PUSH]),
+        moving(line(None, None, FLOOR_PUSH, COLORS["velocity"], width=4), *pushes[FLOOR_PUSH]),
     ]
     force_scale = _force_scale(p)
     y_low = -max(float(np.max(at_frames[1])) * force_scale, band) - 0.05 * L

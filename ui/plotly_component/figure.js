@@ -191,9 +191,9 @@ class Figure {
     if (!held || !held.overlay || traces.some((t) => !held.overlay.includes(t))) return false;
     if (!scene || !scene.glplot || !scene.glplot.cameraParams || !scene.dataScale) return false;
     const project = sceneProjection(scene.glplot.cameraParams, scene.dataScale, layout._size, layout.scene.domain);
-    const gl = this.graph.querySelector(".gl-container");
-    if (!held.svg && !gl) return false;
     if (!held.svg) {
+      const gl = this.graph.querySelector(".gl-container");
+      if (!gl) return false;
       const svg = held.svg = document.createElementNS(SVG, "svg");
       svg.setAttribute("class", "dl-scene-pose");
       svg.setAttribute("aria-hidden", "true");
@@ -205,8 +205,10 @@ class Figure {
       const legend = this.graph.querySelector(".legend"), here = this.graph.getBoundingClientRect();
       const key = legend && legend.getBoundingClientRect();
       if (key && key.width && key.left - here.left >= l + w / 2) w = Math.min(w, key.left - here.left - 2 - l);  // a column beside
-      else if (key && key.height && key.bottom - here.top <= t + h / 2)  // rows above
-        [t, h] = [Math.max(t, key.bottom - here.top + 2), t + h - Math.max(t, key.bottom - here.top + 2)];
+      else if (key && key.height && key.bottom - here.top <= t + h / 2) {  // rows above
+        const below = Math.max(t, key.bottom - here.top + 2);
+        [t, h] = [below, t + h - below];
+      }
       const clip = `dl-scene-clip-${++overlays}`;
       svg.innerHTML = `<clipPath id="${clip}"><rect x="${l}" y="${t}" width="${Math.max(0, w)}" height="${Math.max(0, h)}"/></clipPath>` +
         `<g clip-path="url(#${clip})"><g></g><g></g></g>`;
