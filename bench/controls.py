@@ -5,35 +5,39 @@ from __future__ import annotations
 
 from solvers import registry, units
 from solvers.core import Number
-from ui.params import is_slider
+from ui.params import is_slider, lesson_range
 
 
 def lesson_control(pid: str) -> tuple[str, float, str, float]:
-    """(widget key, start value as the control shows it, "slider" or "number", step per change):
-    a box moves up by half its step, a slider down by one step (it starts at the textbook's value,
+    """(widget key, start value as the control shows it, "slider", step per change): every number
+    of the lesson is a slider (ui.params), moved down by one step (it starts at the textbook's value,
     often at the top of what the lesson explores)."""
+    p = _first_number(pid)
+    return f"{pid}__si__{p.name}", units.to_display(p.default, p.dimension), "slider", -slider_range(p)[2]
+
+
+def _first_number(pid: str) -> Number:
     solver = registry.solver(pid)
     specs = {p.name: p for p in solver.PARAMS}
-    p = next(specs[name] for name in solver.ABOUT.primary if isinstance(specs.get(name), Number))
-    start = units.to_display(p.default, p.dimension)
-    step = p.step or 0.01
+    return next(specs[name] for name in solver.ABOUT.primary if isinstance(specs.get(name), Number))
+
+
+def slider_range(p: Number) -> tuple[float, float, float]:
+    """(low, high, step) of a lesson slider in SI, as ui.params draws it."""
     if is_slider(p):
-        return f"{pid}__si__{p.name}", start, "slider", -step
-    return f"{pid}__si__{p.name}", start, "number", step / 2
+        return (float(p.ui_low if p.ui_low is not None else p.low), float(p.ui_high if p.ui_high is not None else p.high),
+                float(p.step or 0.01))
+    return lesson_range(p, "si")
 
 
 def changes_of(pid: str, count: int) -> list[float]:
     """Up to ``count`` distinct values for the lesson control, as a student's moves give them: a
-    box by half its step upwards; a slider along its own grid (the only values a drag gives),
+    slider along its own grid (the only values a drag gives),
     first away from the start in the step's direction, then, past the slider's end, on the other
     side of the start. Never the start itself, never out of the slider's range: a slider with fewer
     positions than ``count`` gives all it has."""
     key, start, kind, step = lesson_control(pid)
-    if kind != "slider":
-        return [round(start + step * i, 6) for i in range(1, count + 1)]
-    p = next(p for p in registry.solver(pid).PARAMS if key.endswith(f"__{p.name}"))
-    lo = float(p.ui_low if p.ui_low is not None else p.low)  # as ui.params draws the slider
-    hi = float(p.ui_high if p.ui_high is not None else p.high)
+    lo, hi, _ = slider_range(_first_number(pid))
     inside = lambda v: lo - 1e-9 <= v <= hi + 1e-9  # noqa: E731
     ahead = [v for v in (round(start + step * i, 6) for i in range(1, count + 1)) if inside(v)]
     behind = [v for v in (round(start - step * i, 6) for i in range(1, count + 1)) if inside(v)]

@@ -100,9 +100,7 @@ def test_without_katex_the_answers_still_show_their_values(browser, app_url):
     assert page.locator(".dl-answers li").count() >= 3 and page.locator(".dl-derivation code").count() >= 6
     # The network back: the next change typesets every formula shown, the unchanged ones too.
     context.unroute("**/katex.*.min.js")
-    box = page.locator("[data-testid='stNumberInput'] input").first  # a lesson's box, on the stage
-    box.fill(f"{float(box.input_value()) * 1.1:.6g}")
-    box.press("Enter")
+    page.locator(".st-key-disk_wall__si__V input[type='range']").press("ArrowRight")  # V, on the stage
     page.wait_for_function("() => !document.querySelector('.dl-text code')"
                            " && document.querySelectorAll('.dl-answers .katex').length >= 7", timeout=30_000)
     assert page.locator(".dl-derivation .katex-display").count() >= 6
@@ -556,27 +554,31 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
 
 # Each pointer move's frame as painted (live.js draws in that frame's animation-frame callbacks; a
 # user-blocking task after them runs once the frame is done): the answers, the thumb's value and place.
-FRAME_DRAWN = ("() => { window.__frames = []; window.addEventListener('pointermove', (e) => { if (!e.buttons) return;"
+FRAME_DRAWN = ("(key) => { window.__frames = []; window.addEventListener('pointermove', (e) => { if (!e.buttons) return;"
                " requestAnimationFrame(() => scheduler.postTask(() => { const t = document.querySelector("
-               "'.st-key-dl_stage_controls [data-testid=stSlider] [data-testid=stSliderThumbValue]');"
+               "`.st-key-${key} [data-testid=stSliderThumbValue]`);"
                " window.__frames.push([[...document.querySelector('.dl-answers table').tBodies[0].rows].map((r) => r.cells[2].innerText),"
                " t.innerText, t.parentElement.style.left]); }, {priority: 'user-blocking'})); }, true); }")
 
 
-@pytest.mark.parametrize("pid", ["pendulum_rebound", "sliding_ladder"])
-def test_a_drag_s_values_are_painted_in_the_frame_the_pointer_moved_in(browser, app_url, pid):
+@pytest.mark.parametrize("pid,query", [("pendulum_rebound", ""), ("sliding_ladder", ""),
+                                       # a link's values between the sliders' steps: V dragged from 3.14159
+                                       # (six figures), e = 0.53 on a slider of 0.05 steps kept while V moves
+                                       ("disk_wall", "?V=3.14159&e=0.53")])
+def test_a_drag_s_values_are_painted_in_the_frame_the_pointer_moved_in(browser, app_url, pid, query):
     """Issue 27: each move of a dragged stage slider is drawn in the frame that move came with: the
     thumb at its value, the value it shows, and the answers for it (live.js works the value out from
     the pointer as react-aria does and draws the thumb itself: React's render of the slider for each
     move came after that frame). On release react-aria commits exactly the value drawn last (its own
     computation, from the pointer's travel), the run's answers are the ones shown while dragging, and
     the thumb is React's again. Moves of random length, fractions of a pixel, past either end of the
-    track, on two sliders of other steps; several drags, each released somewhere else."""
+    track, on sliders of other steps and formats (0.05 to two decimals, 0.1 m/s to six figures), from a
+    link's value between two steps; several drags, each released somewhere else."""
     import random
 
     from bench.controls import lesson_control
 
-    context, page, errors = open_page(browser, f"{app_url}/{pid}")
+    context, page, errors = open_page(browser, f"{app_url}/{pid}{query}")
     page.locator(".dl-answers table").first.wait_for()
     page.evaluate(RUN_COUNTER)
     live_ready(page)
@@ -587,7 +589,7 @@ def test_a_drag_s_values_are_painted_in_the_frame_the_pointer_moved_in(browser, 
     y = track["y"] + track["height"] / 2
     rng = random.Random(pid)
     moved = 0
-    page.evaluate(FRAME_DRAWN)
+    page.evaluate(FRAME_DRAWN, lesson_control(pid)[0])
     for drag in range(4):
         page.evaluate("window.__frames = []")
         x = track["x"] + rng.uniform(0.2, 0.8) * track["width"]
@@ -616,6 +618,9 @@ def test_a_drag_s_values_are_painted_in_the_frame_the_pointer_moved_in(browser, 
         assert page.evaluate(f"() => document.querySelector('.st-key-{lesson_control(pid)[0]} [data-orientation] > :first-child').style.backgroundImage") == ""
     assert moved >= 3  # the values changed within the drags, so a frame late would have shown
     assert page.evaluate("window.__runs") == 4  # one run a drag
+    if "e=0.53" in query:  # the value between two steps stood through every run, as the answers used it
+        assert control.page.locator(".st-key-disk_wall__si__e [data-testid='stSliderThumbValue']").inner_text() == "0.53"
+        assert "e=0.53" in page.url
     assert not errors, errors
     context.close()
 
@@ -754,7 +759,7 @@ def test_the_live_headline_covers_the_figure_s_title_and_keeps_its_unit(browser,
 
 
 def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, app_url):
-    """Issue 27: ArrowRight held on the stage's first slider (rod_disk_spring's θ₂) for about a second
+    """Issue 27: ArrowRight held on a stage slider (rod_disk_spring's θ₂) for about a second
     moves the thumb and its value, and the answers follow the solver during the hold with no run; the
     release runs the page once. A single press (and Home/End) still moves and runs once. The thumb stays
     a slider whose value screen readers get; axe stays at zero."""
@@ -768,8 +773,7 @@ def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, 
     page.locator(".dl-answers table").first.wait_for()
     page.evaluate(RUN_COUNTER)
     live_ready(page)
-    thumb = page.locator(".st-key-dl_stage_controls [data-testid='stSlider'] input[type='range']").first
-    assert thumb.evaluate("(el) => el.closest('.st-key-rod_disk_spring__si__theta2') !== null")
+    thumb = page.locator(".st-key-dl_stage_controls .st-key-rod_disk_spring__si__theta2 input[type='range']")
     shown = lambda: float(thumb.input_value())  # noqa: E731
 
     def expected(degrees: float) -> list[str]:

@@ -302,3 +302,23 @@ def test_the_key_pose_follows_as_the_figure_draws_it(pid, tmp_path_factory):
                     assert np.allclose(have, want, rtol=0, atol=2e-4 * max(1.0, scale), equal_nan=True), (
                         solution.params, name, axis, have, want)
     check()
+
+
+@settings(max_examples=5, deadline=None, suppress_health_check=list(HealthCheck),
+          phases=(Phase.explicit, Phase.reuse, Phase.generate))
+@given(st.lists(st.tuples(st.sampled_from([0.0025, 0.01, 0.05, 0.1, 0.25, 0.5, 1.0, 50.0]), st.integers(-4000, 4000),
+                          st.sampled_from([0.005, 0.1, 0.0, -50.0, 3.14159])), min_size=100, max_size=100))
+def test_a_dragged_thumb_writes_its_value_as_the_slider_s_format(tmp_path_factory, grid):
+    """live.js's thumbText, which writes a dragged stage slider's value as Streamlit would: a lesson's
+    number to six figures (``%.6g``: 3.1, not 3.10000; 0.0375), an angle or a fraction to its step's
+    decimals (``%.2f`` for 0.05: ui.params.display_format), here against Python's printf."""
+    from solvers.core import Number
+    from ui.params import display_format
+
+    values = [round(low + k * step, 10) for step, k, low in grid]
+    formats = [display_format(Number("x", 0.5, "x", "dimensionless", "x", low=0, high=1, step=step)) for step, _, _ in grid]
+    on_grid = [round(k * step, 6) for step, k, _ in grid]  # (a fixed format's slider moves on its own decimals)
+    got = node(tmp_path_factory.mktemp("thumb"), "console.log(JSON.stringify(input.map(([v, w, d]) => [live.thumbText(v, {figures: 6}),"
+               " live.thumbText(w, {decimals: d, figures: 0})])));",
+               [[v, w, int(f[2:-1])] for v, w, f in zip(values, on_grid, formats)])
+    assert got == [["%.6g" % v, f % w] for v, w, f in zip(values, on_grid, formats)]

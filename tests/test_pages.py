@@ -258,11 +258,12 @@ def test_refused_combinations_explain_the_limit(pid, query, limit_label):
     ("stick_ball", "s", 0.9),  # off the stick
     ("pendulum_rebound", "d", 0.01),  # floor above the sphere
     ("disk_wall", "m", -1.0),  # a negative mass
-    ("eulers_disk", "r", 0.0),
+    ("eulers_disk", "m", 0.0),
 ])
 def test_bad_control_values_show_a_plain_message(pid, name, value):
     at = show_more(run_page(pid), pid)
-    at.number_input(key=f"{pid}__si__{name}").set_value(value).run()
+    key = f"{pid}__si__{name}"
+    next(w for w in [*at.number_input, *at.slider] if w.key == key).set_value(value).run()
     assert_clean(at)
     assert at.error
     assert name in at.error[0].value or "must" in at.error[0].value
@@ -271,7 +272,7 @@ def test_bad_control_values_show_a_plain_message(pid, name, value):
 def test_no_slip_toggle_gives_finite_mu_control():
     at = run_page("disk_wall")
     at.toggle(key="disk_wall__si__mu__inf").set_value(False).run()
-    at.number_input(key="disk_wall__si__mu").set_value(0.02).run()
+    at.slider(key="disk_wall__si__mu").set_value(0.02).run()
     assert_clean(at)
     assert at.query_params.get("mu") == "0.02"
     assert "Slides" in " ".join(answers_shown(at)["notes"])

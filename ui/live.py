@@ -14,7 +14,7 @@ from solvers import live, registry
 from solvers.core import Solution
 from ui import figure
 from ui.catalog import Problem
-from ui.params import control_key
+from ui.params import control_key, display_format
 from viz.common import DIGITS, Figure, headline_text
 
 
@@ -61,6 +61,9 @@ def payload(problem: Problem, solution: Solution, answers, system: str, stage: F
         return None
     keys = {name: control_key(problem, system, name) for name in problem.primary}
     data = live.payload(problem.id, solution.params, answers, system, keys)
+    numbers = {p.name: p for p in problem.solver.PARAMS}
+    for follow in data["follows"]:  # how the control writes its value (printf), for a thumb live.js draws
+        follow.append(display_format(numbers[follow[0]]))
     # JSON has no infinity (μ = ∞ on the disk's page): sent as a word, read back by live.js
     data["params"] = {k: ("inf" if isinstance(v, float) and math.isinf(v) else v) for k, v in data["params"].items()}
     data["regime"] = solution.regime

@@ -181,7 +181,41 @@ SLIDER_NAMES = """<script>
 </script>"""
 
 
-def _control(p: Any, problem: Problem, system: str, container) -> Any:
+def _slider(p: Number, key: str, system: str, container, lo: float, hi: float, step: float, fmt: str) -> float:
+    current = float(st.session_state[key])
+    st.session_state[key] = current
+    # ``value``: the state's own (the state wins anyway); given, Streamlit does not copy the whole
+    # session state to guess the slider's kind, a good part of a run's cost (BENCHMARKS.md §1)
+    return container.slider(_label(p, system), min(lo, current), max(hi, current), current, key=key,
+                            step=step, format=fmt, help=p.help or None)
+
+
+def round_step(step: float) -> float:
+    """The round step (1, 2, 2.5 or 5 times a power of ten) nearest ``step`` in ratio."""
+    power = 10.0 ** math.floor(math.log10(step))
+    return float(f"{min((m * power for m in (1, 2, 2.5, 5, 10)), key=lambda s: abs(math.log(s / step))):.12g}")
+
+
+def lesson_range(p: Number, system: str) -> tuple[float, float, float]:
+    """(low, high, step) of a lesson's dimensional slider in the unit it shows: the model's usual
+    values (``ui_low``–``ui_high``) on a grid of a round step (0.1 m/s; 0.3 ft/s in US units), so a
+    drag lands on numbers a person would type (``round_step``). A value off the grid (a link's, a unit switch's) is
+    shown as it is, with six figures as a box shows it, and kept until the slider is moved."""
+    factor = units.to_display(1.0, p.dimension, system)
+    step = float(p.step or 0.01) if factor == 1.0 else round_step(float(p.step or 0.01) * factor)
+    ui_low = p.ui_low if p.ui_low is not None else p.default / 10
+    ui_high = p.ui_high if p.ui_high is not None else p.default * 10
+    lo = math.ceil(round(ui_low * factor / step, 9)) * step
+    hi = math.floor(round(ui_high * factor / step, 9)) * step
+    if p.low is not None and (lo < p.low * factor or (lo == p.low * factor and not p.low_inclusive)):
+        lo += step
+    return float(f"{lo:.12g}"), float(f"{hi:.12g}"), step
+
+
+def _control(p: Any, problem: Problem, system: str, container, lesson: bool = False) -> Any:
+    """A parameter's control: a choice's radio, μ = ∞'s toggle, a slider for an angle or a fraction
+    (to its step's decimals) and for every number of the lesson (dragged on the stage, six figures),
+    else a number box (under "More parameters", for exact values)."""
     key = control_key(problem, system, p.name)
     if isinstance(p, Choice):
         return container.radio(_label(p, system), p.options, key=key, format_func=p.label_of,
@@ -194,17 +228,12 @@ def _control(p: Any, problem: Problem, system: str, container) -> Any:
             return math.inf
         if math.isinf(value):
             st.session_state[key] = float(p.ui_high or 1.0) / 2
-        return container.number_input(_label(p, system), key=key, step=p.step, format=display_format(p),
-                                      help=p.help or None)
     if is_slider(p):
         lo = float(p.ui_low if p.ui_low is not None else p.low)
         hi = float(p.ui_high if p.ui_high is not None else p.high)
-        current = float(st.session_state[key])
-        st.session_state[key] = current
-        # ``value``: the state's own (the state wins anyway); given, Streamlit does not copy the whole
-        # session state to guess the slider's kind, a good part of a run's cost (BENCHMARKS.md §1)
-        return container.slider(_label(p, system), min(lo, current), max(hi, current), current, key=key,
-                                step=float(p.step or 0.01), format=display_format(p), help=p.help or None)
+        return _slider(p, key, system, container, lo, hi, float(p.step or 0.01), display_format(p))
+    if lesson:
+        return _slider(p, key, system, container, *lesson_range(p, system), display_format(p))
     factor = units.to_display(1.0, p.dimension, system)
     step = float(f"{(p.step or 0.01) * factor:.1g}")
     return container.number_input(_label(p, system), key=key, step=step, format=display_format(p),
@@ -308,7 +337,8 @@ def lesson_parameters(problem: Problem, system: str, base: dict | None, stage) -
     others as ``more_parameters`` left them)."""
     first, rest = _split(problem)
     known = _known(problem, base or {})
-    values = {p.name: _in_si(p, _control(p, problem, system, stage), system, known[p.name]) for p in first}
+    values = {p.name: _in_si(p, _control(p, problem, system, stage, lesson=True), system, known[p.name])
+              for p in first}
     values.update({p.name: _stored(problem, p, system, known) for p in rest})
     values = {p.name: values[p.name] for p in problem.solver.PARAMS}  # the solver's order
     st.session_state[f"{problem.id}__si"] = dict(values)

@@ -184,12 +184,29 @@ function staleParts() {
 }
 
 function controlValue(name) {
-  const key = state.data.follows.find(([n]) => n === name)[1];
+  const [, key, factor] = state.data.follows.find(([n]) => n === name);
   const box = document.querySelector(`.st-key-${CSS.escape(key)} input`);
   if (!box) return null;
   if (dragged && dragged.input === box && dragged.value !== null && box.value === dragged.seen) return dragged.value;
-  const shown = box.value === "" ? NaN : Number(box.value);
-  return shown;
+  if (box.type === "range") return restingValue(box, state.params[name] * factor);
+  return box.value === "" ? NaN : Number(box.value);
+}
+
+// A slider's value: the run's (``run``, as shown) while the slider shows it (its text, react-aria's
+// state, to the figures it is written with) and its range input holds what the browser made of it; a
+// value off the slider's steps (a link's 0.53 on a slider of 0.05 steps, a unit switch's 13.1234 ft) is
+// shown as it is, but the input keeps it rounded to a step, as HTML sanitises a range's value.
+export function restingValue(input, run) {
+  const {min, max, step} = rangeOf(input), value = Number(input.value), text = Number(input.getAttribute("aria-valuetext"));
+  const near = (a, b, tolerance) => Math.abs(a - b) <= tolerance * Math.max(1, Math.abs(b));
+  return near(sanitised(run, min, max, step), value, 1e-9) && near(text, run, 1e-5) ? run : value;
+}
+
+// HTML's value sanitisation of a range input: the nearest step from its minimum (a tie: the greater),
+// within its bounds.
+export function sanitised(value, min, max, step) {
+  const top = min + Math.floor((max - min) / step + 1e-9) * step;
+  return clamp(min + Math.floor((value - min) / step + 0.5) * step, min, top);
 }
 
 // ------------------------------------------------------------------ a drag, in the frame it moves in
@@ -252,7 +269,7 @@ function onDragMove(event) {
   if (!dragged || !event.isPrimary) return;
   const {input, track} = dragged, {min, max, step} = rangeOf(input);
   if (!(max > min)) return;
-  if (dragged.start === null) dragged.start = (Number(input.value) - min) / (max - min);  // after the press's render
+  if (dragged.start === null) dragged.start = (startValue(input) - min) / (max - min);  // after the press's render
   dragged.value = draggedValue(dragged.start, event.pageX - dragged.pageX, track.getBoundingClientRect().width, min, max, step);
   dragged.seen = input.value;  // what React shows until it draws this move (never, when drawn here)
   if (dragged.drawn) {
@@ -281,6 +298,12 @@ function onDragEnd(event) {
   schedule();
 }
 
+// Where a drag starts: the value the slider shows (off its steps too, as react-aria's state has it).
+function startValue(input) {
+  const follow = state && state.data.follows.find(([, key]) => input.closest(`.st-key-${CSS.escape(key)}`));
+  return follow ? restingValue(input, state.params[follow[0]] * follow[2]) : Number(input.value);
+}
+
 // The parts of a stage slider that a drag moves, as Streamlit 1.67 draws them, or null.
 function drawnParts(slider, track, input) {
   const thumb = [...track.children].find((child) => child.contains(input) && child.style.left);
@@ -288,14 +311,17 @@ function drawnParts(slider, track, input) {
   const text = label && label.querySelector("p"), shown = text && /^-?\d+(?:\.(\d+))?$/.exec(text.textContent);
   const fill = track.firstElementChild, gradient = fill ? getComputedStyle(fill).backgroundImage : "";
   if (!shown || !(text.firstChild instanceof Text) || (gradient.match(/-?[\d.]+%/g) || []).length !== 4) return null;
-  return {root: slider, thumb, label, fill, gradient, decimals: (shown[1] || "").length, left: thumb.style.left, text: text.textContent};
+  const follow = state && state.data.follows.find(([, key]) => slider.closest(`.st-key-${CSS.escape(key)}`));
+  const general = follow && /^%\.(\d+)g$/.exec(follow[3] || "");  // "%.6g": six figures, no trailing zeros
+  return {root: slider, thumb, label, fill, gradient, decimals: (shown[1] || "").length, figures: general ? Number(general[1]) : 0,
+          left: thumb.style.left, text: text.textContent};
 }
 
 // The thumb, its value and the filled track at ``value``, as the slider's own render would draw them.
 function drawThumb({input, drawn, value}) {
   const {min, max} = rangeOf(input), percent = ((value - min) / (max - min)) * 100;
   drawn.thumb.style.left = `${percent}%`;
-  setThumbText(drawn, value.toFixed(drawn.decimals));
+  setThumbText(drawn, thumbText(value, drawn));
   let stop = 0;  // [fill start, fill start, fill end, fill end]: the end moves
   drawn.fill.style.backgroundImage = drawn.gradient.replace(/-?[\d.]+%/g, (at) => (stop++ >= 2 ? `${percent}%` : at));
   // Streamlit's layout effect: the value kept within the slider at either end of the track
@@ -305,6 +331,9 @@ function drawThumb({input, drawn, value}) {
   else if (Math.round(centre + label.width / 2) > Math.round(box.right)) Object.assign(drawn.label.style, {left: "", right: `${centre + half - box.right}px`});
   else Object.assign(drawn.label.style, {left: "", right: ""});
 }
+
+// A value as the slider's format writes it (sprintf-js, which Streamlit uses): "%.6g" or "%.2f".
+export const thumbText = (value, {decimals, figures}) => (figures ? String(Number(value.toPrecision(figures))) : value.toFixed(decimals));
 
 // React's own text node (a node put in its place would be left standing when React writes the next value).
 function setThumbText(drawn, text) {
