@@ -77,13 +77,17 @@ def p90(values: list[float]) -> float:
     return statistics.quantiles(values, n=10)[-1] if len(values) >= 10 else float("nan")
 
 
-def drag_slider(page, track: dict, moves: int, steps: int = 100) -> None:
-    """Held down on the middle of ``track`` (a slider of ``steps`` steps), then ``moves`` moves that
-    each change the value: a whole number of steps at a time (at least one, and 2.25 % of the track,
-    the pace of a quick drag), to and fro within the middle 90 % of the range."""
+def drag_slider(page, track: dict, moves: int, steps: int = 100, at: int | None = None) -> None:
+    """Held down on ``track`` (a slider of ``steps`` steps) at step ``at`` (the thumb's place; the
+    middle if None), then ``moves`` moves that each change the value: a whole number of steps at a
+    time (at least one, and 2.25 % of the track, the pace of a quick drag), to and fro within a
+    quarter of the range either side of where it started (a student exploring around the textbook's
+    value), inside the middle 90 % of the range; released off its start."""
     y = track["y"] + track["height"] / 2
     per_move = max(1, math.ceil(0.0225 * steps))
-    low, high, at, way = math.ceil(0.05 * steps), math.floor(0.95 * steps), round(steps / 2), 1
+    at = round(steps / 2) if at is None else at
+    low, high, way = max(math.ceil(0.05 * steps), at - steps // 4), min(math.floor(0.95 * steps), at + steps // 4), 1
+    at = start = min(max(at, low), high)
     page.mouse.move(track["x"] + at / steps * track["width"], y)
     page.mouse.down()
     for _ in range(moves):
@@ -91,6 +95,9 @@ def drag_slider(page, track: dict, moves: int, steps: int = 100) -> None:
             way = -way
         at += way * per_move
         page.mouse.move(track["x"] + at / steps * track["width"], y)
+        page.wait_for_timeout(20)
+    if at == start:  # released elsewhere, so the release has a new value to run (counted)
+        page.mouse.move(track["x"] + (at + (per_move if at + per_move <= high else -per_move)) / steps * track["width"], y)
         page.wait_for_timeout(20)
 
 
@@ -104,10 +111,12 @@ def type_box(box, keystrokes: int) -> None:
         box.type(f"{start * (1 + 0.01 * (i + 1)):.4g}", delay=20)
 
 
-def slider_steps(control) -> int:
-    """How many steps a Streamlit slider's range holds (its range input's min, max and step)."""
-    low, high, step = (float(control.locator("input[type='range']").get_attribute(a)) for a in ("min", "max", "step"))
-    return round((high - low) / step)
+def slider_steps(control) -> tuple[int, int]:
+    """How many steps a Streamlit slider's range holds, and the step its thumb is at (its range
+    input's min, max, step and value)."""
+    thumb = control.locator("input[type='range']")
+    low, high, step = (float(thumb.get_attribute(a)) for a in ("min", "max", "step"))
+    return round((high - low) / step), round((float(thumb.input_value()) - low) / step)
 
 
 def bare(browser, moves: int) -> dict[str, list[float]]:
@@ -145,7 +154,7 @@ def live_page(browser, url: str, problem, moves: int) -> dict:
     loaded = len(sent)
     if kind == "slider":
         track = control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box()
-        drag_slider(page, track, moves, slider_steps(control))
+        drag_slider(page, track, moves, *slider_steps(control))
         during = len(sent) - loaded
         draws = page.evaluate(DRAWS)  # before the run after release clears them
         page.mouse.up()

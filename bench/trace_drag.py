@@ -25,7 +25,7 @@ with running_app() as url, sync_playwright() as pw:
     control = page.locator(f".st-key-{key}")
     b.start_tracing(page=page, path=str(TRACE), categories=["devtools.timeline", "disabled-by-default-devtools.timeline", "v8.execute", "blink.user_timing"])
     if kind == "slider":
-        drag_slider(page, control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box(), 40, slider_steps(control))
+        drag_slider(page, control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box(), 40, *slider_steps(control))
     else:  # a number box, typed in as bench/live_drag.py types
         type_box(control.locator("input"), 40)
     b.stop_tracing()

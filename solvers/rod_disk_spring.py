@@ -50,7 +50,7 @@ PARAMS = (
     Number("m1", 6.0, "rod mass", "mass", "m_1", low=0, ui_low=0.1, ui_high=30.0, step=0.1),
     Number("m2", 9.0, "disk mass", "mass", "m_2", low=0, ui_low=0.1, ui_high=30.0, step=0.1),
     Number("k", 20.0, "spring stiffness", "stiffness", "k", low=0, low_inclusive=True, ui_low=0.0,
-           ui_high=200.0, step=1.0),
+           ui_high=100.0, step=1.0),  # (the defaults reach θ₂ up to k ≈ 48 N/m)
     Number("L", 0.45, "rod length", "length", "L", low=0, ui_low=0.05, ui_high=2.0, step=0.01),
     Number("R", 0.075, "disk radius", "length", "R", low=0, ui_low=0.01, ui_high=0.5, step=0.005),
     Number("theta1", 0.0, "release angle from the upward vertical", "angle", r"\theta_1", low=0,
