@@ -677,7 +677,8 @@ def test_a_held_3d_scene_s_pose_is_drawn_where_webgl_draws_it(browser, app_url):
     the scene in WebGL for each pose. Held at the frame on screen, the overlay's rim, marked radius,
     contact point and G land on the pixels WebGL drew for them: each colour's pixels within 2 px of
     the other drawing's, both ways, nearly all of them (the SVG has no depth: where the contact's path
-    passes in front of the rim, WebGL draws it over, the overlay under)."""
+    passes in front of the rim, WebGL draws it over, the overlay under). While held, the scene's render
+    loop is parked (the page idles, so a move's frame starts at once); released, it draws again."""
     import io
 
     import numpy as np
@@ -719,10 +720,25 @@ def test_a_held_3d_scene_s_pose_is_drawn_where_webgl_draws_it(browser, app_url):
             assert near.mean() >= 0.95, (colour, near.mean())
         compared += 1
     assert compared >= 3
-    # released: WebGL draws the bodies again, the overlay gone
+    # While held the scene's render loop (plotly asks for every frame) is parked: the page idles.
+    parked = ("async () => { for (const r of performance.getEntriesByType('resource'))"
+              " if (/\\/figure\\.[0-9a-f]+\\.js/.test(r.name)) return (await import(r.name)).parkedSceneLoops(); }")
+    assert page.evaluate(parked) == 1
+    # released: the loop runs again, WebGL draws the bodies again (as before the hold), the overlay gone
     page.evaluate("() => document.querySelector('.st-key-dl_stage .dl-figure').dlFigure.release()")
     page.wait_for_timeout(300)
-    assert page.locator(".dl-scene-pose").count() == 0
+    assert page.locator(".dl-scene-pose").count() == 0 and page.evaluate(parked) == 0
+    again = np.asarray(Image.open(io.BytesIO(graph.screenshot())).convert("RGB"), dtype=int)
+    assert (np.abs(again - webgl).sum(axis=2) > 30).mean() < 0.002
+    # and the scene still turns under the mouse (its loop draws the new camera)
+    box = page.locator(".st-key-dl_stage .dl-figure .gl-container canvas").first.bounding_box()
+    page.mouse.move(box["x"] + box["width"] * 0.5, box["y"] + box["height"] * 0.6)
+    page.mouse.down()
+    page.mouse.move(box["x"] + box["width"] * 0.65, box["y"] + box["height"] * 0.6, steps=5)
+    page.mouse.up()
+    page.wait_for_timeout(300)
+    turned = np.asarray(Image.open(io.BytesIO(graph.screenshot())).convert("RGB"), dtype=int)
+    assert (np.abs(turned - again).sum(axis=2) > 30).mean() > 0.01
     assert not errors, errors
     context.close()
 

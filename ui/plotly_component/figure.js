@@ -79,6 +79,43 @@ function plotlyFor(url) {
 
 function quiet(promise) { if (promise && promise.catch) promise.catch(() => {}); }  // an interrupted animation rejects
 
+// ------------------------------------------------------------------ a 3-D scene's render loop, parked
+// plotly's 3-D scene (gl-plot3d) asks for every animation frame, to see whether its camera or data
+// changed: a page holding one never idles, so Chromium starts its frames on a fixed 60 Hz clock and a
+// pointer move waits up to a frame for the next one, where a page at rest starts one for it at once
+// (a 2-D page given the same endless loop waited as long: BENCHMARKS.md, live dragging). While a
+// control is dragged the scene is held and drawn over (sceneOverlay), so its loop is parked: its next
+// request for a frame is kept, not made, and made again on release (the scene then draws what
+// changed). The loop is known by its own source (it stops on the scene's ``_stopped`` or a lost
+// context), as the pinned plotly bundle writes it; any other callback is passed on untouched.
+let parking = null;  // the held figure whose scene's loop is parked
+const parked = new Set();
+const isSceneLoop = (() => {
+  const seen = new WeakMap();
+  return (cb) => {
+    if (typeof cb !== "function") return false;
+    if (!seen.has(cb)) { const text = Function.prototype.toString.call(cb); seen.set(cb, text.length < 200 && text.includes("._stopped") && text.includes(".contextLost")); }
+    return seen.get(cb);
+  };
+})();
+function parkSceneLoops(figure) {
+  if (!window.dlNativeFrame) {
+    const native = window.dlNativeFrame = window.requestAnimationFrame.bind(window);
+    window.requestAnimationFrame = (cb) => {
+      if (parking && !parking.root.isConnected) resumeSceneLoops();  // (its page left while held)
+      if (parking && isSceneLoop(cb)) { parked.add(cb); return 0; }
+      return native(cb);
+    };
+  }
+  parking = figure;
+}
+function resumeSceneLoops() {
+  parking = null;
+  for (const cb of parked) window.dlNativeFrame(cb);
+  parked.clear();
+}
+export const parkedSceneLoops = () => parked.size;  // (for the tests)
+
 // ------------------------------------------------------------------ one figure on the page
 class Figure {
   constructor(parent) {
@@ -334,7 +371,13 @@ class Figure {
     const layout = this.graph._fullLayout, overlay = layout && layout.scene && layout.scene._scene ? posed : [];
     this.held.overlay = overlay.length ? overlay : null;
     this.graph.classList.toggle("dl-scene-held", !!this.held.overlay);
-    return this.restyleFrame(this.keyFrame, dimmed.map(() => opacity), dimmed, overlay, "legendonly");
+    const held = this.held;
+    return this.restyleFrame(this.keyFrame, dimmed.map(() => opacity), dimmed, overlay, "legendonly").then(() => {
+      const scene = this.graph._fullLayout && this.graph._fullLayout.scene && this.graph._fullLayout.scene._scene;
+      if (this.held !== held || !held.overlay || !scene || !scene.glplot) return;
+      scene.glplot.redraw();  // the posed traces hidden in WebGL now, then no frame until release
+      parkSceneLoops(this);
+    });
   }
   release() {
     const held = this.held;
@@ -345,6 +388,7 @@ class Figure {
   }
   dropOverlay(held) {
     if (held && held.svg) held.svg.remove();
+    if (held && held.overlay) resumeSceneLoops();
     this.graph.classList.remove("dl-scene-held");
   }
   // Frame ``index``'s moving traces, these traces' opacities, and the ``shown`` traces' visibility, in
