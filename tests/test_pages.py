@@ -476,3 +476,27 @@ def test_a_box_out_of_range_is_named_in_its_own_unit(query, name, value, says, n
     message = " ".join(e.value for e in at.error)
     says = says.replace("10 000", units.format_value(10000.0))
     assert says in message and never not in message, message
+
+
+@pytest.mark.parametrize("system", ["si", "us"])
+@pytest.mark.parametrize("pid", [p.id for p in PROBLEMS])
+def test_a_lesson_slider_spans_valid_round_values_around_the_textbook_s(pid, system):
+    """Every number of the lesson is a slider (ui.params.lesson_range): its ends and every step between
+    are values the solver takes, on a round step (1, 2, 2.5 or 5 × 10ⁿ of the unit shown, within a
+    factor of two of the problem's own step), and the textbook's value lies within its range."""
+    from ui.params import is_slider, lesson_range
+
+    problem = BY_ID[pid]
+    for p in problem.solver.PARAMS:
+        if p.name not in problem.primary or not hasattr(p, "dimension") or is_slider(p):
+            continue
+        lo, hi, step = lesson_range(p, system)
+        factor = units.to_display(1.0, p.dimension, system)
+        mantissa = step / 10 ** math.floor(math.log10(step))
+        assert any(math.isclose(mantissa, m) for m in (1, 2, 2.5, 5)), step
+        assert 0.5 <= step / (p.step * factor) <= 2
+        assert lo < hi and (math.isinf(p.default) or lo <= units.to_display(p.default, p.dimension, system) <= hi)
+        steps = round((hi - lo) / step)
+        assert math.isclose(lo + steps * step, hi, rel_tol=1e-9)
+        for value in (lo + k * step for k in range(steps + 1)):
+            p.validate(units.to_si(value, p.dimension, system))  # raises if the solver would refuse it

@@ -198,9 +198,9 @@ def round_step(step: float) -> float:
 
 def lesson_range(p: Number, system: str) -> tuple[float, float, float]:
     """(low, high, step) of a lesson's dimensional slider in the unit it shows: the model's usual
-    values (``ui_low``–``ui_high``) on a grid of a round step (0.1 m/s; 0.3 ft/s in US units), so a
-    drag lands on numbers a person would type (``round_step``). A value off the grid (a link's, a unit switch's) is
-    shown as it is, with six figures as a box shows it, and kept until the slider is moved."""
+    values (``ui_low``–``ui_high``) on a grid of a round step (0.1 m/s; 0.25 ft/s in US units:
+    ``round_step``), so a drag lands on numbers a person would type. A value off the grid (a link's,
+    a unit switch's) is shown as it is, to six figures as a box shows it, and kept until moved."""
     factor = units.to_display(1.0, p.dimension, system)
     step = float(p.step or 0.01) if factor == 1.0 else round_step(float(p.step or 0.01) * factor)
     ui_low = p.ui_low if p.ui_low is not None else p.default / 10
