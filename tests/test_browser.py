@@ -541,6 +541,18 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     assert page.locator(".dl-derivation").count() >= 1  # (so the check below can fail)
     assert page.locator(".dl-live-stale, .dl-live-badge, .dl-live-value, .dl-live-caption").count() == 0
     assert page.evaluate("() => document.body.classList.contains('dl-live-dragging')") is False
+    # Dragged back from there, the thumb follows the pointer (no live view to draw it: react-aria's own
+    # drag), and the release runs the page with answers again.
+    page.mouse.move(x_of(shown()), middle)
+    page.mouse.down()
+    for degrees in (-60, -45, -30, -15):
+        page.mouse.move(x_of(degrees), middle)
+        page.wait_for_timeout(60)
+    page.wait_for_timeout(200)
+    assert -20 < shown() < -10, shown()
+    page.mouse.up()
+    page.wait_for_function("() => window.__runs >= 3", timeout=30_000)
+    page.locator(".dl-answers table").first.wait_for(timeout=30_000)
     assert not errors, errors
     context.close()
 

@@ -256,7 +256,9 @@ export function draggedValue(start, travel, size, min, max, step) {
 
 function onDragStart(event) {
   const slider = event.target.closest && event.target.closest(".st-key-dl_stage_controls [data-testid='stSlider']");
-  if (!slider || !event.isPrimary || event.button !== 0 || event.target.closest(".dl-step")) return;
+  // (none on a page without the live view: a run the solver refused has no answers to follow, and
+  // react-aria draws the drag back to a value it takes)
+  if (!slider || !state || !event.isPrimary || event.button !== 0 || event.target.closest(".dl-step")) return;
   const input = slider.querySelector("input[type='range']"), track = input && input.closest("[role='group'] > [data-orientation]");
   if (!track || !track.contains(event.target)) return;  // (a press on the label starts no drag)
   dragged = {input, track, pageX: event.pageX, start: null, seen: null, value: null, drawn: drawnParts(slider, track, input), last: null};
@@ -554,7 +556,7 @@ function statusLine() {
   return status;
 }
 
-function schedule() { if (state && !frame) frame = requestAnimationFrame(draw); }
+function schedule() { if ((state || (dragged && dragged.drawn)) && !frame) frame = requestAnimationFrame(draw); }
 
 // The stage's controls: a slider's value (react-aria sets its range input while it is dragged), a
 // number box's typing, a held key (below).
