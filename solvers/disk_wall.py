@@ -56,7 +56,7 @@ PARAMS = (
            r"\omega", ui_low=-50.0, ui_high=50.0, step=0.5),
     Number("e", 1.0, "coefficient of restitution", "dimensionless", "e", low=0, high=1,
            low_inclusive=True, high_inclusive=True, ui_low=0, ui_high=1, step=0.05),
-    Number("mu", math.inf, "wall friction coefficient (inf = no slip)", "dimensionless", r"\mu",
+    Number("mu", math.inf, "wall friction coefficient", "dimensionless", r"\mu",
            low=0, low_inclusive=True, allow_inf=True, ui_low=0, ui_high=2, step=0.05),
 )
 
