@@ -23,8 +23,8 @@ class Number:
 
     ``low``/``high`` bound the physically valid range (``None`` = unbounded) and the flags say
     whether each bound is allowed; they are in SI units and radians, as the value. ``ui_low``/
-    ``ui_high``/``step`` only suggest a control's range, in ``ui_unit``: the dimension's display
-    unit in SI (degrees for angles, the SI unit otherwise).
+    ``ui_high``/``step`` give a control's range, in ``ui_unit``: the dimension's display unit in SI
+    (degrees for angles, the SI unit otherwise); a lesson's slider spans them.
     """
 
     name: str
@@ -41,6 +41,9 @@ class Number:
     ui_high: float | None = None
     step: float | None = None
     help: str = ""
+    # The control's top, at most this fraction of another parameter's value (s ≤ l/2: ("l", 0.5)), so
+    # a slider spans only values that other parameter allows.
+    ui_high_per: tuple[str, float] | None = None
 
     @property
     def ui_unit(self) -> str:

@@ -52,7 +52,7 @@ PARAMS = (
     Number("l", 1.0, "stick length", "length", "l", low=0, ui_low=0.1, ui_high=5.0, step=0.05),
     Number("v", 1.0, "ball speed before impact", "speed", "v", low=0, ui_low=0.1, ui_high=10.0, step=0.1),
     Number("s", 0.5, "impact point from the stick's midpoint", "length", "s", low=0,
-           ui_low=0.0, ui_high=2.5, step=0.01, help="0 < s ≤ l/2; the default is the end, l/2."),
+           ui_low=0.0, ui_high=2.5, step=0.01, ui_high_per=("l", 0.5), help="0 < s ≤ l/2; the default is the end, l/2."),
     Choice("mode", "stick", "what the ball does", ("stick", "bounce"),
            ("attaches to the stick (the worked solution)", "bounces off (restitution e)")),
     Number("e", 0.5, "coefficient of restitution (bounce only)", "dimensionless", "e", low=0, high=1,

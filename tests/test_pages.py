@@ -255,7 +255,7 @@ def test_refused_combinations_explain_the_limit(pid, query, limit_label):
 
 
 @pytest.mark.parametrize("pid,name,value", [
-    ("stick_ball", "s", 0.9),  # off the stick
+    ("stick_ball", "l", 0.6),  # a stick too short for s = 0.5: off it
     ("pendulum_rebound", "d", 0.01),  # floor above the sphere
     ("disk_wall", "m", -1.0),  # a negative mass
     ("eulers_disk", "m", 0.0),
@@ -500,3 +500,21 @@ def test_a_lesson_slider_spans_valid_round_values_around_the_textbook_s(pid, sys
         assert math.isclose(lo + steps * step, hi, rel_tol=1e-9)
         for value in (lo + k * step for k in range(steps + 1)):
             p.validate(units.to_si(value, p.dimension, system))  # raises if the solver would refuse it
+
+
+@pytest.mark.parametrize("length", [0.3, 1.0, 2.37, 5.0])
+def test_the_impact_point_s_slider_ends_at_the_stick_s_end(length):
+    """s's slider (stick and ball) spans the stick's half that l allows (``ui_high_per``): its top
+    within a step of l/2, and every value on it one the solver takes for that l; on the page too,
+    with l from a link."""
+    from solvers import stick_ball
+    from ui.params import lesson_range
+
+    s = next(p for p in stick_ball.PARAMS if p.name == "s")
+    lo, hi, step = lesson_range(s, "si", {"l": length})
+    assert length / 2 - step < hi <= length / 2 + 1e-12
+    for k in range(round((hi - lo) / step) + 1):
+        stick_ball.solve(l=length, s=lo + k * step)  # raises if off the stick
+    at = run_page("stick_ball", {"l": f"{length:g}"})
+    slider = next(w for w in at.slider if w.key == "stick_ball__si__s")
+    assert slider.proto.max == pytest.approx(max(hi, 0.5))  # (the slider also holds the textbook's s = 0.5)

@@ -196,26 +196,32 @@ def round_step(step: float) -> float:
     return float(f"{min((m * power for m in (1, 2, 2.5, 5, 10)), key=lambda s: abs(math.log(s / step))):.12g}")
 
 
-def lesson_range(p: Number, system: str) -> tuple[float, float, float]:
+def lesson_range(p: Number, system: str, params: dict | None = None) -> tuple[float, float, float]:
     """(low, high, step) of a lesson's dimensional slider in the unit it shows: the model's usual
     values (``ui_low``–``ui_high``) on a grid of a round step (0.1 m/s; 0.25 ft/s in US units:
     ``round_step``), so a drag lands on numbers a person would type. A value off the grid (a link's,
-    a unit switch's) is shown as it is, to six figures as a box shows it, and kept until moved."""
+    a unit switch's) is shown as it is, to six figures as a box shows it, and kept until moved.
+    ``params`` (SI): the other parameters now, for a top that follows one of them (``ui_high_per``)."""
     factor = units.to_display(1.0, p.dimension, system)
     step = float(p.step or 0.01) if factor == 1.0 else round_step(float(p.step or 0.01) * factor)
     ui_low = p.ui_low if p.ui_low is not None else p.default / 10
     ui_high = p.ui_high if p.ui_high is not None else p.default * 10
+    if p.ui_high_per and params and isinstance(params.get(p.ui_high_per[0]), (int, float)) \
+            and math.isfinite(params[p.ui_high_per[0]]):
+        ui_high = min(ui_high, params[p.ui_high_per[0]] * p.ui_high_per[1])
     lo = math.ceil(round(ui_low * factor / step, 9)) * step
     hi = math.floor(round(ui_high * factor / step, 9)) * step
     if p.low is not None and (lo < p.low * factor or (lo == p.low * factor and not p.low_inclusive)):
         lo += step
+    hi = max(hi, lo + step)  # (a top following a very small value: one step at least)
     return float(f"{lo:.12g}"), float(f"{hi:.12g}"), step
 
 
-def _control(p: Any, problem: Problem, system: str, container, lesson: bool = False) -> Any:
+def _control(p: Any, problem: Problem, system: str, container, lesson: dict | None = None) -> Any:
     """A parameter's control: a choice's radio, μ = ∞'s toggle, a slider for an angle or a fraction
     (to its step's decimals) and for every number of the lesson (dragged on the stage, six figures),
-    else a number box (under "More parameters", for exact values)."""
+    else a number box (under "More parameters", for exact values). ``lesson``: the other parameters
+    (SI) of a lesson's control, whose range may follow one of them."""
     key = control_key(problem, system, p.name)
     if isinstance(p, Choice):
         return container.radio(_label(p, system), p.options, key=key, format_func=p.label_of,
@@ -232,8 +238,8 @@ def _control(p: Any, problem: Problem, system: str, container, lesson: bool = Fa
         lo = float(p.ui_low if p.ui_low is not None else p.low)
         hi = float(p.ui_high if p.ui_high is not None else p.high)
         return _slider(p, key, system, container, lo, hi, float(p.step or 0.01), display_format(p))
-    if lesson:
-        return _slider(p, key, system, container, *lesson_range(p, system), display_format(p))
+    if lesson is not None:
+        return _slider(p, key, system, container, *lesson_range(p, system, lesson), display_format(p))
     factor = units.to_display(1.0, p.dimension, system)
     step = float(f"{(p.step or 0.01) * factor:.1g}")
     return container.number_input(_label(p, system), key=key, step=step, format=display_format(p),
@@ -337,9 +343,10 @@ def lesson_parameters(problem: Problem, system: str, base: dict | None, stage) -
     others as ``more_parameters`` left them)."""
     first, rest = _split(problem)
     known = _known(problem, base or {})
-    values = {p.name: _in_si(p, _control(p, problem, system, stage, lesson=True), system, known[p.name])
+    others = {p.name: _stored(problem, p, system, known) for p in rest}
+    values = {p.name: _in_si(p, _control(p, problem, system, stage, lesson=others), system, known[p.name])
               for p in first}
-    values.update({p.name: _stored(problem, p, system, known) for p in rest})
+    values.update(others)
     values = {p.name: values[p.name] for p in problem.solver.PARAMS}  # the solver's order
     st.session_state[f"{problem.id}__si"] = dict(values)
     return values
