@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from solvers import registry, units
 from solvers.core import Number
-from ui.params import is_slider, lesson_range
+from ui.params import slider_range
 
 
 def lesson_control(pid: str) -> tuple[str, float, str, float]:
@@ -13,21 +13,13 @@ def lesson_control(pid: str) -> tuple[str, float, str, float]:
     of the lesson is a slider (ui.params), moved down by one step (it starts at the textbook's value,
     often at the top of what the lesson explores)."""
     p = _first_number(pid)
-    return f"{pid}__si__{p.name}", units.to_display(p.default, p.dimension), "slider", -slider_range(p)[2]
+    return f"{pid}__si__{p.name}", units.to_display(p.default, p.dimension), "slider", -slider_range(p, "si")[2]
 
 
 def _first_number(pid: str) -> Number:
     solver = registry.solver(pid)
     specs = {p.name: p for p in solver.PARAMS}
     return next(specs[name] for name in solver.ABOUT.primary if isinstance(specs.get(name), Number))
-
-
-def slider_range(p: Number) -> tuple[float, float, float]:
-    """(low, high, step) of a lesson slider in SI, as ui.params draws it."""
-    if is_slider(p):
-        return (float(p.ui_low if p.ui_low is not None else p.low), float(p.ui_high if p.ui_high is not None else p.high),
-                float(p.step or 0.01))
-    return lesson_range(p, "si")
 
 
 def changes_of(pid: str, count: int) -> list[float]:
@@ -37,7 +29,7 @@ def changes_of(pid: str, count: int) -> list[float]:
     side of the start. Never the start itself, never out of the slider's range: a slider with fewer
     positions than ``count`` gives all it has."""
     key, start, kind, step = lesson_control(pid)
-    lo, hi, _ = slider_range(_first_number(pid))
+    lo, hi, _ = slider_range(_first_number(pid), "si")  # as ui.params draws it
     inside = lambda v: lo - 1e-9 <= v <= hi + 1e-9  # noqa: E731
     ahead = [v for v in (round(start + step * i, 6) for i in range(1, count + 1)) if inside(v)]
     behind = [v for v in (round(start - step * i, 6) for i in range(1, count + 1)) if inside(v)]

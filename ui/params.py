@@ -181,13 +181,23 @@ SLIDER_NAMES = """<script>
 </script>"""
 
 
-def _slider(p: Number, key: str, system: str, container, lo: float, hi: float, step: float, fmt: str) -> float:
+def _slider(p: Number, key: str, system: str, container, others: dict | None = None) -> float:
     current = float(st.session_state[key])
     st.session_state[key] = current
+    lo, hi, step = slider_range(p, system, others)
     # ``value``: the state's own (the state wins anyway); given, Streamlit does not copy the whole
     # session state to guess the slider's kind, a good part of a run's cost (BENCHMARKS.md §1)
     return container.slider(_label(p, system), min(lo, current), max(hi, current), current, key=key,
-                            step=step, format=fmt, help=p.help or None)
+                            step=step, format=display_format(p), help=p.help or None)
+
+
+def slider_range(p: Number, system: str, params: dict | None = None) -> tuple[float, float, float]:
+    """(low, high, step) of ``p``'s slider in the unit it shows: an angle's or a fraction's as its
+    spec gives it, any other lesson number's by ``lesson_range`` (before a value outside it widens it)."""
+    if is_slider(p):
+        return (float(p.ui_low if p.ui_low is not None else p.low), float(p.ui_high if p.ui_high is not None else p.high),
+                float(p.step or 0.01))
+    return lesson_range(p, system, params)
 
 
 def round_step(step: float) -> float:
@@ -234,12 +244,8 @@ def _control(p: Any, problem: Problem, system: str, container, lesson: dict | No
             return math.inf
         if math.isinf(value):
             st.session_state[key] = float(p.ui_high or 1.0) / 2
-    if is_slider(p):
-        lo = float(p.ui_low if p.ui_low is not None else p.low)
-        hi = float(p.ui_high if p.ui_high is not None else p.high)
-        return _slider(p, key, system, container, lo, hi, float(p.step or 0.01), display_format(p))
-    if lesson is not None:
-        return _slider(p, key, system, container, *lesson_range(p, system, lesson), display_format(p))
+    if is_slider(p) or lesson is not None:
+        return _slider(p, key, system, container, lesson)
     factor = units.to_display(1.0, p.dimension, system)
     step = float(f"{(p.step or 0.01) * factor:.1g}")
     return container.number_input(_label(p, system), key=key, step=step, format=display_format(p),

@@ -203,7 +203,7 @@ class Figure {
     return !!frame && this.sceneUpdate(frame.traces, frame.data);
   }
   sceneUpdate(traces, data) {
-    const scene = this.graph._fullLayout && this.graph._fullLayout.scene && this.graph._fullLayout.scene._scene;
+    const scene = this.scene;
     if (!scene || !scene.glplot || !scene.traces) return false;
     const targets = traces.map((t) => {
       const full = (this.graph._fullData || [])[t];
@@ -218,13 +218,17 @@ class Figure {
     scene.glplot.redraw();
     return true;
   }
+  // plotly's 3-D scene of this figure (its camera, data scale and gl-plot3d), or undefined.
+  get scene() {
+    const layout = this.graph._fullLayout;
+    return layout && layout.scene && layout.scene._scene;
+  }
   // A held 3-D scene's posed traces (lines, markers) drawn in an SVG laid over the scene, each point
   // projected as plotly.js projects a 3-D annotation (the scene's camera, model and data scale, onto
   // its domain): WebGL hides them for the hold (showHeld) and is not redrawn while the control moves.
   // Each redraw of the scene in software WebGL took 7–9 ms a pose, and the next move waited for it.
   sceneOverlay(traces, data) {
-    const held = this.held, layout = this.graph._fullLayout;
-    const scene = layout && layout.scene && layout.scene._scene;
+    const held = this.held, layout = this.graph._fullLayout, scene = this.scene;
     if (!held || !held.overlay || traces.some((t) => !held.overlay.includes(t))) return false;
     if (!scene || !scene.glplot || !scene.glplot.cameraParams || !scene.dataScale) return false;
     const project = sceneProjection(scene.glplot.cameraParams, scene.dataScale, layout._size, layout.scene.domain);
@@ -368,12 +372,12 @@ class Figure {
   showHeld(dimmed, opacity, posed = []) {
     if (!this.held || this.held.shown) return Promise.resolve();
     this.held.shown = true;
-    const layout = this.graph._fullLayout, overlay = layout && layout.scene && layout.scene._scene ? posed : [];
+    const overlay = this.scene ? posed : [];
     this.held.overlay = overlay.length ? overlay : null;
     this.graph.classList.toggle("dl-scene-held", !!this.held.overlay);
     const held = this.held;
     return this.restyleFrame(this.keyFrame, dimmed.map(() => opacity), dimmed, overlay, "legendonly").then(() => {
-      const scene = this.graph._fullLayout && this.graph._fullLayout.scene && this.graph._fullLayout.scene._scene;
+      const scene = this.scene;
       if (this.held !== held || !held.overlay || !scene || !scene.glplot) return;
       scene.glplot.redraw();  // the posed traces hidden in WebGL now, then no frame until release
       parkSceneLoops(this);
