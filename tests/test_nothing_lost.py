@@ -140,11 +140,15 @@ def test_postgresql_recorded_means_recorded(postgres_server, how):
     def sabotage():
         with admin.connect() as c:
             if how == "cut off and renamed":
-                c.execute(text(f"SELECT pg_terminate_backend(pid) FROM pg_stat_activity WHERE datname = '{name}'"))
+                # Shut the door before emptying the room: a student reconnecting between the two
+                # would hold the database open and the rename would be refused.
+                c.execute(text(f"ALTER DATABASE {name} ALLOW_CONNECTIONS false"))
+                c.execute(text(f"SELECT pg_terminate_backend(pid, 5000) FROM pg_stat_activity WHERE datname = '{name}'"))
                 c.execute(text(f"ALTER DATABASE {name} RENAME TO {moved}"))
+                c.execute(text(f"ALTER DATABASE {moved} ALLOW_CONNECTIONS true"))
             else:
                 c.execute(text(f"ALTER DATABASE {name} SET default_transaction_read_only = on"))
-                c.execute(text(f"SELECT pg_terminate_backend(pid) FROM pg_stat_activity WHERE datname = '{name}'"))
+                c.execute(text(f"SELECT pg_terminate_backend(pid, 5000) FROM pg_stat_activity WHERE datname = '{name}'"))
 
     try:
         told, aid, refusals = submit_while(engine, sabotage)
