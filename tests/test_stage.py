@@ -141,7 +141,8 @@ def stage_faults(page, problem, height: int) -> list[str]:
 
 def stepper_faults(page, height: int) -> list[str]:
     """Each stage slider's −/+ (ui/plotly_component/live.js) on a narrow screen: two, named, at least
-    44×44 px, in the first screen, clear of the thumb at either end of the track; none on a wide one."""
+    44×44 px, in the first screen, clear of the thumb at either end of the track, under a track of the
+    slider's width on a phone taller than 800 px; none on a wide one."""
     narrow = page.evaluate("innerWidth") <= 640
     faults = []
     for slider in page.locator(f"{CONTROLS} [data-testid='stSlider']").all():
@@ -156,6 +157,10 @@ def stepper_faults(page, height: int) -> list[str]:
             faults.append(f"{name}: steppers {names}")
             continue
         track = box(slider.locator("[role='group'] > [data-orientation]").first)
+        # Under the track, the −/+ leave it the slider's width, long enough to drag to a value; a short phone
+        # keeps them at its ends, where it had a third of it (some 55 px of a 390 px phone's half).
+        if height > 800 and track["width"] < 0.85 * box(slider)["width"]:
+            faults.append(f"{name}: a track of {track['width']:.0f} px in a slider {box(slider)['width']:.0f} px wide")
         thumb = box(slider.locator("[data-testid='stSliderThumbValue']").locator("xpath=..").first)
         half = thumb["width"] / 2
         for step in steps:

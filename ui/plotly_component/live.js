@@ -30,20 +30,28 @@ const STYLE = `
 .dl-live-status:empty { display: none; }
 .dl-live-value { font-variant-numeric: tabular-nums; }
 .dl-live-waiting { font-weight: 400; font-style: italic; color: var(--st-orange-text-color, #9B4519); }
-/* a stage slider's −/+ (one step each) on a narrow screen, at the ends of its track, thumb-sized */
+/* a stage slider's −/+ (one step each) on a narrow screen, under the ends of its track, thumb-sized: the
+   track keeps the column's whole width (between them it had a third of it, too short to drag to a value) */
 .dl-step { display: none; }
 @media (max-width: 640px) {
-  /* the track between them, a thumb at either end clear of them (44 px, a gap, half the 22 px thumb) */
-  .st-key-dl_stage_controls .dl-stepped > [role='group'] { padding-left: 56px; padding-right: 56px; }
+  .st-key-dl_stage_controls .dl-stepped { position: relative; padding-bottom: 32px; }
   .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderThumbValue'] { z-index: 1; }
-  .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: -2px; width: 44px; height: 44px; padding: 0;
+  .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: 0; width: 44px; height: 44px; padding: 0;
     font-size: 1.4rem; line-height: 1; border-radius: 0.5rem; cursor: pointer; touch-action: manipulation;
     border: 1px solid rgba(128, 128, 128, 0.6); background: rgba(128, 128, 128, 0.12); color: inherit; }  /* the theme's text, light or dark */
-  /* the track's end values in the room up to the −/+ (a half-width track is too short for both at full size) */
-  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: -6px; margin-right: -6px; }
+  /* the track's end values (shown while it is touched) between the −/+ under it */
+  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: 48px; margin-right: 48px; }
   .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] p { font-size: 0.75rem; }
   .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: 0; }
   .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: 0; }
+}
+/* a short phone (360×740): at the track's ends, so that the figure, Play and the controls still share the first
+   screen (under the track they would push the second row of controls below it) */
+@media (max-width: 640px) and (max-height: 800px) {
+  .st-key-dl_stage_controls .dl-stepped { padding-bottom: 0; }
+  .st-key-dl_stage_controls .dl-stepped > [role='group'] { padding-left: 56px; padding-right: 56px; }
+  .st-key-dl_stage_controls .dl-step { bottom: -2px; }
+  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: -6px; margin-right: -6px; }
 }
 @media print { .dl-step { display: none !important; } }
 .dl-live-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }
