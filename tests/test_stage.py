@@ -221,3 +221,20 @@ def test_a_disk_tilted_near_upright_stands_whole_in_the_projector_s_first_screen
         assert graph["y"] <= b["y"] and b["y"] + b["height"] <= min(height, graph["y"] + graph["height"]) + 1, (title.text_content(), b, graph)
     assert not errors, errors
     context.close()
+
+
+def test_the_motion_refits_when_what_is_above_the_stage_grows(browser, app_url):
+    """The stage is fitted to the first screen when drawn; what is above it may grow after (the title set in
+    its web font, a notice): the stage then moves down without changing size, and the figure must fit again,
+    not run past the screen's bottom (seen once at 1280×720: "figure 289–778")."""
+    width, height = 1280, 720
+    problem = next(p for p in PROBLEMS if p.id == "disk_wall")
+    context, page, errors = open_page(browser, f"{app_url}/disk_wall?lecture=1", width, height)
+    wait_until_idle(page)
+    assert stage_faults(page, problem, height) == []
+    page.evaluate("""() => { const h = document.querySelector("[data-testid='stMain'] h1");
+                            h.style.paddingBottom = '90px'; }""")
+    page.wait_for_timeout(600)
+    assert stage_faults(page, problem, height) == []
+    assert not errors, errors
+    context.close()

@@ -528,7 +528,7 @@ class Figure {
   }
 
   // A figure fitted to the first screen fits again when what shares the screen with it changes: the
-  // lesson's controls drawn (or redrawn taller) after it, the window turned or resized.
+  // lesson's controls drawn (or redrawn taller) after it, what is above it grown, the window turned or resized.
   watchStage() {
     const stage = this.root.closest(".st-key-dl_stage");
     if (!this.refitting) {
@@ -542,10 +542,14 @@ class Figure {
       this.stageWatch = new ResizeObserver(() => this.refitting());
       window.addEventListener("resize", () => this.refitting());
     }
-    if (stage && stage !== this.watched) {  // the stage grows when the controls are drawn or change
-      if (this.watched) this.stageWatch.unobserve(this.watched);
-      this.stageWatch.observe(stage);
-      this.watched = stage;
+    // The stage grows when the controls are drawn or change; the page's column grows too when what is
+    // above the stage does (the title set in its web font, a notice), which moves the stage down unresized.
+    const column = this.root.closest(".stMainBlockContainer");
+    for (const [watched, element] of [["watched", stage], ["watchedColumn", column]]) {
+      if (!element || element === this[watched]) continue;
+      if (this[watched]) this.stageWatch.unobserve(this[watched]);
+      this.stageWatch.observe(element);
+      this[watched] = element;
     }
     this.refitting();
   }
