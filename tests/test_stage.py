@@ -238,3 +238,31 @@ def test_the_motion_refits_when_what_is_above_the_stage_grows(browser, app_url):
     assert stage_faults(page, problem, height) == []
     assert not errors, errors
     context.close()
+
+
+def test_a_finger_drags_a_stage_slider_along_its_track_on_a_phone(browser, app_url):
+    """On a phone (390×844, touch) a finger moved along V's track (the −/+ under it, the track the slider's
+    width): the thumb follows while the finger moves, one run after it lifts, and the link keeps the value."""
+    context, page, errors = open_page(browser, f"{app_url}/disk_wall", 390, 844, phone=True)
+    page.wait_for_timeout(300)
+    slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").first
+    thumb = box(slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
+    touch = context.new_cdp_session(page)
+    x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
+    sent = page.evaluate("window.__sent")
+    touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
+    shown = []
+    for step in range(1, 16):
+        touch.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": x + 5 * step, "y": y}]})
+        page.wait_for_timeout(40)
+        shown.append(float(slider.locator("[data-testid='stSliderThumbValue']").inner_text()))
+    runs_while_moving = page.evaluate("window.__sent") - sent
+    touch.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+    page.wait_for_timeout(1000)
+    wait_until_idle(page)
+    assert shown == sorted(shown) and len(set(shown)) >= 10 and shown[0] > 2, shown  # V starts at 2 m/s
+    assert runs_while_moving == 0
+    assert page.evaluate("window.__sent") - sent == 1
+    assert f"V={shown[-1]:g}" in page.url, (page.url, shown[-1])
+    assert not errors, errors
+    context.close()
