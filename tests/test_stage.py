@@ -266,3 +266,30 @@ def test_a_finger_drags_a_stage_slider_along_its_track_on_a_phone(browser, app_u
     assert f"V={shown[-1]:g}" in page.url, (page.url, shown[-1])
     assert not errors, errors
     context.close()
+
+
+def test_a_drag_lands_on_the_value_its_thumb_showed(browser, app_url):
+    """The value a finger lets go on is the one its thumb showed: live.js draws the thumb during a drag, and
+    react-aria commits the release from its own arithmetic, which at half a step could round the other way
+    (the ladder's θ₀ showed 28° and became 29°: 60 px left of 60° on a 160 px track of 84 steps is 28.5°)."""
+    context, page, errors = open_page(browser, f"{app_url}/sliding_ladder", 390, 844, phone=True)
+    page.wait_for_timeout(300)
+    slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").nth(1)  # θ₀
+    touch = context.new_cdp_session(page)
+    landed = []
+    for travel in (-60, 47, -33, 21, -13, 26, -40):
+        thumb = box(slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
+        x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
+        touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
+        for n in range(1, 6):
+            touch.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": x + travel * n / 5, "y": y}]})
+            page.wait_for_timeout(40)
+        shown = slider.locator("[data-testid='stSliderThumbValue']").inner_text()
+        touch.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+        page.wait_for_timeout(800)
+        wait_until_idle(page)
+        landed.append((travel, shown, slider.locator("input[type='range']").get_attribute("aria-valuetext"),
+                       page.url.split("theta0=")[-1]))
+    assert all(shown == kept == linked for _, shown, kept, linked in landed), landed
+    assert not errors, errors
+    context.close()

@@ -295,8 +295,13 @@ function onDragEnd(event) {
   window.removeEventListener("pointermove", onDragMove, true);
   for (const type of ["pointerup", "pointercancel"]) window.removeEventListener(type, onDragEnd, true);
   if (ended && ended.drawn && ended.last) {
-    if (event.type === "pointerup") {  // react-aria has seen none of the moves: one, to here, before its release
-      const {pointerId, pointerType, isPrimary} = ended.last, {clientX, clientY, screenX, screenY} = event;
+    if (event.type === "pointerup") {
+      // react-aria has seen none of the moves: one before its release, to the middle of the step the thumb
+      // shows, so that its arithmetic lands there too (at the release's own point, half a step could round
+      // the other way: θ₀ showed 28° and became 29°)
+      const {pointerId, pointerType, isPrimary} = ended.last, {clientY, screenY} = event;
+      const shift = ended.value === null ? 0 : travelTo(ended) - (event.pageX - ended.pageX);
+      const clientX = event.clientX + shift, screenX = event.screenX + shift;
       ended.track.dispatchEvent(new PointerEvent("pointermove", {bubbles: true, cancelable: true, composed: true,
         pointerId, pointerType, isPrimary, clientX, clientY, screenX, screenY, buttons: 1}));
     } else {
@@ -306,6 +311,12 @@ function onDragEnd(event) {
     setTimeout(() => { ended.drawn.fill.style.backgroundImage = ""; }, 0);  // the slider's own again, from React's render
   }
   schedule();
+}
+
+// The pointer's travel from where the drag started that puts the thumb on the value shown, in the middle of its step.
+function travelTo({input, track, start, value}) {
+  const {min, max} = rangeOf(input);
+  return ((value - min) / (max - min) - start) * track.getBoundingClientRect().width;
 }
 
 // Where a drag starts: the value the slider shows (off its steps too, as react-aria's state has it).
