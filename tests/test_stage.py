@@ -240,28 +240,34 @@ def test_the_motion_refits_when_what_is_above_the_stage_grows(browser, app_url):
     context.close()
 
 
+def finger_drag(page, touch, slider, travel: float, moves: int) -> list[str]:
+    """A finger on ``slider``'s thumb moved ``travel`` px along its track in ``moves`` equal moves (CDP touch
+    events, ``touch`` a CDP session), then lifted: the thumb's value after each move."""
+    thumb = box(slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
+    x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
+    touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
+    shown = []
+    for n in range(1, moves + 1):
+        touch.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": x + travel * n / moves, "y": y}]})
+        page.wait_for_timeout(40)
+        shown.append(slider.locator("[data-testid='stSliderThumbValue']").inner_text())
+    page.evaluate("window.__sentBeforeLift = window.__sent")
+    touch.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+    page.wait_for_timeout(800)
+    wait_until_idle(page)
+    return shown
+
+
 def test_a_finger_drags_a_stage_slider_along_its_track_on_a_phone(browser, app_url):
     """On a phone (390×844, touch) a finger moved along V's track (the −/+ under it, the track the slider's
     width): the thumb follows while the finger moves, one run after it lifts, and the link keeps the value."""
     context, page, errors = open_page(browser, f"{app_url}/disk_wall", 390, 844, phone=True)
     page.wait_for_timeout(300)
     slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").first
-    thumb = box(slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
-    touch = context.new_cdp_session(page)
-    x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
     sent = page.evaluate("window.__sent")
-    touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
-    shown = []
-    for step in range(1, 16):
-        touch.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": x + 5 * step, "y": y}]})
-        page.wait_for_timeout(40)
-        shown.append(float(slider.locator("[data-testid='stSliderThumbValue']").inner_text()))
-    runs_while_moving = page.evaluate("window.__sent") - sent
-    touch.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
-    page.wait_for_timeout(1000)
-    wait_until_idle(page)
+    shown = [float(v) for v in finger_drag(page, context.new_cdp_session(page), slider, 75, 15)]
     assert shown == sorted(shown) and len(set(shown)) >= 10 and shown[0] > 2, shown  # V starts at 2 m/s
-    assert runs_while_moving == 0
+    assert page.evaluate("window.__sentBeforeLift") == sent  # no run while moving
     assert page.evaluate("window.__sent") - sent == 1
     assert f"V={shown[-1]:g}" in page.url, (page.url, shown[-1])
     assert not errors, errors
@@ -278,16 +284,7 @@ def test_a_drag_lands_on_the_value_its_thumb_showed(browser, app_url):
     touch = context.new_cdp_session(page)
     landed = []
     for travel in (-60, 47, -33, 21, -13, 26, -40):
-        thumb = box(slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
-        x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
-        touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
-        for n in range(1, 6):
-            touch.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": x + travel * n / 5, "y": y}]})
-            page.wait_for_timeout(40)
-        shown = slider.locator("[data-testid='stSliderThumbValue']").inner_text()
-        touch.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
-        page.wait_for_timeout(800)
-        wait_until_idle(page)
+        shown = finger_drag(page, touch, slider, travel, 5)[-1]
         landed.append((travel, shown, slider.locator("input[type='range']").get_attribute("aria-valuetext"),
                        page.url.split("theta0=")[-1]))
     assert all(shown == kept == linked for _, shown, kept, linked in landed), landed
