@@ -15,7 +15,7 @@ from streamlit.testing.v1 import AppTest, app_test
 from solvers import units
 from ui.catalog import BY_ID, PROBLEMS
 from ui import takehome
-from ui.figure import ANSWERS, DERIVATION
+from ui.figure import ANSWERS, DERIVATION, LESSON
 
 IDS = [p.id for p in PROBLEMS]
 TIMEOUT = 60
@@ -28,10 +28,24 @@ def run_page(pid: str, query: dict | None = None) -> AppTest:
     return at.run()
 
 
+def sent(at: AppTest) -> list[tuple[str, bytes]]:
+    """(component's name, data) of each element of ours in the main area, in order; the parts of a
+    lesson element (ui/figure.together) each as the element of its own it stands for."""
+    elements = []
+    for e in at.main:
+        if getattr(e, "type", None) != "bidi_component":
+            continue
+        if e.proto.component_name == LESSON:
+            elements += [(part["component"], part["data"].encode()) for part in orjson.loads(e.proto.bytes)["parts"]]
+        else:
+            elements.append((e.proto.component_name, e.proto.bytes))
+    return elements
+
+
 def shown(at: AppTest, component: str) -> list[dict]:
-    """What the page sends to each of its elements named ``component`` (ui/results.py)."""
-    return [orjson.loads(e.proto.bytes) for e in at.main if getattr(e, "type", None) == "bidi_component"
-            and e.proto.component_name == component]
+    """What the page sends to each of its elements named ``component`` (ui/results.py), in its own
+    element or as a part of a lesson element."""
+    return [orjson.loads(data) for name, data in sent(at) if name == component]
 
 
 class _KeptMediaFiles(MediaFileManager):

@@ -14,24 +14,29 @@ import importlib
 
 import pytest
 
-from tests.test_pages import IDS, assert_clean, first_number_control, run_page
+from tests.test_pages import IDS, assert_clean, first_number_control, run_page, sent
 from ui import figure as component
 
 STUB_BYTES = 400  # the module a run carries: an import of plotly_component/figure.<hash>.js
 
 
-def counted(at) -> tuple[int, list, list, list]:
-    """(Markdown elements, figure elements, answer elements, derivation elements) in the main area."""
+def counted(at) -> tuple[int, int, list, list, list]:
+    """(Markdown elements, elements of ours, figures, answers, derivations) in the main area: each
+    figure, answers and derivation as what its part of an element is sent (tests.test_pages.sent)."""
     markdown = sum(1 for e in at.main if getattr(e, "type", None) == "markdown")
-    ours = [e.proto for e in at.main if getattr(e, "type", None) == "bidi_component"]
-    figures, answers, derivations = ([p for p in ours if p.component_name == name]
-                                     for name in (component.NAME, component.ANSWERS, component.DERIVATION))
-    assert len(figures) + len(answers) + len(derivations) == len(ours)
-    return markdown, figures, answers, derivations
+    elements = sum(1 for e in at.main if getattr(e, "type", None) == "bidi_component")
+    parts = sent(at)
+    figures, answers, derivations = ([data for name, data in parts if name == wanted]
+                                     for wanted in (component.NAME, component.ANSWERS, component.DERIVATION))
+    assert len(figures) + len(answers) + len(derivations) == len(parts)
+    return markdown, elements, figures, answers, derivations
 
 
 @pytest.mark.parametrize("pid", IDS)
 def test_a_run_sends_the_heading_the_answers_the_derivation_and_each_figure_once(pid):
+    """In two elements of ours (three where a figure on request's switch stands between the companion
+    figures and the derivation): the motion on the stage, and the rest below it together
+    (ui/figure.together), each part carrying what its own element would."""
     import orjson
 
     at = run_page(pid)
@@ -39,29 +44,34 @@ def test_a_run_sends_the_heading_the_answers_the_derivation_and_each_figure_once
     shown = importlib.import_module(f"viz.{pid}").figures(solution)
     text_module = f"/text.{component.module('text.js')[0].split('.')[1]}.js"
     live_module = f"/live.{component.module('live.js')[0].split('.')[1]}.js"
+    figure_module = f"/figure.{component.module()[0].split('.')[1]}.js"
+    lesson_module = f"/lesson.{component.module('lesson.js')[0].split('.')[1]}.js"
+    on_request = hasattr(importlib.import_module(f"viz.{pid}"), "on_request")
     for state in ("first run", "after a change"):
         assert_clean(at)
-        markdown, figures, answers, derivations = counted(at)
+        markdown, elements, figures, answers, derivations = counted(at)
         assert markdown == 1, (pid, state, markdown)  # the heading
+        assert elements == (3 if on_request else 2), (pid, state, elements)
+        ours = [e.proto for e in at.main if getattr(e, "type", None) == "bidi_component"]
+        for proto in ours:  # each carries a stub that imports its module, never the module itself
+            assert len(proto.js_content) <= STUB_BYTES and not proto.isolate_styles, len(proto.js_content)
+            assert (figure_module if proto.component_name == component.NAME else lesson_module) in proto.js_content
+        for proto in ours[1:]:
+            for part in orjson.loads(proto.bytes)["parts"]:
+                assert part["module"].endswith(figure_module if part["component"] == component.NAME else text_module)
         assert len(figures) == len(shown), (pid, state)
-        for text in (*answers, *derivations):
-            assert len(text.js_content) <= STUB_BYTES and text_module in text.js_content
         assert len(answers) == 1 and len(derivations) == 1
         # the live values ride with the answers (no element of their own): live.js's path, and its data
         # (the generated function, the followed controls, the answers' units) a few kB
-        live = orjson.loads(answers[0].bytes)["live"]
+        live = orjson.loads(answers[0])["live"]
         assert live["module"].endswith(live_module) and len(orjson.dumps(live["data"])) <= 8_000
-        assert "live" not in orjson.loads(derivations[0].bytes)
-        for proto in figures:
-            assert proto.component_name == component.NAME and not proto.isolate_styles
-            assert len(proto.js_content) <= STUB_BYTES, len(proto.js_content)
-            assert f"/figure.{component.module()[0].split('.')[1]}.js" in proto.js_content
+        assert "live" not in orjson.loads(derivations[0])
         if state == "first run":
             # The defaults' figures, byte for byte, each with only its title, description, height
             # and bundle around it.
-            for proto, figure in zip(figures, shown):
-                assert figure.json_bytes() in proto.bytes
-                assert len(proto.bytes) - len(figure.json_bytes()) <= 200 + len(figure.title) + 3 * len(figure.description.encode())
+            for data, figure in zip(figures, shown):
+                assert figure.json_bytes() in data
+                assert len(data) - len(figure.json_bytes()) <= 200 + len(figure.title) + 3 * len(figure.description.encode())
             widget, spec = first_number_control(at, pid)
             widget.set_value(widget.value * 0.9 if widget.value else 0.1).run()
 

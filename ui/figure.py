@@ -56,9 +56,11 @@ def bundles() -> dict[str, tuple[str, bytes]]:
 
 DERIVATION = "dynamics_lab_derivation"
 ANSWERS = "dynamics_lab_answers"
+LESSON = "dynamics_lab_lesson"
 # Each component's name and the module that draws it (plotly_component/<file>): this file's figure,
-# and the answers and the derivation that ui/results.py shows (one module, text.js, for both).
-COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js"}
+# the answers and the derivation that ui/results.py shows (one module, text.js, for both), and the
+# lesson's parts below its stage together in one element (``together``).
+COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js", LESSON: "lesson.js"}
 # Modules the components import: the live values while a lesson control is dragged (ui/live.py),
 # which ride with the answers they follow (an element of their own cost every run two widgets' work).
 IMPORTED = ("live.js",)
@@ -181,8 +183,25 @@ def payload(figure: Figure, bundle: str, style: dict | None, fit_screen: bool = 
     return head[:-1] + b',"spec":' + figure.json_bytes() + b"}"
 
 
+def data(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False) -> bytes:
+    """What a figure's element is sent; ``page``: every figure of the page, so that all of them share
+    one plotly.js bundle."""
+    return payload(figure, url(bundles()[kind_of(figure, page)][0]), LECTURE if lecture else None, fit_screen)
+
+
 def show(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False) -> None:
-    """``page``: every figure of the page, so that all of them share one plotly.js bundle."""
-    mount = declared()
-    mount(data=payload(figure, url(bundles()[kind_of(figure, page)][0]), LECTURE if lecture else None, fit_screen),
-          key=figure.key)
+    """The figure in an element of its own (``data``)."""
+    declared()(data=data(figure, page, lecture, fit_screen), key=figure.key)
+
+
+def part(name: str, key: str, sent: bytes) -> dict:
+    """One element's worth inside ``together``: the component ``name`` would draw it (its module's
+    path), under ``key``, from the data its own element would be ``sent``."""
+    return {"component": name, "module": module_url(COMPONENTS[name]), "key": key, "data": sent.decode()}
+
+
+def together(parts: list[dict], key: str) -> None:
+    """Several parts (``part``: the answers, figures, the derivation) in one element, each drawn by its
+    own module into a slot of its own (plotly_component/lesson.js): Streamlit's work per element on every
+    run is done once, not once a part."""
+    declared(LESSON)(data=orjson.dumps({"parts": parts}), key=key)

@@ -12,7 +12,7 @@ import streamlit as st
 from assignments.identity import parameters
 from practice.variants import variant
 from solvers.core import PhysicalLimitError, Solution, within_model_range
-from ui import assignments, live, results, takehome
+from ui import assignments, figure, live, results, takehome
 from ui.practice import instructor_export, is_instructor, practice_panel, seed_from_url
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
@@ -188,6 +188,10 @@ def _solve_and_draw(problem: Problem, params: dict, system: str):
     return _computed(problem.id, tuple(sorted(params.items())), system)
 
 
+def _offers_on_request(problem: Problem) -> bool:
+    return hasattr(importlib.import_module(f"viz.{problem.id}"), "on_request")
+
+
 def _on_request(problem: Problem, solution, figures) -> None:
     """A costly extra figure some problems offer (e.g. Euler's disk running down), drawn only when
     asked for, in a worker process (viz.on_request), and kept by parameters across sessions; drawn
@@ -220,12 +224,11 @@ def _on_request_flag(problem: Problem) -> dict[str, str]:
     return {flag: "1" if st.session_state[key] else ""}
 
 
-def _figures(figures, page=None, lecture: bool = False, fit_first: bool = False) -> None:
-    """Figures (the motion and its companion plots, or those below the stage), each with the text a
-    screen reader gets, in projector type in the lecture view; ``fit_first``: the first fills the
-    first screen. ``page``: every figure of the page (they share one plotly.js bundle)."""
-    for n, figure in enumerate(figures):
-        show_figure(figure, page=page or figures, lecture=lecture, fit_screen=fit_first and n == 0)
+def _figures(figures) -> None:
+    """Figures, each in an element of its own with the text a screen reader gets (they share one
+    plotly.js bundle)."""
+    for drawn in figures:
+        show_figure(drawn, page=figures)
 
 
 def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=None, practice: bool = False):
@@ -245,15 +248,20 @@ def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=N
 def _results(problem: Problem, solution, answers, system: str, figures, page, lecture: bool, fit_first: bool = False,
              live_view: dict | None = None) -> None:
     """The answers and ``figures`` (before the answers on the projector, after them in Study), the
-    costly figure on request and the derivation. ``page``: every figure of the page; ``live_view``:
-    what makes the answers follow a dragged lesson control (ui.live.payload)."""
-    if lecture:
-        _figures(figures, page, lecture=True, fit_first=fit_first)
-    results.answer_section(solution, answers, system, live_view)
-    if not lecture:
-        _figures(figures, page)
+    costly figure on request and the derivation, in one element (``figure.together``; two, with the
+    figure on request's switch between them). ``page``: every figure of the page; ``live_view``: what
+    makes the answers follow a dragged lesson control (ui.live.payload)."""
+    drawn = [figure.part(figure.NAME, f.key, figure.data(f, page, lecture, fit_first and n == 0))
+             for n, f in enumerate(figures)]
+    told = figure.part(figure.ANSWERS, "answers", results.answers_data(solution, answers, system, live_view))
+    parts = [*drawn, told] if lecture else [told, *drawn]
+    derived = figure.part(figure.DERIVATION, "derivation", _derivation_data(problem.solver, solution))
+    if not _offers_on_request(problem):
+        figure.together([*parts, derived], key="dl_results")
+        return
+    figure.together(parts, key="dl_results")
     _on_request(problem, solution, page)
-    _derivation(problem.solver, solution)
+    figure.together([derived], key="dl_derivation")
 
 
 def _leave_legacy_pages_mode() -> None:
@@ -387,8 +395,8 @@ def _beside_refusal(problem: Problem, params: dict, practice: bool = False) -> N
     and only the equations that show no result."""
     viz = importlib.import_module(f"viz.{problem.id}")
     figures = getattr(viz, "at_limit", lambda _: [])(params)
-    for figure in figures:
-        show_figure(figure, page=figures)
+    for drawn in figures:
+        show_figure(drawn, page=figures)
     method = getattr(problem.solver, "method", None)
     if method is None:
         return
@@ -409,8 +417,14 @@ def _heading(problem: Problem, heading: str, notices, print_link: bool = True) -
         st.warning(notice, icon=":material/link_off:")
 
 
+DERIVATION_CAPTION = "Generated from the sympy derivation; the last steps put in your numbers (SI)."
+
+
 def _derivation(solver, solution) -> None:
     """The derivation and the worked solution's slips below it, in one element (tabs would cost a widget's time
     on every run)."""
-    caption = "Generated from the sympy derivation; the last steps put in your numbers (SI)."
-    results.derivation(solution, caption=caption, slips=solver.ERRATA)
+    results.derivation(solution, caption=DERIVATION_CAPTION, slips=solver.ERRATA)
+
+
+def _derivation_data(solver, solution) -> bytes:
+    return results.derivation_data(solution, caption=DERIVATION_CAPTION, slips=solver.ERRATA)

@@ -22,12 +22,17 @@ def answer_section(solution: Solution, answers: tuple[Answer, ...], system: str,
     (ui/plotly_component/text.js, as the derivation): the values go as data, each symbol is typeset
     once in the browser, and a cell a new value does not change is left alone. ``live``: what makes
     them follow a dragged lesson control (ui.live.payload; the lesson page's only)."""
+    figure.declared(figure.ANSWERS)(data=answers_data(solution, answers, system, live), key="answers")
+
+
+def answers_data(solution: Solution, answers: tuple[Answer, ...], system: str, live: dict | None = None) -> bytes:
+    """What the answers' element is sent (``answer_section``)."""
     payload = {"view": "answers", "heading": ANSWERS_HEADING, "answers": answer_rows(solution, answers, system),
                "notes": list(solution.notes), "ledger_heading": LEDGER_HEADING, "ledger": ledger(solution, system),
                "checks_heading": CHECKS_HEADING, "checks": checks(solution), "katex": figure.katex_url()}
     if live is not None:
         payload["live"] = live
-    figure.declared(figure.ANSWERS)(data=orjson.dumps(payload), key="answers")
+    return orjson.dumps(payload)
 
 
 def answer_rows(solution: Solution, answers: tuple[Answer, ...], system: str) -> list[list[str]]:
@@ -75,10 +80,15 @@ def derivation(solution: Solution, caption: str = "", slips: tuple[str, ...] = (
     once per distinct text and leaves alone the steps a new value does not change (the symbolic
     ones), where Streamlit's Markdown would typeset and lay out the whole derivation again. A
     display equation too wide for a phone is broken over aligned rows (``broken``)."""
+    figure.declared(figure.DERIVATION)(data=derivation_data(solution, caption, slips), key="derivation")
+
+
+def derivation_data(solution: Solution, caption: str = "", slips: tuple[str, ...] = ()) -> bytes:
+    """What the derivation's element is sent (``derivation``)."""
     payload = {"view": "derivation", "heading": DERIVATION_HEADING, "caption": caption,
                "steps": [[step.title, broken(step.latex)] for step in solution.steps],
                "slips_heading": SLIPS_HEADING, "slips": list(slips), "katex": figure.katex_url()}
-    figure.declared(figure.DERIVATION)(data=orjson.dumps(payload), key="derivation")
+    return orjson.dumps(payload)
 
 
 def checks(solution: Solution) -> list[list]:

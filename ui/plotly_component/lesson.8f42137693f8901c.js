@@ -1,0 +1,48 @@
+// The lesson's answers, companion figures and derivation in one Streamlit element (ui/page.py,
+// ui/figure.together): each part drawn by its own module (text.js, figure.js) into a slot of its own,
+// exactly as it would be drawn in an element of its own. Streamlit does an element's work on every run
+// (a components-v2 element registers two widgets and a presenter that each later run applies), so one
+// element where there were three or four is most of what a run costs beyond the new value's numbers
+// (issue 28, BENCHMARKS.md section 1). A part keeps its slot across runs by its key, so a figure that
+// did not change is left alone (a running animation goes on) and a cell of the answers whose value did
+// not change is not touched.
+"use strict";
+
+const decoder = new TextDecoder();
+const modules = new Map();  // a module's URL -> its import, shared with the elements that import it directly
+
+function load(url) {
+  const href = new URL(url, location.href).href;  // as ui/figure.declared's stub names it: one module, not two
+  let module = modules.get(href);
+  if (!module) {
+    modules.set(href, module = import(href));
+    module.catch(() => modules.delete(href));  // a network that dropped: the next run tries again
+  }
+  return module;
+}
+
+export function render({data, parentElement}) {
+  const d = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
+  const slots = new Map([...parentElement.children].map((el) => [el.dataset.part, el]));
+  d.parts.forEach((part, i) => {
+    let slot = slots.get(part.key);
+    if (!slot) {
+      slot = document.createElement("div");
+      slot.className = "dl-part";
+      slot.dataset.part = part.key;
+    }
+    slots.delete(part.key);
+    if (parentElement.children[i] !== slot) parentElement.insertBefore(slot, parentElement.children[i] || null);
+    load(part.module).then((module) => {
+      slot.querySelector(":scope > .dl-part-failed")?.remove();
+      return module.render({data: part.data, parentElement: slot});
+    }).catch(() => {  // said in the part's place; the next run tries again
+      if (slot.childElementCount) return;
+      const failed = document.createElement("p");
+      failed.className = "dl-part-failed";
+      failed.textContent = "This part of the page did not load: reload the page to see it.";
+      slot.append(failed);
+    });
+  });
+  for (const gone of slots.values()) gone.remove();
+}
