@@ -15,7 +15,7 @@ from streamlit.testing.v1 import AppTest, app_test
 from solvers import units
 from ui.catalog import BY_ID, PROBLEMS
 from ui import takehome
-from ui.figure import ANSWERS, DERIVATION, LESSON
+from ui.figure import ANSWERS, DERIVATION, LESSON, LINKS
 
 IDS = [p.id for p in PROBLEMS]
 TIMEOUT = 60
@@ -70,12 +70,15 @@ def downloads_shown(at: AppTest) -> dict[str, str]:
         entry = registry[button.proto.deferred_file_id]
         data = entry["callable"]()
         files[entry["filename"]] = data.decode() if isinstance(data, bytes) else data
-    for element in at.get("html"):
-        for href, name in re.findall(r'<a href="([^"]+)" download="([^"]+)"', element.proto.body):
-            path, _, query = html.unescape(href).partition("?")
-            status, _, body = takehome.made(*takehome.DOWNLOAD.search(path).groups(), query, "/page")
-            assert status == 200, body
-            files[name] = body.decode()
+    links = [(html.unescape(href), name) for element in at.get("html")
+             for href, name in re.findall(r'<a href="([^"]+)" download="([^"]+)"', element.proto.body)]
+    links += [(href, name) for component, data in sent(at) if component == LINKS
+              for _, href, name in orjson.loads(data)["downloads"]]  # in the lesson's element (ui/figure.together)
+    for href, name in links:
+        path, _, query = href.partition("?")
+        status, _, body = takehome.made(*takehome.DOWNLOAD.search(path).groups(), query, "/page")
+        assert status == 200, body
+        files[name] = body.decode()
     return files
 
 

@@ -26,9 +26,10 @@ def counted(at) -> tuple[int, int, list, list, list]:
     markdown = sum(1 for e in at.main if getattr(e, "type", None) == "markdown")
     elements = sum(1 for e in at.main if getattr(e, "type", None) == "bidi_component")
     parts = sent(at)
-    figures, answers, derivations = ([data for name, data in parts if name == wanted]
-                                     for wanted in (component.NAME, component.ANSWERS, component.DERIVATION))
-    assert len(figures) + len(answers) + len(derivations) == len(parts)
+    figures, answers, derivations, links = ([data for name, data in parts if name == wanted]
+                                            for wanted in (component.NAME, component.ANSWERS, component.DERIVATION, component.LINKS))
+    assert len(figures) + len(answers) + len(derivations) + len(links) == len(parts)
+    assert len(links) <= 1 and (not links or parts[-1][0] == component.LINKS)  # the lesson's links come last
     return markdown, elements, figures, answers, derivations
 
 
@@ -58,7 +59,9 @@ def test_a_run_sends_the_heading_the_answers_the_derivation_and_each_figure_once
             assert (figure_module if proto.component_name == component.NAME else lesson_module) in proto.js_content
         for proto in ours[1:]:
             for part in orjson.loads(proto.bytes)["parts"]:
-                assert part["module"].endswith(figure_module if part["component"] == component.NAME else text_module)
+                if part["component"] != component.LINKS:  # (drawn by lesson.js itself)
+                    assert part["module"].endswith(figure_module if part["component"] == component.NAME else text_module)
+        assert all('class="dl-downloads"' not in e.proto.body for e in at.get("html"))  # in ours
         assert len(figures) == len(shown), (pid, state)
         assert len(answers) == 1 and len(derivations) == 1
         # the live values ride with the answers (no element of their own): live.js's path, and its data

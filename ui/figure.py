@@ -194,10 +194,15 @@ def show(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = Fals
     declared()(data=data(figure, page, lecture, fit_screen), key=figure.key)
 
 
+LINKS = "links"
+
+
 def part(name: str, key: str, sent: bytes) -> dict:
     """One element's worth inside ``together``: the component ``name`` would draw it (its module's
-    path), under ``key``, from the data its own element would be ``sent``."""
-    return {"component": name, "module": module_url(COMPONENTS[name]), "key": key, "data": sent.decode()}
+    path), under ``key``, from the data its own element would be ``sent``; or, ``name`` LINKS, the
+    lesson's links (ui/takehome.lesson_links_data), which lesson.js draws itself."""
+    return {"component": name, "module": module_url(COMPONENTS[name]) if name != LINKS else None, "key": key,
+            "data": sent.decode()}
 
 
 def together(parts: list[dict], key: str) -> None:

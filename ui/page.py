@@ -7,6 +7,7 @@ import importlib
 import math
 from concurrent.futures.process import BrokenProcessPool
 
+import orjson
 import streamlit as st
 
 from assignments.identity import parameters
@@ -246,22 +247,25 @@ def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=N
 
 
 def _results(problem: Problem, solution, answers, system: str, figures, page, lecture: bool, fit_first: bool = False,
-             live_view: dict | None = None) -> None:
+             live_view: dict | None = None, links: dict | None = None) -> None:
     """The answers and ``figures`` (before the answers on the projector, after them in Study), the
     costly figure on request and the derivation, in one element (``figure.together``; two, with the
     figure on request's switch between them). ``page``: every figure of the page; ``live_view``: what
-    makes the answers follow a dragged lesson control (ui.live.payload)."""
+    makes the answers follow a dragged lesson control (ui.live.payload); ``links``: the lesson's
+    downloads and print link, last (ui.takehome.lesson_links_data)."""
     drawn = [figure.part(figure.NAME, f.key, figure.data(f, page, lecture, fit_first and n == 0))
              for n, f in enumerate(figures)]
     told = figure.part(figure.ANSWERS, "answers", results.answers_data(solution, answers, system, live_view))
     parts = [*drawn, told] if lecture else [told, *drawn]
-    derived = figure.part(figure.DERIVATION, "derivation", _derivation_data(problem.solver, solution))
+    last = [figure.part(figure.DERIVATION, "derivation", _derivation_data(problem.solver, solution))]
+    if links is not None:
+        last.append(figure.part(figure.LINKS, "links", orjson.dumps(links)))
     if not _offers_on_request(problem):
-        figure.together([*parts, derived], key="dl_results")
+        figure.together([*parts, *last], key="dl_results")
         return
     figure.together(parts, key="dl_results")
     _on_request(problem, solution, page)
-    figure.together([derived], key="dl_derivation")
+    figure.together(last, key="dl_derivation")
 
 
 def _leave_legacy_pages_mode() -> None:
@@ -358,8 +362,8 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
         show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True)
     # the answers follow a dragged control (never in Practice)
     _results(problem, solution, answers, system, figures[1:], figures, lecture,
-             live_view=live.payload(problem, solution, answers, system, figures[0]))
-    takehome.lesson_links(problem)
+             live_view=live.payload(problem, solution, answers, system, figures[0]),
+             links=takehome.lesson_links_data(problem))
 
 
 def _assignment(problem: Problem, link, system: str) -> None:

@@ -32,11 +32,14 @@ def _query() -> str:
     return f"?{query}" if query else ""
 
 
+PRINT_WORDS = "This page, with these numbers:"
+
+
 def print_link(problem: Problem) -> str:
     """HTML for the page's heading: the link that reproduces this page, shown only on paper
     (ui/page.py PRINT_CSS)."""
     link = html.escape(page_link(problem))
-    return f'\n\n<p class="dl-print-only dl-print-link">This page, with these numbers: <a href="{link}">{link}</a></p>'
+    return f'\n\n<p class="dl-print-only dl-print-link">{PRINT_WORDS} <a href="{link}">{link}</a></p>'
 
 
 def catalogue(problem: Problem, exercise: bool = False) -> list[tuple[str, str, str, str]]:
@@ -93,26 +96,35 @@ TAKEHOME_CSS = """
        title, in room the fragment keeps at its top (two lines: a long query wraps once) */
     [data-testid='stVerticalBlock']:has(> [data-testid='stElementContainer'] .dl-lesson-links) {
       position: relative !important; padding-top: 2.8rem; }
-    [data-testid='stElementContainer']:has(.dl-lesson-links) { position: absolute !important; top: 0; left: 0; right: 0; }
+    [data-testid='stElementContainer']:has(.dl-lesson-links) { position: static !important; }
+    .dl-lesson-links { position: absolute !important; top: 0; left: 0; right: 0; }
   }
 </style>
 """
 
 
 def lesson_links(problem: Problem, downloads: bool = True) -> None:
-    """The lesson page's links that carry its state, in one element at its end: the downloads,
-    links with the page's own query (every parameter, the units), so a run registers no widget for
-    them and a click makes the file from the very link the file cites (``DownloadServer``); and the
-    link that reproduces the page, shown only on paper, where TAKEHOME_CSS puts it first (under the
-    title, which stays outside the lesson's fragment: it does not change with the controls).
-    ``downloads=False``: the print link alone (a state the model refuses has no files)."""
-    prefix, query = base_path(), _query()
-    title = html.escape(HELP[False])
-    links = "".join(
-        f'<a href="{html.escape(f"{prefix}/download/{problem.id}/{name}{query}")}" download="{name}" '
-        f'title="{title}">{ICON}{html.escape(label)}</a>' for label, name, _, _ in catalogue(problem))
-    st.html((f'<div class="dl-downloads" role="group" aria-label="Downloads">{links}</div>' if downloads else "")
+    """The lesson page's links that carry its state, in one element at its end (``lesson_links_data``;
+    a lesson run that has its answers carries them in its element of answers and figures instead, as
+    drawn by plotly_component/lesson.js). ``downloads=False``: the print link alone (a state the model
+    refuses has no files)."""
+    links = lesson_links_data(problem, downloads)
+    anchors = "".join(f'<a href="{html.escape(href)}" download="{html.escape(name)}" title="{html.escape(links["title"])}">'
+                      f'{ICON}{html.escape(label)}</a>' for label, href, name in links["downloads"])
+    st.html((f'<div class="dl-downloads" role="group" aria-label="Downloads">{anchors}</div>' if downloads else "")
             + f'<div class="dl-lesson-links">{print_link(problem).strip()}</div>')
+
+
+def lesson_links_data(problem: Problem, downloads: bool = True) -> dict:
+    """The lesson page's downloads, links with the page's own query (every parameter, the units), so a
+    run registers no widget for them and a click makes the file from the very link the file cites
+    (``DownloadServer``): [label, address, file name] each, and what they all are (``title``); and the
+    link that reproduces the page (``print``), shown only on paper, where TAKEHOME_CSS puts it first
+    (under the title, which stays outside the lesson's fragment: it does not change with the controls)."""
+    prefix, query = base_path(), _query()
+    return {"downloads": [[label, f"{prefix}/download/{problem.id}/{name}{query}", name]
+                          for label, name, _, _ in catalogue(problem)] if downloads else [],
+            "title": HELP[False], "print": page_link(problem), "print_words": PRINT_WORDS}
 
 
 def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[int, str, bytes]:

@@ -21,6 +21,27 @@ function load(url) {
   return module;
 }
 
+// The lesson's downloads and the link that reproduces the page on paper (ui/takehome.lesson_links_data),
+// as ui/takehome.lesson_links draws them where a run has no answers. Set as text and attributes, never
+// parsed as HTML.
+function drawLinks(slot, text) {
+  if (slot.dlShown === text) return;
+  slot.dlShown = text;
+  const d = JSON.parse(text);
+  const make = (tag, attributes, ...children) => {
+    const el = document.createElement(tag);
+    for (const [name, value] of Object.entries(attributes)) el.setAttribute(name, value);
+    el.append(...children);
+    return el;
+  };
+  const downloads = d.downloads.map(([label, href, name]) => make("a", {href, download: name, title: d.title},
+    make("span", {"aria-hidden": "true", class: "dl-download-icon"}, "↓"), label));
+  const printed = make("div", {class: "dl-lesson-links"}, make("p", {class: "dl-print-only dl-print-link"},
+    `${d.print_words} `, make("a", {href: d.print}, d.print)));
+  slot.replaceChildren(...(downloads.length ? [make("div", {class: "dl-downloads", role: "group", "aria-label": "Downloads"}, ...downloads)] : []),
+                       printed);
+}
+
 export function render({data, parentElement}) {
   const d = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
   // the parts a gap apart, as Streamlit sets its elements
@@ -35,6 +56,7 @@ export function render({data, parentElement}) {
     }
     slots.delete(part.key);
     if (parentElement.children[i] !== slot) parentElement.insertBefore(slot, parentElement.children[i] || null);
+    if (!part.module) { drawLinks(slot, part.data); return; }
     load(part.module).then((module) => {
       slot.querySelector(":scope > .dl-part-failed")?.remove();
       return module.render({data: part.data, parentElement: slot});
