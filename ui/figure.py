@@ -156,7 +156,11 @@ def declared(name: str = NAME):
             # The module a run carries: a dynamic import of <file>.<hash>.js, which the browser
             # fetches once and keeps (a blob URL cannot resolve a path: hence the page's URL).
             # (A newline tells Streamlit this is the module's text, not a file's path.)
-            stub = (f"export default (c) => {{\n  import(new URL({url(module(file)[0])!r}, location.href).href)"
+            # The lesson's element also starts fetching the module its answers and derivation are drawn
+            # with, beside its own (lesson.js would ask for it only once loaded: one round trip more).
+            also = "".join(f"  import(new URL({url(module(f)[0])!r}, location.href).href).catch(() => null);\n"
+                           for f in ("text.js",) if name == LESSON)
+            stub = (f"export default (c) => {{\n{also}  import(new URL({url(module(file)[0])!r}, location.href).href)"
                     ".then(m => m.render(c));\n};\n")
             # isolate_styles=False: in the page's own DOM, where plotly.js puts its stylesheet and
             # Streamlit its KaTeX styles.
