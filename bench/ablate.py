@@ -7,7 +7,10 @@ them. Not the app: a measurement of what a rewrite would save before it is writt
 Variants: ``as-is``; ``controls``: the lesson's Streamlit controls replaced by one components-v2
 element carrying their values (what one controls element of our own would cost: values set through
 session state, as the browser's element would); ``live``: the live view's data left out of the answers;
-combined with "+". Every variant sets the lesson control through session state, so they differ only
+``separate``: the answers, the companion figures, the derivation and the links each in an element of
+its own, as before they rode together (what ``ui.figure.together`` saved); ``stage``: the motion on
+the stage carried in that element too (what drawing the stage's figure with the rest would save; drawn
+in the wrong place, a measurement only); combined with "+". Every variant sets the lesson control through session state, so they differ only
 in what the page draws. Prints the median page and empty times and the median of the paired ratios.
 """
 from __future__ import annotations
@@ -52,6 +55,31 @@ def _replaced(variant: str) -> None:
         page.lesson_parameters = lesson_parameters
     if "live" in variant:
         live.payload = lambda *a, **k: None
+    if "separate" in variant:
+        from ui import results, takehome
+
+        def separate(problem, solution, answers, system, figures, all_figures, lecture, fit_first=False, live_view=None,
+                     links=None):
+            if lecture:
+                for n, drawn in enumerate(figures):
+                    figure.show(drawn, page=all_figures, lecture=True, fit_screen=fit_first and n == 0)
+            results.answer_section(solution, answers, system, live_view)
+            if not lecture:
+                for drawn in figures:
+                    figure.show(drawn, page=all_figures)
+            page._on_request(problem, solution, all_figures)
+            page._derivation(problem.solver, solution)
+            if links is not None:
+                takehome.lesson_links(problem)
+        page._results = separate
+    if "stage" in variant:
+        show, results_of = page.show_figure, page._results
+        page.show_figure = lambda drawn, page=(), lecture=False, fit_screen=False: None if fit_screen else show(
+            drawn, page=page, lecture=lecture, fit_screen=fit_screen)
+        page._results = lambda problem, solution, answers, system, figures, all_figures, lecture, fit_first=False, \
+            live_view=None, links=None: results_of(problem, solution, answers, system,
+                                                   all_figures if live_view is not None else figures, all_figures,
+                                                   lecture, fit_first, live_view, links)
 
 
 def measure(pid: str, variant: str, changes: int) -> tuple[float, float, float]:
@@ -84,7 +112,7 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--changes", type=int, default=40)
     parser.add_argument("--pages", nargs="*", default=list(registry.PROBLEM_IDS))
-    parser.add_argument("--variant", default="as-is", help="as-is, controls, live or a combination (controls+live)")
+    parser.add_argument("--variant", default="as-is", help="as-is, controls, live, separate, stage or a combination (controls+live)")
     args = parser.parse_args()
     from serve import warm
     warm()
