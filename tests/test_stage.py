@@ -290,3 +290,31 @@ def test_a_drag_lands_on_the_value_its_thumb_showed(browser, app_url):
     assert all(shown == kept == linked for _, shown, kept, linked in landed), landed
     assert not errors, errors
     context.close()
+
+
+@pytest.mark.parametrize("pid", ["driven_cart", "sliding_ladder"])
+def test_the_companion_figures_keep_their_size_when_the_view_puts_them_first(browser, app_url, pid):
+    """Study to Lecture in one visit puts the companion figures before the answers, in the element they
+    share with them (ui/figure.together): each is drawn at its full height, and above the answers, never
+    over them (a moved plot measured itself while out of the page: its box 0 px, drawn over the table)."""
+    context, page, errors = open_page(browser, f"{app_url}/{pid}")
+    page.locator(".dl-part .dl-figure .main-svg").first.wait_for(timeout=30_000)
+    study = page.evaluate("() => [...document.querySelectorAll('.dl-part .dl-figure .dl-graph')].map(g => g.getBoundingClientRect().height)")
+    page.locator("[data-testid='stSidebar']").get_by_role("radio", name="Lecture").click()
+    page.wait_for_url("**lecture=1**", timeout=30_000)
+    wait_until_idle(page)
+    page.wait_for_timeout(1000)
+    drawn = page.evaluate("""() => {
+      const answers = document.querySelector('.dl-text.dl-answers').getBoundingClientRect();
+      return [...document.querySelectorAll('.dl-part .dl-figure')].map((f) => {
+        const graph = f.querySelector('.dl-graph').getBoundingClientRect(), plot = f.querySelector('.main-svg').getBoundingClientRect();
+        const slot = f.closest('.dl-part').getBoundingClientRect();
+        return {graph: graph.height, plot: plot.height, slot: slot.height, bottom: Math.max(slot.bottom, plot.bottom), answersTop: answers.top};
+      });
+    }""")
+    assert drawn and len(drawn) == len(study), (drawn, study)
+    for figure, before in zip(drawn, study):
+        assert figure["graph"] >= 0.9 * before and figure["slot"] >= figure["plot"], (pid, figure, before)
+        assert figure["bottom"] <= figure["answersTop"] + 1, (pid, figure)
+    assert not errors, errors
+    context.close()

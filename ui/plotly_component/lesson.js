@@ -46,6 +46,11 @@ export function render({data, parentElement}) {
   const d = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
   // the parts a gap apart, as Streamlit sets its elements
   Object.assign(parentElement.style, {display: "flex", flexDirection: "column", gap: "1rem"});
+  // A part is never moved: a plot moved in the page measures itself while out of it and stays squashed
+  // (Study to Lecture puts the figures before the answers). A new order draws every part afresh.
+  const keys = d.parts.map((part) => part.key), shown = [...parentElement.children].map((el) => el.dataset.part);
+  if (shown.filter((key) => keys.includes(key)).join("\n") !== keys.filter((key) => shown.includes(key)).join("\n"))
+    parentElement.replaceChildren();
   const slots = new Map([...parentElement.children].map((el) => [el.dataset.part, el]));
   d.parts.forEach((part, i) => {
     let slot = slots.get(part.key);
