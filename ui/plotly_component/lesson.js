@@ -51,6 +51,7 @@ export function render({data, parentElement}) {
   const keys = d.parts.map((part) => part.key), shown = [...parentElement.children].map((el) => el.dataset.part);
   if (shown.filter((key) => keys.includes(key)).join("\n") !== keys.filter((key) => shown.includes(key)).join("\n"))
     parentElement.replaceChildren();
+  for (const el of [...parentElement.children]) if (!keys.includes(el.dataset.part)) el.remove();  // (first: the rest stay put)
   const slots = new Map([...parentElement.children].map((el) => [el.dataset.part, el]));
   d.parts.forEach((part, i) => {
     let slot = slots.get(part.key);
@@ -59,7 +60,6 @@ export function render({data, parentElement}) {
       slot.className = "dl-part";
       slot.dataset.part = part.key;
     }
-    slots.delete(part.key);
     if (parentElement.children[i] !== slot) parentElement.insertBefore(slot, parentElement.children[i] || null);
     if (!part.module) { drawLinks(slot, part.data); return; }
     load(part.module).then((module) => {
@@ -73,5 +73,4 @@ export function render({data, parentElement}) {
       slot.append(failed);
     });
   });
-  for (const gone of slots.values()) gone.remove();
 }
