@@ -158,8 +158,8 @@ def declared(name: str = NAME):
             # (A newline tells Streamlit this is the module's text, not a file's path.)
             # The lesson's element also starts fetching the module its answers and derivation are drawn
             # with, beside its own (lesson.js would ask for it only once loaded: one round trip more).
-            also = "".join(f"  import(new URL({url(module(f)[0])!r}, location.href).href).catch(() => null);\n"
-                           for f in ("text.js",) if name == LESSON)
+            also = (f"  import(new URL({url(module('text.js')[0])!r}, location.href).href).catch(() => null);\n"
+                    if name == LESSON else "")
             stub = (f"export default (c) => {{\n{also}  import(new URL({url(module(file)[0])!r}, location.href).href)"
                     ".then(m => m.render(c));\n};\n")
             # isolate_styles=False: in the page's own DOM, where plotly.js puts its stylesheet and

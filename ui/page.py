@@ -189,16 +189,18 @@ def _solve_and_draw(problem: Problem, params: dict, system: str):
     return _computed(problem.id, tuple(sorted(params.items())), system)
 
 
-def _offers_on_request(problem: Problem) -> bool:
-    return hasattr(importlib.import_module(f"viz.{problem.id}"), "on_request")
+def _on_request_label(problem: Problem) -> str:
+    """The words of the switch for a problem's costly figure on request (its ``on_request``'s first
+    clause), or "" where it offers none."""
+    viz = importlib.import_module(f"viz.{problem.id}")
+    return viz.on_request.__doc__.split(":")[0] if hasattr(viz, "on_request") else ""
 
 
 def _on_request(problem: Problem, solution, figures) -> None:
     """A costly extra figure some problems offer (e.g. Euler's disk running down), drawn only when
     asked for, in a worker process (viz.on_request), and kept by parameters across sessions; drawn
     with the plotly.js of the page's ``figures``."""
-    viz = importlib.import_module(f"viz.{problem.id}")
-    label = viz.on_request.__doc__.split(":")[0] if hasattr(viz, "on_request") else ""
+    label = _on_request_label(problem)
     if label and st.toggle(label, key=f"{problem.id}__on_request"):
         ahead = on_request.waiting()  # (a figure already drawn is shown at once: the spinner never appears)
         words = ("Integrating the equations of motion: usually 5 to 15 s"
@@ -260,7 +262,7 @@ def _results(problem: Problem, solution, answers, system: str, figures, page, le
     last = [figure.part(figure.DERIVATION, "derivation", _derivation_data(problem.solver, solution))]
     if links is not None:
         last.append(figure.part(figure.LINKS, "links", orjson.dumps(links)))
-    if not _offers_on_request(problem):
+    if not _on_request_label(problem):
         figure.together([*parts, *last], key="dl_results")
         return
     figure.together(parts, key="dl_results")

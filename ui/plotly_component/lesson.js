@@ -9,17 +9,9 @@
 "use strict";
 
 const decoder = new TextDecoder();
-const modules = new Map();  // a module's URL -> its import, shared with the elements that import it directly
-
-function load(url) {
-  const href = new URL(url, location.href).href;  // as ui/figure.declared's stub names it: one module, not two
-  let module = modules.get(href);
-  if (!module) {
-    modules.set(href, module = import(href));
-    module.catch(() => modules.delete(href));  // a network that dropped: the next run tries again
-  }
-  return module;
-}
+// A part's module, as ui/figure.declared's stub names it (the page's URL resolving its path), so that the
+// browser's one module map gives the elements that import it directly and this one the same module.
+const load = (url) => import(new URL(url, location.href).href);
 
 // The lesson's downloads and the link that reproduces the page on paper (ui/takehome.lesson_links_data),
 // as ui/takehome.lesson_links draws them where a run has no answers. Set as text and attributes, never
@@ -65,7 +57,7 @@ export function render({data, parentElement}) {
     load(part.module).then((module) => {
       slot.querySelector(":scope > .dl-part-failed")?.remove();
       return module.render({data: part.data, parentElement: slot});
-    }).catch(() => {  // said in the part's place; the next run tries again
+    }).catch(() => {  // said in the part's place (the page reloaded fetches it again)
       if (slot.childElementCount) return;
       const failed = document.createElement("p");
       failed.className = "dl-part-failed";
