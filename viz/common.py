@@ -309,31 +309,35 @@ def _pinv(homogeneous: bytes, shape: tuple[int, int]) -> np.ndarray:
 
 
 def _affine(coords: dict):
-    """{"affine": ...} for rows that one affine map per frame takes from the first frame, else None."""
+    """{"affine": ...} for rows that one affine map per frame takes from the first frame, else None.
+    Worked axis first (axis, frame, point): numpy's loops then run along the points, where a last
+    axis of two or three made each operation a thousand loops of two (twice as slow in all)."""
     keys = list(coords)
     try:
-        points = np.stack([np.asarray(coords[k], dtype=float) for k in keys], axis=-1)  # frame, point, axis
+        points = np.stack([np.asarray(coords[k], dtype=float) for k in keys])  # axis, frame, point
     except ValueError:  # ragged rows
         return None
-    if points.ndim != 3 or points.shape[1] <= points.shape[2] + 2:
+    d = len(keys)
+    if points.ndim != 3 or points.shape[2] <= d + 2:
         return None
     gaps = np.isnan(points)
-    # the same gaps in every frame, and a gap in every coordinate of its point (compared by broadcasting:
-    # numpy's any/all over a last axis of two or three take a hundred times longer)
-    if not (gaps == gaps[:1]).all() or not (gaps == gaps[..., :1]).all():
+    # the same gaps in every frame, and a gap in every coordinate of its point
+    if not (gaps == gaps[:, :1]).all() or not (gaps[1:] == gaps[:1]).all():
         return None
-    keep = ~gaps[0, :, 0]
-    if keep.sum() <= points.shape[2] + 1:  # too few points to be worth a map (or none at all)
+    keep = ~gaps[0, 0]
+    count = int(keep.sum())
+    if count <= d + 1:  # too few points to be worth a map (or none at all)
         return None
-    template = points[0][keep]
-    homogeneous = np.hstack([template, np.ones((len(template), 1))])
-    maps = np.einsum("jk,fkd->fjd", _pinv(homogeneous.tobytes(), homogeneous.shape), points[:, keep])
-    maps[:, :-1] = maps[:, :-1].round(9)
-    maps[:, -1] = maps[:, -1].round(7)
-    if not np.abs(np.einsum("kj,fjd->fkd", homogeneous, maps) - points[:, keep]).max() <= REBUILT:
+    kept = points if count == len(keep) else points[:, :, keep]
+    homogeneous = np.vstack([kept[:, 0], np.ones(count)])  # the first frame's points, (x, y, 1) as columns
+    maps = np.matmul(kept, _pinv(homogeneous.T.tobytes(), (count, d + 1)).T)  # axis, frame, d + 1
+    maps[:, :, :-1] = maps[:, :, :-1].round(9)
+    maps[:, :, -1] = maps[:, :, -1].round(7)
+    if not np.abs(np.matmul(maps, homogeneous) - kept).max() <= REBUILT:
         return None
-    return {"affine": {"keys": keys, "template": [np.ascontiguousarray(points[0][:, n]) for n in range(len(keys))],
-                       "maps": maps.reshape(len(maps), -1)}}
+    # sent per frame as (d + 1) rows of d: the linear part, then the offset
+    return {"affine": {"keys": keys, "template": list(points[:, 0]),
+                       "maps": np.ascontiguousarray(maps.transpose(1, 2, 0)).reshape(points.shape[1], -1)}}
 
 
 def _compact(coords: dict) -> dict:
@@ -341,10 +345,9 @@ def _compact(coords: dict) -> dict:
     if all(isinstance(t, Trail) for t in rows) and all(t.starts == rows[0].starts for t in rows):
         return {"slices": {"keys": list(coords), "paths": [t.path for t in rows], "starts": rows[0].starts}}
     if list(coords) == ["x", "y"] and all(isinstance(t, Spirals) and t.shape_of is rows[0].shape_of for t in rows):
-        shape = rows[0].shape_of  # rebuilt as ``unpacked`` does, compared as arrays (no lists between)
-        rebuilt = spiral_rows(shape["inner"], shape["outer"], shape["turns"], shape["start"], shape["n"])
-        if all(np.abs(again - np.asarray(coords[k])).max() <= REBUILT for k, again in zip(coords, rebuilt)):
-            return {"spirals": shape}
+        # ``spirals`` drew these rows from these numbers as ``unpacked`` rebuilds them (rounded after):
+        # rebuilding them again here to compare cost more than the rest of the figure's compaction
+        return {"spirals": rows[0].shape_of}
     return _affine(coords) or coords
 
 
