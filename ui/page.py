@@ -18,6 +18,7 @@ from ui.practice import instructor_export, is_instructor, practice_panel, seed_f
 from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
 from ui.figure import show as show_figure
+from ui.stylesheet import Stylesheet
 from viz import on_request
 from edge import widget_values
 from ui.params import (check_in_range, fixed_parameters, lesson_parameters, mirror_to_url, more_parameters,
@@ -138,6 +139,10 @@ PRINT_CSS = """
 </style>
 """
 
+
+# The page's styles, prepared once for each view (ui.stylesheet): Study and Practice, and Lecture.
+STYLES = {lecture: Stylesheet(RUN_CSS + PHONE_CSS + STAGE_CSS + PRINT_CSS + takehome.TAKEHOME_CSS + (LECTURE_CSS if lecture else ""))
+          for lecture in (False, True)}
 
 HEADING = "# {p.title}\n:gray[{p.blurb} Source: {p.source}.]"
 VIEWS = ("Study", "Lecture", "Practice")
@@ -293,7 +298,7 @@ def problem_page(problem_id: str) -> None:
     lecture, practice = view == "Lecture", view == "Practice"
     if lecture:  # the projector: the stage gets the screen, one click brings the sidebar back
         st.set_page_config(initial_sidebar_state="collapsed")
-    st.html(RUN_CSS + PHONE_CSS + STAGE_CSS + PRINT_CSS + takehome.TAKEHOME_CSS + (LECTURE_CSS if lecture else ""))
+    st.html(STYLES[lecture])
     heading = HEADING.format(p=problem)
     if link is not None:  # an assignment: its variant, fixed, and the link kept as it came
         _heading(problem, heading, [])
