@@ -1,7 +1,7 @@
 """Benchmark 1, as the browser asks for it: what one change of the lesson control costs the server,
 on every page, against the empty one-slider page in the same run.
 
-    python bench/change_cost.py [--changes 30] [--pages PAGE ...] [--json OUT]
+    python bench/change_cost.py [--changes 30] [--pages PAGE ...] [--json OUT] [--revisit]
 
 One session per page speaks Streamlit's websocket protocol to a real server (``serve.py``, warmed as
 it is shipped; the empty page on the same server code, ``bench/serve_empty.py``), as
@@ -13,6 +13,8 @@ Each page change alternates with a change on the empty page, so drift on a share
 alike. Per change: the wall time from sending the change to the server's "finished" (loopback), and
 the server process's CPU time (user + system, read from /proc before and after; its mean, since
 /proc counts in 10 ms ticks). Prints a Markdown table: the wall time's median, the CPU's mean, and the ratio to the empty page's in the same run.
+``--revisit`` moves the control back and forth between two values instead (each seen once, untimed,
+first), so every cache answers: what the page's elements and messages cost with no new numbers.
 """
 from __future__ import annotations
 
@@ -74,12 +76,16 @@ class Session:
         return wall, cpu_seconds([self.pid]) - cpu
 
 
-async def measure(page: str, changes: int, empty_url: str, empty_pid: int, page_url: str, page_pid: int) -> dict:
+async def measure(page: str, changes: int, empty_url: str, empty_pid: int, page_url: str, page_pid: int,
+                  revisit: bool = False) -> dict:
     key, _, _, _ = lesson_control(page)
-    values = changes_of(page, changes)
+    values = (changes_of(page, 2) * changes)[:changes] if revisit else changes_of(page, changes)
     rows = []
     for start in range(0, len(values), PER_SESSION):  # a new tab every PER_SESSION changes: see PER_SESSION
         async with Session(page_url, page, key, page_pid) as p, Session(empty_url, "", "x", empty_pid) as e:
+            if revisit and start == 0:  # both values seen once, untimed: every timed change is a cache's answer
+                for value in values[:2]:
+                    await p.change(value)
             for i, value in enumerate(values[start:start + PER_SESSION], start=start + 1):
                 rows.append((*await p.change(value), *await e.change(round(0.9 - 0.5 * i / len(values), 6))))
     walls, cpus, ewalls, ecpus = zip(*rows)
@@ -96,13 +102,15 @@ def main() -> None:
     parser.add_argument("--changes", type=int, default=30)
     parser.add_argument("--pages", nargs="*", default=list(registry.PROBLEM_IDS))
     parser.add_argument("--json", type=Path)
+    parser.add_argument("--revisit", action="store_true", help="two values back and forth: every cache answers")
     args = parser.parse_args()
     empty = start_servers(ROOT / "bench" / "empty_app.py", 1)
     app = start_servers(ROOT / "app.py", 1)
     rows = []
     try:
         for page in args.pages:
-            rows.append(asyncio.run(measure(page, args.changes, empty[1], empty[0][0].pid, app[1], app[0][0].pid)))
+            rows.append(asyncio.run(measure(page, args.changes, empty[1], empty[0][0].pid, app[1], app[0][0].pid,
+                                            args.revisit)))
             print(f"  done: {page}", file=sys.stderr)
     finally:
         stop_servers(*app[:1], app[2], app[3])
