@@ -111,6 +111,26 @@ def test_the_wheelie_is_a_physical_limit_the_page_can_show():
     assert err.value.mu_lift == pytest.approx(1.3 / 0.5)
 
 
+@settings(max_examples=25, deadline=None)
+@given(VALID, st.floats(0.05, 3.0))
+def test_the_curves_against_mu_are_the_solver_s_answers_whatever_mu_the_cart_has(p, other_mu):
+    """The companion figure's curves are kept by every parameter but μ (issue 28: moving μ redraws
+    only the point): for two carts that differ in μ alone they are the same, read-only, and each
+    point on them is what solving that cart at that μ gives (NaN past its wheelie)."""
+    mus = np.linspace(0.0, 3.0, 13)
+    curves = driven_cart.acceleration_versus_mu(p, mus)
+    again = driven_cart.acceleration_versus_mu({**p, "mu": other_mu}, mus)
+    for drive, values in curves.items():
+        assert again[drive] is values and not values.flags.writeable
+        for mu, accel in zip(mus, values):
+            try:
+                expected = driven_cart.solve(**{**p, "mu": float(mu), "drive": drive}).answers["accel"]
+            except ValueError:  # the front wheels lift: no acceleration to draw
+                assert math.isnan(accel)
+                continue
+            assert accel == pytest.approx(expected, rel=1e-9, abs=1e-12)
+
+
 # ----------------------------------------------------------------------------------------------
 # What a student sees: the drawing agrees with the physics, the captions with the motion
 

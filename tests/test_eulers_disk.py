@@ -94,6 +94,21 @@ def test_rolling_and_balance_of_angular_momentum_in_a_fixed_frame(p):
     assert a["energy"] == pytest.approx(m * g * r * math.sin(th) + T, rel=1e-6)
 
 
+@settings(max_examples=25, deadline=None)
+@given(VALID, pos(math.radians(0.5), math.radians(89.5)))
+def test_the_curves_against_tilt_are_the_solver_s_answers_whatever_tilt_the_disk_has(p, other_tilt):
+    """The companion figure's curves are kept by every parameter but θ (issue 28: moving θ redraws
+    only the point): for two disks that differ in θ alone they are the same, read-only, and each
+    point on them is what solving that disk at that tilt gives."""
+    tilts = np.radians(np.linspace(1, 80, 9))
+    curves = eulers_disk.versus_tilt(p, tilts)
+    again = eulers_disk.versus_tilt({**p, "theta": other_tilt}, tilts)
+    for name, values in curves.items():
+        assert again[name] is values and not values.flags.writeable
+        for tilt, value in zip(tilts, values):
+            assert value == pytest.approx(eulers_disk.solve(**{**p, "theta": float(tilt)}).answers[name], rel=1e-9)
+
+
 def test_finite_time_singularity_trend():
     small, large = eulers_disk.solve(theta=math.radians(1)), eulers_disk.solve(theta=math.radians(30))
     assert small.answers["omega_p"] > large.answers["omega_p"]
