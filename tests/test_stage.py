@@ -318,3 +318,25 @@ def test_the_companion_figures_keep_their_size_when_the_view_puts_them_first(bro
         assert figure["bottom"] <= figure["answersTop"] + 1, (pid, figure)
     assert not errors, errors
     context.close()
+
+
+@pytest.mark.parametrize("pid, phone", [("disk_wall", False), ("stick_ball", False), ("driven_cart", True)])
+def test_practice_s_solution_draws_the_motion_at_its_own_height(browser, app_url, pid, phone):
+    """Practice's figures come with "Show the solution", below the answer boxes: no first screen is left
+    there to fit the motion to, and a fitted figure was squashed to a 200 px strip (the disk 30 px
+    across). Each figure is drawn at its own height, as the figures further down a lesson are."""
+    import importlib
+
+    own = [f.height for f in importlib.import_module(f"viz.{pid}").figures(importlib.import_module(f"solvers.{pid}").solve())]
+    size = {"width": 390, "height": 844, "phone": True} if phone else {}
+    context, page, errors = open_page(browser, f"{app_url}/{pid}?practice=1", **size)
+    page.get_by_role("button", name="Show the solution").click()
+    page.locator(".dl-figure .main-svg").first.wait_for(timeout=30_000)
+    wait_until_idle(page)
+    page.wait_for_timeout(500)
+    heights = page.evaluate("() => [...document.querySelectorAll('.dl-figure .dl-graph')].map(g => g.getBoundingClientRect().height)")
+    assert len(heights) == len(own), (heights, own)
+    for height, expected in zip(heights, own):
+        assert height >= 0.9 * expected, (pid, heights, own)
+    assert not errors, errors
+    context.close()

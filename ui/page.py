@@ -333,7 +333,8 @@ def problem_page(problem_id: str) -> None:
         takehome.downloads(problem, solution, answers, system, exercise=True)  # the statement and the method
         instructor_export(problem)  # the statement, the method and the answer box, nothing more
         return
-    _results(problem, solution, answers, system, figures, figures, lecture, fit_first=True)
+    # fitted to the first screen where the view puts the motion first (Lecture), not below the answers
+    _results(problem, solution, answers, system, figures, figures, lecture, fit_first=lecture)
     takehome.downloads(problem, solution, answers, system)
     if practice:
         instructor_export(problem)

@@ -63,6 +63,9 @@ const HTML = `
 // ------------------------------------------------------------------ plotly.js, once per page load
 // A page with a 3-D scene loads the gl3d bundle, which draws everything basic draws: once it is
 // here, every figure uses it (one plotly.js compiled per page load, even across page switches).
+// The least of the first screen a figure on the stage is fitted to (px): with less left below its top
+// it is drawn at its own height (Figure.screenHeight).
+const MIN_FITTED = 200;
 const loaded = {};   // bundle URL -> Promise of its Plotly
 function plotlyFor(url) {
   const superset = Object.keys(loaded).find(u => u.includes("plotly-gl3d."));
@@ -417,7 +420,8 @@ class Figure {
   // the whole figure and its Play button show without scrolling (the page's scroll offset is added
   // back); where the lesson's controls stand below it (a phone stacks the stage's columns), the room
   // from the graph's foot to theirs is kept too (its caption, the controls). Capped at the figure's own
-  // height.
+  // height; and that height, as any figure's further down, where less than MIN_FITTED of the first
+  // screen is left below its top (it starts at the screen's foot or past it: nothing to fit to).
   screenHeight(height) {
     const main = this.root.closest("[data-testid='stMain']");
     const graph = this.graph.getBoundingClientRect();
@@ -426,7 +430,8 @@ class Figure {
     const controls = stage && stage.querySelector(".st-key-dl_stage_controls");
     const box = controls && controls.getBoundingClientRect();
     const below = box && box.height && box.top > graph.top ? box.bottom - graph.bottom : 0;  // caption, controls
-    return Math.max(200, Math.min(height, Math.floor(window.innerHeight - top - below - 12)));
+    const room = Math.floor(window.innerHeight - top - below - 12);
+    return room < MIN_FITTED ? height : Math.min(height, room);
   }
 
   async draw(args, theme, seq) {
