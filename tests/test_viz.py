@@ -96,6 +96,25 @@ def test_figures_of_the_defaults(pid):
     check_figures(build(pid))
 
 
+@pytest.mark.parametrize("pid", IDS)
+def test_a_moving_marker_on_an_autoranged_plot_is_drawn_whole(pid):
+    """Found in Chromium: the pendulum's "now" marker on θ(t) was cut in half at the plot's right edge
+    in the last frame (plotly ranges that plot by what its first frame shows, and clips markers to it).
+    A moving marker on axes without a set range (where ``cut_by_the_axes`` cannot hold it inside) is
+    drawn unclipped."""
+    for f in build(pid):
+        if not f.animated:
+            continue
+        anim, data, layout = f.spec["animation"], f.spec["data"], f.spec["layout"]
+        for j in anim["traces"]:
+            trace = data[j]
+            if "markers" not in trace.get("mode", "") or trace.get("type") == "scatter3d":  # a scene: its own box
+                continue
+            axes = [layout.get(f"{a}axis{trace.get(a + 'axis', a)[1:]}", {}) for a in ("x", "y")]
+            if not all("range" in axis for axis in axes):
+                assert trace.get("cliponaxis") is False, (pid, f.key, trace["name"])
+
+
 @pytest.mark.parametrize("pid,params", [("disk_wall", {}), ("disk_wall", {"V": 10, "omega": -50}),
                                         ("driven_cart", {"a": 3, "b": 0.1}), ("driven_cart", {"a": 0.05, "b": 3})])
 def test_no_arrow_or_body_runs_past_the_axes(pid, params):

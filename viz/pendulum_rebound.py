@@ -47,7 +47,8 @@ def figures(solution, system: str = "si") -> list[Figure]:
         moving(line(None, None, "sphere", COLORS["body"], width=3, fill="toself"), *drawn["sphere"]),
         moving(line(None, None, "marked radius", COLORS["accent"], width=4), *drawn["marked radius"]),
         moving(line(None, None, "velocity of the centre", COLORS["velocity"], width=3), *drawn["velocity of the centre"]),
-        moving(points(None, None, "now", COLORS["impulse"], size=10, xaxis="x2", yaxis="y2"),
+        # unclipped: θ(t)'s plot is ranged by its curve, and the marker at either end would show a half
+        moving({**points(None, None, "now", COLORS["impulse"], size=10, xaxis="x2", yaxis="y2"), "cliponaxis": False},
                column(m["t"]), column(theta_deg)),
     ]
     # The stage fits the motion (pivot, rod, sphere and its arrow over every frame) and the surface's
