@@ -293,8 +293,9 @@ def animated(
 # a ladder, a cart's wheels): every frame's points are one affine map of the first frame's, so a
 # frame is sent as its map (6 numbers in the plane, 12 in space) instead of every point; a trail is
 # sent once as its path, with where each frame's slice starts; a spiral spring as its turns and start. The browser (ui/plotly_component:
-# ``unpack``) and ``unpacked`` here rebuild the rows; a trace is compacted only when its rebuilt
-# rows are within ``REBUILT`` of the rounded rows, else it goes as it is.
+# ``unpack``) and ``unpacked`` here rebuild the rows; a rigid body is sent as maps only when its rebuilt
+# rows are within ``REBUILT`` of the rounded rows, else it goes as it is (a trail and a spring are drawn
+# from the numbers they are sent as).
 REBUILT = 1.2e-4  # a little more than one unit of the rounding (DIGITS)
 
 

@@ -63,9 +63,6 @@ const HTML = `
 // ------------------------------------------------------------------ plotly.js, once per page load
 // A page with a 3-D scene loads the gl3d bundle, which draws everything basic draws: once it is
 // here, every figure uses it (one plotly.js compiled per page load, even across page switches).
-// The least of the first screen a figure on the stage is fitted to (px): with less left below its top
-// it is drawn at its own height (Figure.screenHeight).
-const MIN_FITTED = 200;
 const loaded = {};   // bundle URL -> Promise of its Plotly
 function plotlyFor(url) {
   const superset = Object.keys(loaded).find(u => u.includes("plotly-gl3d."));
@@ -120,6 +117,10 @@ function resumeSceneLoops() {
 export const parkedSceneLoops = () => parked.size;  // (for the tests)
 
 // ------------------------------------------------------------------ one figure on the page
+// The least of the first screen a fit_screen figure is fitted to (px): with less left below its top
+// it is drawn at its own height (Figure.screenHeight).
+const MIN_FITTED = 200;
+
 class Figure {
   constructor(parent) {
     if (!document.getElementById("dl-figure-style")) {
