@@ -12,11 +12,16 @@ from ui.practice import take_instructor_link
 st.set_page_config(page_title="Dynamics Lab", page_icon="🔄", layout="wide")
 
 # A problem's title wraps instead of ending in "…" (Streamlit cuts page links and the navigation's
-# entries to one line: "Rod-and-sphere pendulum bounces off the floo…").
+# entries to one line: "Rod-and-sphere pendulum bounces off the floo…"). A link reached by the keyboard
+# is outlined in its own text's colour (Streamlit tints it a faint grey, the same as the current page's:
+# on that one, focus could not be seen), dark on the light theme, light on the dark.
 st.html("""<style>
   [data-testid='stSidebarNavLink'] span[label], [data-testid='stSidebarNavLink'] span[label] *,
   [data-testid='stPageLink-NavLink'] > span:last-child, [data-testid='stPageLink-NavLink'] > span:last-child * {
     white-space: normal; overflow: visible; text-overflow: clip; height: auto;
+  }
+  [data-testid='stSidebarNavLink']:focus-visible, [data-testid='stPageLink-NavLink']:focus-visible {
+    outline: 2px solid currentColor; outline-offset: -2px;
   }
 </style>""")
 

@@ -256,3 +256,49 @@ def test_no_page_title_is_cut_on_the_home_page_or_in_the_navigation(browser, app
     assert page.evaluate(CUT) == []
     assert not errors, errors
     context.close()
+
+
+@pytest.mark.parametrize("theme", ["light", "dark"])
+def test_a_navigation_link_reached_by_the_keyboard_shows_its_focus(browser, app_url, theme):
+    """Tab onto the navigation's links (the current page's among them): each shows a solid outline in
+    a colour that stands out from the sidebar (Streamlit tinted it a faint grey, rgba(…, 0.15), the same
+    as the current page's background: there focus could not be seen)."""
+    context = browser.new_context(viewport={"width": 1400, "height": 1000}, color_scheme=theme)  # the OS's theme
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    page.goto(f"{app_url}/pendulum_rebound")
+    wait_until_idle(page)
+    seen = {}
+    for _ in range(40):  # from the page's top: the skip link, then the navigation
+        page.keyboard.press("Tab")
+        focus = page.evaluate("""() => { const a = document.activeElement;
+            if (!a || a.getAttribute('data-testid') !== 'stSidebarNavLink') return null;
+            const s = getComputedStyle(a), bar = getComputedStyle(a.closest("[data-testid='stSidebar']"));
+            return {text: a.innerText.trim().split('\\n').pop().trim(), style: s.outlineStyle, width: parseFloat(s.outlineWidth),
+                    colour: s.outlineColor, sidebar: bar.backgroundColor}; }""")
+        if focus:
+            seen[focus["text"]] = focus
+    assert "Rod-and-sphere pendulum bounces off the floor" in seen and len(seen) >= 8, list(seen)
+    for text, focus in seen.items():
+        assert focus["style"] == "solid" and focus["width"] >= 2, (text, focus)
+        assert contrast(focus["colour"], focus["sidebar"]) >= 3, (text, focus)  # WCAG 1.4.11, non-text contrast
+    assert not errors, errors
+    context.close()
+
+
+def contrast(colour: str, background: str) -> float:
+    """WCAG's contrast ratio of a CSS rgb()/rgba() colour, drawn over an opaque ``background``."""
+    def channels(css: str) -> list[float]:
+        numbers = [float(c) for c in re.findall(r"[\d.]+", css)]
+        return [c / 255 for c in numbers[:3]] + [numbers[3] if len(numbers) > 3 else 1.0]
+
+    *under, _ = channels(background)
+    *over, alpha = channels(colour)
+    drawn = [alpha * c + (1 - alpha) * b for c, b in zip(over, under)]
+
+    def luminance(rgb: list[float]) -> float:
+        lin = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in rgb]
+        return 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2]
+    hi, lo = sorted((luminance(drawn), luminance(under)), reverse=True)
+    return (hi + 0.05) / (lo + 0.05)
