@@ -248,6 +248,30 @@ def test_the_reviewed_huge_url_values_show_a_plain_message(pid, query):
 
 
 @pytest.mark.parametrize("pid", IDS)
+def test_a_stated_range_names_only_limits_that_hold(pid):
+    """A refusal states the range the value must be in: each limit it names is one the model keeps (a
+    value past it is refused, one within it is not), a size ("at most 5000 rad/s in size") only for a
+    quantity that may be negative, and no limit beside a tighter one (e's range said "at least 0 and at
+    most 1, at most 600 in size")."""
+    from ui.params import shown_range
+    from solvers.core import Number, ParameterError
+
+    for p in BY_ID[pid].solver.PARAMS:
+        if not isinstance(p, Number):
+            continue
+        said = shown_range(p, "si")
+        assert "in size" not in said or p.low is None or p.low < 0, said
+        tops = [float(re.sub(r"\s", "", t)) for t in re.findall(r"at most (\d[\d\s]*(?:\.\d+)?)", said)]  # 20 000
+        assert len(tops) <= 1, said  # one top, not two
+        for top in tops:  # (in SI: the unit these parameters show is SI's own, degrees aside)
+            if p.dimension == "angle":
+                continue
+            p.validate(top)  # the top itself is kept
+            with pytest.raises(ParameterError):
+                p.validate(top * 1.01 + 1e-9)
+
+
+@pytest.mark.parametrize("pid", IDS)
 def test_bad_option_in_url_is_named(pid):
     choice = next((p for p in BY_ID[pid].solver.PARAMS if hasattr(p, "options")), None)
     if choice is None:
