@@ -238,7 +238,7 @@ class Settings:
         a due time in the past is wrong too."""
         wrong = []
         if not self.title.strip() or len(self.title) > 120:
-            wrong.append("The title needs 1 to 120 characters.")
+            wrong.append("The title needs 1 to 120 characters" + (f" (it has {len(self.title)})." if self.title.strip() else "."))
         if not self.parts:
             wrong.append("Choose at least one problem.")
         seen = set()
@@ -869,6 +869,22 @@ class Cell:
     slips: list[str] = field(default_factory=list)  # short names, first seen first
     marked: int = 0  # attempts kept but marked (late, over the limit, after the solution)
 
+    def right_at(self) -> int | None:
+        """The number of the first attempt that was right (earning its points or not), or None."""
+        return self.first_right if self.first_right is not None else self.right_no_credit
+
+    def done(self) -> str:
+        """The answer settled, in words for the student's banner ("done (right)", "done (right, 2 h
+        late: no credit)"), or "" while no attempt has been right: after a right one, no later
+        attempt can earn more (it is as late or later, as far over the limit, after the solution)."""
+        if self.first_right is not None and self.credit >= 1:
+            return "done (right)"
+        if self.first_right is not None:
+            return f"done (right, {duration_text(self.late_by)} late: {self.credit * 100:g} % credit)"
+        if self.right_no_credit is not None:
+            return f"done (right but {self.no_credit_why}: no credit)"
+        return ""
+
     def status(self, settings: Settings) -> str:
         """The cell in words: "right at attempt 2", "right 1 day late (attempt 1): 80 %", "not right
         yet: 1 of 3 attempts used"."""
@@ -930,17 +946,22 @@ class Gradebook:
 
     def how(self, label: str, names: dict[Question, str] | None = None) -> str:
         """How the score was computed, in words: each answer that earned points (its points, times
-        its late credit), summed. ``names``: how to call each answer (its name by default)."""
-        terms = []
+        its late credit), summed; then the answers right but earning nothing, and why (late, over the
+        limit, after the solution), so that a student who did the work is not read as one who did
+        nothing. ``names``: how to call each answer (its name by default)."""
+        terms, unpaid = [], []
         for q in self.settings.questions:
             c, w = self.cell(label, q), self.settings.weight(q)
-            if c.credit <= 0:
-                continue
             name = (names or {}).get(q, q[1])
+            if c.credit <= 0:
+                if c.right_no_credit is not None:
+                    unpaid.append(f"{name} right but {c.no_credit_why}")
+                continue
             term = f"{name} {_number(w)}" if c.credit >= 1 else f"{name} {_number(w)} × {c.credit * 100:g} % (late)"
             terms.append(term)
-        earned = " + ".join(terms) if terms else "nothing yet"
-        return f"{earned} = {_number(self.score(label))} of {_number(self.settings.out_of)}"
+        earned = " + ".join(terms) if terms else "no points" if unpaid else "nothing yet"
+        return (f"{earned} = {_number(self.score(label))} of {_number(self.settings.out_of)}"
+                + (f" ({'; '.join(unpaid)}: no credit)" if unpaid else ""))
 
     def late_right(self, label: str) -> int:
         """Answers right only after the due time (with or without late credit)."""

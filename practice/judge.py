@@ -276,7 +276,7 @@ class Judge:
         if not isinstance(text, str) or not text.strip():
             return unreadable("Type an answer first.")
         if len(text) > MAX_LENGTH:
-            return unreadable(f"That answer is too long (at most {MAX_LENGTH} characters).")
+            return unreadable(f"That answer is too long ({len(text)} characters; at most {MAX_LENGTH}).")
         correct = self.values[answer.name]
         try:
             as_number = _number_in_si(text, answer, system)

@@ -253,6 +253,45 @@ def test_right_but_late_reads_as_right_but_late_everywhere(course):
     row = gradebook_table(book).iloc[0]
     assert row["Highest angle after the bounce"].startswith("right but") and row["score"] == "0 / 6"
     assert "got it right after the due time (no late credit)" in page_text(book)  # was "0 of 1 got it right"
+    # how the score was made names the late answer (was "nothing yet = 0 of 6": as if never tried)
+    assert row["how"] == "no points = 0 of 6 (Highest angle after the bounce right but 2 h late: no credit)"
+    # the banner says it is done (was "0 of 3" left after a wrong answer following the right one)
+    banner = page.info[0].value.replace("\\", "")
+    assert "Highest angle after the bounce done (right but 2 h late: no credit)" in banner
+
+
+@pytest.mark.parametrize("late", [False, True])
+def test_an_attempt_after_a_right_one_changes_nothing_and_says_so(course, late):
+    """A right answer settles it (on time or late): nothing after it can earn more. A wrong answer
+    after it was told "Not right; 0 attempts left" and the banner "0 of 3", as if the student had
+    failed it."""
+    aid, s, (ann, _) = one_assignment()
+    if late:
+        records.edit(aid, records.replace(s, due=records.now() - dt.timedelta(hours=2)))
+    page = answer(student(link_query(ann)), "theta_rebound", rebound_in_degrees(ann))
+    for wrong in ("1", "2"):
+        page = answer(page, "theta_rebound", wrong)
+        said = [i for i in page.info if "Recorded" in i.value]
+        assert len(said) == 1 and "your attempt 1 at highest angle after the bounce was already right, and it " \
+            "stands: this one changes nothing" in said[0].value and "attempts left" not in said[0].value
+    assert records.attempt_count(aid) == 3  # every attempt is still recorded
+    banner = page.info[0].value.replace("\\", "")
+    assert ("Highest angle after the bounce done (right but 2 h late: no credit)" if late else
+            "Highest angle after the bounce done (right)") in banner
+    book = records.gradebook(aid)
+    assert book.cell("s01", ("pendulum_rebound", "theta_rebound")).status(book.settings).startswith(
+        "right but 2 h late (attempt 1)" if late else "right at attempt 1")
+
+
+@pytest.mark.parametrize("length", [201, 10_000])
+def test_an_answer_too_long_is_read_and_refused_in_words(course, length):
+    """The box had max_chars=200: Streamlit dropped a longer paste without a word, and "Check" then said
+    "Type an answer first." The judge now gets it and says the limit; no attempt is spent."""
+    aid, _, (ann, _) = one_assignment()
+    page = answer(student(link_query(ann)), "theta_rebound", "1+" * (length // 2) + "1"[: length % 2])
+    said = " ".join(w.value for w in page.warning).replace("\\", "")  # Markdown's escapes
+    assert f"too long ({length} characters; at most 200)" in said and "not counted as an attempt" in said
+    assert "Type an answer first" not in said and records.attempt_count(aid) == 0
 
 
 def test_late_credit_is_set_on_the_page_and_explained(course):
@@ -412,3 +451,12 @@ def test_a_problem_set_is_one_assignment_with_one_score(course):
     answer(page, "theta_rebound", rebound_in_degrees(ann))
     row = gradebook_table(instructor()).iloc[0]
     assert row["score"] == "2 / 13"
+
+
+def test_a_title_too_long_is_kept_and_refused_in_words(course):
+    """The title box had max_chars=120: Streamlit dropped a longer paste without a word (the box stayed
+    empty). It is kept as typed, the check above Create says the limit, and nothing is created."""
+    at = create(instructor(), title="Week 9: " + "the bouncing pendulum, " * 6)
+    assert at.text_input(key="assign__title").value.startswith("Week 9: the bouncing pendulum")
+    assert "The title needs 1 to 120 characters (it has 146)." in page_text(at)
+    assert records.assignments() == []

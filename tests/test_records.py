@@ -363,6 +363,9 @@ def test_right_but_late_is_visible_everywhere(database):
     assert book.statistics()[THETA][:2] == ["1 of 2 students who tried it (50 %) got it right in time.",
                                             "1 more (50 %) got it right after the due time (no late credit)."]
     assert book.late_right("s01") == 1 and book.late_right("s02") == 0
+    # how the score was made: the late answer named, not "nothing yet" (the student did the work)
+    assert book.how("s01") == "no points = 0 of 2 (theta_rebound right but 3 h 5 min late: no credit)"
+    assert book.how("s02") == "theta_rebound 1 = 1 of 2"
     row = next(csv.DictReader(io.StringIO(records.gradebook_csv(book))))
     assert row["theta_rebound:status"].startswith("right but 3 h 5 min late") and row["late_answers"] == "1"
 
@@ -382,8 +385,10 @@ def test_late_credit_and_how_the_score_was_computed(database, policy, value, lat
     book = records.gradebook(aid, database)
     assert book.score("s01") == pytest.approx(1 + credit)
     how = book.how("s01")
-    assert how.endswith(f"= {1 + credit:g} of 2") and "I_O 1" in how
-    assert ("late" in how) == (credit > 0)
+    if credit > 0:
+        assert how == f"theta_rebound 1 × {credit * 100:g} % (late) + I_O 1 = {1 + credit:g} of 2"
+    else:  # right, but earning nothing: said, and why
+        assert how == f"I_O 1 = 1 of 2 (theta_rebound right but {records.duration_text(late_by)} late: no credit)"
 
 
 def test_an_extension_and_extra_attempts_apply_to_one_student(database):

@@ -238,6 +238,12 @@ def _said_recorded(kept: records.Recorded, label: str, link: StudentLink, soluti
         st.info(f"The same as your last attempt at {label.lower()}: not counted again (it stays {what}).",
                 icon=":material/repeat:")
         return
+    right_at = standing.cells[(link.problem, answer.name)].right_at() if standing else None
+    if right_at is not None and right_at < kept.number:  # settled before: nothing after it can earn more
+        st.info(f"Recorded: {what}. {'Right' if kept.correct else 'Not right'}; your attempt {right_at} at "
+                f"{label.lower()} was already right, and it stands: this one changes nothing.",
+                icon=":material/task_alt:")
+        return
     if kept.over_limit:
         st.warning(f"Recorded: attempt {kept.number} at {label.lower()}, over your limit of {allowed}: "
                    f"it is kept, but it cannot count.", icon=":material/block:")
@@ -310,8 +316,8 @@ def assignment_heading(link: StudentLink) -> None:
         labels = _answer_labels(s)
         part = s.part(link.problem)
         left = [f"{plain(labels[(link.problem, a)].split(': ')[-1])} "
-                + ("done (right)" if standing.cells[(link.problem, a)].credit >= 1
-                   else f"{standing.left((link.problem, a))} of {allowed}") for a in part.answers]
+                + (standing.cells[(link.problem, a)].done() or f"{standing.left((link.problem, a))} of {allowed}")
+                for a in part.answers]
         lines.append("**Attempts left**: " + " · ".join(left) + ".")
         lines.append(f"**Your score so far**: {records._number(standing.score())} of {records._number(s.out_of)} "
                      "points.")
@@ -482,7 +488,7 @@ def _new_assignment() -> None:
     st.markdown("Nothing is created until you press **Create**; the check above the button lists what "
                 "would be wrong first.")
     p = "assign__"
-    title = st.text_input("Title", max_chars=120, key=f"{p}title", placeholder="Week 9: the bouncing pendulum")
+    title = st.text_input("Title", key=f"{p}title", placeholder="Week 9: the bouncing pendulum")
     chosen = st.multiselect("Problems (one, or several for a problem set; in this order)", [q.id for q in PROBLEMS],
                             format_func=_title, key=f"{p}problems")
     parts = []
@@ -602,7 +608,7 @@ def _edit(aid: int, s: records.Settings) -> None:
     p = f"assign__edit{aid}_{_version(s)}_"
     with st.expander("Edit: due time, attempts, tolerance, late work, feedback, points"):
         with st.form(f"{p}form"):
-            title = st.text_input("Title", s.title, max_chars=120, key=f"{p}title")
+            title = st.text_input("Title", s.title, key=f"{p}title")
             c1, c2 = st.columns(2)
             tolerance = c1.number_input("Tolerance for numbers (%)", 0.01, 10.0, s.tolerance * 100, 0.1,
                                         key=f"{p}tolerance")

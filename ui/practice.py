@@ -165,7 +165,8 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         answer = st.selectbox("Answer to check", answers, format_func=answer_label,
                               key=f"{problem.id}__attempt_answer")
         box, tolerance = st.columns([5, 1], vertical_alignment="bottom")
-        text = box.text_input("Your answer", max_chars=200, key=f"{problem.id}__attempt",
+        # No max_chars: Streamlit drops a paste longer than it without a word; the judge says the limit
+        text = box.text_input("Your answer", key=f"{problem.id}__attempt",
                               help="A number, with a unit (mm, kN, ft/s, slug·ft² …; units are case-sensitive) "
                                    "or read in the unit the page shows, degrees for angles; or an expression in "
                                    f"the givens: {judge.givens_text()}, written as by hand (2V sinθ/3 is "
