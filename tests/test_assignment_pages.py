@@ -5,7 +5,9 @@ changed link is refused; with the database down, practice still works and says i
 from __future__ import annotations
 
 import csv
+import html
 import io
+import urllib.parse
 import datetime as dt
 import math
 from pathlib import Path
@@ -438,6 +440,11 @@ def test_a_problem_set_is_one_assignment_with_one_score(course):
     assert s.problems == ("pendulum_rebound", "disk_wall") and s.out_of == 6 + 7
     page = student(link_query(ann))
     assert "This assignment has 2 problems" in page_text(page)
+    # the other problem's link: the same signed query, opened in the same tab or LMS frame (a Markdown
+    # link opened a new tab)
+    (links,) = [m for m in page.markdown if "This assignment has 2 problems" in m.value]
+    query = html.escape(urllib.parse.urlencode(link_query(ann)))
+    assert links.allow_html and f'<a href="disk_wall?{query}" target="_self">' in links.value
     other = AppTest.from_file(str(ROOT / "pages" / "disk_wall.py"), default_timeout=60)
     other.query_params.update(link_query(ann))
     other.run()

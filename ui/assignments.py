@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import datetime as dt
 import hashlib
+import html
 import re
 import urllib.parse
 import zoneinfo
@@ -275,14 +276,16 @@ def _show_answer(answer, solution, system: str, label: str) -> None:
 
 
 def _problem_links(link: StudentLink) -> str:
-    """The set's problems, each a link with the same signed query (the signature covers the
-    assignment, variant and label, not the page)."""
-    query = urllib.parse.urlencode(link_query(link.identity))
+    """The set's problems (HTML), each a link with the same signed query (the signature covers the
+    assignment, variant and label, not the page), opened in the same tab or LMS frame: a Markdown
+    link would open a new tab (Streamlit's default for every link it is not told otherwise of)."""
+    query = html.escape(urllib.parse.urlencode(link_query(link.identity)))
     items = []
-    for n, pid in enumerate(link.settings.problems, start=1):
-        name = plain(_title(pid))
-        items.append(f"{n}. **{name}** (this page)" if pid == link.problem else f"{n}. [{name}]({pid}?{query})")  # beside this page
-    return "\n".join(items)
+    for pid in link.settings.problems:
+        name = html.escape(_title(pid))
+        items.append(f"<li><strong>{name}</strong> (this page)</li>" if pid == link.problem else
+                     f'<li><a href="{html.escape(pid)}?{query}" target="_self">{name}</a></li>')
+    return "<ol>" + "".join(items) + "</ol>"
 
 
 def assignment_heading(link: StudentLink) -> None:
@@ -331,7 +334,7 @@ def assignment_heading(link: StudentLink) -> None:
     (st.info if s.accepting else st.warning)("\n\n".join(lines), icon=":material/assignment:")
     if len(s.problems) > 1:
         st.markdown(f"**This assignment has {len(s.problems)} problems**, each with its own page:\n\n"
-                    + _problem_links(link))
+                    + _problem_links(link), unsafe_allow_html=True)  # (our titles and the signed query, escaped)
 
 
 def your_attempts(link: StudentLink, answers, solution=None, system: str = "si") -> None:
