@@ -82,7 +82,8 @@ MEASURE = """(g) => {
   // Stacked plots: the upper x axis's title reads as its own, nearer its tick labels than the plot below.
   const title = g.querySelector(".g-xtitle text"), below = g.querySelector(".draglayer .x2y2 .nsewdrag");
   const ticks = [...g.querySelectorAll(".xaxislayer-above .xtick text")].map(t => t.getBoundingClientRect().bottom);
-  if (title && below && ticks.length) {
+  const under = below && below.getBoundingClientRect().top >= g.querySelector(".draglayer .xy .nsewdrag").getBoundingClientRect().bottom - 1;
+  if (title && under && ticks.length) {  // (a plot beside the motion, on a wide stage: nothing below it)
     const t = title.getBoundingClientRect(), own = t.top - Math.max(...ticks), other = below.getBoundingClientRect().top - t.bottom;
     if (own > other) clashes.push(`${title.textContent} ${own.toFixed(0)} px below its ticks, ${other.toFixed(0)} px above the plot below`);
   }
@@ -199,6 +200,51 @@ def test_the_motion_its_play_and_the_lesson_s_controls_share_a_laptop_s_first_sc
             found[problem.id] = faults
         assert page.locator("[data-testid='stException']").count() == 0, problem.id
     assert found == {}
+    assert not errors, errors
+    context.close()
+
+
+# The motion's plot and the second plot below or beside it (energy bars, θ(t)), as drawn: each plot's box
+# in px, and the motion's scale (px a metre).
+PLOTS = """(g) => { const f = g._fullLayout, box = (xa, ya) => ({x: xa._offset, y: ya._offset, width: xa._length,
+                                                                   height: ya._length});
+  return {motion: box(f.xaxis, f.yaxis), second: box(f.xaxis2, f.yaxis2), area: f._size.h,
+          scale: f.yaxis._length / Math.abs(f.yaxis.range[1] - f.yaxis.range[0])}; }"""
+
+
+@pytest.mark.parametrize("pid, beside", [("rod_disk_spring", True), ("pendulum_rebound", False)])
+def test_on_a_projector_a_tall_motion_stands_beside_its_second_plot(browser, app_url, pid, beside):
+    """The rod and disk on the projector (1280×720, lecture view) were drawn some 85 px long: the motion,
+    taller than wide, had the upper 60 % of a short, wide graph, its energy bars the rest, and equal axes
+    left most of its width empty. Beside the bars at the graph's whole height it is drawn larger; the
+    pendulum's wide motion stays above its θ(t), where it is larger."""
+    width, height = 1280, 720
+    problem = next(p for p in PROBLEMS if p.id == pid)
+    context, page, errors = open_page(browser, f"{app_url}/{pid}?lecture=1", width, height)
+    wait_until_idle(page)
+    assert stage_faults(page, problem, height) == []
+    drawn = page.locator(f"{STAGE} .dl-figure .dl-graph").first.evaluate(PLOTS)
+    motion, second = drawn["motion"], drawn["second"]
+    assert not overlaps(motion, second), drawn
+    if beside:
+        assert motion["x"] + motion["width"] < second["x"] and motion["height"] >= 0.95 * drawn["area"], drawn
+        assert drawn["scale"] >= 190, drawn  # px a metre: 153 above the bars
+    else:
+        assert motion["y"] + motion["height"] < second["y"], drawn
+    assert not errors, errors
+    context.close()
+
+
+def test_a_refusal_on_the_projector_is_in_projector_type(browser, app_url):
+    """Past the model's limit on the projector (the spring stops the rod before θ₂), the refusal and the
+    limit beside it are read from the back of the room: 18 px at least (the limit's label was 14 px)."""
+    context, page, errors = open_page(browser, f"{app_url}/rod_disk_spring?lecture=1&k=51", 1280, 720)
+    wait_until_idle(page)
+    sizes = page.evaluate("""() => [...document.querySelectorAll(`.st-key-dl_motion [data-testid='stAlert'] p,
+        .st-key-dl_motion [data-testid='stMetricLabel'] p, .st-key-dl_motion [data-testid='stMetricValue']`)]
+        .map(e => [e.textContent.trim(), parseFloat(getComputedStyle(e).fontSize)])""")
+    assert len(sizes) >= 3 and any("largest angle" in text for text, _ in sizes), sizes
+    assert all(size >= 18 for _, size in sizes), sizes
     assert not errors, errors
     context.close()
 

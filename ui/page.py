@@ -32,6 +32,8 @@ LECTURE_CSS = """
   .stMainBlockContainer h1 { font-size: 2.4rem; padding-top: 0; }
   .stMainBlockContainer .katex { font-size: 1.45em; }
   .stMainBlockContainer table { font-size: 1.25rem; }
+  /* a physical limit's label beside a refusal (ui/results.refused: a metric's small label) */
+  .stMainBlockContainer [data-testid='stMetricLabel'] p { font-size: 18px !important; }
   /* the lesson's controls on the stage, read from the back of the room like the figure beside them */
   .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p, .st-key-dl_stage_controls [role='radiogroup'] p,
   .st-key-dl_stage_controls input, .st-key-dl_stage_controls [data-testid='stSliderThumbValue'],

@@ -483,8 +483,16 @@ class Figure {
       const grow = Math.min(1.5, Math.max(1, wide)), ratio = layout.scene.aspectratio;
       layout.scene = Object.assign({}, layout.scene, {aspectratio: {x: ratio.x * grow, y: ratio.y * grow, z: ratio.z * grow}});
     }
+    const lowest = axisRoom(layout, (layout.yaxis2 ? layout.xaxis2 : layout.xaxis) || {});
     if (slider && !layout.scene)  // the lowest plot's x tick labels and title, no more
-      layout.margin.b = Math.min(layout.margin.b, Math.ceil(axisRoom(layout, (layout.yaxis2 ? layout.xaxis2 : layout.xaxis) || {})));
+      layout.margin.b = Math.min(layout.margin.b, Math.ceil(lowest));
+    const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
+    const side = beside(layout, this.root.clientWidth - (layout.margin.l ?? 80) - (layout.margin.r ?? 80)
+                                - (legendBeside ? LEGEND_BESIDE : 0), plotHeight(layout));
+    if (side) {  // both plots' x axes now at the foot
+      applied(layout, side);
+      layout.margin.b = Math.max(layout.margin.b, Math.ceil(Math.max(lowest, axisRoom(layout, layout.xaxis || {}))));
+    }
     applied(layout, stacked(layout, plotHeight(layout)));
     this.pause();
     this.dropOverlay(this.held);
@@ -736,6 +744,26 @@ function stacked(layout, height) {
   const ticks = room < 4 ? 2 : Math.max(3, Math.min(6, Math.floor(room / 1.8)));  // (plotly draws at most this many)
   if (!(lower.nticks <= ticks)) out["yaxis2.nticks"] = ticks;
   return Object.keys(out).length ? out : null;
+}
+
+// A motion above a second plot (energy bars, θ(t)) on a wide, short graph (a projector's stage, a laptop's):
+// where the motion is taller than wide (a swinging rod), drawn beside the second plot, at the graph's
+// whole height, its bodies come out larger than above it (at a little over half the height): the
+// arrangement that draws the motion at the larger scale (by a quarter at least), the second plot keeping
+// MIN_BESIDE px (its tick labels side by side, not slanted over each other). Null where stacking is as good (a wide motion, a phone) or the layout has no such pair.
+const MIN_BESIDE = 210, LEGEND_BESIDE = 200;  // (three bars' names in lecture type; a legend in a column)
+function beside(layout, width, height) {
+  const up = layout.yaxis || {}, low = layout.yaxis2 || {}, xa = layout.xaxis || {};
+  if (!up.domain || !low.domain || low.domain[1] > up.domain[0] || !layout.xaxis2 || !up.scaleanchor
+      || !xa.range || !up.range || !(width > 0 && height > 0)) return null;
+  const spanX = Math.abs(xa.range[1] - xa.range[0]), spanY = Math.abs(up.range[1] - up.range[0]);
+  const stackedScale = Math.min(width / spanX, height * (up.domain[1] - up.domain[0]) / spanY);
+  const gap = (3.2 * ((layout.font || {}).size || 12) + 16) / width;  // the second plot's y tick labels and title
+  // the motion's width at the whole height, short of what the second plot keeps
+  const share = Math.min(0.72, height * spanX / spanY / width, 1 - gap - MIN_BESIDE / width);
+  const besideScale = Math.min(share * width / spanX, height / spanY);
+  if (!(besideScale > 1.25 * stackedScale)) return null;
+  return {"xaxis.domain": [0, share], "yaxis.domain": [0, 1], "xaxis2.domain": [share + gap, 1], "yaxis2.domain": [0, 1]};
 }
 
 // The room an x axis needs below its plot for its tick labels and title, in px.
