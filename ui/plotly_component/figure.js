@@ -750,7 +750,8 @@ function stacked(layout, height) {
 // where the motion is taller than wide (a swinging rod), drawn beside the second plot, at the graph's
 // whole height, its bodies come out larger than above it (at a little over half the height): the
 // arrangement that draws the motion at the larger scale (by a quarter at least), the second plot keeping
-// MIN_BESIDE px (its tick labels side by side, not slanted over each other). Null where stacking is as good (a wide motion, a phone) or the layout has no such pair.
+// MIN_BESIDE px (its tick labels side by side, not slanted over each other). Null where stacking is as
+// good (a wide motion, a phone) or the layout has no such pair.
 const MIN_BESIDE = 210, LEGEND_BESIDE = 200;  // (three bars' names in lecture type; a legend in a column)
 function beside(layout, width, height) {
   const up = layout.yaxis || {}, low = layout.yaxis2 || {}, xa = layout.xaxis || {};
