@@ -98,16 +98,16 @@ def shown_range(p: Number, system: str) -> str:
     else:
         # the model's magnitude, where it narrows the range (not for e, at most 1 already): a top for a
         # quantity that is never negative, a size for one that may be
-        capped = bounds and (p.high is None or p.high > bounds[1])
+        capped, never_negative = bounds and (p.high is None or p.high > bounds[1]), p.low is not None and p.low >= 0
         parts = []
         if p.low is not None:
             parts.append(("at least " if p.low_inclusive else "greater than ") + show(p.low))
-        if capped and p.low is not None and p.low >= 0:
+        if capped and never_negative:
             parts.append(f"at most {show(bounds[1])}")
         elif p.high is not None:
             parts.append(("at most " if p.high_inclusive else "less than ") + show(p.high))
         text = " and ".join(parts) if parts else "any number"
-        if capped and not (p.low is not None and p.low >= 0):
+        if capped and not never_negative:
             text += f", at most {show(bounds[1])} in size"
     return text + (", or inf" if p.allow_inf else "")
 

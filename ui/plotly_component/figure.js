@@ -475,10 +475,10 @@ class Figure {
     // column at the right, not in rows above it.
     if (layout.scene && layout.showlegend !== false && this.root.clientWidth > 1.5 * layout.height)
       layout.legend = Object.assign({}, layout.legend, {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"});
+    const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
     // WebGL sizes the scene's box to the graph's height: where the graph is wider than tall (beside its
     // legend), the box is drawn up to 1.5 times larger, to fill the width too.
     if (layout.scene && layout.scene.aspectratio) {
-      const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
       const wide = (this.root.clientWidth - (legendBeside ? 260 : 0)) / Math.max(1, plotHeight(layout));
       const grow = Math.min(1.5, Math.max(1, wide)), ratio = layout.scene.aspectratio;
       layout.scene = Object.assign({}, layout.scene, {aspectratio: {x: ratio.x * grow, y: ratio.y * grow, z: ratio.z * grow}});
@@ -486,7 +486,6 @@ class Figure {
     const lowest = axisRoom(layout, (layout.yaxis2 ? layout.xaxis2 : layout.xaxis) || {});
     if (slider && !layout.scene)  // the lowest plot's x tick labels and title, no more
       layout.margin.b = Math.min(layout.margin.b, Math.ceil(lowest));
-    const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
     const side = beside(layout, this.root.clientWidth - (layout.margin.l ?? 80) - (layout.margin.r ?? 80)
                                 - (legendBeside ? LEGEND_BESIDE : 0), plotHeight(layout));
     if (side) {  // both plots' x axes now at the foot
