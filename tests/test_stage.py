@@ -286,9 +286,11 @@ def test_the_motion_refits_when_what_is_above_the_stage_grows(browser, app_url):
     context.close()
 
 
-def finger_drag(page, touch, slider, travel: float, moves: int) -> list[str]:
+def finger_drag(page, touch, slider, travel: float, moves: int, said: list | None = None,
+                ending: str = "touchEnd") -> list[str]:
     """A finger on ``slider``'s thumb moved ``travel`` px along its track in ``moves`` equal moves (CDP touch
-    events, ``touch`` a CDP session), then lifted: the thumb's value after each move."""
+    events, ``touch`` a CDP session), then lifted (``ending``; "touchCancel": the browser took the touch
+    back): the thumb's value after each move, and in ``said`` what its range input gave a screen reader."""
     thumb = box(slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
     x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
     touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
@@ -297,8 +299,10 @@ def finger_drag(page, touch, slider, travel: float, moves: int) -> list[str]:
         touch.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": x + travel * n / moves, "y": y}]})
         page.wait_for_timeout(40)
         shown.append(slider.locator("[data-testid='stSliderThumbValue']").inner_text())
+        if said is not None:
+            said.append(slider.locator("input[type='range']").get_attribute("aria-valuetext"))
     page.evaluate("window.__sentBeforeLift = window.__sent")
-    touch.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+    touch.send("Input.dispatchTouchEvent", {"type": ending, "touchPoints": []})
     page.wait_for_timeout(800)
     wait_until_idle(page)
     return shown
@@ -316,6 +320,27 @@ def test_a_finger_drags_a_stage_slider_along_its_track_on_a_phone(browser, app_u
     assert page.evaluate("window.__sentBeforeLift") == sent  # no run while moving
     assert page.evaluate("window.__sent") - sent == 1
     assert f"V={shown[-1]:g}" in page.url, (page.url, shown[-1])
+    assert not errors, errors
+    context.close()
+
+
+def test_a_screen_reader_hears_the_value_a_dragged_thumb_shows(browser, app_url):
+    """live.js draws a dragged stage slider's thumb itself (react-aria sees none of the moves): its range
+    input says the value the thumb shows on every move, not the value before the drag; a drag the browser
+    cancels puts both back, and a finished one says where it landed."""
+    context, page, errors = open_page(browser, f"{app_url}/disk_wall", 390, 844, phone=True)
+    page.wait_for_timeout(300)
+    slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").first
+    before = slider.locator("input[type='range']").get_attribute("aria-valuetext")
+    said: list = []
+    shown = finger_drag(page, context.new_cdp_session(page), slider, 60, 6, said, ending="touchCancel")
+    assert len(set(shown)) >= 4 and said == shown, (shown, said)
+    assert slider.locator("[data-testid='stSliderThumbValue']").inner_text() == before
+    assert slider.locator("input[type='range']").get_attribute("aria-valuetext") == before
+    said.clear()
+    shown = finger_drag(page, context.new_cdp_session(page), slider, -40, 4, said)
+    assert said == shown and float(shown[-1]) < float(before), (shown, said)
+    assert slider.locator("input[type='range']").get_attribute("aria-valuetext") == shown[-1]
     assert not errors, errors
     context.close()
 
