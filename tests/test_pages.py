@@ -3,6 +3,7 @@ its state round-trips through the URL, and bad input of any kind ends in a plain
 from __future__ import annotations
 
 import html
+import importlib
 import math
 import re
 from pathlib import Path
@@ -500,6 +501,42 @@ def test_a_links_out_of_range_value_is_named_in_the_controls_unit(query, says, n
     assert_clean(at)
     (warning,) = [w.value for w in at.warning]
     assert says in warning and never not in warning, warning
+
+
+@pytest.mark.parametrize("view", [{}, {"lecture": "1"}, {"practice": "1"}, {"seed": "7"}])
+@pytest.mark.parametrize("pid", IDS)
+def test_a_links_unknown_name_is_said_and_left_out(pid, view):
+    """A link's key that is no parameter of the problem (a typo's ``theta0x``, another problem's ``V``) is
+    named once, with the name it is nearest to, and left out of the address; the page's own flags (units,
+    views, a variant, an extra figure's switch) are never called unknown."""
+    solver = BY_ID[pid].solver
+    first = solver.ABOUT.primary[0]
+    flag = getattr(importlib.import_module(f"viz.{pid}"), "ON_REQUEST_FLAG", None)
+    known = {**view, **({"units": "us"} if BY_ID[pid].us_units else {}), **({flag: "1"} if flag else {})}
+    assert [w.value for w in run_page(pid, known).warning] == []
+    at = run_page(pid, {**known, f"{first}x": "1", "Vz": "nan"})
+    assert_clean(at)
+    (said,) = [w.value for w in at.warning]
+    assert f"“{first}x” and “Vz”" in said and "left out" in said and first in said.split("parameters:")[1], said
+    assert f"{first}x" not in at.query_params and "Vz" not in at.query_params
+    (said,) = [w.value for w in run_page(pid, {**known, f"{first}x": "1"}).warning]
+    assert f"did you mean **{first}**?" in said, said
+
+
+@pytest.mark.parametrize("query", [{"[a](https://ev.il)": "1"}, {"theta0": "[a](https://ev.il)"},
+                                   {"theta0": "https://ev.il"}, {"seed": "www.ev.il/<b>x</b>"}])
+def test_what_a_link_says_is_shown_as_typed_never_as_a_link(query):
+    """A link's names and values are repeated in the page's warnings character for character: Markdown
+    never makes a link, an address, a tag or emphasis of them (a shared link is anybody's text)."""
+    at = run_page("pendulum_rebound", query)
+    assert_clean(at)
+    (said,) = [w.value for w in at.warning]
+    for raw in query.items():
+        for text in raw:
+            if text not in ("1", "theta0", "seed"):
+                unescaped = re.sub(r"\\(.)", r"\1", said)
+                assert text[:20] in unescaped, said
+                assert not re.search(r"(?<!\\)[\[\]()<>:/.]", said.split("“", 1)[1].split("”", 1)[0]), said
 
 
 @pytest.mark.parametrize("query, name, value, says, never", [

@@ -10,7 +10,7 @@ from concurrent.futures.process import BrokenProcessPool
 import orjson
 import streamlit as st
 
-from assignments.identity import parameters
+from assignments.identity import LINK_KEYS, parameters
 from practice.variants import variant
 from solvers.core import PhysicalLimitError, Solution, within_model_range
 from ui import assignments, figure, live, results, takehome
@@ -22,7 +22,7 @@ from ui.stylesheet import Stylesheet
 from viz import on_request
 from edge import widget_values
 from ui.params import (check_in_range, fixed_parameters, lesson_parameters, mirror_to_url, more_parameters,
-                       parameter_panel, refused_values_notice)
+                       parameter_panel, refused_values_notice, unknown_in_link)
 
 LECTURE_CSS = """
 <style>
@@ -152,6 +152,16 @@ VIEW_HELP = ("Study: answers, animation and derivation. Lecture: large type and 
              "a projector. Practice: the answers are hidden; type your own and get feedback.")
 VARIANT_HELP = ("A variant link (?seed=N) or an assignment link opens in Practice: its answers appear with "
                 "“Show the solution”. Instructors with the key can switch a variant link's view.")
+
+
+# What a page's address may carry besides its problem's parameters: the page's own flags, an assignment
+# link's keys, an LMS launch's hand-off, the instructor key (taken out at once), Streamlit's embedding.
+LINK_FLAGS = frozenset(("units", "lecture", "practice", "instructor", "lti", *LINK_KEYS, "embed", "embed_options"))
+
+
+def _unknown_in_link(problem: Problem) -> str | None:
+    flag = getattr(importlib.import_module(f"viz.{problem.id}"), "ON_REQUEST_FLAG", None)
+    return unknown_in_link(problem, st.query_params.keys(), LINK_FLAGS | {flag})
 
 
 def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str]:
@@ -294,6 +304,7 @@ def problem_page(problem_id: str) -> None:
     _leave_legacy_pages_mode()
     problem = BY_ID[problem_id]
     link = assignments.student_link(problem)  # None unless opened with a signed assignment link
+    unknown = _unknown_in_link(problem) if link is None else None  # (before the page writes its own address)
     seed, seed_warning = (link.identity.seed, None) if link and link.identity else seed_from_url()
     instructor = is_instructor()  # before mirror_to_url drops ?instructor=KEY from the address
     system, view = _page_flags(problem, practice_only=(seed is not None and not instructor) or link is not None)
@@ -312,7 +323,7 @@ def problem_page(problem_id: str) -> None:
     if seed is None and not practice:  # the lesson page: the stage and all that follows it in a fragment
         st.sidebar.markdown("### Parameters")
         warnings = more_parameters(problem, system, None, st.sidebar)
-        _heading(problem, heading, (seed_warning, *warnings), print_link=False)  # (the fragment's)
+        _heading(problem, heading, (seed_warning, unknown, *warnings), print_link=False)  # (the fragment's)
         _lesson(problem.id, system, lecture)
         return
     head = st.container()  # the title, filled once the state is known
@@ -326,7 +337,7 @@ def problem_page(problem_id: str) -> None:
     _mirror(problem, params, system, lecture, practice, seed, base)
     solved = _solved_or_refused(problem, params, system, practice=practice)
     with head:
-        _heading(problem, heading, (seed_warning, *warnings))
+        _heading(problem, heading, (seed_warning, unknown, *warnings))
     if solved is None:
         return
     solution, figures = solved

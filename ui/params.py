@@ -7,6 +7,7 @@ out of range. Combinations are left to the solver, whose message the page shows.
 """
 from __future__ import annotations
 
+import difflib
 import math
 import re
 from typing import Any
@@ -16,7 +17,7 @@ import streamlit as st
 from solvers.core import Choice, Number, ParameterError
 from solvers import units
 from ui.catalog import Problem
-from ui.results import plain
+from ui.results import literal, plain
 
 MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed
 
@@ -126,9 +127,34 @@ def check_in_range(problem: Problem, values: dict, system: str) -> None:
                                  f"is out of range: it must be {shown_range(p, system)}.") from None
 
 
-def _url_warning(p: Any, raw: str, why: str) -> str:
+def _url_warning(p: Any, raw: str, why: str, markdown: bool = True) -> str:
+    """What the page says of a link's value it cannot take: in Markdown (the value shown as typed, never
+    as a link or formatting), or plain text (the download route's refusal)."""
     shown = raw if len(raw) <= MAX_URL_VALUE else raw[:MAX_URL_VALUE] + "…"
-    return f"The link's value for **{p.name}** ({p.label}), “{shown}”, {why}; using the default instead."
+    if not markdown:
+        return f"The link's value for {p.name} ({p.label}), “{shown}”, {why}."
+    return f"The link's value for **{p.name}** ({p.label}), “{literal(shown)}”, {why}; using the default instead."
+
+
+MAX_UNKNOWN_SHOWN = 5  # names of a link's unknown keys listed in its warning
+
+
+def unknown_in_link(problem: Problem, keys, flags) -> str | None:
+    """What the page says of a link's keys that are neither this problem's parameters nor one of the
+    page's ``flags`` (``?theta=30`` for θ₀'s ``theta0``, another problem's ``V``), or None: the address
+    keeps only what the page knows, so a mistyped name would otherwise vanish without a word."""
+    names = [p.name for p in problem.solver.PARAMS]
+    unknown = [k for k in keys if k not in names and k not in flags]
+    if not unknown:
+        return None
+    shown = [f"“{literal(k[:MAX_URL_VALUE])}”" for k in unknown[:MAX_UNKNOWN_SHOWN]]
+    if len(unknown) > MAX_UNKNOWN_SHOWN:
+        shown.append(f"{len(unknown) - MAX_UNKNOWN_SHOWN} more")
+    listed = shown[0] if len(shown) == 1 else ", ".join(shown[:-1]) + " and " + shown[-1]
+    near = difflib.get_close_matches(unknown[0], names, n=1, cutoff=0.6) if len(unknown) == 1 else []
+    meant = f" (did you mean **{near[0]}**?)" if near else ""
+    return (f"The link names {listed}{meant}, which {'is not a parameter' if len(unknown) == 1 else 'are not parameters'} "
+            f"of this problem: left out. Its parameters: {', '.join(names)}.")
 
 
 def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
@@ -363,10 +389,12 @@ def lesson_parameters(problem: Problem, system: str, base: dict | None, stage) -
     return values
 
 
-def parameters_of_link(problem: Problem, query, system: str, base: dict | None = None) -> tuple[dict, list[str]]:
+def parameters_of_link(problem: Problem, query, system: str, base: dict | None = None,
+                       markdown: bool = True) -> tuple[dict, list[str]]:
     """The parameters (SI) a page's address gives (``query``: its parameters by name, e.g.
     st.query_params), each as its control would read it, else ``base``'s or the default; and a
-    warning for each value it refuses. No Streamlit: the download route reads links too."""
+    warning for each value it refuses (Markdown, or plain text). No Streamlit: the download route
+    reads links too."""
     base = base or {}
     values, warnings = {}, []
     for p in problem.solver.PARAMS:
@@ -377,7 +405,7 @@ def parameters_of_link(problem: Problem, query, system: str, base: dict | None =
             if why is None:
                 value = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
             else:
-                warnings.append(_url_warning(p, raw, why))
+                warnings.append(_url_warning(p, raw, why, markdown))
         values[p.name] = value
     return values, warnings
 

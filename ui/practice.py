@@ -19,7 +19,7 @@ from practice.variants import MAX_SEED, variants_csv
 from solvers.core import Choice, Derivation, Solution
 from solvers import units
 from ui.catalog import Problem
-from ui.results import plain, plain_with_math
+from ui.results import literal, plain, plain_with_math
 
 INSTRUCTOR = "dl_instructor"  # session flag: the key was entered (once per session, for every page)
 KEY_MESSAGE = "dl_instructor_message"  # what the last try of the key was told
@@ -31,7 +31,7 @@ def seed_from_url() -> tuple[int | None, str | None]:
         return None, None
     if re.fullmatch(r"\d{1,10}", raw) and int(raw) <= MAX_SEED:
         return int(raw), None
-    return None, f"The link's variant number “{plain(raw[:20])}” is not a whole number from 0 to {MAX_SEED}; " \
+    return None, f"The link's variant number “{literal(raw[:20])}” is not a whole number from 0 to {MAX_SEED}; " \
                  "showing the textbook's numbers."
 
 

@@ -144,10 +144,9 @@ def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[
         return 400, plain_text, b"This link is too long to be a page's address."
     query = dict(urllib.parse.parse_qsl(query_string, keep_blank_values=True))  # the last value wins, as on the page
     system = "us" if query.get("units") == "us" and problem.us_units else "si"
-    values, refusals = parameters_of_link(problem, query, system)
+    values, refusals = parameters_of_link(problem, query, system, markdown=False)
     if refusals:
-        return 400, plain_text, ("This link's numbers cannot be made into a file:\n"
-                                 + "\n".join(r.replace("**", "").replace("; using the default instead.", ".") for r in refusals)).encode()
+        return 400, plain_text, ("This link's numbers cannot be made into a file:\n" + "\n".join(refusals)).encode()
     try:
         solution = within_model_range(problem.solver.solve)(**values)
     except ValueError as error:
