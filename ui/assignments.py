@@ -812,7 +812,7 @@ def _course_roster(aid: int, course: dict) -> None:
         return
     waiting = sum(m.attempts == 0 for m in members)
     st.markdown(f"{len(members)} students in the course; {waiting} {'has' if waiting == 1 else 'have'} not started.")
-    st.table([{"student": plain(m.name) or "(no name shared)", "label here": literal(m.label),
+    st.table([{"student": literal(m.name) or "(no name shared)", "label here": literal(m.label),
                "attempts": str(m.attempts) if m.attempts else "not started"} for m in members])
 
 
