@@ -411,3 +411,29 @@ def test_practice_s_solution_draws_the_motion_at_its_own_height(browser, app_url
         assert height >= 0.9 * expected, (pid, heights, own)
     assert not errors, errors
     context.close()
+
+
+@pytest.mark.parametrize("tilt", [10, 80])
+def test_euler_s_disk_on_a_phone_has_no_empty_bands_round_its_scene(browser, app_url, tilt):
+    """On a phone the 3-D scene's graph is as tall as its box needs (figure.js: sceneHeight): WebGL draws the
+    box to the graph's width, and a taller graph left bands above and below it (z's label 128 px below the
+    graph's top, x's and y's 83 px above its foot, at the textbook's 10°). The box keeps its size (its x and
+    y labels as far apart), and every label stays inside the graph, the disk stood up too."""
+    context, page, errors = open_page(browser, f"{app_url}/eulers_disk?theta={tilt}", 390, 844, phone=True)
+    wait_until_idle(page)
+    page.wait_for_timeout(1000)
+    graph, labels = page.evaluate("""() => {
+      const g = document.querySelector('.st-key-dl_stage .dl-graph'), box = g.getBoundingClientRect();
+      const labels = Object.fromEntries([...g.querySelectorAll('text')].filter(t => /^[xyz] \\(mm\\)$/.test(t.textContent))
+        .map(t => { const r = t.getBoundingClientRect(); return [t.textContent[0], [r.left, r.top, r.right, r.bottom]]; }));
+      return [[box.left, box.top, box.right, box.bottom], labels];
+    }""")
+    left, top, right, bottom = graph
+    assert set(labels) == {"x", "y", "z"}, labels
+    assert labels["z"][1] - top <= 80, (graph, labels)  # the box's top edges above z's label, no more
+    for axis in "xy":
+        assert 0 <= bottom - labels[axis][3] <= 50, (graph, labels)
+        assert labels[axis][0] >= left and labels[axis][2] <= right, (graph, labels)
+    assert labels["y"][2] - labels["x"][0] >= 0.6 * (right - left), (graph, labels)
+    assert not errors, errors
+    context.close()

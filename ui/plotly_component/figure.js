@@ -473,14 +473,15 @@ class Figure {
     layout.autosize = true;
     // A 3-D scene is drawn as large as the graph's height allows: on a wide graph its legend stands in a
     // column at the right, not in rows above it.
-    if (layout.scene && layout.showlegend !== false && this.root.clientWidth > 1.5 * layout.height)
+    if (layout.scene && layout.showlegend !== false && this.root.clientWidth > SCENE_GROWTH * layout.height)
       layout.legend = Object.assign({}, layout.legend, {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"});
     const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
+    layout.height = sceneHeight(layout, layout.height, this.root.clientWidth);
     // WebGL sizes the scene's box to the graph's height: where the graph is wider than tall (beside its
-    // legend), the box is drawn up to 1.5 times larger, to fill the width too.
+    // legend), the box is drawn up to SCENE_GROWTH times larger, to fill the width too.
     if (layout.scene && layout.scene.aspectratio) {
       const wide = (this.root.clientWidth - (legendBeside ? 260 : 0)) / Math.max(1, plotHeight(layout));
-      const grow = Math.min(1.5, Math.max(1, wide)), ratio = layout.scene.aspectratio;
+      const grow = Math.min(SCENE_GROWTH, Math.max(1, wide)), ratio = layout.scene.aspectratio;
       layout.scene = Object.assign({}, layout.scene, {aspectratio: {x: ratio.x * grow, y: ratio.y * grow, z: ratio.z * grow}});
     }
     const lowest = axisRoom(layout, (layout.yaxis2 ? layout.xaxis2 : layout.xaxis) || {});
@@ -547,7 +548,7 @@ class Figure {
     if (!this.refitting) {
       this.refitting = () => {
         if (!this.fitHeight || !this.Plotly || !this.graph.layout || this.printing) return;
-        const height = this.screenHeight(this.fitHeight);
+        const height = sceneHeight(this.graph.layout, this.screenHeight(this.fitHeight), this.root.clientWidth);
         // autosize kept: a height relayout alone turns it off, and the width would no longer follow the sidebar
         if (Math.abs(height - this.graph.layout.height) > 2)
           quiet(this.Plotly.relayout(this.graph, {height: height, autosize: true}).then(() => this.fitDrawn()));
@@ -771,6 +772,22 @@ function axisRoom(layout, xa) {
   const base = (layout.font || {}).size || 12, size = (font) => (font && font.size) || base;
   return (xa.showticklabels === false ? 0 : size(xa.tickfont) * 1.35 + 8)
          + (xa.title && xa.title.text ? size(xa.title.font) * 1.35 + 10 : 0) + 8;
+}
+
+// A 3-D scene's graph no taller than its box needs: on a graph narrower than tall (a phone's), WebGL draws
+// the box to the width and leaves bands above and below a flat box (Euler's disk: a hundred px each). The
+// plot is made as short as the box drawn to the width needs (BOX_SHARE of the width across, as tall as the
+// camera's elevation shows it), and no shorter than SCENE_GROWTH times less than the width, so that the
+// box's growth below draws it at the same size. ``height`` as it would be otherwise; a scene beside its
+// legend is wide already.
+const SCENE_GROWTH = 1.5, BOX_SHARE = 0.8;
+function sceneHeight(layout, height, width) {
+  const scene = layout.scene || {}, box = scene.aspectratio, eye = (scene.camera || {}).eye;
+  if (!box || !eye || (layout.legend || {}).orientation === "v") return height;
+  const elevation = Math.atan2(eye.z, Math.hypot(eye.x, eye.y)), across = (box.x + box.y) / Math.SQRT2;
+  const tall = (box.z * Math.cos(elevation) + across * Math.sin(elevation)) / across;  // on screen, per width
+  const spare = plotHeight(Object.assign({}, layout, {height})) - width * Math.max(1 / SCENE_GROWTH, BOX_SHARE * tall);
+  return spare > 0 ? height - Math.floor(spare) : height;
 }
 
 // The plot area's height a layout gets (its margins and a legend row above taken off), before plotly draws it.
