@@ -329,6 +329,7 @@ def motion(solution: Solution) -> dict:
     with the assembly hanging straight down) and spring. The fall is integrated once; the system
     is conservative, so the return is its mirror in time, unless the swing ends at an equilibrium
     (no spring, released from upright: it arrives upright again and, nudged, goes on over the top).
+    A swing that turns has a frame at the turn, where it stands at its largest angle.
 
     A release at upright creeps for seconds on its 1e-6 rad/s nudge; the frames start where the
     rod has moved VISIBLE from rest (``start``) and end where it is back within VISIBLE of rest,
@@ -339,6 +340,7 @@ def motion(solution: Solution) -> dict:
     # With no spring, T(θ) = Q (1 − cos θ) from upright vanishes again only at 360°, upright: the
     # swing ends where it began, at an equilibrium, and the nudge carries it over the top.
     over_the_top = p["k"] == 0 and p["theta1"] == 0
+    t_turn = None
     if half.ended_by_event and not over_the_top:
         t_turn = half.t[-1]
         t = np.concatenate([half.t, 2 * t_turn - half.t[-2::-1]])
@@ -350,6 +352,8 @@ def motion(solution: Solution) -> dict:
     t_start, t_end = (t[moved[0] - 1], t[min(moved[-1] + 1, len(t) - 1)]) if len(moved) else (t[0], t[-1])
     frames = int(np.clip(math.ceil((t_end - t_start) * np.abs(omega).max() / MAX_FRAME_TURN), *FRAME_RANGE))
     even = np.linspace(t_start, t_end, frames)
+    if t_turn is not None and t_start < t_turn < t_end:  # and the turn itself, the rod's largest angle
+        even = np.union1d(even, [t_turn])
     theta, omega = np.interp(even, t, theta), np.interp(even, t, omega)
     return {"t": even, "theta": theta, "omega": omega, "kinetic": 0.5 * a["I_O"] * omega**2,
             "gravity": Q * (1 + np.cos(theta)), "spring": 0.5 * p["k"] * theta**2,

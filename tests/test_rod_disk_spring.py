@@ -8,7 +8,7 @@ from scipy.integrate import solve_ivp
 
 from solvers import rod_disk_spring
 from tests.strategies import pos
-from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures
+from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures, static
 
 # The solver contract, typed from PROBLEMS.md independently of the solver module (tests/test_contract.py
 # checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
@@ -54,7 +54,7 @@ VALID = valid_params().filter(reaches)  # random valid parameters (SI, radians) 
 IN_VIEW = ({"k": 0.0},)  # no spring: over the top, still in view
 EDGE_LINKS = ({"k": "0"},)  # links whose numbers could read −0
 CHECK_CASES = ({"theta1": 0.4, "theta2": 2.0},)  # released off upright: every shown check can fail here too
-LIMIT_LINKS = (({"k": "100"}, 0),)  # the spring holds it upright: the method stays
+LIMIT_LINKS = (({"k": "100"}, 0), ({"k": "51"}, 1))  # held upright: the method stays; stopped short of θ₂: its swing too
 
 
 def test_seed_numbers():
@@ -131,6 +131,54 @@ def test_the_stop_is_a_physical_limit_the_page_can_show():
         rod_disk_spring.solve(theta2=6.0)
     assert 0 < err.value.theta_max < 6.0
     assert "largest angle" in str(err.value)
+
+
+def first_stop(p) -> float:
+    """The first angle past θ₁ where the kinetic energy Q (cos θ₁ − cos θ) − k (θ² − θ₁²)/2 is spent (a
+    fine grid for the bracket, then Brent's method): the turning point from the energy alone."""
+    from scipy.optimize import brentq
+    Q = (p["m1"] * p["L"] / 2 + p["m2"] * (p["L"] + p["R"])) * p["g"]
+    energy = lambda q: Q * (math.cos(p["theta1"]) - math.cos(q)) - p["k"] / 2 * (q * q - p["theta1"] ** 2)  # noqa: E731
+    grid = np.linspace(p["theta1"], p["theta2"], 20001)[1:]
+    spent = int(np.argmax(np.array([energy(q) for q in grid]) <= 0))
+    return brentq(energy, grid[spent - 1] if spent else p["theta1"] + 1e-12, grid[spent], xtol=1e-14)
+
+
+# Parameters where the spring stops the rod short of θ₂ after it has fallen some way.
+STOPPED = valid_params().filter(lambda p: not reaches(p) and (p["theta1"] == 0 or
+          (p["m1"] * p["L"] / 2 + p["m2"] * (p["L"] + p["R"])) * p["g"] * math.sin(p["theta1"]) > p["k"] * p["theta1"]))
+
+
+@EXAMPLES
+@given(STOPPED)
+def test_beside_the_refusal_the_swing_turns_where_the_energy_is_spent_short_of_theta2(p):
+    """viz.at_limit draws the swing the refusal speaks of: integrated, the rod turns at the angle where the
+    energy balance says the kinetic energy is spent (θ_max, found here by root-finding), never past it
+    nor past θ₂, dashed where it was asked for; its caption names the refusal's θ_max."""
+    from viz.rod_disk_spring import at_limit
+    with pytest.raises(rod_disk_spring.SpringStopsRodError) as refused:
+        rod_disk_spring.solve(**p)
+    theta_max = first_stop(p)
+    assert refused.value.theta_max == pytest.approx(theta_max, abs=1e-6)
+    (figure,) = at_limit(p)
+    angles = np.array([math.atan2(xs[-1], ys[-1]) for xs, ys in drawn(figure, "rod")])
+    angles = np.where(angles < -1e-9, angles + 2 * math.pi, angles)  # θ from the upward vertical, 0 to 2π
+    reach = p["L"] + 2 * p["R"]
+    assert angles.max() <= theta_max + DRAWN / p["L"] + 1e-9 and angles.max() < p["theta2"]
+    assert angles.max() == pytest.approx(theta_max, abs=1e-6 + DRAWN / p["L"]), (angles.max(), theta_max)
+    assert angles[figure.key_frame] == angles.max()  # the key instant: the turn
+    mark_x, mark_y = static(figure, "θ₂")
+    assert math.atan2(mark_x[-1], mark_y[-1]) % (2 * math.pi) == pytest.approx(p["theta2"], abs=DRAWN / reach + 1e-6)
+    assert f"{math.degrees(refused.value.theta_max):.4g}°" in figure.description
+
+
+def test_no_swing_is_drawn_where_the_rod_does_not_fall():
+    """Held upright by a stiff spring, or released where the spring already wins: the refusal has no
+    motion to show."""
+    from viz.rod_disk_spring import at_limit
+    defaults = CONTRACT["defaults"]
+    assert at_limit({**defaults, "k": 100.0}) == []
+    assert at_limit({**defaults, "k": 60.0, "theta1": 0.3, "theta2": 2.0}) == []
 
 
 # ----------------------------------------------------------------------------------------------

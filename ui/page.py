@@ -251,17 +251,24 @@ def _figures(figures) -> None:
         show_figure(drawn, page=figures)
 
 
-def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=None, practice: bool = False):
-    """(solution, figures) for ``params``; or None, once the refusal is said (in ``refused_in``, a
-    container, if given) with what a physical limit keeps beside it."""
+def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=None, practice: bool = False,
+                       lecture: bool = False):
+    """(solution, figures) for ``params``; or None, once the refusal is said (in ``refused_in``, the
+    stage's motion column, if given, with the figures a physical limit keeps, where the motion would
+    be) with the method a physical limit keeps below it."""
     try:
         check_in_range(problem, params, system)
         return _solve_and_draw(problem, params, system)
     except ValueError as error:
+        limit = isinstance(error, PhysicalLimitError)
         with refused_in or contextlib.nullcontext():
             results.refused(error, system, problem.solver.LIMIT_LABELS)
-        if isinstance(error, PhysicalLimitError):
-            _beside_refusal(problem, params, practice)
+            figures = getattr(importlib.import_module(f"viz.{problem.id}"), "at_limit", lambda _: [])(params) if limit else []
+            for n, drawn in enumerate(figures):
+                # fitted to a laptop's first screen; under a refusal in projector type too little of it is left
+                show_figure(drawn, page=figures, lecture=lecture, fit_screen=refused_in is not None and n == 0 and not lecture)
+        if limit:
+            _method_beside_refusal(problem, params, practice)
         return None
 
 
@@ -373,7 +380,7 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     motion_column = stage.container(key="dl_motion")
     params = lesson_parameters(problem, system, None, stage.container(key="dl_stage_controls"))
     _mirror(problem, params, system, lecture, False, None, {})
-    solved = _solved_or_refused(problem, params, system, motion_column)
+    solved = _solved_or_refused(problem, params, system, motion_column, lecture=lecture)
     if solved is None:
         takehome.lesson_links(problem, downloads=False)
         return
@@ -413,15 +420,11 @@ def _assignment(problem: Problem, link, system: str) -> None:
         assignments.assignment_heading(link)
 
 
-def _beside_refusal(problem: Problem, params: dict, practice: bool = False) -> None:
-    """A physical limit is where the lesson is: keep what shows why (the problem's figures for it,
-    and the derivation without numbers), where the problem offers them. In Practice the derivation
-    would give the answers' closed forms away, so it shows the method as the exercise does: titles,
-    and only the equations that show no result."""
-    viz = importlib.import_module(f"viz.{problem.id}")
-    figures = getattr(viz, "at_limit", lambda _: [])(params)
-    for drawn in figures:
-        show_figure(drawn, page=figures)
+def _method_beside_refusal(problem: Problem, params: dict, practice: bool = False) -> None:
+    """A physical limit is where the lesson is: keep what shows why (beside the problem's figures for
+    it, ``at_limit`` in its viz module: the derivation without numbers), where the problem offers it.
+    In Practice the derivation would give the answers' closed forms away, so it shows the method as
+    the exercise does: titles, and only the equations that show no result."""
     method = getattr(problem.solver, "method", None)
     if method is None:
         return

@@ -1,12 +1,13 @@
 """Side view of the rod and disk falling against the spring, with the energy split over time."""
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 
 from solvers import rod_disk_spring as solver
-from solvers.core import plain_fixed, plain_number as n
+from solvers.core import plain_fixed, plain_number as n, validate_params
 from viz.common import (COLORS, Figure, headline, headline_text, animated, base_layout, circles, fitted, line, moving, points, r, segments,
                          spirals, symbolic, thumbnail)
 
@@ -21,6 +22,39 @@ THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
 def figures(solution, system: str = "si") -> list[Figure]:
     p, a = solution.params, solution.answers
     m, at_theta2 = _with_theta2(solver.motion(solution), p["theta2"])
+    head = headline("Side view, θ from the upward vertical. The assembly passes θ₂ = ", ("theta2", "deg", 0),
+                    " (dashed) at ", ("omega2", "n", 4), " rad/s.")
+    return [_swing(p, m, head, headline_text(head, {**p, **a}), at_theta2,
+                   f"passing θ₂ = {deg(p['theta2'])}, where the speed is asked for")]
+
+
+def at_limit(params) -> list[Figure]:
+    """Beside the refusal where the spring stops the rod short of θ₂: the swing as it is, to its largest
+    angle and back, with θ₂ dashed where it never gets. The motion does not depend on θ₂ (it only names
+    the angle asked about), so it is the motion solved for an angle the rod does reach, halfway to its
+    stop; none where the rod does not fall at all."""
+    return list(_at_limit(tuple(sorted(params.items()))))
+
+
+@functools.lru_cache(maxsize=64)
+def _at_limit(key: tuple) -> tuple[Figure, ...]:
+    """``at_limit``'s figures, kept by the parameters (a refused drag asks again on every run)."""
+    params = dict(key)
+    p = validate_params(solver.PARAMS, params)
+    stop = solver.largest_angle(p)
+    if stop is None or not stop > p["theta1"]:
+        return ()
+    reached = solver.solve(**{**params, "theta2": (p["theta1"] + stop) / 2})
+    m = solver.motion(reached)
+    turn = int(np.argmax(m["theta"]))
+    said = (f"Side view, θ from the upward vertical. The spring stops the assembly at θ = {n(math.degrees(stop), 4)}°, "
+            f"short of θ₂ = {deg(p['theta2'])} (dashed).")
+    return (_swing(p, m, (), said, turn, f"at its largest angle, short of θ₂ = {deg(p['theta2'])}"),)
+
+
+def _swing(p, m, head, said: str, key_frame: int, key_caption: str) -> Figure:
+    """The stage figure: the assembly swinging (``m``: solver.motion's frames) with θ₂ = ``p["theta2"]``
+    dashed, above the energy bars; ``said``: its first sentence, ``head`` its parts a drag follows."""
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
     top = float(max((m["kinetic"] + m["gravity"] + m["spring"]).max(), 1e-9))
     theta = m["theta"]
@@ -49,14 +83,10 @@ def figures(solution, system: str = "si") -> list[Figure]:
                         "title": {"text": "energy (J)"}}
     layout["height"] = 700
     spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout, frame_ms=50)
-    head = headline("Side view, θ from the upward vertical. The assembly passes θ₂ = ", ("theta2", "deg", 0),
-                    " (dashed) at ", ("omega2", "n", 4), " rad/s.")
-    description = (headline_text(head, {**p, **a}) + f" {_release(p, m)}, it falls, {_after(p, m)}. "
-                   "Bars: kinetic, gravitational (zero hanging straight down) and spring energy; their sum stays "
-                   "constant.")
-    return [Figure("rod_disk_spring_motion", "The fall and the swing back, with the energy", spec, description,
-                   height=700, key_frame=at_theta2,
-                   key_caption=f"passing θ₂ = {deg(p['theta2'])}, where the speed is asked for", headline=head)]
+    description = (f"{said} {_release(p, m)}, it falls, {_after(p, m)}. Bars: kinetic, gravitational (zero hanging "
+                   "straight down) and spring energy; their sum stays constant.")
+    return Figure("rod_disk_spring_motion", "The fall and the swing back, with the energy", spec, description,
+                  height=700, key_frame=key_frame, key_caption=key_caption, headline=head)
 
 
 def _with_theta2(m: dict, theta2: float) -> tuple[dict, int]:
