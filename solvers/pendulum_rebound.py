@@ -170,7 +170,8 @@ def derivation(sphere: str, surface: str) -> Derivation:
     return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
 
 
-def _validate(params) -> dict:
+def validated(params) -> dict:
+    """The parameters checked (a floor within the sphere's reach, deeper than its radius), as solve takes them."""
     p = validate_params(PARAMS, params)
     if p["surface"] == "floor":
         require(p["d"] > p["r"], f"The floor must lie deeper below the pivot than the sphere's radius "
@@ -195,9 +196,9 @@ LIVE = Live(("e", "theta0"), _live_cases)
 
 @within_model_range
 def solve(**params) -> Solution:
-    p = _validate(params)
+    p = validated(params)
     d_ = derivation(p["sphere"], p["surface"])
-    impact = d_.evaluate(p, upto="theta_impact")["theta_impact"]
+    impact = impact_angle(p)
     if not p["theta0"] > impact:
         raise PhysicalLimitError(
             f"The release angle θ₀ = {plain_number(math.degrees(p['theta0']))}° must be above the angle at which "
@@ -220,6 +221,11 @@ def solve(**params) -> Solution:
     )
     return Solution("pendulum_rebound", p, answers, tuple(steps), checks, p["surface"], notes, ledger,
                     extras={"bounce_peaks": bounces})
+
+
+def impact_angle(p) -> float:
+    """θ_I, where the sphere touches the surface (the derivation's link; ``p`` validated)."""
+    return derivation(p["sphere"], p["surface"]).evaluate(p, upto="theta_impact")["theta_impact"]
 
 
 def moment_coefficient(p) -> float:

@@ -45,6 +45,7 @@ SPHERE_K = {"solid": 2 / 5, "hollow": 2 / 3, "disk": 1 / 2}
 # Cases of the shared tests in test_what_students_see.py beyond the defaults.
 IN_VIEW = ({"e": 0.0},)  # no rebound: still in view
 EDGE_LINKS = ({"e": "0"},)  # links whose numbers could read −0
+LIMIT_LINKS = (({"theta0": "-40"}, 1),)  # released below the impact angle: the pendulum against its floor
 
 
 def inertia(p):
@@ -107,6 +108,34 @@ def test_release_below_the_floor_is_refused_with_the_impact_angle():
     with pytest.raises(ValueError) as err:
         pendulum_rebound.solve(theta0=math.radians(-50))
     assert err.value.theta_impact == pytest.approx(math.asin((0.09144 - 0.5) / (0.6096 + 0.09144)))
+
+
+@EXAMPLES
+@given(VALID, st.floats(0.0, 1.0), st.sampled_from(["si", "us"]))
+def test_beside_the_refusal_the_sphere_rests_on_the_surface_at_the_impact_angle(p, below, system):
+    """viz.at_limit, beside the refusal of θ₀ ≤ θ_I: the sphere drawn touching the floor (its lowest point
+    at −d), at sin θ_I = (r − d)/(L + r) from the geometry alone, the rod from the pivot to the sphere, θ₀
+    dashed where it was asked for."""
+    from viz.pendulum_rebound import at_limit
+    assume(p["surface"] == "floor")  # (the wall is struck hanging straight down, below every release angle)
+    theta_I = math.asin((p["r"] - p["d"]) / (p["L"] + p["r"]))
+    p = {**p, "theta0": theta_I - 0.99 * below * (theta_I + math.pi / 2)}  # at or below θ_I, above −90°
+    with pytest.raises(pendulum_rebound.PhysicalLimitError) as refused:
+        pendulum_rebound.solve(**p)
+    assert refused.value.theta_impact == pytest.approx(theta_I, abs=1e-9)
+    (figure,) = at_limit(p, system)
+    k = 1 / 0.3048 if system == "us" else 1.0
+    xs, ys = static(figure, "sphere")
+    cx, cy, radius = circle(xs, ys)
+    assert radius == pytest.approx(p["r"] * k, abs=DRAWN)
+    assert (cx, cy) == pytest.approx(((p["L"] + p["r"]) * k * math.cos(theta_I), (p["L"] + p["r"]) * k * math.sin(theta_I)), abs=2 * DRAWN)
+    sag = radius * (1 - math.cos(math.pi / (len(xs) - 1)))  # a polygon's vertex may miss the lowest point by this
+    assert -p["d"] * k - 2 * DRAWN <= ys.min() <= -p["d"] * k + sag + 2 * DRAWN
+    rod_x, rod_y = static(figure, "rod")
+    assert (rod_x[0], rod_y[0]) == (0, 0) and math.hypot(rod_x[-1], rod_y[-1]) == pytest.approx(p["L"] * k, abs=DRAWN)
+    ray_x, ray_y = static(figure, "release angle θ₀ asked for")
+    assert math.atan2(ray_y[-1], ray_x[-1]) == pytest.approx(p["theta0"], abs=1e-3)
+    assert f"{pendulum_rebound.plain_number(math.degrees(theta_I))}°" in figure.description
 
 
 def test_the_ode_of_the_solver_runs_several_bounces():

@@ -437,3 +437,22 @@ def test_euler_s_disk_on_a_phone_has_no_empty_bands_round_its_scene(browser, app
     assert labels["y"][2] - labels["x"][0] >= 0.6 * (right - left), (graph, labels)
     assert not errors, errors
     context.close()
+
+
+@pytest.mark.parametrize("size", [(390, 844), (1400, 1000)])
+def test_a_still_picture_to_scale_has_no_empty_band_round_it(browser, app_url, size):
+    """Beside the pendulum's refusal (θ₀ below the impact angle) a still picture drawn to one scale on both
+    axes keeps no empty band above or below its plot (with an animation's 140 px margin for the time
+    slider, 85 px were left empty under its x axis's title)."""
+    context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound?theta0=-40", *size, phone=size[0] < 500)
+    wait_until_idle(page)
+    page.wait_for_timeout(800)
+    graph, plot, title, legend = page.evaluate("""() => {
+      const g = document.querySelector('.st-key-dl_stage .dl-graph'), box = (el) => el ? el.getBoundingClientRect().toJSON() : null;
+      return [box(g), box(g.querySelector('.nsewdrag')), box(g.querySelector('.xtitle')), box(g.querySelector('.legend'))];
+    }""")
+    above = plot["top"] - (legend["bottom"] if legend else graph["top"])
+    below = graph["bottom"] - title["bottom"]
+    assert 0 <= above <= 40 and 0 <= below <= 40, (above, below)
+    assert not errors, errors
+    context.close()

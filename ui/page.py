@@ -263,7 +263,7 @@ def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=N
         limit = isinstance(error, PhysicalLimitError)
         with refused_in or contextlib.nullcontext():
             results.refused(error, system, problem.solver.LIMIT_LABELS)
-            figures = getattr(importlib.import_module(f"viz.{problem.id}"), "at_limit", lambda _: [])(params) if limit else []
+            figures = getattr(importlib.import_module(f"viz.{problem.id}"), "at_limit", lambda *_: [])(params, system) if limit else []
             for n, drawn in enumerate(figures):
                 # fitted to a laptop's first screen; under a refusal in projector type too little of it is left
                 show_figure(drawn, page=figures, lecture=lecture, fit_screen=refused_in is not None and n == 0 and not lecture)

@@ -130,6 +130,6 @@ def versus_mu(params, accel: float | None = None) -> Figure:
                   {"data": data, "layout": layout}, description, animated=False, height=380)
 
 
-def at_limit(params) -> list[Figure]:
+def at_limit(params, system: str = "si") -> list[Figure]:
     """Beside a refusal (the front wheels lift): the curves that show where, and why."""
     return [versus_mu(params)]

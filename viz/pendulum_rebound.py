@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from solvers import pendulum_rebound as solver
-from solvers.core import plain_fixed
+from solvers.core import plain_fixed, plain_number
 from solvers import units
 from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, circles, column, fitted, line, moving, points,
                          r, segments, thumbnail, trails)
@@ -74,6 +74,39 @@ def figures(solution, system: str = "si") -> list[Figure]:
     return [Figure("pendulum_motion", "Release, bounce, rebound", spec, description, height=700,
                    key_frame=first_impact, key_caption=f"the first impact, at θ_I = {deg(a['theta_impact'])}",
                    headline=head)]
+
+
+def at_limit(params, system: str = "si") -> list[Figure]:
+    """Beside the refusal of a release angle at or below the impact angle: the pendulum at rest against
+    the surface at θ_I, where its swing would end, with θ₀ dashed where it was asked for (inside the
+    surface, or on it)."""
+    p = solver.validated(params)
+    theta_I, theta0 = solver.impact_angle(p), p["theta0"]
+    k = units.to_display(1.0, "length", system)
+    u = units.unit("length", system)
+    L, rad = p["L"] * k, p["r"] * k
+    drawn = _bodies(np.array([theta_I]), np.zeros(1), p, {"omega_impact": 0.0}, k)
+    reach = 1.1 * (L + 2 * rad)
+    bodies = [line(*(row[0] for row in drawn["rod"]), "rod", COLORS["ink"], width=5),
+              line(*(row[0] for row in drawn["sphere"]), "sphere", COLORS["body"], width=3, fill="toself"),
+              line(*(row[0] for row in drawn["marked radius"]), "marked radius", COLORS["accent"], width=4)]
+    asked = line(r([0.0, reach * math.cos(theta0)]), r([0.0, reach * math.sin(theta0)]), "release angle θ₀ asked for",
+                 COLORS["impulse"], width=2, dash="dash")
+    pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
+    x_range, y_range = fitted([pivot, asked, *bodies])
+    span = 3 * max(x_range[1] - x_range[0], y_range[1] - y_range[0])
+    if p["surface"] == "floor":
+        ground = line(r([x_range[0] - span, x_range[1] + span]), [-p["d"] * k] * 2, "floor", COLORS["ground"], width=6)
+    else:
+        ground = line([-rad] * 2, r([y_range[0] - span, y_range[1] + span]), "wall", COLORS["ground"], width=6)
+    layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range, x_title=f"x ({u})", y_title=f"y ({u})")
+    layout["height"] = 460
+    layout["margin"]["b"] = 60  # a still picture: no time slider's room below the x axis
+    description = (f"Side view. The sphere touches the {p['surface']} at θ_I = {plain_number(math.degrees(theta_I))}°, "
+                   f"where it is drawn: released at θ₀ = {plain_number(math.degrees(theta0))}° (dashed) it would start "
+                   f"{'on' if theta0 == theta_I else 'inside'} the {p['surface']}, with no swing before an impact.")
+    return [Figure("pendulum_at_limit", f"Where the sphere meets the {p['surface']}",
+                   {"data": [ground, asked, *bodies, pivot], "layout": layout}, description, animated=False, height=460)]
 
 
 def _bodies(theta, omega, p, a, k: float, xp=np) -> dict:

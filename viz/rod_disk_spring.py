@@ -28,7 +28,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
                    f"passing θ₂ = {deg(p['theta2'])}, where the speed is asked for")]
 
 
-def at_limit(params) -> list[Figure]:
+def at_limit(params, system: str = "si") -> list[Figure]:
     """Beside the refusal where the spring stops the rod short of θ₂: the swing as it is, to its largest
     angle and back, with θ₂ dashed where it never gets. The motion does not depend on θ₂ (it only names
     the angle asked about), so it is the motion solved for an angle the rod does reach, halfway to its
