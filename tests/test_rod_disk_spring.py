@@ -54,7 +54,7 @@ VALID = valid_params().filter(reaches)  # random valid parameters (SI, radians) 
 IN_VIEW = ({"k": 0.0},)  # no spring: over the top, still in view
 EDGE_LINKS = ({"k": "0"},)  # links whose numbers could read −0
 CHECK_CASES = ({"theta1": 0.4, "theta2": 2.0},)  # released off upright: every shown check can fail here too
-LIMIT_LINKS = (({"k": "100"}, 0), ({"k": "51"}, 1))  # held upright: the method stays; stopped short of θ₂: its swing too
+LIMIT_LINKS = (({"k": "100"}, 1), ({"k": "51"}, 1))  # held upright, or stopped short of θ₂: the method and the picture
 
 
 def test_seed_numbers():
@@ -172,13 +172,28 @@ def test_beside_the_refusal_the_swing_turns_where_the_energy_is_spent_short_of_t
     assert f"{math.degrees(refused.value.theta_max):.4g}°" in figure.description
 
 
-def test_no_swing_is_drawn_where_the_rod_does_not_fall():
-    """Held upright by a stiff spring, or released where the spring already wins: the refusal has no
-    motion to show."""
+@pytest.mark.parametrize("theta1, k", [(0.0, 100.0), (0.3, 60.0)])
+def test_where_the_rod_does_not_fall_the_assembly_is_drawn_at_its_release(theta1, k):
+    """Held upright by a stiff spring, or released where the spring already wins (k θ₁ ≥ Q sin θ₁): no
+    swing toward θ₂ to show, so a still picture of the assembly at θ₁, the disk on the rod's end, the
+    spring round the pivot clear of it, θ₂ dashed."""
     from viz.rod_disk_spring import at_limit
-    defaults = CONTRACT["defaults"]
-    assert at_limit({**defaults, "k": 100.0}) == []
-    assert at_limit({**defaults, "k": 60.0, "theta1": 0.3, "theta2": 2.0}) == []
+    p = {**CONTRACT["defaults"], "k": k, "theta1": theta1, "theta2": 2.0}
+    Q = (p["m1"] * p["L"] / 2 + p["m2"] * (p["L"] + p["R"])) * p["g"]
+    assert (Q <= k) if theta1 == 0 else (k * theta1 >= Q * math.sin(theta1))  # the case, from the moments alone
+    with pytest.raises(rod_disk_spring.SpringStopsRodError):
+        rod_disk_spring.solve(**p)
+    (figure,) = at_limit(p)
+    assert "animation" not in figure.spec
+    rod_x, rod_y = static(figure, "rod")
+    assert math.atan2(rod_x[-1], rod_y[-1]) == pytest.approx(theta1, abs=DRAWN / p["L"])
+    cx, cy, radius = circle(*static(figure, "disk"))
+    assert radius == pytest.approx(p["R"], abs=DRAWN)
+    assert math.hypot(cx, cy) == pytest.approx(p["L"] + p["R"], abs=2 * DRAWN)
+    sx, sy = static(figure, "torsional spring")
+    assert np.hypot(sx - cx, sy - cy).min() >= radius - DRAWN
+    mark_x, mark_y = static(figure, "θ₂")
+    assert math.atan2(mark_x[-1], mark_y[-1]) == pytest.approx(2.0, abs=1e-3)
 
 
 # ----------------------------------------------------------------------------------------------

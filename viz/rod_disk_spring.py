@@ -32,7 +32,7 @@ def at_limit(params, system: str = "si") -> list[Figure]:
     """Beside the refusal where the spring stops the rod short of θ₂: the swing as it is, to its largest
     angle and back, with θ₂ dashed where it never gets. The motion does not depend on θ₂ (it only names
     the angle asked about), so it is the motion solved for an angle the rod does reach, halfway to its
-    stop; none where the rod does not fall at all."""
+    stop. Where it does not fall toward θ₂ at all (the spring wins at release), the assembly at θ₁."""
     return list(_at_limit(tuple(sorted(params.items()))))
 
 
@@ -42,14 +42,42 @@ def _at_limit(key: tuple) -> tuple[Figure, ...]:
     params = dict(key)
     p = validate_params(solver.PARAMS, params)
     stop = solver.largest_angle(p)
-    if stop is None or not stop > p["theta1"]:
+    if stop is None:
         return ()
+    if not stop > p["theta1"]:
+        return (_held(p),)
     reached = solver.solve(**{**params, "theta2": (p["theta1"] + stop) / 2})
     m = solver.motion(reached)
     turn = int(np.argmax(m["theta"]))
     said = (f"Side view, θ from the upward vertical. The spring stops the assembly at θ = {n(math.degrees(stop), 4)}°, "
             f"short of θ₂ = {deg(p['theta2'])} (dashed).")
     return (_swing(p, m, (), said, turn, f"at its largest angle, short of θ₂ = {deg(p['theta2'])}"),)
+
+
+def _held(p) -> Figure:
+    """The assembly at θ₁ where it never falls toward θ₂: upright, held by the spring against a nudge, or
+    released where the spring's moment kθ already beats the weights' and pushes it back. A still
+    picture, θ₂ dashed."""
+    drawn = _bodies(np.array([p["theta1"]]), p)
+    mark = drawn.pop("θ₂")
+    traces = [line(*(row[0] for row in drawn.pop("torsional spring")), "torsional spring", COLORS["force"], width=2),
+              line(*(row[0] for row in drawn["rod"]), "rod", COLORS["ink"], width=5),
+              line(*(row[0] for row in drawn["disk"]), "disk", COLORS["body"], width=3, fill="toself"),
+              line(*(row[0] for row in drawn["marked radius"]), "marked radius", COLORS["accent"], width=4),
+              line(*(row[0] for row in mark), "θ₂", COLORS["ground"], width=1, dash="dash"),
+              points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")]
+    x_range, y_range = fitted(traces)
+    layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range)
+    layout["height"] = 460
+    layout["margin"]["b"] = 60  # a still picture: no time slider's room below the x axis
+    if p["theta1"] == 0:
+        title, said = "Held upright by the spring", "the spring holds the assembly upright, even nudged: it never falls"
+    else:
+        title = f"Released at θ₁ = {deg(p['theta1'])}, pushed back by the spring"
+        said = (f"released at θ₁ = {deg(p['theta1'])}, the spring's moment kθ already beats the weights': it swings "
+                "back, never")
+    description = f"Side view, θ from the upward vertical: {said} toward θ₂ = {deg(p['theta2'])} (dashed)."
+    return Figure("rod_disk_spring_held", title, {"data": traces, "layout": layout}, description, animated=False, height=460)
 
 
 def _swing(p, m, head, said: str, key_frame: int, key_caption: str) -> Figure:
