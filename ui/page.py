@@ -263,13 +263,20 @@ def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=N
         limit = isinstance(error, PhysicalLimitError)
         with refused_in or contextlib.nullcontext():
             results.refused(error, system, problem.solver.LIMIT_LABELS)
-            figures = getattr(importlib.import_module(f"viz.{problem.id}"), "at_limit", lambda *_: [])(params, system) if limit else []
-            for n, drawn in enumerate(figures):
-                # fitted to a laptop's first screen; under a refusal in projector type too little of it is left
-                show_figure(drawn, page=figures, lecture=lecture, fit_screen=refused_in is not None and n == 0 and not lecture)
+            if limit:
+                _limit_figures(problem, params, system, lecture, on_stage=refused_in is not None)
         if limit:
             _method_beside_refusal(problem, params, practice)
         return None
+
+
+def _limit_figures(problem: Problem, params: dict, system: str, lecture: bool, on_stage: bool) -> None:
+    """The figures that show why a physical limit stops the model (``at_limit`` in the problem's viz
+    module, where it has one); the first fitted to a laptop's first screen where it stands on the stage
+    (not under a refusal in projector type: too little of the screen is left)."""
+    figures = getattr(importlib.import_module(f"viz.{problem.id}"), "at_limit", lambda *_: [])(params, system)
+    for n, drawn in enumerate(figures):
+        show_figure(drawn, page=figures, lecture=lecture, fit_screen=on_stage and n == 0 and not lecture)
 
 
 def _results(problem: Problem, solution, answers, system: str, figures, page, lecture: bool, fit_first: bool = False,
