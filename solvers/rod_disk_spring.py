@@ -218,7 +218,12 @@ def solve(**params) -> Solution:
     p = _validate(params)
     stop = largest_angle(p)
     if stop is not None:
-        if stop == p["theta1"]:
+        if stop == p["theta1"] == 0.0:  # upright, both moments vanish: which grows faster near θ = 0 decides
+            why = (f"upright is stable: the spring's moment kθ grows faster than the weights' Q sin θ (k = "
+                   f"{plain_number(p['k'])} N·m/rad ≥ Q = {plain_number(weight_moment(p))} N·m), so a nudge does not "
+                   "make it fall and the largest angle reached is θ₁ = 0°. Soften the spring below Q or release it "
+                   "further over")
+        elif stop == p["theta1"]:
             why = (f"at the release angle the spring's moment kθ already beats the weights' moment "
                    f"Q sin θ (Q = {plain_number(weight_moment(p))} N·m), so the assembly does not fall toward θ₂ "
                    f"at all: the largest angle reached is θ₁ = {plain_number(math.degrees(stop))}°. Soften the "

@@ -519,8 +519,9 @@ def test_a_links_unknown_name_is_said_and_left_out(pid, view):
     (said,) = [w.value for w in at.warning]
     assert f"“{first}x” and “Vz”" in said and "left out" in said and first in said.split("parameters:")[1], said
     assert f"{first}x" not in at.query_params and "Vz" not in at.query_params
-    (said,) = [w.value for w in run_page(pid, {**known, f"{first}x": "1"}).warning]
-    assert f"did you mean **{first}**?" in said, said
+    for typo in (f"{first}x", first.swapcase()):
+        (said,) = [w.value for w in run_page(pid, {**known, typo: "1"}).warning]
+        assert f"did you mean **{first}**?" in said, (typo, said)
 
 
 @pytest.mark.parametrize("query", [{"[a](https://ev.il)": "1"}, {"theta0": "[a](https://ev.il)"},
@@ -537,6 +538,34 @@ def test_what_a_link_says_is_shown_as_typed_never_as_a_link(query):
                 unescaped = re.sub(r"\\(.)", r"\1", said)
                 assert text[:20] in unescaped, said
                 assert not re.search(r"(?<!\\)[\[\]()<>:/.]", said.split("“", 1)[1].split("”", 1)[0]), said
+
+
+@pytest.mark.parametrize("pid, query, says", [
+    ("disk_wall", {"V": "1_0"}, "“1\\_0”, is not a number"),  # Python's float: 10
+    ("disk_wall", {"V": "\u0663"}, "is not a number"),  # an Arabic-Indic three: float takes it as 3
+    ("disk_wall", {"V": "nan"}, "is not a number"),
+    ("pendulum_rebound", {"theta0": "89.9999"}, "rounds to 90 on its control, which is out of range"),
+    ("eulers_disk", {"theta": "89.99"}, "rounds to 90.0 on its control, which is out of range"),
+])
+def test_a_links_value_is_a_number_as_written_and_its_rounding_is_said(pid, query, says):
+    """A link's number is ASCII digits, a point and an exponent (or infinity where the model allows it); a
+    value within range that its control's rounding puts out of range is said so, not called out of range
+    as typed (89.9999 < 90)."""
+    at = run_page(pid, query)
+    assert_clean(at)
+    (warning,) = [w.value for w in at.warning]
+    assert says in warning, warning
+    assert not at.query_params, at.query_params  # the default, as said
+
+
+def test_a_name_given_twice_takes_the_last_and_the_address_keeps_only_it():
+    """?V=2&V=3: the page takes the last, 3, and writes the address back with 3 alone, so a link copied from
+    it says what the page shows (it kept both)."""
+    at = AppTest.from_file(str(ROOT / "pages" / "disk_wall.py"), default_timeout=TIMEOUT)
+    at.query_params["V"] = ["2", "3"]
+    at.run()
+    assert_clean(at)
+    assert at.query_params == {"V": "3"} and at.slider(key="disk_wall__si__V").value == 3
 
 
 @pytest.mark.parametrize("query, name, value, says, never", [

@@ -105,9 +105,13 @@ def test_spring_that_stops_the_rod_reports_the_largest_angle():
 
 
 def test_stiff_spring_holds_it_upright():
+    """Upright both moments vanish: the refusal names what decides, k against Q (59.6 N·m here: (6·0.45/2 +
+    9·0.525)·9.81), not a moment that "already beats" another at θ = 0."""
     with pytest.raises(ValueError) as err:
         rod_disk_spring.solve(k=100.0)
     assert err.value.theta_max == 0.0
+    said = str(err.value)
+    assert "upright is stable" in said and "k = 100 N·m/rad ≥ Q = 59.6" in said and "already beats" not in said, said
 
 
 @pytest.mark.parametrize("theta1", [0.0, 5e-4])

@@ -20,6 +20,8 @@ from ui.catalog import Problem
 from ui.results import literal, plain
 
 MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed
+# A number as a link writes it: ASCII digits, a point, an exponent; or infinity (μ = ∞ on the disk's page).
+URL_NUMBER = re.compile(r"[+-]?(?:(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?|inf(?:inity)?)\Z", re.IGNORECASE)
 
 
 def control_key(problem: Problem, system: str, name: str) -> str:
@@ -72,17 +74,18 @@ def _parse_url_value(p: Any, raw: str, system: str) -> tuple[Any, str | None]:
         return None, "is too long"
     if isinstance(p, Choice):
         return (raw, None) if raw in p.options else (None, f"must be one of {', '.join(p.options)}")
-    try:
-        shown = float(raw.strip())
-    except ValueError:
+    text = raw.strip()
+    if not URL_NUMBER.match(text):  # (Python's float would take 1_0 as 10 and ٣ as 3)
         return None, "is not a number"
-    if math.isinf(shown) and p.allow_inf and shown > 0:
-        return shown, None
-    if math.isfinite(shown):
-        shown = as_shown(p, shown)  # the control can show no finer: keep what it shows
+    typed = float(text)
+    if math.isinf(typed) and p.allow_inf and typed > 0:
+        return typed, None
+    shown = as_shown(p, typed) if math.isfinite(typed) else typed  # the control can show no finer: keep what it shows
     try:
         p.validate(units.to_si(shown, p.dimension, system))
     except ParameterError:
+        if math.isfinite(typed) and shown != typed:  # 89.9999 on a slider of tenths: 90, out of range
+            return None, f"rounds to {display_format(p) % shown} on its control, which is out of range ({shown_range(p, system)})"
         return None, f"is out of range ({shown_range(p, system)})"
     return shown, None
 
@@ -151,7 +154,8 @@ def unknown_in_link(problem: Problem, keys, flags) -> str | None:
     if len(unknown) > MAX_UNKNOWN_SHOWN:
         shown.append(f"{len(unknown) - MAX_UNKNOWN_SHOWN} more")
     listed = shown[0] if len(shown) == 1 else ", ".join(shown[:-1]) + " and " + shown[-1]
-    near = difflib.get_close_matches(unknown[0], names, n=1, cutoff=0.6) if len(unknown) == 1 else []
+    near = ([n for n in names if n.lower() == unknown[0].lower()] or difflib.get_close_matches(unknown[0], names, n=1, cutoff=0.6)
+            if len(unknown) == 1 else [])  # ?v=3 for V: a name that differs in case only first
     meant = f" (did you mean **{near[0]}**?)" if near else ""
     return (f"The link names {listed}{meant}, which {'is not a parameter' if len(unknown) == 1 else 'are not parameters'} "
             f"of this problem: left out. Its parameters: {', '.join(names)}.")
@@ -441,5 +445,6 @@ def mirror_to_url(problem: Problem, values: dict, system: str, flags: dict[str, 
             wanted[p.name] = v if isinstance(p, Choice) else _shown(p, v, system)
     wanted.update({k: v for k, v in flags.items() if v})
     current = {k: st.query_params.get(k) for k in st.query_params.keys()}
-    if current != wanted:
+    # (a name given twice, ?V=2&V=3: the page took the last, and the address keeps only it)
+    if current != wanted or any(len(st.query_params.get_all(k)) > 1 for k in current):
         st.query_params.from_dict(wanted)

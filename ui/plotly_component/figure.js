@@ -455,8 +455,9 @@ class Figure {
     }
     this.root.classList.toggle("dl-lecture", !!style);
     this.root.classList.toggle("dl-staged", !!args.fit_screen);
-    // A phone's stage has no room for a legend of many rows: the caption says what each colour is.
-    if (args.fit_screen && this.root.clientWidth < 500) layout.showlegend = false;
+    // A phone's stage has no room for a motion's legend of many rows: its caption says what each body is.
+    // A plot on the stage (beside a refusal: the cart's ẍ–μ curves) keeps its legend: nothing else names its lines.
+    if (args.fit_screen && spec.animation && this.root.clientWidth < 500) layout.showlegend = false;
     if (style) spec.data = emphasised(spec.data, layout, style);
     const thin = args.fit_screen && !style ? outlineScale(this.root.clientWidth) : 1;  // a projector keeps them thick
     if (thin < 1) spec.data = scaled(spec.data, thin, Math.max(thin, 0.75));
