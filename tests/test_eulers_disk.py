@@ -290,6 +290,25 @@ def test_the_whole_disk_stands_inside_the_scene_s_box_drawn_to_one_scale(p):
         assert scene["aspectratio"][k] / scene["aspectratio"]["x"] == pytest.approx(extent[k] / extent["x"], rel=2e-3)
 
 
+@EXAMPLES
+@given(VALID)
+def test_the_scene_s_axis_titles_stand_inside_its_ranges(p):
+    """plotly.js removes a 3-D annotation whose point lies outside its axes' ranges, and the ranges it draws
+    carry a round-off (210 mm drawn as 209.99999999999997): each axis title, anchored at the box's edge,
+    stands inside every range by far more than a round-off (at r = 0.2 and 0.375 m two of the three were
+    gone), on the edge it names."""
+    _, figs = figures("eulers_disk", **p)
+    scene = figs[0].spec["layout"]["scene"]
+    titles = {a["text"]: a for a in scene["annotations"]}
+    assert set(titles) == {"x (mm)", "y (mm)", "z (mm)"}
+    for title in titles.values():
+        for k in "xyz":
+            low, high = scene[f"{k}axis"]["range"]
+            assert low + 1e-6 * (high - low) < title[k] < high - 1e-6 * (high - low), (title, k, low, high)
+    low, high = scene["yaxis"]["range"]
+    assert titles["x (mm)"]["y"] == pytest.approx(low, rel=1e-3) and titles["y (mm)"]["x"] == pytest.approx(high, rel=1e-3)
+
+
 @pytest.mark.parametrize("tilt", [5.0, 10.0, 40.0, 68.0, 89.5])
 def test_the_caption_says_how_far_the_disk_turns_and_barely_only_where_it_does(tilt):
     """Rolling without slip, the rim rolls 2πr cos θ (the contact's circle) a precession, so the disk

@@ -413,13 +413,14 @@ def test_practice_s_solution_draws_the_motion_at_its_own_height(browser, app_url
     context.close()
 
 
-@pytest.mark.parametrize("tilt", [10, 80])
-def test_euler_s_disk_on_a_phone_has_no_empty_bands_round_its_scene(browser, app_url, tilt):
+@pytest.mark.parametrize("query", ["theta=10", "theta=80", "r=0.2"])
+def test_euler_s_disk_on_a_phone_has_no_empty_bands_round_its_scene(browser, app_url, query):
     """On a phone the 3-D scene's graph is as tall as its box needs (figure.js: sceneHeight): WebGL draws the
     box to the graph's width, and a taller graph left bands above and below it (z's label 128 px below the
     graph's top, x's and y's 83 px above its foot, at the textbook's 10°). The box keeps its size (its x and
-    y labels as far apart), and every label stays inside the graph, the disk stood up too."""
-    context, page, errors = open_page(browser, f"{app_url}/eulers_disk?theta={tilt}", 390, 844, phone=True)
+    y labels as far apart), and every label stays inside the graph, the disk stood up too, or 20 cm across
+    (where plotly.js's round-off once hid two of the three labels)."""
+    context, page, errors = open_page(browser, f"{app_url}/eulers_disk?{query}", 390, 844, phone=True)
     wait_until_idle(page)
     page.wait_for_timeout(1000)
     graph, labels = page.evaluate("""() => {
@@ -454,5 +455,17 @@ def test_a_still_picture_to_scale_has_no_empty_band_round_it(browser, app_url, s
     above = plot["top"] - (legend["bottom"] if legend else graph["top"])
     below = graph["bottom"] - title["bottom"]
     assert 0 <= above <= 40 and 0 <= below <= 40, (above, below)
+    assert not errors, errors
+    context.close()
+
+
+def test_a_plot_on_a_phone_s_stage_keeps_its_legend(browser, app_url):
+    """Beside the cart's wheelie the ẍ–μ curves stand on the stage: on a phone they keep their legend (a
+    motion there drops its legend, its caption naming the bodies; the three drives' curves had no names)."""
+    context, page, errors = open_page(browser, f"{app_url}/driven_cart?drive=rear&mu=3", 390, 844, phone=True)
+    wait_until_idle(page)
+    page.wait_for_timeout(800)
+    names = page.evaluate(f"() => [...document.querySelectorAll(\"{STAGE} .dl-graph .legend .legendtext\")].map(t => t.textContent)")
+    assert {"front-wheel drive", "rear-wheel drive", "all-wheel drive"} <= set(names), names
     assert not errors, errors
     context.close()

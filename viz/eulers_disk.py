@@ -59,6 +59,11 @@ def _animation(solution) -> Figure:
     tick = _nice_below(span / 2)  # three labels a side (−20, 0, 20), clear of the corners where two axes meet
     z_ticks = [tick * k for k in range(1, int(top / tick) + 1)]
     axis = lambda lo, hi, ticks: {"range": r([lo, hi]), "title": {"text": ""}, "tickvals": ticks}  # noqa: E731
+    # plotly.js hides a 3-D annotation outside its axes' ranges, and scales those ranges with a round-off
+    # (210 became 209.99999999999997 at r = 0.2: "y (mm)" and "z (mm)" vanished): the titles are anchored a
+    # ten-thousandth of the box inside its edges.
+    inset = 1e-4 * span
+    edge = span - inset
     layout = {
         "height": 560, "margin": {"l": 0, "r": 0, "t": 10, "b": 90},
         "legend": {"orientation": "h", "y": 1.0, "x": 0},
@@ -72,9 +77,9 @@ def _animation(solution) -> Figure:
                   "zaxis": axis(0, top, z_ticks), "aspectmode": "manual",  # one scale on all three axes
                   "aspectratio": _box(1.1 * top / (2 * span)), "camera": CAMERA,
                   "annotations": [
-                      {"x": 0, "y": r(-span), "z": 0, "text": "x (mm)", "showarrow": False, "xshift": -40, "yshift": -42},
-                      {"x": r(span), "y": 0, "z": 0, "text": "y (mm)", "showarrow": False, "xshift": 40, "yshift": -42},
-                      {"x": r(-span), "y": r(-span), "z": r(top), "text": "z (mm)", "showarrow": False,
+                      {"x": 0, "y": r(-edge), "z": r(inset), "text": "x (mm)", "showarrow": False, "xshift": -40, "yshift": -42},
+                      {"x": r(edge), "y": 0, "z": r(inset), "text": "y (mm)", "showarrow": False, "xshift": 40, "yshift": -42},
+                      {"x": r(-edge), "y": r(-edge), "z": r(top - inset), "text": "z (mm)", "showarrow": False,
                        "xanchor": "left", "yanchor": "bottom", "xshift": 4}]},
     }
     # 3-D traces need redraw; the frame duration sets the slow motion.
