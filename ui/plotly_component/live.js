@@ -295,7 +295,7 @@ function onDragEnd(event) {
   window.removeEventListener("pointermove", onDragMove, true);
   for (const type of ["pointerup", "pointercancel"]) window.removeEventListener(type, onDragEnd, true);
   if (ended && ended.drawn && ended.last) {
-    say(ended.input, ended.drawn.said);  // the slider's own again (a release's render says its new value)
+    say(ended.input, ended.drawn.said, ended.drawn.valueBefore);  // the slider's own again (a release's render gives its new value)
     if (event.type === "pointerup") {
       // react-aria has seen none of the moves: one before its release, to the middle of the step the thumb
       // shows, so that its arithmetic lands there too (at the release's own point, half a step could round
@@ -336,15 +336,16 @@ function drawnParts(slider, track, input) {
   const follow = state && state.data.follows.find(([, key]) => slider.closest(`.st-key-${CSS.escape(key)}`));
   const general = follow && /^%\.(\d+)g$/.exec(follow[3] || "");  // "%.6g": six figures, no trailing zeros
   return {root: slider, thumb, label, fill, gradient, decimals: (shown[1] || "").length, figures: general ? Number(general[1]) : 0,
-          left: thumb.style.left, text: text.textContent, said: input.getAttribute("aria-valuetext")};
+          left: thumb.style.left, text: text.textContent, said: input.getAttribute("aria-valuetext"), valueBefore: input.value};
 }
 
 // The thumb, its value and the filled track at ``value``, as the slider's own render would draw them.
-function drawThumb({input, drawn, value}) {
+function drawThumb(drag) {
+  const {input, drawn, value} = drag;
   const {min, max} = rangeOf(input), percent = ((value - min) / (max - min)) * 100;
   drawn.thumb.style.left = `${percent}%`;
   setThumbText(drawn, thumbText(value, drawn));
-  say(input, thumbText(value, drawn));  // what a screen reader gets, as Streamlit's render would say it
+  say(input, thumbText(value, drawn), value);  // what a screen reader gets, as a render of the slider would give it
   let stop = 0;  // [fill start, fill start, fill end, fill end]: the end moves
   drawn.fill.style.backgroundImage = drawn.gradient.replace(/-?[\d.]+%/g, (at) => (stop++ >= 2 ? `${percent}%` : at));
   // Streamlit's layout effect: the value kept within the slider at either end of the track
@@ -353,15 +354,18 @@ function drawThumb({input, drawn, value}) {
   if (Math.round(centre - label.width / 2) < Math.round(box.left)) Object.assign(drawn.label.style, {left: `${box.left - centre + half}px`, right: ""});
   else if (Math.round(centre + label.width / 2) > Math.round(box.right)) Object.assign(drawn.label.style, {left: "", right: `${centre + half - box.right}px`});
   else Object.assign(drawn.label.style, {left: "", right: ""});
+  drag.seen = input.value;  // (the value just given it: React has drawn no other)
 }
 
 // A value as the slider's format writes it (sprintf-js, which Streamlit uses): "%.6g" or "%.2f".
 export const thumbText = (value, {decimals, figures}) => (figures ? String(Number(value.toPrecision(figures))) : value.toFixed(decimals));
 
-// The value a range input gives a screen reader (Streamlit writes it after each render of the slider).
-function say(input, text) {
+// The value a range input gives a screen reader: its text (Streamlit writes it after each render of the
+// slider) and its value, which Chromium's accessibility tree reads for a range input (not the text).
+function say(input, text, value) {
   if (text === null) input.removeAttribute("aria-valuetext");
   else if (input.getAttribute("aria-valuetext") !== text) input.setAttribute("aria-valuetext", text);
+  if (String(input.value) !== String(value)) input.value = value;
 }
 
 // React's own text node (a node put in its place would be left standing when React writes the next value).
