@@ -485,3 +485,29 @@ def test_a_plot_on_a_phone_s_stage_keeps_its_legend(browser, app_url):
     assert {"front-wheel drive", "rear-wheel drive", "all-wheel drive"} <= set(names), names
     assert not errors, errors
     context.close()
+
+
+def test_past_a_limit_the_badge_over_a_phone_s_stage_says_the_whole_note(browser, app_url):
+    """Dragging the pendulum's θ₀ below the impact angle on a phone: every answer waits, and the badge over the
+    figure says why, whole ("Now: released below the angle where the sphere touches the floor: no impact."),
+    on as many lines as it takes; it was one line cut short ("Now: relea…") after a headline saying only
+    "updating…"."""
+    context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound", 390, 844, phone=True)
+    page.wait_for_timeout(300)
+    slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").nth(1)  # θ₀
+    touch = context.new_cdp_session(page)
+    thumb = box(slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
+    x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
+    touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
+    for n in range(1, 9):
+        touch.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": max(2, x - 25 * n), "y": y}]})
+        page.wait_for_timeout(40)
+    page.wait_for_timeout(200)
+    badge = page.evaluate("""() => { const b = document.querySelector('.dl-live-badge');
+      return {text: b.innerText.trim(), cut: b.scrollWidth > b.clientWidth + 1 || b.scrollHeight > b.clientHeight + 1}; }""")
+    touch.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+    assert badge["text"] == "Now: released below the angle where the sphere touches the floor: no impact.", badge
+    assert not badge["cut"], badge
+    wait_until_idle(page)
+    assert not errors, errors
+    context.close()

@@ -24,6 +24,8 @@ const STYLE = `
   white-space: nowrap; overflow: hidden; text-overflow: ellipsis;
   background: var(--st-orange-background-color, #FFF3E0); color: var(--st-orange-text-color, #9B4519); }
 .dl-live-badge .dl-live-note { font-size: 0.8rem; margin-left: 0.6em; opacity: 0.9; }
+.dl-live-badge.dl-live-note-only { white-space: normal; }  /* over Play too: the figure is dimmed, nothing to play */
+.dl-live-badge.dl-live-note-only .dl-live-note { display: none; }
 .dl-figure.dl-lecture .dl-live-badge { font-size: 1.3rem; }  /* read from the back of the room, as the title it covers */
 @media (max-width: 640px) { .dl-live-badge .dl-live-note { display: none; } }  /* a phone: the headline and its unit whole (the figure is dimmed) */
 .dl-live-status { font-size: 0.95rem; margin: 0 0 0.5rem 0; color: var(--st-orange-text-color, #9B4519); font-weight: 600; }
@@ -566,9 +568,14 @@ function draw() {
   const status = statusLine();
   if (status && status.textContent !== regimeText) status.textContent = regimeText;
   // The headline on the stage, where the eye is while dragging: the main answer, and a regime entered.
+  // Past a limit (no values, the figure dimmed) the note alone, on as many lines as it takes: "ω₂: updating…"
+  // says nothing, and cut to one line on a phone the note said nothing either ("Now: the spri…").
   const main = state.data.answers[0], x = result.values && main ? result.values[main[0]] : undefined;
-  setText(".dl-live-headline", main ? `${main[4]}: ${Number.isFinite(x) ? quantity(x, main, state.data.grouped_below) : UPDATING}` : "");
-  setText(".dl-live-said", regimeText ? ` · ${regimeText}` : "");
+  const noteOnly = !result.values && !!regimeText;
+  setText(".dl-live-headline", main && !noteOnly ? `${main[4]}: ${Number.isFinite(x) ? quantity(x, main, state.data.grouped_below) : UPDATING}` : "");
+  setText(".dl-live-said", noteOnly ? regimeText : regimeText ? ` · ${regimeText}` : "");
+  const badge = document.querySelector(".dl-live-badge");
+  if (badge) badge.classList.toggle("dl-live-note-only", noteOnly);
   drawCaption(params, result);
   drawPose(params, result);
   performance.measure("dl-live-draw", {start: started});  // its own cost, for bench/live_drag.py
