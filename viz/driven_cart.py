@@ -119,7 +119,7 @@ def versus_mu(params, accel: float | None = None) -> Figure:
     else:
         data.append(points([p["mu"]], [0.0], f"this cart's μ = {n(p['mu'], 3)}: past the lift-off", COLORS["marker"],
                            size=13, symbol="x"))
-    layout = base_layout(equal_axes=False, x_title="friction coefficient μ", y_title="ẍ_C (m/s²)", height=380)
+    layout = base_layout(equal_axes=False, x_title="friction coefficient μ", y_title="ẍ<sub>C</sub> (m/s²)", height=380)
     layout["margin"]["b"] = 60
     description = (f"Acceleration against μ for the three drives. Rear and all-wheel drive end at "
                    f"μ = b/a = {n(mu_lift, 3)}, where the front wheels lift (a wheelie); front drive never lifts "

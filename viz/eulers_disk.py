@@ -151,7 +151,7 @@ def _versus_tilt(solution) -> Figure:
     curves = solver.versus_tilt(p, tilts)
     deg = np.degrees(tilts)
     data = [
-        line(r(deg), r(curves["omega_p"]), "ω_p, precession of the contact (rad/s)", COLORS["impulse"], width=3),
+        line(r(deg), r(curves["omega_p"]), "ω<sub>p</sub>, precession of the contact (rad/s)", COLORS["impulse"], width=3),
         line(r(deg), r(curves["omega_total"]), "|ω|, the disk's own rotation (rad/s)", COLORS["body"], width=3,
              dash="dash"),
         line(r(deg), r(curves["energy"] * 1000), "energy (mJ)", COLORS["velocity"], width=3, dash="dot",
@@ -198,14 +198,14 @@ def on_request(solution, damping: float = 5e-6) -> Figure:
     # Stacked over one time axis, not two y-axes overlaid: each gets ticks of its own.
     data = [
         line(r(d["t"]), r(np.degrees(d["tilt"])), "tilt θ (°)", COLORS["body"], width=3),
-        line(r(d["t"]), r(d["precession"]), "precession rate ω_p (rad/s)", COLORS["impulse"], width=3,
+        line(r(d["t"]), r(d["precession"]), "precession rate ω<sub>p</sub> (rad/s)", COLORS["impulse"], width=3,
              xaxis="x2", yaxis="y2"),
     ]
     layout = base_layout(equal_axes=False, x_title="", y_title="tilt θ (°)", height=420)
     layout["yaxis"].update({"domain": [0.55, 1.0], "rangemode": "tozero"})
     layout["xaxis"].update({"matches": "x2", "showticklabels": False})
     layout["xaxis2"] = {"anchor": "y2", "title": {"text": "t (s)"}}
-    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.45], "title": {"text": "ω_p (rad/s)"}}
+    layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.45], "title": {"text": "ω<sub>p</sub> (rad/s)"}}
     layout["margin"]["b"] = 60
     start, end = n(d["precession"][0], 3), n(d["precession"][-1], 3)
     if d["time_to_stop"] == 0:  # it starts where a run-down ends: the start alone, as points

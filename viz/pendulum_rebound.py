@@ -33,7 +33,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
     curve = line(r(m["t_curve"]), r(np.degrees(m["theta_curve"])), "θ(t)", COLORS["body"], width=2,
                  xaxis="x2", yaxis="y2")  # dense, with a point at each impact: the cusps land on θ_I
     impact_line = line(r([m["t"][0], m["t"][-1]]), r([math.degrees(a["theta_impact"])] * 2),
-                       "impact angle θ_I", COLORS["ground"], width=1, dash="dash", xaxis="x2", yaxis="y2")
+                       "impact angle θ<sub>I</sub>", COLORS["ground"], width=1, dash="dash", xaxis="x2", yaxis="y2")
     first_impact = int(np.argmin(np.abs(m["t"] - m["impact_times"][0]))) if m["impact_times"] else 0
     # The first impact's frame is drawn at the closed form's instant (the key pose, below): the same
     # numbers the browser's generated pose gives while a control is dragged.

@@ -111,7 +111,7 @@ def key_pose(p, a, system: str = "si", xp=np) -> dict:
     return {name: (x[0], y[0]) for name, (x, y) in drawn.items()}
 
 
-WALL_PUSH, FLOOR_PUSH = "wall's push N_A", "floor's push N_B"
+WALL_PUSH, FLOOR_PUSH = "wall's push N<sub>A</sub>", "floor's push N<sub>B</sub>"  # (legend names: plotly's HTML)
 
 
 def _force_scale(p):
@@ -140,8 +140,8 @@ def _reactions(solution, m) -> Figure:
     t, t_leave = m["curve_t"], m["t_leave"]
     top = float(max(np.max(m["N_floor"]), np.max(m["N_wall"]), p["m"] * p["g"])) * 1.08
     data = [
-        line(r(t), r(m["N_wall"]), "wall, N_A", COLORS["force"], width=3),
-        line(r(t), r(m["N_floor"]), "floor, N_B", COLORS["velocity"], width=3, dash="dash"),
+        line(r(t), r(m["N_wall"]), "wall, N<sub>A</sub>", COLORS["force"], width=3),
+        line(r(t), r(m["N_floor"]), "floor, N<sub>B</sub>", COLORS["velocity"], width=3, dash="dash"),
         line(r([t_leave, t_leave]), r([0, top]), f"top leaves the wall, t = {n(t_leave)} s", COLORS["impulse"],
              width=2, dash="dot"),
         line(r([t[0], t[-1]]), r([p["m"] * p["g"]] * 2), "weight mg", COLORS["ink"], width=1, dash="longdash"),
