@@ -558,6 +558,15 @@ def test_a_links_value_is_a_number_as_written_and_its_rounding_is_said(pid, quer
     assert not at.query_params, at.query_params  # the default, as said
 
 
+@pytest.mark.parametrize("pid", [p.id for p in PROBLEMS if not p.us_units])
+def test_units_asked_of_an_si_only_page_are_said_and_left_out(pid):
+    """?units=us on a page stated in SI only (the cart, Euler's disk…) was dropped without a word."""
+    at = run_page(pid, {"units": "us"})
+    assert_clean(at)
+    (said,) = [w.value for w in at.warning]
+    assert "SI units only" in said and "units" not in at.query_params, said
+
+
 def test_a_name_given_twice_takes_the_last_and_the_address_keeps_only_it():
     """?V=2&V=3: the page takes the last, 3, and writes the address back with 3 alone, so a link copied from
     it says what the page shows (it kept both)."""

@@ -161,7 +161,10 @@ LINK_FLAGS = frozenset(("units", "lecture", "practice", "instructor", "lti", *LI
 
 def _unknown_in_link(problem: Problem) -> str | None:
     flag = getattr(importlib.import_module(f"viz.{problem.id}"), "ON_REQUEST_FLAG", None)
-    return unknown_in_link(problem, st.query_params.keys(), LINK_FLAGS | {flag})
+    said = unknown_in_link(problem, st.query_params.keys(), LINK_FLAGS | {flag})
+    if not problem.us_units and st.query_params.get("units", "si") != "si":  # (?units=us on an SI-only page)
+        said = " ".join(filter(None, (said, "This problem is stated in SI units only: the link's units are left out.")))
+    return said
 
 
 def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str]:
