@@ -160,8 +160,7 @@ LINK_FLAGS = frozenset(("units", "lecture", "practice", "instructor", "lti", *LI
 
 
 def _unknown_in_link(problem: Problem) -> str | None:
-    flag = getattr(importlib.import_module(f"viz.{problem.id}"), "ON_REQUEST_FLAG", None)
-    said = unknown_in_link(problem, st.query_params.keys(), LINK_FLAGS | {flag})
+    said = unknown_in_link(problem, st.query_params.keys(), LINK_FLAGS | {_on_request_flag_name(problem)})
     if not problem.us_units and st.query_params.get("units", "si") != "si":  # (?units=us on an SI-only page)
         said = " ".join(filter(None, (said, "This problem is stated in SI units only: the link's units are left out.")))
     return said
@@ -235,10 +234,15 @@ def _on_request(problem: Problem, solution, figures) -> None:
         show_figure(drawn, page=figures)
 
 
+def _on_request_flag_name(problem: Problem) -> str | None:
+    """``ON_REQUEST_FLAG`` in the problem's viz module (e.g. "rundown"), or None."""
+    return getattr(importlib.import_module(f"viz.{problem.id}"), "ON_REQUEST_FLAG", None)
+
+
 def _on_request_flag(problem: Problem) -> dict[str, str]:
     """The URL flag that keeps a problem's on-request figure open (``ON_REQUEST_FLAG`` in its viz
     module, e.g. ?rundown=1): the switch starts from the link and the link follows the switch."""
-    flag = getattr(importlib.import_module(f"viz.{problem.id}"), "ON_REQUEST_FLAG", None)
+    flag = _on_request_flag_name(problem)
     if flag is None:
         return {}
     key = f"{problem.id}__on_request"

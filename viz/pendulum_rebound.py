@@ -54,11 +54,7 @@ def figures(solution, system: str = "si") -> list[Figure]:
     # The stage fits the motion (pivot, rod, sphere and its arrow over every frame) and the surface's
     # contact; the surface runs past the view whatever the window's aspect.
     x_range, y_range = fitted([pivot, *moving_traces[1:5], contact])
-    span = 3 * max(x_range[1] - x_range[0], y_range[1] - y_range[0])
-    if floor:
-        ground = line(r([x_range[0] - span, x_range[1] + span]), [-p["d"] * k] * 2, "floor", COLORS["ground"], width=6)
-    else:
-        ground = line([-rad] * 2, r([y_range[0] - span, y_range[1] + span]), "wall", COLORS["ground"], width=6)
+    ground = _surface(p, k, x_range, y_range)
     layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range, x_title=f"x ({u})", y_title=f"y ({u})")
     # Stacked, not side by side, so that a phone-width window keeps both readable.
     layout["yaxis"]["domain"] = [0.42, 1.0]
@@ -94,11 +90,7 @@ def at_limit(params, system: str = "si") -> list[Figure]:
                  COLORS["impulse"], width=2, dash="dash")
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
     x_range, y_range = fitted([pivot, asked, *bodies])
-    span = 3 * max(x_range[1] - x_range[0], y_range[1] - y_range[0])
-    if p["surface"] == "floor":
-        ground = line(r([x_range[0] - span, x_range[1] + span]), [-p["d"] * k] * 2, "floor", COLORS["ground"], width=6)
-    else:
-        ground = line([-rad] * 2, r([y_range[0] - span, y_range[1] + span]), "wall", COLORS["ground"], width=6)
+    ground = _surface(p, k, x_range, y_range)
     layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range, x_title=f"x ({u})", y_title=f"y ({u})")
     layout["height"] = 460
     layout["margin"]["b"] = 60  # a still picture: no time slider's room below the x axis
@@ -107,6 +99,15 @@ def at_limit(params, system: str = "si") -> list[Figure]:
                    f"{'on' if theta0 == theta_I else 'inside'} the {p['surface']}, with no swing before an impact.")
     return [Figure("pendulum_at_limit", f"Where the sphere meets the {p['surface']}",
                    {"data": [ground, asked, *bodies, pivot], "layout": layout}, description, animated=False, height=460)]
+
+
+def _surface(p, k: float, x_range, y_range) -> dict:
+    """The floor (at −d) or the wall (at x = −r), lengths ``k`` times their SI value, running past the view
+    ``x_range``, ``y_range`` whatever the window's aspect."""
+    span = 3 * max(x_range[1] - x_range[0], y_range[1] - y_range[0])
+    if p["surface"] == "floor":
+        return line(r([x_range[0] - span, x_range[1] + span]), [-p["d"] * k] * 2, "floor", COLORS["ground"], width=6)
+    return line([-p["r"] * k] * 2, r([y_range[0] - span, y_range[1] + span]), "wall", COLORS["ground"], width=6)
 
 
 def _bodies(theta, omega, p, a, k: float, xp=np) -> dict:
