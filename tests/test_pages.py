@@ -567,6 +567,28 @@ def test_units_asked_of_an_si_only_page_are_said_and_left_out(pid):
     assert "SI units only" in said and "units" not in at.query_params, said
 
 
+@pytest.mark.parametrize("pid, query, says", [
+    ("disk_wall", {"lecture": "2"}, "lecture=“2” is not 1 (on) or 0 (off)"),
+    ("stick_ball", {"practice": "yes"}, "practice=“yes” is not 1 (on) or 0 (off)"),
+    ("eulers_disk", {"rundown": "banana"}, "rundown=“banana” is not 1 (on) or 0 (off)"),
+    ("pendulum_rebound", {"units": "imperial"}, "units “imperial” are neither si nor us"),
+])
+def test_a_flags_value_it_does_not_take_is_said(pid, query, says):
+    """?lecture=2, ?rundown=banana, ?units=imperial were taken as off (or SI) without a word."""
+    at = run_page(pid, query)
+    assert_clean(at)
+    (said,) = [w.value for w in at.warning]
+    assert says in said, said
+    assert not at.query_params, at.query_params  # off (SI), as said: the address drops the flag
+
+
+@pytest.mark.parametrize("query", [{"lecture": "0"}, {"lecture": "1"}, {"units": "us"}, {"units": "si"}, {"practice": ""}])
+def test_a_flags_own_values_are_taken_without_a_word(query):
+    at = run_page("pendulum_rebound", query)
+    assert_clean(at)
+    assert not at.warning, [w.value for w in at.warning]
+
+
 def test_a_name_given_twice_takes_the_last_and_the_address_keeps_only_it():
     """?V=2&V=3: the page takes the last, 3, and writes the address back with 3 alone, so a link copied from
     it says what the page shows (it kept both)."""

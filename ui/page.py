@@ -21,8 +21,9 @@ from ui.figure import show as show_figure
 from ui.stylesheet import Stylesheet
 from viz import on_request
 from edge import widget_values
-from ui.params import (check_in_range, fixed_parameters, lesson_parameters, mirror_to_url, more_parameters,
-                       parameter_panel, refused_values_notice, unknown_in_link)
+from ui.params import (MAX_URL_VALUE, check_in_range, fixed_parameters, lesson_parameters, mirror_to_url,
+                       more_parameters, parameter_panel, refused_values_notice, unknown_in_link)
+from ui.results import literal
 
 LECTURE_CSS = """
 <style>
@@ -160,10 +161,17 @@ LINK_FLAGS = frozenset(("units", "lecture", "practice", "instructor", "lti", *LI
 
 
 def _unknown_in_link(problem: Problem) -> str | None:
-    said = unknown_in_link(problem, st.query_params.keys(), LINK_FLAGS | {_on_request_flag_name(problem)})
-    if not problem.us_units and st.query_params.get("units", "si") != "si":  # (?units=us on an SI-only page)
-        said = " ".join(filter(None, (said, "This problem is stated in SI units only: the link's units are left out.")))
-    return said
+    """What the page says of a link's names it does not know and of its flags' values it does not take."""
+    switches = ("lecture", "practice", *filter(None, [_on_request_flag_name(problem)]))
+    said = [unknown_in_link(problem, st.query_params.keys(), LINK_FLAGS | set(switches))]
+    units_asked = st.query_params.get("units", "si")
+    if not problem.us_units and units_asked != "si":  # (?units=us on an SI-only page)
+        said.append("This problem is stated in SI units only: the link's units are left out.")
+    elif units_asked not in ("si", "us"):
+        said.append(f"The link's units “{literal(units_asked[:MAX_URL_VALUE])}” are neither si nor us: SI is used.")
+    said += [f"The link's {flag}=“{literal(st.query_params[flag][:MAX_URL_VALUE])}” is not 1 (on) or 0 (off): "
+             "taken as off." for flag in switches if st.query_params.get(flag, "0") not in ("0", "1", "")]
+    return " ".join(filter(None, said)) or None
 
 
 def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str]:
