@@ -175,7 +175,7 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
     assert page.locator("[data-testid='stAlertContentError']").count() == 0
 
     # A slider (angles, restitution) answers the keyboard too: a lesson's, on the stage beside the figure.
-    slider = page.locator(".st-key-dl_stage_controls [data-testid='stSlider'] [role='slider']").first
+    slider = page.locator(".st-key-dl_stage_controls [data-testid='stSlider'] input[type='range']").first
     if slider.count():
         before = answers_table(page)
         slider.focus()

@@ -142,8 +142,10 @@ def stage_faults(page, problem, height: int) -> list[str]:
 
 def stepper_faults(page, height: int) -> list[str]:
     """Each stage slider's −/+ (ui/plotly_component/live.js) on a narrow screen: two, named, at least
-    44×44 px, in the first screen, clear of the thumb at either end of the track, under a track of the
-    slider's width on a phone taller than 800 px; none on a wide one."""
+    44×32 px, in the first screen, clear of the thumb at either end of the track and of the track's whole
+    box (the 40 px a finger drags in: 44 px tall, they reached 12 px into it, and a drag begun a little low
+    on the thumb at an end pressed − or +), under a track of the slider's width on a phone taller than
+    800 px; none on a wide one."""
     narrow = page.evaluate("innerWidth") <= 640
     faults = []
     for slider in page.locator(f"{CONTROLS} [data-testid='stSlider']").all():
@@ -166,8 +168,11 @@ def stepper_faults(page, height: int) -> list[str]:
         half = thumb["width"] / 2
         for step in steps:
             b = box(step)
-            if b["width"] < 44 or b["height"] < 44 or b["y"] < 0 or b["y"] + b["height"] > height + 1:
+            if b["width"] < 44 or b["height"] < 32 or b["y"] < 0 or b["y"] + b["height"] > height + 1:
                 faults.append(f"{step.get_attribute('aria-label')}: {b['width']:.0f}×{b['height']:.0f} at {b['y']:.0f}")
+            if overlaps(b, track):
+                faults.append(f"{step.get_attribute('aria-label')}: {track['y'] + track['height'] - b['y']:.0f} px into the "
+                              "track's box")
             for end in (track["x"], track["x"] + track["width"]):  # the thumb at either end of its track
                 if overlaps(b, {**thumb, "x": end - half}):
                     faults.append(f"{step.get_attribute('aria-label')}: under the thumb at the track's end")

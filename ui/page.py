@@ -63,7 +63,7 @@ PHONE_CSS = """
 
 # The stage (Study and Lecture): the motion with the lesson's controls beside it in a narrow column,
 # which a phone stacks below the figure; there the controls stand two to a row, so that the figure,
-# Play and the controls share the first screen, and a slider's thumb is the size of a thumb. On paper
+# Play and the controls share the first screen (a finger drags anywhere on a track's 40 px). On paper
 # the motion takes the page's width and the controls are left out.
 STAGE_CSS = """
 <style>
@@ -76,7 +76,6 @@ STAGE_CSS = """
     .st-key-dl_stage > [data-testid='stLayoutWrapper'] { flex: none !important; width: 100%; }
     .st-key-dl_stage_controls { display: grid !important; grid-template-columns: 1fr 1fr; column-gap: 14px; row-gap: 0; }
     .st-key-dl_stage_controls > div { min-width: 0; width: auto !important; }
-    .st-key-dl_stage_controls [data-testid='stSlider'] [role='slider'] { width: 22px; height: 22px; }
     /* the track is short beside its −/+: its end values stay whole numbers ("1.00", never "1.0 / 0") */
     .st-key-dl_stage_controls [data-testid='stSliderTickBar'] div { white-space: nowrap; }
     .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p { font-size: 0.8rem; line-height: 1.25; }

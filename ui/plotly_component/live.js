@@ -38,7 +38,9 @@ const STYLE = `
 @media (max-width: 640px) {
   .st-key-dl_stage_controls .dl-stepped { position: relative; padding-bottom: 32px; }
   .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderThumbValue'] { z-index: 1; }
-  .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: 0; width: 44px; height: 44px; padding: 0;
+  /* 44 px wide, 32 tall: wholly below the track's 40 px of touch, so a finger a little low on the thumb
+     still drags it (44 tall, they reached 12 px into it and took the drag) */
+  .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: 0; width: 44px; height: 32px; padding: 0;
     font-size: 1.4rem; line-height: 1; border-radius: 0.5rem; cursor: pointer; touch-action: manipulation;
     border: 1px solid rgba(128, 128, 128, 0.6); background: rgba(128, 128, 128, 0.12); color: inherit; }  /* the theme's text, light or dark */
   /* the track's end values (shown while it is touched) between the −/+ under it */
@@ -52,7 +54,7 @@ const STYLE = `
 @media (max-width: 640px) and (max-height: 800px) {
   .st-key-dl_stage_controls .dl-stepped { padding-bottom: 0; }
   .st-key-dl_stage_controls .dl-stepped > [role='group'] { padding-left: 56px; padding-right: 56px; }
-  .st-key-dl_stage_controls .dl-step { bottom: -2px; }
+  .st-key-dl_stage_controls .dl-step { bottom: 4px; }  /* level with the thumb */
   .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: -6px; margin-right: -6px; }
 }
 @media print { .dl-step { display: none !important; } }
@@ -756,7 +758,7 @@ function onPointerDown(event) {
 
 // ------------------------------------------------------------------ one step by thumb (a phone)
 // A finger on a half-width slider cannot hit one step (1° of θ₂ on some 80 px): on a narrow screen each
-// stage slider has a − and a + button (44 px, WCAG's target size) at the ends of its track, named for
+// stage slider has a − and a + button (44 × 32 px, over WCAG's 24 px) at the ends of its track, named for
 // screen readers ("θ₂ one step lower"). A tap moves one step as a key press does (above): live, and a
 // burst of taps is one run, COMMIT_AFTER ms after the last. Hidden on a wide screen and on paper.
 function addSteppers() {
