@@ -384,6 +384,53 @@ def test_a_drag_lands_on_the_value_its_thumb_showed(browser, app_url):
     context.close()
 
 
+# The posed traces' reach on the motion's axes beside the axes' ranges as drawn: [[x lo, x hi], [y lo, y hi]] each.
+# ``posed``: those traces (by default the ones not dimmed: while a control is held, the posed ones).
+POSED_REACH = """(g, posed) => {
+  const full = g._fullLayout, reach = [[Infinity, -Infinity], [Infinity, -Infinity]];
+  posed = posed || g.data.map((t, n) => n).filter((n) => (g._fullData[n].opacity ?? 1) === 1
+    && (g.data[n].xaxis || 'x') === 'x' && (g.data[n].yaxis || 'y') === 'y');
+  for (const n of posed) [g.data[n].x, g.data[n].y].forEach((vs, a) => { for (const v of vs || []) if (v !== null && isFinite(v)) {
+    reach[a][0] = Math.min(reach[a][0], v); reach[a][1] = Math.max(reach[a][1], v); } });
+  return {reach, posed, ranges: [full.xaxis.range.slice(), full.yaxis.range.slice()]};
+}"""
+
+
+@pytest.mark.parametrize("pid, key", [("sliding_ladder", "L"), ("driven_cart", "a")])
+def test_a_body_dragged_larger_stays_inside_the_axes(browser, app_url, pid, key):
+    """A size dragged to its top (the ladder's L, 4 → 12 m; the cart's CM height a): the posed body at its key
+    instant stays inside the plot while the mouse is held (the axes widen to hold it; they ran past them), and
+    after the release the run's own figure is drawn with its own ranges."""
+    context, page, errors = open_page(browser, f"{app_url}/{pid}", 1400, 1000)
+    page.wait_for_timeout(500)
+    graph = page.locator(f"{STAGE} .dl-graph").first
+    before = graph.evaluate(POSED_REACH, None)["ranges"]
+    control = page.locator(f".st-key-{pid}__si__{key}")
+    track = control.locator("[role='group'] > [data-orientation]").first.bounding_box()
+    thumb = control.locator("input[type='range']")
+    low, high, value = (float(thumb.get_attribute(a)) for a in ("min", "max", "value"))
+    y, start = track["y"] + track["height"] / 2, track["x"] + track["width"] * (value - low) / (high - low)
+    page.mouse.move(start, y)
+    page.mouse.down()
+    for i in range(1, 16):
+        page.mouse.move(start + (track["x"] + track["width"] - start) * i / 15, y)
+        page.wait_for_timeout(40)
+    page.wait_for_timeout(800)  # the last pose drawn
+    held = graph.evaluate(POSED_REACH, None)
+    for (lo, hi), (a, b) in zip(held["reach"], held["ranges"]):
+        assert a <= lo and hi <= b, held  # the body whole inside the axes
+    assert held["ranges"] != before, (held, before)  # (widened: at the top the body reaches past the start's)
+    page.mouse.up()
+    page.wait_for_function(f"() => new URL(location.href).searchParams.get('{key}') === '{high:g}'", timeout=30_000)
+    wait_until_idle(page)
+    page.wait_for_timeout(800)
+    after = graph.evaluate(POSED_REACH, held["posed"])  # the same bodies, at their first frame
+    for (lo, hi), (a, b) in zip(after["reach"], after["ranges"]):
+        assert a <= lo and hi <= b, after
+    assert not errors, errors
+    context.close()
+
+
 @pytest.mark.parametrize("pid", ["driven_cart", "sliding_ladder"])
 def test_the_companion_figures_keep_their_size_when_the_view_puts_them_first(browser, app_url, pid):
     """Study to Lecture in one visit puts the companion figures before the answers, in the element they

@@ -326,11 +326,44 @@ class Figure {
   // ones in their SVG, anything else through plotly's animate, given every moving trace (it redraws
   // only the subplots of the traces it gets, and empties the others).
   pose(traces, data) {
+    const widened = this.widen(traces, data);
+    if (widened) return widened;
     if (this.sceneOverlay(traces, data) || this.sceneUpdate(traces, data) || this.svgUpdate(traces, data)) return Promise.resolve();
     const others = (this.frames[0] ? this.frames[0].traces : []).filter((t) => !traces.includes(t));
     return this.Plotly.animate(this.graph, {data: [...data, ...others.map((t) => ({x: this.graph.data[t].x, y: this.graph.data[t].y}))],
                                             traces: [...traces, ...others]},
                                {mode: "immediate", frame: {duration: 0, redraw: false}, transition: {duration: 0}});
+  }
+  // A held pose past a 2-D plot's axes (a longer ladder, a larger cart dragged) widens them to hold it,
+  // by a fifth of their span more than it needs, so that a drag onward redraws seldom; never narrower
+  // during the drag, and put back on release (a run's new figure comes with its own). Returns plotly's
+  // redraw, or null where the pose fits.
+  widen(traces, data) {
+    const layout = this.graph._fullLayout;
+    if (!this.held || this.scene || !layout) return null;
+    const reach = {};  // axis name -> [lowest, highest] of the pose on it
+    traces.forEach((t, n) => {
+      const trace = this.graph._fullData[t];
+      if (!trace || !trace.xaxis || !trace.yaxis) return;
+      for (const [axis, values] of [[trace.xaxis.replace("x", "xaxis"), data[n].x], [trace.yaxis.replace("y", "yaxis"), data[n].y]])
+        for (const v of values || []) if (v !== null && Number.isFinite(v)) {
+          const r = (reach[axis] ??= [v, v]);
+          r[0] = Math.min(r[0], v); r[1] = Math.max(r[1], v);
+        }
+    });
+    const update = {};
+    for (const [axis, [lo, hi]] of Object.entries(reach)) {
+      const shown = layout[axis] && layout[axis].range, given = this.graph.layout[axis];
+      if (!shown || !given || !Array.isArray(given.range) || layout[axis].type !== "linear") continue;
+      const [a, b] = [Math.min(...shown), Math.max(...shown)];
+      if (lo >= a && hi <= b) continue;
+      const margin = 0.2 * (b - a);
+      update[`${axis}.range`] = [Math.min(a, lo - margin), Math.max(b, hi + margin)];
+      (this.held.ranges ??= {})[`${axis}.range`] ??= [...given.range];
+    }
+    if (!Object.keys(update).length) return null;
+    traces.forEach((t, n) => Object.assign(this.graph.data[t], {x: data[n].x, y: data[n].y}));  // drawn by the relayout
+    return this.Plotly.relayout(this.graph, update);
   }
   // Play keeps the animation's stated time (frames × frame time): each animation frame of the
   // browser draws the frame due at that moment, and a frame whose time has passed while the last
@@ -392,7 +425,8 @@ class Figure {
     this.held = null;
     this.dropOverlay(held);
     if (held && held.shown) quiet(this.restyleFrame(held.frame, this.graph.data.map(() => null), this.graph.data.map((_, i) => i),
-                                                    held.overlay || [], true));
+                                                    held.overlay || [], true)
+      .then(() => held.ranges && this.Plotly.relayout(this.graph, held.ranges)));
   }
   dropOverlay(held) {
     if (held && held.svg) held.svg.remove();

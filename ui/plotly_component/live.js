@@ -441,7 +441,7 @@ function drawCaption(params, result) {
 // evaluated with the live values and rounded as the figure's coordinates are. While a drag lasts the
 // figure is paused at its key frame (Play waits), those traces are moved there (figure.js: pose, the
 // path Play takes), every other trace (a trail, the plots against time, the surfaces) is dimmed, and
-// the axes keep their ranges (a pose leaving them is clipped). Outside the run's regime, or before the
+// a 2-D pose past the axes widens them (figure.js: widen). Outside the run's regime, or before the
 // generated code is here, the whole graph is dimmed as "updating…", never shown as if it were live.
 const MOTION_UPDATING = "the motion is updating…";
 const POSE_LIVE = "key instant live · the motion is updating…";
