@@ -430,6 +430,16 @@ def base_layout(title: str = "", equal_axes: bool = True, x_range=None, y_range=
     return layout
 
 
+STILL_HEIGHT = 460  # px: a still picture (beside a refusal: the model's limit, a body that never moves)
+
+
+def still_layout(x_range, y_range, **titles) -> dict:
+    """Equal axes for a still picture, STILL_HEIGHT tall, with no time slider's room below its x axis."""
+    layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range, height=STILL_HEIGHT, **titles)
+    layout["margin"]["b"] = 60
+    return layout
+
+
 def holding(x_range, y_range, traces: Sequence[Moving | dict], pad: float = 0.03) -> tuple[tuple[float, float], tuple[float, float]]:
     """``x_range`` and ``y_range`` widened where ``traces`` (every frame of each) reach past them, by
     ``pad`` of the larger span beyond their farthest point: an arrow or a body is never cut by the axes."""

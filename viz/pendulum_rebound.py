@@ -9,7 +9,7 @@ from solvers import pendulum_rebound as solver
 from solvers.core import plain_fixed, plain_number
 from solvers import units
 from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, circles, column, fitted, line, moving, points,
-                         r, segments, thumbnail, trails)
+                         r, segments, STILL_HEIGHT, still_layout, thumbnail, trails)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     f'<line x1="10" y1="100" x2="190" y2="100" stroke="{COLORS["ink"]}" stroke-width="5"/>'
@@ -91,14 +91,13 @@ def at_limit(params, system: str = "si") -> list[Figure]:
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
     x_range, y_range = fitted([pivot, asked, *bodies])
     ground = _surface(p, k, x_range, y_range)
-    layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range, x_title=f"x ({u})", y_title=f"y ({u})")
-    layout["height"] = 460
-    layout["margin"]["b"] = 60  # a still picture: no time slider's room below the x axis
+    layout = still_layout(x_range, y_range, x_title=f"x ({u})", y_title=f"y ({u})")
     description = (f"Side view. The sphere touches the {p['surface']} at θ_I = {plain_number(math.degrees(theta_I))}°, "
                    f"where it is drawn: released at θ₀ = {plain_number(math.degrees(theta0))}° (dashed) it would start "
                    f"{'on' if theta0 == theta_I else 'inside'} the {p['surface']}, with no swing before an impact.")
     return [Figure("pendulum_at_limit", f"Where the sphere meets the {p['surface']}",
-                   {"data": [ground, asked, *bodies, pivot], "layout": layout}, description, animated=False, height=460)]
+                   {"data": [ground, asked, *bodies, pivot], "layout": layout}, description, animated=False,
+                   height=STILL_HEIGHT)]
 
 
 def _surface(p, k: float, x_range, y_range) -> dict:

@@ -9,7 +9,7 @@ import numpy as np
 from solvers import rod_disk_spring as solver
 from solvers.core import plain_fixed, plain_number as n, validate_params
 from viz.common import (COLORS, Figure, headline, headline_text, animated, base_layout, circles, fitted, line, moving, points, r, segments,
-                         spirals, symbolic, thumbnail)
+                         spirals, STILL_HEIGHT, still_layout, symbolic, thumbnail)
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     f'<path d="M70,60 m-10,0 a10,10 0 1 0 20,0 a14,14 0 1 0 -28,0 a18,18 0 1 0 36,0" fill="none" stroke="{COLORS["force"]}" stroke-width="2"/>'
@@ -67,9 +67,7 @@ def _held(p) -> Figure:
               line(*(row[0] for row in mark), "θ₂", COLORS["ground"], width=1, dash="dash"),
               points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")]
     x_range, y_range = fitted(traces)
-    layout = base_layout(equal_axes=True, x_range=x_range, y_range=y_range)
-    layout["height"] = 460
-    layout["margin"]["b"] = 60  # a still picture: no time slider's room below the x axis
+    layout = still_layout(x_range, y_range)
     if p["theta1"] == 0:
         title, said = "Held upright by the spring", "the spring holds the assembly upright, even nudged: it never falls"
     else:
@@ -77,7 +75,8 @@ def _held(p) -> Figure:
         said = (f"released at θ₁ = {deg(p['theta1'])}, the spring's moment kθ already beats the weights': it swings "
                 "back, never")
     description = f"Side view, θ from the upward vertical: {said} toward θ₂ = {deg(p['theta2'])} (dashed)."
-    return Figure("rod_disk_spring_held", title, {"data": traces, "layout": layout}, description, animated=False, height=460)
+    return Figure("rod_disk_spring_held", title, {"data": traces, "layout": layout}, description, animated=False,
+                  height=STILL_HEIGHT)
 
 
 def _swing(p, m, head, said: str, key_frame: int, key_caption: str) -> Figure:
