@@ -34,6 +34,7 @@ from .core import (
     validate_params,
 )
 from .live import Case, Live
+from .sweeps import swept
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -219,23 +220,14 @@ def motion(solution: Solution, frames: int = 40, duration: float = 1.5, wheelbas
     return {"t": t, "x": 0.5 * accel * t**2, "v": accel * t}
 
 
-def acceleration_versus_mu(params: dict, mus: np.ndarray) -> dict[str, np.ndarray]:
+@swept("mu", SYMBOLS)
+def acceleration_versus_mu(base: dict, mus: np.ndarray) -> dict[str, np.ndarray]:
     """ẍ against μ for each drive, NaN where the front wheels would lift (μa ≥ b); read-only arrays."""
-    base = tuple(sorted((k, v) for k, v in params.items() if k in SYMBOLS and k != "mu"))
-    return dict(_versus_mu(base, np.asarray(mus, dtype=float).tobytes()))
-
-
-@functools.lru_cache(maxsize=256)
-def _versus_mu(base: tuple, grid: bytes) -> dict[str, np.ndarray]:
-    """The curves, kept by what they depend on: every parameter but μ, and the grid of μ. Moving μ,
-    the lesson's control, moves only this cart's point on them (issue 28)."""
-    base, mus = dict(base), np.frombuffer(grid)
     curves = {}
     for drive in DRIVEN:
         accel = np.array(derivation(drive).vectorized("accel")(mu=mus, **base), dtype=float)
         if drive != "front":
             accel[~(mus * base["a"] < base["b"])] = np.nan
-        accel.flags.writeable = False  # shared by every later figure with these parameters
         curves[drive] = accel
     return curves
 

@@ -33,6 +33,7 @@ from .core import (
     validate_params,
 )
 from .live import Case, Live
+from .sweeps import swept
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -242,22 +243,11 @@ def motion(solution: Solution, frames: int = 48, rim_points: int = 36) -> dict:
     return {"t": t, "rim": rims, "mark": marks, "contact": contacts, "G": G}
 
 
-def versus_tilt(params: dict, tilts: np.ndarray) -> dict[str, np.ndarray]:
+@swept("theta", SYMBOLS)
+def versus_tilt(base: dict, tilts: np.ndarray) -> dict[str, np.ndarray]:
     """ω_p, |ω| and the energy against the tilt θ, the other parameters held; read-only arrays."""
-    base = tuple(sorted((k, v) for k, v in params.items() if k in SYMBOLS and k != "theta"))
-    return dict(_versus_tilt(base, np.asarray(tilts, dtype=float).tobytes()))
-
-
-@functools.lru_cache(maxsize=256)
-def _versus_tilt(base: tuple, grid: bytes) -> dict[str, np.ndarray]:
-    """The curves, kept by what they depend on: every parameter but θ, and the grid of tilts. Moving
-    θ, the lesson's control, moves only this disk's point on them (issue 28)."""
-    d_, tilts = derivation(), np.frombuffer(grid)
-    curves = {k: np.array(d_.vectorized(k)(theta=tilts, **dict(base)), dtype=float)
-              for k in ("omega_p", "omega_total", "energy")}
-    for values in curves.values():
-        values.flags.writeable = False  # shared by every later figure with these parameters
-    return curves
+    d_ = derivation()
+    return {k: np.array(d_.vectorized(k)(theta=tilts, **base), dtype=float) for k in ("omega_p", "omega_total", "energy")}
 
 
 def derivation_of(solution: Solution) -> Derivation:
