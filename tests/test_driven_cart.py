@@ -152,3 +152,23 @@ def test_a_cart_near_a_wheelie_keeps_a_readable_scale():
     _, figs = figures("driven_cart", drive="rear", mu=2.59)
     x_lo, x_hi = figs[0].spec["layout"]["xaxis"]["range"]
     assert x_hi - x_lo < 8 * 2 * 1.3  # within eight wheelbases
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.sampled_from(["rear", "all"]), st.floats(0.2, 2.0), st.floats(1.05, 3.0))
+def test_a_cart_past_the_lift_off_is_marked_across_the_plot_not_at_zero_acceleration(drive, a, past):
+    """Beside the wheelie's refusal the ẍ–μ plot marks this cart's μ = past · b/a: a line across the plot at
+    that μ, from ẍ = 0 to above the highest curve (a point at ẍ = 0 read as "it does not accelerate")."""
+    from viz.driven_cart import at_limit
+    p = {**{q.name: q.default for q in driven_cart.PARAMS}, "drive": drive, "a": a}
+    p["mu"] = past * p["b"] / a
+    with pytest.raises(ValueError):
+        driven_cart.solve(**p)  # the model refuses: the front wheels lift
+    (figure,) = at_limit(p)
+    spec = figure.spec
+    (mark,) = [t for t in spec["data"] if str(t.get("name", "")).startswith("this cart")]
+    curves = [t for t in spec["data"] if t.get("name", "").endswith("drive")]
+    highest = max(np.nanmax(np.asarray(t["y"], dtype=float)) for t in curves)
+    assert mark.get("mode") == "lines" and np.allclose(np.asarray(mark["x"], dtype=float), p["mu"], rtol=1e-3)
+    ys = np.asarray(mark["y"], dtype=float)
+    assert ys.min() == 0 and ys.max() >= highest

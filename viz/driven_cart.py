@@ -117,8 +117,9 @@ def versus_mu(params, accel: float | None = None) -> Figure:
     if accel is not None:
         data.append(points([p["mu"]], [accel], "this cart", COLORS["marker"], size=13))
     else:
-        data.append(points([p["mu"]], [0.0], f"this cart's μ = {n(p['mu'], 3)}: past the lift-off", COLORS["marker"],
-                           size=13, symbol="x"))
+        # a line across the plot at its μ, not a point: a mark at ẍ = 0 read as "no acceleration"
+        data.append(line(r([p["mu"], p["mu"]]), r([0, top * 1.05]), f"this cart's μ = {n(p['mu'], 3)}: past the lift-off",
+                         COLORS["force"], width=3, dash="dot"))
     layout = base_layout(equal_axes=False, x_title="friction coefficient μ", y_title="ẍ<sub>C</sub> (m/s²)", height=380)
     layout["margin"]["b"] = 60
     description = (f"Acceleration against μ for the three drives. Rear and all-wheel drive end at "
