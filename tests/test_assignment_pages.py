@@ -285,6 +285,23 @@ def test_an_attempt_after_a_right_one_changes_nothing_and_says_so(course, late):
         "right but 2 h late (attempt 1)" if late else "right at attempt 1")
 
 
+def test_an_answer_past_the_graded_attempts_is_not_called_attempt_4_of_3(course):
+    """Right at the last graded attempt, then more answers: they were "attempt 4 of 3", "attempt 5 of 3"
+    (and a wrong answer past the limit "attempt 4 at …, over your limit of 3"): no count past the limit."""
+    aid, s, (ann, bob) = one_assignment()
+    page = student(link_query(ann))
+    for typed in ("1", "2", rebound_in_degrees(ann), "3", rebound_in_degrees(ann) + " deg"):
+        page = answer(page, "theta_rebound", typed)
+    said = " ".join(m.value for m in [*page.info, *page.success, *page.warning] if "Recorded" in m.value)
+    assert "of 3" not in said and "answer 5 at highest angle after the bounce, past your 3 graded attempts" in said, said
+    assert records.attempt_count(aid) == 5  # every answer is still recorded
+    fresh = student(link_query(bob))
+    for typed in ("1", "2", "3", "4"):
+        fresh = answer(fresh, "theta_rebound", typed)
+    said = " ".join(m.value for m in fresh.warning if "Recorded" in m.value)
+    assert "answer 4 at highest angle after the bounce, past your 3 graded attempts" in said and "of 3" not in said, said
+
+
 @pytest.mark.parametrize("length", [201, 10_000])
 def test_an_answer_too_long_is_read_and_refused_in_words(course, length):
     """The box had max_chars=200: Streamlit dropped a longer paste without a word, and "Check" then said

@@ -234,7 +234,8 @@ def _said_recorded(kept: records.Recorded, label: str, link: StudentLink, soluti
     """The recorded attempt in words, under an icon that matches what it earned."""
     standing = _standing(link)
     allowed = standing.allowed if standing else link.settings.attempts_allowed
-    what = f"attempt {kept.number} of {allowed} at {label.lower()}"
+    what = (f"attempt {kept.number} of {allowed} at {label.lower()}" if kept.number <= allowed else
+            f"answer {kept.number} at {label.lower()}, past your {allowed} graded attempts")  # never "4 of 3"
     if kept.repeated:
         st.info(f"The same as your last attempt at {label.lower()}: not counted again (it stays {what}).",
                 icon=":material/repeat:")
@@ -246,8 +247,7 @@ def _said_recorded(kept: records.Recorded, label: str, link: StudentLink, soluti
                 icon=":material/task_alt:")
         return
     if kept.over_limit:
-        st.warning(f"Recorded: attempt {kept.number} at {label.lower()}, over your limit of {allowed}: "
-                   f"it is kept, but it cannot count.", icon=":material/block:")
+        st.warning(f"Recorded: {what}: it is kept, but it cannot count.", icon=":material/block:")
     elif kept.correct and kept.credit >= 1:
         st.success(f"Recorded: {what}. Right, and it counts.", icon=":material/task_alt:")
     elif kept.correct and kept.credit > 0:
