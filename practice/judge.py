@@ -176,10 +176,10 @@ def _unit_text_message(unit_text: str, answer: Answer, system: str) -> str:
     example = " or ".join(dict.fromkeys(u for u in (shown, si) if u)) or "no unit (a pure number)"
     elsewhere = units.dimensions_of(unit_text)
     if elsewhere:
-        what = elsewhere[0].replace("_", " ")
+        what, wanted = elsewhere[0].replace("_", " "), answer.dimension.replace("_", " ")
+        article = "an" if wanted[0] in "aeiou" else "a"  # an angle, an angular speed
         return (f"{unit_text[:20]!r} is a unit of {what}, but this answer is "
-                f"{'a pure number' if answer.dimension == 'dimensionless' else 'a ' + answer.dimension.replace('_', ' ')}: "
-                f"write it in {example}.")
+                f"{'a pure number' if answer.dimension == 'dimensionless' else f'{article} {wanted}'}: write it in {example}.")
     same_but_case = units.close_spellings(unit_text)
     if same_but_case:
         return (f"Unknown unit {unit_text[:20]!r}: units are case-sensitive (MJ is a megajoule, mJ a "

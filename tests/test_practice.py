@@ -219,6 +219,8 @@ def test_generic_slips_sign_units_and_angle_mode():
     assert "radians" in judge.check(answers["theta_rebound"], f"{rebound:.4f}").message
     assert judge.check(answers["I_O"], "2.469 kg m^2").correct
     assert "is a unit of speed" in judge.check(answers["I_O"], "2.469 m/s").message
+    assert "but this answer is an angle" in judge.check(answers["theta_rebound"], "0.5 m/s").message  # (was "a angle")
+    assert "but this answer is an angular speed" in judge.check(answers["omega_impact"], "-4.158 m/s").message
     assert "sign" in judge.check(answers["omega_impact"], "4.158").message
     _, solution, judge, answers = setup("disk_wall", omega=2.0)
     assert "rounded" in judge.check(answers["v1x"], "0.667*V*sin(theta) + R*omega/3").message
