@@ -589,6 +589,20 @@ def test_a_flags_own_values_are_taken_without_a_word(query):
     assert not at.warning, [w.value for w in at.warning]
 
 
+@pytest.mark.parametrize("query, s_shown", [({"s": "99"}, 0.5), ({"s": "0.9", "l": "0.4"}, 0.2), ({"s": "0.3", "l": "0.4"}, 0.2)])
+def test_a_links_value_past_a_top_that_follows_another_falls_back_as_out_of_range_does(query, s_shown):
+    """?s=99 on the stick (s ≤ l/2): the page refused as a whole, no figure, its s slider stretched to 99
+    (while ?s=-1 fell back to the default with a note). Now it falls back too: the default, the stick's end,
+    at most l/2 of the link's l; and the page solves."""
+    at = run_page("stick_ball", query)
+    assert_clean(at)
+    (said,) = [w.value.replace("\\", "") for w in at.warning]  # (Markdown's escapes)
+    assert f"“{query['s']}”, is past its largest value for this l (s ≤ 0.5 l = " in said, said
+    assert not at.error
+    slider = at.slider(key="stick_ball__si__s")
+    assert slider.value == pytest.approx(s_shown) and slider.max <= max(2.5 * 0.5, float(query.get("l", 1))) and slider.max < 5
+
+
 def test_a_name_given_twice_takes_the_last_and_the_address_keeps_only_it():
     """?V=2&V=3: the page takes the last, 3, and writes the address back with 3 alone, so a link copied from
     it says what the page shows (it kept both)."""

@@ -165,7 +165,7 @@ def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
     """Put a value in session state for every control that has none yet: the last values this
     session used (in SI, if the unit system just changed), else the URL, else ``base`` (a
     variant's numbers) or the default."""
-    warnings = []
+    warnings, linked = [], []
     remembered = st.session_state.get(f"{problem.id}__si", {})
     for p in problem.solver.PARAMS:
         key = control_key(problem, system, p.name)
@@ -184,9 +184,31 @@ def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
             parsed, why = _parse_url_value(p, raw, system)
             if why is None:
                 value = parsed
+                linked.append(p)
             else:
                 warnings.append(_url_warning(p, raw, why))
         st.session_state[key] = value
+    return warnings + _past_a_following_top(problem, system, base, linked)
+
+
+def _past_a_following_top(problem: Problem, system: str, base: dict, linked: list) -> list[str]:
+    """A link's value past a top that follows another parameter (the stick's impact point s ≤ l/2, ``ui_high_per``)
+    falls back to the default, at most that top, as any value out of range does: ?s=99 refused the whole page
+    and stretched its slider to 99."""
+    warnings = []
+    for p in linked:
+        if not (isinstance(p, Number) and p.ui_high_per):
+            continue
+        name, share = p.ui_high_per
+        other = next(q for q in problem.solver.PARAMS if q.name == name)
+        top = share * units.to_si(float(st.session_state[control_key(problem, system, name)]), other.dimension, system)
+        key = control_key(problem, system, p.name)
+        if units.to_si(float(st.session_state[key]), p.dimension, system) <= top * (1 + 1e-12):
+            continue
+        said = units.format_quantity(top, p.dimension, system)
+        warnings.append(_url_warning(p, st.query_params[p.name], f"is past its largest value for this {name} "
+                                     f"({p.name} ≤ {share:g} {name} = {said})"))
+        st.session_state[key] = units.shown_value(min(base.get(p.name, p.default), top), p.dimension, system)
     return warnings
 
 
