@@ -574,7 +574,9 @@ function draw() {
   // says nothing, and cut to one line on a phone the note said nothing either ("Now: the spri…").
   const main = state.data.answers[0], x = result.values && main ? result.values[main[0]] : undefined;
   const noteOnly = !result.values && !!regimeText;
-  setText(".dl-live-headline", main && !noteOnly ? `${main[4]}: ${Number.isFinite(x) ? quantity(x, main, state.data.grouped_below) : UPDATING}` : "");
+  // (a phone: an angle in degrees alone, its radians cut the line: "… 35.26° (0.…")
+  const shownAs = main && NARROW.matches ? [...main.slice(0, 3), false, ...main.slice(4)] : main;
+  setText(".dl-live-headline", main && !noteOnly ? `${main[4]}: ${Number.isFinite(x) ? quantity(x, shownAs, state.data.grouped_below) : UPDATING}` : "");
   setText(".dl-live-said", noteOnly ? regimeText : regimeText ? ` · ${regimeText}` : "");
   const badge = document.querySelector(".dl-live-badge");
   if (badge) badge.classList.toggle("dl-live-note-only", noteOnly);
@@ -582,6 +584,8 @@ function draw() {
   drawPose(params, result);
   performance.measure("dl-live-draw", {start: started});  // its own cost, for bench/live_drag.py
 }
+
+const NARROW = window.matchMedia("(max-width: 640px)");  // as the badge's own style's phone
 
 function setText(selector, text) {
   const el = document.querySelector(selector);
