@@ -186,6 +186,13 @@ def stepper_faults(page, height: int) -> list[str]:
             for other in [box(s) for s in steps] + ends[n + 1:]:
                 if overlaps(near, other):
                     faults.append(f"{name}: the end value {end['text']!r} touches its neighbour")
+    if narrow:  # two sliders side by side: their tracks level, whichever label wraps (θ₀'s sat 16 px lower than L's)
+        tracks = [(box(s), box(s.locator("[role='group'] > [data-orientation]").first))
+                  for s in page.locator(f"{CONTROLS} [data-testid='stSlider']").all()]
+        for n, (a, ta) in enumerate(tracks):
+            for b, tb in tracks[n + 1:]:
+                if overlaps({**a, "x": 0, "width": 10}, {**b, "x": 0, "width": 10}) and abs(ta["y"] - tb["y"]) > 1:
+                    faults.append(f"tracks side by side {abs(ta['y'] - tb['y']):.0f} px apart in height")
     return faults
 
 

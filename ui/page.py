@@ -76,6 +76,8 @@ STAGE_CSS = """
     .st-key-dl_stage > [data-testid='stLayoutWrapper'] { flex: none !important; width: 100%; }
     .st-key-dl_stage_controls { display: grid !important; grid-template-columns: 1fr 1fr; column-gap: 14px; row-gap: 0; }
     .st-key-dl_stage_controls > div { min-width: 0; width: auto !important; }
+    /* two sliders in a row: their tracks and −/+ level, whichever label wraps to a second line */
+    .st-key-dl_stage_controls > div:has([data-testid='stSlider']) { align-self: end; }
     /* the track is short beside its −/+: its end values stay whole numbers ("1.00", never "1.0 / 0") */
     .st-key-dl_stage_controls [data-testid='stSliderTickBar'] div { white-space: nowrap; }
     .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p { font-size: 0.8rem; line-height: 1.25; }
