@@ -670,3 +670,14 @@ def test_the_impact_point_s_slider_ends_at_the_stick_s_end(length):
     at = run_page("stick_ball", {"l": f"{length:g}"})
     slider = next(w for w in at.slider if w.key == "stick_ball__si__s")
     assert slider.proto.max == pytest.approx(max(hi, 0.5))  # (the slider also holds the textbook's s = 0.5)
+
+
+def test_the_download_route_reads_a_value_past_a_following_top_as_the_page_does():
+    """parameters_of_link (the take-home download's reading of a link) falls back as the page does: ?s=99 on
+    the stick gives the stick's end, l/2, and says why in plain text."""
+    from ui.catalog import BY_ID
+    from ui.params import parameters_of_link
+    values, warnings = parameters_of_link(BY_ID["stick_ball"], {"s": "99", "l": "0.4"}, "si", markdown=False)
+    assert values["s"] == pytest.approx(0.2) and values["l"] == pytest.approx(0.4)
+    assert warnings == ["The link's value for s (impact point from the stick's midpoint), “99”, is past its largest "
+                        "value for this l (s ≤ 0.5 l = 0.2 m)."], warnings

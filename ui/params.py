@@ -192,24 +192,34 @@ def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
 
 
 def _past_a_following_top(problem: Problem, system: str, base: dict, linked: list) -> list[str]:
-    """A link's value past a top that follows another parameter (the stick's impact point s ≤ l/2, ``ui_high_per``)
-    falls back to the default, at most that top, as any value out of range does: ?s=99 refused the whole page
-    and stretched its slider to 99."""
+    """``past_following_tops`` among the values the link put in session state: each put back to the
+    default (at most its top), with a warning."""
+    numbers = [q for q in problem.solver.PARAMS if isinstance(q, Number)]
+    values = {q.name: units.to_si(float(st.session_state[control_key(problem, system, q.name)]), q.dimension, system)
+              for q in numbers}
     warnings = []
-    for p in linked:
-        if not (isinstance(p, Number) and p.ui_high_per):
+    for p, top, why in past_following_tops(problem, values, {q.name for q in linked}):
+        warnings.append(_url_warning(p, st.query_params[p.name], why))
+        st.session_state[control_key(problem, system, p.name)] = units.shown_value(
+            min(base.get(p.name, p.default), top), p.dimension, system)
+    return warnings
+
+
+def past_following_tops(problem: Problem, values: dict, linked: set) -> list[tuple[Number, float, str]]:
+    """The parameters named in ``linked`` whose value in ``values`` (SI) is past a top that follows another
+    parameter's (the stick's impact point, s ≤ l/2: ``ui_high_per``), each with that top and why, in words.
+    A link's such value falls back to the default, at most that top, as any value out of range does: ?s=99
+    refused the whole page and stretched its slider to 99."""
+    past = []
+    for p in problem.solver.PARAMS:
+        if not (isinstance(p, Number) and p.ui_high_per and p.name in linked):
             continue
         name, share = p.ui_high_per
-        other = next(q for q in problem.solver.PARAMS if q.name == name)
-        top = share * units.to_si(float(st.session_state[control_key(problem, system, name)]), other.dimension, system)
-        key = control_key(problem, system, p.name)
-        if units.to_si(float(st.session_state[key]), p.dimension, system) <= top * (1 + 1e-12):
-            continue
-        said = units.format_quantity(top, p.dimension, system)
-        warnings.append(_url_warning(p, st.query_params[p.name], f"is past its largest value for this {name} "
-                                     f"({p.name} ≤ {share:g} {name} = {said})"))
-        st.session_state[key] = units.shown_value(min(base.get(p.name, p.default), top), p.dimension, system)
-    return warnings
+        top = share * values[name]
+        if values[p.name] > top * (1 + 1e-12):
+            past.append((p, top, f"is past its largest value for this {name} ({p.name} ≤ {share:g} {name} = "
+                                 f"{units.format_quantity(top, p.dimension)})"))
+    return past
 
 
 def _label(p: Any, system: str) -> str:
@@ -422,7 +432,7 @@ def parameters_of_link(problem: Problem, query, system: str, base: dict | None =
     warning for each value it refuses (Markdown, or plain text). No Streamlit: the download route
     reads links too."""
     base = base or {}
-    values, warnings = {}, []
+    values, warnings, linked = {}, [], set()
     for p in problem.solver.PARAMS:
         value = base.get(p.name, p.default)
         raw = query.get(p.name)
@@ -430,9 +440,13 @@ def parameters_of_link(problem: Problem, query, system: str, base: dict | None =
             parsed, why = _parse_url_value(p, raw, system)
             if why is None:
                 value = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
+                linked.add(p.name)
             else:
                 warnings.append(_url_warning(p, raw, why, markdown))
         values[p.name] = value
+    for p, top, why in past_following_tops(problem, values, linked):
+        warnings.append(_url_warning(p, query[p.name], why, markdown))
+        values[p.name] = min(base.get(p.name, p.default), top)
     return values, warnings
 
 
