@@ -46,6 +46,17 @@ def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: b
 
 TRACK = "[data-orientation='horizontal'][style*='position: relative']"  # a Streamlit slider's track (within its control)
 
+
+def hold_drag(page, track: dict, start: float, end: float, moves: int = 5) -> None:
+    """The mouse pressed on ``track`` (a bounding box) at the fraction ``start`` of its width and moved to
+    ``end`` in ``moves`` steps, 40 ms apart, and held there (the caller releases it)."""
+    x, y = track["x"] + start * track["width"], track["y"] + track["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for i in range(1, moves + 1):
+        page.mouse.move(x + (end - start) * track["width"] * i / moves, y)
+        page.wait_for_timeout(40)
+
 # Every Content-Security-Policy violation a page meets, kept for csp_violations(page).
 CSP_WATCH = ("window.__csp = []; document.addEventListener('securitypolicyviolation', "
              "e => window.__csp.push(e.violatedDirective + ' ' + e.blockedURI));"
@@ -765,13 +776,7 @@ def test_the_live_headline_covers_the_figure_s_title_and_keeps_its_unit(browser,
     page.locator(".st-key-dl_stage .dl-figure .gl-container canvas").first.wait_for()
     control = page.locator(".st-key-eulers_disk__si__theta")
     control.scroll_into_view_if_needed()
-    track = control.locator(TRACK).bounding_box()
-    x, y = track["x"] + 0.3 * track["width"], track["y"] + track["height"] / 2
-    page.mouse.move(x, y)
-    page.mouse.down()
-    for i in range(1, 6):
-        page.mouse.move(x + 0.05 * i * track["width"], y)
-        page.wait_for_timeout(40)
+    hold_drag(page, control.locator(TRACK).bounding_box(), 0.3, 0.55)
     page.wait_for_timeout(200)
     badge, title, headline = page.evaluate("""() => {
       const box = (el) => { const r = el.getBoundingClientRect(); return {top: r.top, bottom: r.bottom}; };

@@ -13,7 +13,7 @@ from __future__ import annotations
 import pytest
 
 from scripts.live_app import wait_until_idle
-from tests.test_browser import open_page  # which skips (or, in CI, fails) without Chromium and Playwright
+from tests.test_browser import hold_drag, open_page  # which skips (or, in CI, fails) without Chromium and Playwright
 from ui.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
@@ -413,15 +413,9 @@ def test_a_body_dragged_larger_stays_inside_the_axes(browser, app_url, pid, key)
     graph = page.locator(f"{STAGE} .dl-graph").first
     before = graph.evaluate(POSED_REACH, None)["ranges"]
     control = page.locator(f".st-key-{pid}__si__{key}")
-    track = control.locator("[role='group'] > [data-orientation]").first.bounding_box()
     thumb = control.locator("input[type='range']")
     low, high, value = (float(thumb.get_attribute(a)) for a in ("min", "max", "value"))
-    y, start = track["y"] + track["height"] / 2, track["x"] + track["width"] * (value - low) / (high - low)
-    page.mouse.move(start, y)
-    page.mouse.down()
-    for i in range(1, 16):
-        page.mouse.move(start + (track["x"] + track["width"] - start) * i / 15, y)
-        page.wait_for_timeout(40)
+    hold_drag(page, control.locator("[role='group'] > [data-orientation]").first.bounding_box(), (value - low) / (high - low), 1.0, 15)
     page.wait_for_timeout(800)  # the last pose drawn
     held = graph.evaluate(POSED_REACH, None)
     for (lo, hi), (a, b) in zip(held["reach"], held["ranges"]):
@@ -582,13 +576,8 @@ def test_the_live_headline_over_a_phone_s_stage_is_whole_on_every_page(browser, 
         page.goto(f"{app_url}/{problem.id}")
         wait_until_idle(page)
         page.locator(f"{STAGE} .dl-figure .dl-graph").first.wait_for()
-        track = page.locator(f"{CONTROLS} [data-testid='stSlider'] [role='group'] > [data-orientation]").first.bounding_box()
-        x, y = track["x"] + 0.3 * track["width"], track["y"] + track["height"] / 2
-        page.mouse.move(x, y)
-        page.mouse.down()
-        for i in range(1, 6):
-            page.mouse.move(x + 0.04 * i * track["width"], y)
-            page.wait_for_timeout(40)
+        hold_drag(page, page.locator(f"{CONTROLS} [data-testid='stSlider'] [role='group'] > [data-orientation]").first.bounding_box(),
+                  0.3, 0.5)
         page.wait_for_function("() => (document.querySelector('.dl-live-badge') || {}).textContent", timeout=10_000)
         page.wait_for_timeout(200)
         badge = page.evaluate("""() => { const b = document.querySelector('.dl-live-badge');
