@@ -598,6 +598,8 @@ def test_a_links_value_past_a_top_that_follows_another_falls_back_as_out_of_rang
     assert_clean(at)
     (said,) = [w.value.replace("\\", "") for w in at.warning]  # (Markdown's escapes)
     assert f"“{query['s']}”, is past its largest value for this l (s ≤ 0.5 l = " in said, said
+    assert said.endswith("using the default instead." if s_shown == 0.5 else  # what the page then uses, said
+                         f"using that largest value, {s_shown:g} m, instead."), said
     assert not at.error
     slider = at.slider(key="stick_ball__si__s")
     assert slider.value == pytest.approx(s_shown) and slider.max <= max(2.5 * 0.5, float(query.get("l", 1))) and slider.max < 5

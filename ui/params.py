@@ -130,13 +130,13 @@ def check_in_range(problem: Problem, values: dict, system: str) -> None:
                                  f"is out of range: it must be {shown_range(p, system)}.") from None
 
 
-def _url_warning(p: Any, raw: str, why: str, markdown: bool = True) -> str:
+def _url_warning(p: Any, raw: str, why: str, markdown: bool = True, instead: str = "the default") -> str:
     """What the page says of a link's value it cannot take: in Markdown (the value shown as typed, never
     as a link or formatting), or plain text (the download route's refusal)."""
     shown = raw if len(raw) <= MAX_URL_VALUE else raw[:MAX_URL_VALUE] + "…"
     if not markdown:
         return f"The link's value for {p.name} ({p.label}), “{shown}”, {why}."
-    return f"The link's value for **{p.name}** ({p.label}), “{literal(shown)}”, {why}; using the default instead."
+    return f"The link's value for **{p.name}** ({p.label}), “{literal(shown)}”, {why}; using {instead} instead."
 
 
 MAX_UNKNOWN_SHOWN = 5  # names of a link's unknown keys listed in its warning
@@ -199,9 +199,10 @@ def _past_a_following_top(problem: Problem, system: str, base: dict, linked: lis
               for q in numbers}
     warnings = []
     for p, top, why in past_following_tops(problem, values, {q.name for q in linked}):
-        warnings.append(_url_warning(p, st.query_params[p.name], why))
-        st.session_state[control_key(problem, system, p.name)] = units.shown_value(
-            min(base.get(p.name, p.default), top), p.dimension, system)
+        default = base.get(p.name, p.default)
+        warnings.append(_url_warning(p, st.query_params[p.name], why, instead="the default" if default <= top else
+                                     f"that largest value, {units.format_quantity(top, p.dimension, system)},"))
+        st.session_state[control_key(problem, system, p.name)] = units.shown_value(min(default, top), p.dimension, system)
     return warnings
 
 
