@@ -198,7 +198,7 @@ def _past_a_following_top(problem: Problem, system: str, base: dict, linked: lis
     values = {q.name: units.to_si(float(st.session_state[control_key(problem, system, q.name)]), q.dimension, system)
               for q in numbers}
     warnings = []
-    for p, top, why in past_following_tops(problem, values, {q.name for q in linked}):
+    for p, top, why in past_following_tops(problem, values, {q.name for q in linked}, system):
         default = base.get(p.name, p.default)
         warnings.append(_url_warning(p, st.query_params[p.name], why, instead="the default" if default <= top else
                                      f"that largest value, {units.format_quantity(top, p.dimension, system)},"))
@@ -206,9 +206,10 @@ def _past_a_following_top(problem: Problem, system: str, base: dict, linked: lis
     return warnings
 
 
-def past_following_tops(problem: Problem, values: dict, linked: set) -> list[tuple[Number, float, str]]:
+def past_following_tops(problem: Problem, values: dict, linked: set, system: str) -> list[tuple[Number, float, str]]:
     """The parameters named in ``linked`` whose value in ``values`` (SI) is past a top that follows another
-    parameter's (the stick's impact point, s ≤ l/2: ``ui_high_per``), each with that top and why, in words.
+    parameter's (the stick's impact point, s ≤ l/2: ``ui_high_per``), each with that top (SI) and why, in words
+    (in ``system``'s units).
     A link's such value falls back to the default, at most that top, as any value out of range does: ?s=99
     refused the whole page and stretched its slider to 99."""
     past = []
@@ -219,7 +220,7 @@ def past_following_tops(problem: Problem, values: dict, linked: set) -> list[tup
         top = share * values[name]
         if values[p.name] > top * (1 + 1e-12):
             past.append((p, top, f"is past its largest value for this {name} ({p.name} ≤ {share:g} {name} = "
-                                 f"{units.format_quantity(top, p.dimension)})"))
+                                 f"{units.format_quantity(top, p.dimension, system)})"))
     return past
 
 
@@ -445,7 +446,7 @@ def parameters_of_link(problem: Problem, query, system: str, base: dict | None =
             else:
                 warnings.append(_url_warning(p, raw, why, markdown))
         values[p.name] = value
-    for p, top, why in past_following_tops(problem, values, linked):
+    for p, top, why in past_following_tops(problem, values, linked, system):
         warnings.append(_url_warning(p, query[p.name], why, markdown))
         values[p.name] = min(base.get(p.name, p.default), top)
     return values, warnings
