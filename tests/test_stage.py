@@ -191,7 +191,8 @@ def stepper_faults(page, height: int) -> list[str]:
                   for s in page.locator(f"{CONTROLS} [data-testid='stSlider']").all()]
         for n, (a, ta) in enumerate(tracks):
             for b, tb in tracks[n + 1:]:
-                if overlaps({**a, "x": 0, "width": 10}, {**b, "x": 0, "width": 10}) and abs(ta["y"] - tb["y"]) > 1:
+                side_by_side = a["y"] < b["y"] + b["height"] - 1 and b["y"] < a["y"] + a["height"] - 1  # one row
+                if side_by_side and abs(ta["y"] - tb["y"]) > 1:
                     faults.append(f"tracks side by side {abs(ta['y'] - tb['y']):.0f} px apart in height")
     return faults
 
