@@ -163,47 +163,48 @@ def unknown_in_link(problem: Problem, keys, flags) -> str | None:
 
 def _initial_values(problem: Problem, system: str, base: dict) -> list[str]:
     """Put a value in session state for every control that has none yet: the last values this
-    session used (in SI, if the unit system just changed), else the URL, else ``base`` (a
-    variant's numbers) or the default."""
-    warnings, linked = [], []
+    session used (in SI, if the unit system just changed), else the URL (``read_link``), else ``base``
+    (a variant's numbers) or the default."""
     remembered = st.session_state.get(f"{problem.id}__si", {})
-    for p in problem.solver.PARAMS:
-        key = control_key(problem, system, p.name)
-        if key in st.session_state:
-            continue
-        if p.name in remembered:
-            value = remembered[p.name]
-            st.session_state[key] = value if isinstance(p, Choice) else (
-                units.shown_value(value, p.dimension, system))
-            continue
-        start = base.get(p.name, p.default)
-        default = start if isinstance(p, Choice) else units.shown_value(start, p.dimension, system)
-        raw = st.query_params.get(p.name)
-        value = default
-        if raw is not None:
-            parsed, why = _parse_url_value(p, raw, system)
-            if why is None:
-                value = parsed
-                linked.append(p)
-            else:
-                warnings.append(_url_warning(p, raw, why))
-        st.session_state[key] = value
-    return warnings + _past_a_following_top(problem, system, base, linked)
-
-
-def _past_a_following_top(problem: Problem, system: str, base: dict, linked: list) -> list[str]:
-    """``past_following_tops`` among the values the link put in session state: each put back to the
-    default (at most its top), with a warning."""
-    numbers = [q for q in problem.solver.PARAMS if isinstance(q, Number)]
-    values = {q.name: units.to_si(float(st.session_state[control_key(problem, system, q.name)]), q.dimension, system)
-              for q in numbers}
-    warnings = []
-    for p, top, why in past_following_tops(problem, values, {q.name for q in linked}, system):
-        default = base.get(p.name, p.default)
-        warnings.append(_url_warning(p, st.query_params[p.name], why, instead="the default" if default <= top else
-                                     f"that largest value, {units.format_quantity(top, p.dimension, system)},"))
-        st.session_state[control_key(problem, system, p.name)] = units.shown_value(min(default, top), p.dimension, system)
+    fresh = [p for p in problem.solver.PARAMS if control_key(problem, system, p.name) not in st.session_state]
+    values, linked, warnings = ({}, {}, []) if all(p.name in remembered for p in fresh) else (
+        read_link(problem, st.query_params, system, base))
+    for p in fresh:
+        value = remembered[p.name] if p.name in remembered else values[p.name]
+        st.session_state[control_key(problem, system, p.name)] = (
+            value if isinstance(p, Choice) else
+            linked[p.name] if p.name not in remembered and p.name in linked else
+            units.shown_value(value, p.dimension, system))
     return warnings
+
+
+def read_link(problem: Problem, query, system: str, base: dict | None = None,
+              markdown: bool = True) -> tuple[dict, dict, list[str]]:
+    """What a page's address gives (``query``: its parameters by name, e.g. st.query_params): every
+    parameter's value (SI), the link's where it takes it, else ``base``'s (a variant's) or the default;
+    the values it takes as their controls show them (display units, to the control's precision); and a
+    warning for each value it refuses (Markdown, or plain text). No Streamlit: the page and the download
+    route read links alike."""
+    base = base or {}
+    values, linked, warnings = {}, {}, []
+    for p in problem.solver.PARAMS:
+        values[p.name] = base.get(p.name, p.default)
+        raw = query.get(p.name)
+        if raw is None:
+            continue
+        parsed, why = _parse_url_value(p, raw, system)
+        if why is None:
+            linked[p.name] = parsed
+            values[p.name] = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
+        else:
+            warnings.append(_url_warning(p, raw, why, markdown))
+    for p, top, why in past_following_tops(problem, values, set(linked), system):
+        default = base.get(p.name, p.default)
+        warnings.append(_url_warning(p, query[p.name], why, markdown, instead="the default" if default <= top else
+                                     f"that largest value, {units.format_quantity(top, p.dimension, system)},"))
+        values[p.name] = min(default, top)
+        del linked[p.name]
+    return values, linked, warnings
 
 
 def past_following_tops(problem: Problem, values: dict, linked: set, system: str) -> list[tuple[Number, float, str]]:
@@ -334,21 +335,26 @@ def _in_si(p: Any, shown: Any, system: str, known: Any = None) -> Any:
     return units.to_si(float(shown), p.dimension, system)
 
 
-def _shown(p: Number, value: float, system: str) -> str:
-    """``value`` (SI) as its control writes it (and the URL copies it): L=2.29659, 10 lb."""
+def _shown(p: Number, value: float, system: str, on_control: Any = None) -> str:
+    """``value`` (SI) as its control writes it (and the URL copies it): L=2.29659, 10 lb. ``on_control``: the
+    value its control holds, which it is where it stands for ``value``: a typed 13.125 lb stays 13.125, where
+    converting back from kilograms would give the 13.13 a unit switch shows."""
+    if isinstance(on_control, (int, float)) and math.isfinite(on_control) and math.isclose(
+            units.to_si(float(on_control), p.dimension, system), value, rel_tol=1e-12):
+        return f"{as_shown(p, on_control):g}"
     shown = units.shown_value(value, p.dimension, system)
     return "inf" if math.isinf(shown) else f"{as_shown(p, shown):g}"
 
 
-def _differs(p: Any, value: Any, base: dict, system: str) -> bool:
+def _differs(p: Any, value: Any, base: dict, system: str, on_control: Any = None) -> bool:
     """Whether ``value`` (SI) is not the starting value (the variant's, else the default) as the
-    control shows them: 10 lb is the textbook's 4.536 kg sphere."""
+    control shows them: 10 lb is the textbook's 4.536 kg sphere, a typed 9.9999 lb is not (``_shown``)."""
     start = base.get(p.name, p.default)
     if isinstance(p, Choice) or isinstance(value, str):
         return value != start
     if math.isnan(value):
         return False
-    return _shown(p, value, system) != _shown(p, start, system)
+    return _shown(p, value, system, on_control) != _shown(p, start, system)
 
 
 def refused_values_notice() -> None:
@@ -429,26 +435,8 @@ def lesson_parameters(problem: Problem, system: str, base: dict | None, stage) -
 
 def parameters_of_link(problem: Problem, query, system: str, base: dict | None = None,
                        markdown: bool = True) -> tuple[dict, list[str]]:
-    """The parameters (SI) a page's address gives (``query``: its parameters by name, e.g.
-    st.query_params), each as its control would read it, else ``base``'s or the default; and a
-    warning for each value it refuses (Markdown, or plain text). No Streamlit: the download route
-    reads links too."""
-    base = base or {}
-    values, warnings, linked = {}, [], set()
-    for p in problem.solver.PARAMS:
-        value = base.get(p.name, p.default)
-        raw = query.get(p.name)
-        if raw is not None:
-            parsed, why = _parse_url_value(p, raw, system)
-            if why is None:
-                value = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
-                linked.add(p.name)
-            else:
-                warnings.append(_url_warning(p, raw, why, markdown))
-        values[p.name] = value
-    for p, top, why in past_following_tops(problem, values, linked, system):
-        warnings.append(_url_warning(p, query[p.name], why, markdown))
-        values[p.name] = min(base.get(p.name, p.default), top)
+    """The parameters (SI) a page's address gives, and a warning for each value it refuses (``read_link``)."""
+    values, _, warnings = read_link(problem, query, system, base, markdown)
     return values, warnings
 
 
@@ -479,8 +467,9 @@ def mirror_to_url(problem: Problem, values: dict, system: str, flags: dict[str, 
     base = base or {}
     for p in problem.solver.PARAMS:
         v = values[p.name]
-        if _differs(p, v, base, system):  # what the control shows, no more: L=2.29659, not L=2.296587927
-            wanted[p.name] = v if isinstance(p, Choice) else _shown(p, v, system)
+        on_control = st.session_state.get(control_key(problem, system, p.name))
+        if _differs(p, v, base, system, on_control):  # what the control shows, no more: L=2.29659, not 2.296587927
+            wanted[p.name] = v if isinstance(p, Choice) else _shown(p, v, system, on_control)
     wanted.update({k: v for k, v in flags.items() if v})
     current = {k: st.query_params.get(k) for k in st.query_params.keys()}
     # (a name given twice, ?V=2&V=3: the page took the last, and the address keeps only it)
