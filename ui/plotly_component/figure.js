@@ -515,7 +515,7 @@ class Figure {
     // WebGL sizes the scene's box to the graph's height: where the graph is wider than tall (beside its
     // legend), the box is drawn up to SCENE_GROWTH times larger, to fill the width too.
     if (layout.scene && layout.scene.aspectratio) {
-      const wide = (this.root.clientWidth - (legendBeside ? 260 : 0)) / Math.max(1, plotHeight(layout));
+      const wide = (this.root.clientWidth - (legendBeside ? LEGEND_BESIDE : 0)) / Math.max(1, plotHeight(layout));
       const grow = Math.min(SCENE_GROWTH, Math.max(1, wide)), ratio = layout.scene.aspectratio;
       layout.scene = Object.assign({}, layout.scene, {aspectratio: {x: ratio.x * grow, y: ratio.y * grow, z: ratio.z * grow}});
     }
@@ -787,7 +787,8 @@ function stacked(layout, height) {
 // arrangement that draws the motion at the larger scale (by a quarter at least), the second plot keeping
 // MIN_BESIDE px (its tick labels side by side, not slanted over each other). Null where stacking is as
 // good (a wide motion, a phone) or the layout has no such pair.
-const MIN_BESIDE = 210, LEGEND_BESIDE = 200;  // (three bars' names in lecture type; a legend in a column)
+const MIN_BESIDE = 210;  // (three bars' names in lecture type)
+const LEGEND_BESIDE = 200;  // the width a legend in a column beside a plot or a 3-D scene takes, before plotly draws it
 function beside(layout, width, height) {
   const up = layout.yaxis || {}, low = layout.yaxis2 || {}, xa = layout.xaxis || {};
   if (!up.domain || !low.domain || low.domain[1] > up.domain[0] || !layout.xaxis2 || !up.scaleanchor
