@@ -996,18 +996,48 @@ class Gradebook:
         return out
 
 
+@dataclass(frozen=True)
+class PointsTaken:
+    """A student whose share of the points an edit would lower: the points they have, and would have, each
+    out of the assignment's points then."""
+    label: str
+    before: float
+    out_of_before: float
+    after: float
+    out_of_after: float
+
+
+def points_taken(assignment_id: int, settings: Settings | None = None, grants: dict[str, Grant] | None = None,
+                 bound: Engine | None = None) -> list[PointsTaken]:
+    """The students whose share of the points would drop under ``settings`` (an earlier due time, a tighter
+    tolerance, a harsher late rule…) or ``grants`` (an extension taken back…), ordered by label. (Points
+    doubled or halved everywhere lower no one.)"""
+    now_, then = gradebook(assignment_id, bound), gradebook(assignment_id, bound, settings, grants)
+    return lowered(now_, then) if now_ is not None and then is not None else []
+
+
+def lowered(before: Gradebook, after: Gradebook) -> list[PointsTaken]:
+    """The students whose share of the points is lower in ``after`` than in ``before``."""
+    a, b = before.settings.out_of, after.settings.out_of
+    return [PointsTaken(st.label, before.score(st.label), a, after.score(st.label), b) for st in before.students
+            if after.score(st.label) * a < before.score(st.label) * b * (1 - 1e-9)]
+
+
 def _percent(n: int, total: int) -> str:
     return f"{round(100 * n / total)} %"
 
 
 @_guarded
-def gradebook(assignment_id: int, bound: Engine | None = None) -> Gradebook | None:
+def gradebook(assignment_id: int, bound: Engine | None = None, settings: Settings | None = None,
+              grants: dict[str, Grant] | None = None) -> Gradebook | None:
+    """The assignment's gradebook; or, with ``settings`` or some students' ``grants``, what it would be under
+    them (nothing stored: an edit's effect, asked before it is saved)."""
     with db.session(bound) as s:
         row = s.get(db.Assignment, assignment_id)
         if row is None:
             return None
-        settings = _settings(row)
-        grants = _grants(s, assignment_id)
+        settings = settings or _settings(row)
+        grants = {**_grants(s, assignment_id), **(grants or {})}
         students = [StudentIdentity(assignment_id, r.label, r.seed) for r in s.scalars(
             select(db.Student).where(db.Student.assignment_id == assignment_id).order_by(db.Student.label))]
         attempts = _numbered(s.scalars(select(db.Attempt).where(db.Attempt.assignment_id == assignment_id)).all(),

@@ -484,3 +484,63 @@ def test_a_title_too_long_is_kept_and_refused_in_words(course):
     assert at.text_input(key="assign__title").value.startswith("Week 9: the bouncing pendulum")
     assert "The title needs 1 to 120 characters (it has 146)." in page_text(at)
     assert records.assignments() == []
+
+
+def test_an_edit_that_takes_points_already_earned_asks_first_and_says_whose(course):
+    """Moving the due time before an answer already recorded right turned it "right but late: no credit"
+    under a message saying "late answers from now on": the page now says, before saving, whose score drops
+    and by how much, and saves only when asked again; taking back a student's extension likewise."""
+    aid, s, (ann, bob) = one_assignment()
+    page = answer(student(link_query(ann)), "theta_rebound", rebound_in_degrees(ann))
+    assert any("it counts" in m.value for m in page.success)
+    earned = records.gradebook(aid).score("s01")
+    assert earned > 0
+
+    def move_due_to_yesterday(book):
+        widget(book, f"assign__edit{aid}_", "_due_day").set_value(dt.date.today() - dt.timedelta(days=1))
+        book.button[[b.label for b in book.button].index("Save the changes")].click().run()
+        return book
+
+    book = move_due_to_yesterday(instructor())
+    said = " ".join(w.value for w in book.warning)
+    assert "Nothing is saved yet" in said and f"s01 {records._number(earned)} of 6 → 0 of 6" in said, said
+    assert "s02" not in said and records.assignment(aid).due == s.due  # bob had nothing to lose
+    book.button[[b.label for b in book.button].index("Do not save it")].click().run()
+    assert records.assignment(aid).due == s.due and not book.warning
+
+    book = move_due_to_yesterday(book)
+    book.button[[b.label for b in book.button].index("Save it anyway")].click().run()
+    assert not book.exception and records.assignment(aid).due < records.now()
+    assert any("those already recorded included" in m.value for m in book.success)
+    assert records.gradebook(aid).score("s01") == 0
+
+    # Bob answers right within his extension; taking the extension back asks first too
+    records.grant(aid, "s02", extended_due=records.now() + dt.timedelta(days=2))
+    page = answer(student(link_query(bob)), "theta_rebound", rebound_in_degrees(bob))
+    assert any("it counts" in m.value for m in page.success)
+    book = instructor()
+    book.selectbox(key=f"assign__grant{aid}_who").select("s02").run()
+    widget(book, f"assign__grant{aid}_", "_extend_s02").uncheck()
+    book.button[[b.label for b in book.button].index("Save for this student")].click().run()
+    assert "s02" in " ".join(w.value for w in book.warning) and records.standing(bob).grant.extended_due is not None
+    book.button[[b.label for b in book.button].index("Save it anyway")].click().run()
+    assert records.standing(bob).grant.extended_due is None and records.gradebook(aid).score("s02") == 0
+
+    # an undo that lowers a score says so after
+    records.grant(aid, "s02", extended_due=records.now() + dt.timedelta(days=2))
+    book = instructor()
+    book.selectbox(key=f"assign__undo_pick{aid}").select(records.history(aid)[0].id).run()
+    book.button(key=f"assign__undo{aid}").click().run()
+    assert any("It lowered the score of 1 student: s02" in m.value for m in book.success)
+
+
+def test_an_edit_that_lowers_no_one_s_share_saves_at_once(course):
+    """Points doubled on every answer, more attempts, a later due time: saved without a question."""
+    aid, s, (ann, _) = one_assignment()
+    answer(student(link_query(ann)), "theta_rebound", rebound_in_degrees(ann))
+    doubled = records.replace(s, parts=tuple(records.replace(part, weights=tuple(2 * part.weight(n) for n in part.answers))
+                                             for part in s.parts))
+    assert records.points_taken(aid, settings=doubled) == []
+    assert records.points_taken(aid, settings=records.replace(s, due=s.due + dt.timedelta(days=3))) == []
+    taken = records.points_taken(aid, settings=records.replace(s, due=records.now() - dt.timedelta(days=1)))
+    assert [t.label for t in taken] == ["s01"] and taken[0].after == 0 < taken[0].before

@@ -643,10 +643,48 @@ def _edit(aid: int, s: records.Settings) -> None:
                 for problem in new.errors():
                     st.error(plain(problem))
                 return
-            warn = " The due time is in the past: late answers from now on." if new.due < records.now() <= s.due else ""
-            said = records.edit(aid, new)
-            st.session_state["assign__said"] = (f"Saved: {'; '.join(said)}.{warn}" if said else "Nothing changed.")
-            st.rerun()
+            st.session_state[f"{p}pending"] = new
+        new = st.session_state.get(f"{p}pending")
+        if new is not None:
+            _unless_it_takes_points(p, records.points_taken(aid, settings=new), lambda: _save_edit(aid, s, new))
+
+
+def _save_edit(aid: int, s: records.Settings, new: records.Settings) -> None:
+    passed = (" The new due time has passed: answers after it are late, those already recorded included."
+              if new.due < records.now() <= s.due else "")
+    said = records.edit(aid, new)
+    st.session_state["assign__said"] = (f"Saved: {'; '.join(said)}.{passed}" if said else "Nothing changed.")
+    st.rerun()
+
+
+MAX_TAKEN_SHOWN = 12  # students named in the warning before an edit that lowers scores
+
+
+def _whose(taken: list[records.PointsTaken]) -> str:
+    """"2 students: s01 2 of 6 → 0 of 6, s02 …"."""
+    named = ", ".join(f"{literal(t.label)} {records._number(t.before)} of {records._number(t.out_of_before)} → "
+                      f"{records._number(t.after)} of {records._number(t.out_of_after)}" for t in taken[:MAX_TAKEN_SHOWN])
+    more = f" and {len(taken) - MAX_TAKEN_SHOWN} more" if len(taken) > MAX_TAKEN_SHOWN else ""
+    return f"{len(taken)} student{'s' if len(taken) > 1 else ''}: {named}{more}"
+
+
+def _unless_it_takes_points(p: str, taken: list[records.PointsTaken], save) -> None:
+    """``save()`` at once; or, where it would lower students' scores (an earlier due time turning answers
+    already made late, an extension taken back…), say whose and by how much, and save only when asked
+    again: an edit applies to the attempts already recorded."""
+    if not taken:
+        st.session_state.pop(f"{p}pending", None)
+        save()
+        return
+    st.warning(f"**Nothing is saved yet.** This change applies to the answers already recorded too, and lowers "
+               f"the score of {_whose(taken)}.", icon=":material/warning:")
+    save_anyway, keep = st.columns(2)
+    if save_anyway.button("Save it anyway", key=f"{p}anyway"):
+        st.session_state.pop(f"{p}pending", None)
+        save()
+    if keep.button("Do not save it", key=f"{p}cancel"):
+        st.session_state.pop(f"{p}pending", None)
+        st.rerun()
 
 
 def _per_student(aid: int, book: records.Gradebook) -> None:
@@ -669,14 +707,21 @@ def _per_student(aid: int, book: records.Gradebook) -> None:
             if extend and due <= s.due:
                 st.error(f"The extension must be after the assignment's due time, {records.when_text(s.due, s.timezone)}.")
                 return
-            try:
-                said = records.grant(aid, who, extended_due=due.astimezone(UTC) if extend else None,
-                                     extra_attempts=int(extra))
-            except ValueError as error:
-                st.error(plain(str(error)))
-                return
-            st.session_state["assign__said"] = f"Saved: {said}." if said else "Nothing changed."
-            st.rerun()
+            st.session_state[f"{p}pending"] = (who, records.Grant(due.astimezone(UTC) if extend else None, int(extra)))
+        pending = st.session_state.get(f"{p}pending")
+        if pending is not None and pending[0] == who:
+            _unless_it_takes_points(p, records.points_taken(aid, grants=dict([pending])),
+                                    lambda: _save_grant(aid, *pending))
+
+
+def _save_grant(aid: int, who: str, grant: records.Grant) -> None:
+    try:
+        said = records.grant(aid, who, extended_due=grant.extended_due, extra_attempts=grant.extra_attempts)
+    except ValueError as error:
+        st.error(plain(str(error)))
+        return
+    st.session_state["assign__said"] = f"Saved: {said}." if said else "Nothing changed."
+    st.rerun()
 
 
 def _add_students(aid: int) -> None:
@@ -830,11 +875,14 @@ def _history(aid: int, s: records.Settings) -> None:
                               format_func=lambda i: f"#{i}: " + next(e.summary for e in undoable if e.id == i)[:80])
         if c2.button("Undo", key=f"assign__undo{aid}"):
             try:
+                before = records.gradebook(aid)
                 said = records.undo(aid, chosen)
             except ValueError as error:
                 st.error(plain(str(error)))
                 return
-            st.session_state["assign__said"] = f"Undone: {said}." if said else "Nothing to undo."
+            taken = records.lowered(before, records.gradebook(aid)) if said else []
+            st.session_state["assign__said"] = (f"Undone: {said}." + (f" It lowered the score of {_whose(taken)}."
+                                                if taken else "") if said else "Nothing to undo.")
             st.rerun()
     c3.download_button("Download the history (CSV)", records.history_csv(entries),
                        file_name=f"assignment-{aid}-history.csv", mime="text/csv", key="assign__history_csv")
