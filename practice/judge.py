@@ -174,12 +174,17 @@ def _unit_text_message(unit_text: str, answer: Answer, system: str) -> str:
     dimension, a unit in the wrong case, or no unit at all."""
     shown, si = units.unit(answer.dimension, system), units.unit(answer.dimension, "si")
     example = " or ".join(dict.fromkeys(u for u in (shown, si) if u)) or "no unit (a pure number)"
+    wanted = answer.dimension.replace("_", " ")
+    kind = "a pure number" if answer.dimension == "dimensionless" else f"{'an' if wanted[0] in 'aeiou' else 'a'} {wanted}"
     elsewhere = units.dimensions_of(unit_text)
     if elsewhere:
-        what, wanted = elsewhere[0].replace("_", " "), answer.dimension.replace("_", " ")
-        article = "an" if wanted[0] in "aeiou" else "a"  # an angle, an angular speed
-        return (f"{unit_text[:20]!r} is a unit of {what}, but this answer is "
-                f"{'a pure number' if answer.dimension == 'dimensionless' else f'{article} {wanted}'}: write it in {example}.")
+        return (f"{unit_text[:20]!r} is a unit of {elsewhere[0].replace('_', ' ')}, but this answer is {kind}: "
+                f"write it in {example}.")
+    if answer.dimension == "angular_speed" and units.normalise(unit_text) in ("Hz", "kHz"):
+        return (f"{unit_text[:20]!r} counts turns per second, a frequency f; this answer is an angular speed, "
+                f"ω = 2πf: write it in {example} (or rev/s).")
+    if units.made_of_units(unit_text):  # kg·m for an inertia: a unit, of another kind
+        return f"{unit_text[:20]!r} is not a unit of this answer, which is {kind}: write it in {example}."
     same_but_case = units.close_spellings(unit_text)
     if same_but_case:
         return (f"Unknown unit {unit_text[:20]!r}: units are case-sensitive (MJ is a megajoule, mJ a "

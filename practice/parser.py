@@ -93,8 +93,7 @@ def tokenize(text: str) -> list[Token]:
             bad = text[position:].lstrip()[:1]
             where = len(text) - len(text[position:].lstrip())
             if bad == "." and tokens and tokens[-1].kind == "number" and where == position:
-                raise ValueError(f"{tokens[-1].text + '.'!r} {_where(text, tokens[-1].position)} is not a "
-                                 "number: a number has one decimal point.")
+                raise ValueError(_two_points(text, tokens[-1].position, position + 1))
             raise ValueError(f"The character {bad!r} (U+{ord(bad):04X}) {_where(text, where)} is not "
                              "allowed: use numbers, the problem's symbols, + − * / ^ ( ) and "
                              "sin cos tan asin acos atan sqrt exp log abs.")
@@ -110,6 +109,14 @@ def tokenize(text: str) -> list[Token]:
     return tokens
 
 
+def _two_points(text: str, start: int, end: int) -> str:
+    """A run of digits with a second decimal point (1.0.8, 3..2), and where that point is."""
+    run = text[start:end]
+    second = start + run.index(".", run.index(".") + 1) if run.count(".") > 1 else start + len(run) - 1
+    return (f"{run!r} {_where(text, start)} is not a number: a number has one decimal point "
+            f"(the second is {_where(text, second)}).")
+
+
 def _no_numbers_side_by_side(text: str, tokens: list[Token]) -> None:
     """Refuse a number followed by another number (1.0.8, 3 4) or by a comma and a number (1,5):
     read as a product they would give a confident wrong value."""
@@ -120,8 +127,7 @@ def _no_numbers_side_by_side(text: str, tokens: list[Token]) -> None:
             end = after.position + len(after.text)
             run = text[before.position:end]
             if after.position == before.position + len(before.text) and "." in before.text + after.text:
-                raise ValueError(f"{run!r} {_where(text, before.position)} is not a number: a number has one "
-                                 "decimal point.")
+                raise ValueError(_two_points(text, before.position, end))
             raise ValueError(f"Two numbers side by side {_where(text, before.position)} ({run!r}): put an "
                              "operator (+ − * /) between them.")
         if after.kind == "op" and after.text == "," and re.match(r"\s*\d", text[after.position + 1:]):

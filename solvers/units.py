@@ -180,6 +180,18 @@ def dimensions_of(text: str) -> list[str]:
     return [d for d, table in SPELLINGS.items() if key in table]
 
 
+# The simple units every spelling is made of (kg, m, s, N, ft, lbf…), and the hertz, which no answer here is
+# in: a unit made of them but of another kind (kg·m for an inertia) is the wrong kind, not a typo.
+SIMPLE_UNITS = frozenset({s for table in SPELLINGS.values() for s in table if re.fullmatch(r"[A-Za-z°]+", s)}
+                         | {"Hz", "kHz"})
+
+
+def made_of_units(text: str) -> bool:
+    """Whether ``text`` is a product or quotient of simple units, each maybe to a power (kg·m, N/s, 1/s^2)."""
+    pieces = re.split(r"[\s·⋅*/]+", re.sub(r"(\^|\*\*)-?\d+|[²³]", "", text.strip().rstrip(".")))
+    return bool(pieces) and all(p in SIMPLE_UNITS or p == "1" for p in pieces) and any(p != "1" for p in pieces)
+
+
 def close_spellings(text: str) -> list[str]:
     """Accepted spellings equal to ``text`` but for case (kn for kN), across all dimensions."""
     key = normalise(text).lower()

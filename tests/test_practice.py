@@ -233,13 +233,16 @@ def test_generic_slips_sign_units_and_angle_mode():
     ("2/3*V*sin(theta) + w*R/3", "did you mean omega"),
     ("2/3*V*sinθ^2 + R*omega/3", "ambiguous"),
     ("2/3*V*sin2θ + R*omega/3", "sin(2θ) with brackets"),
-    ("1.0.8", "one decimal point"),
+    ("1.0.8", "one decimal point (the second is at position 4)"),
+    ("3..2", "one decimal point (the second is at position 3)"),
     ("0,83", "decimal comma"),
     ("2/3*V*sin(theta) + R*omega/3 kg", "is a unit of mass"),
     ("2/3*V*sin(thet) + R*omega/3", "did you mean theta"),
     ("0.8 J", "unit of energy"),
     ("0.8 M/s", "Unknown unit 'M/s'"),
     ("0.8 furlongs", "Unknown unit 'furlongs'"),
+    ("0.8 kg*m", "'kg*m' is not a unit of this answer, which is a speed: write it in m/s"),
+    ("0.8 N/s", "'N/s' is not a unit of this answer"),
     ("v1y/3", "another answer of this problem"),
     ("P_t + 1", "not a given"),
 ])
@@ -249,6 +252,19 @@ def test_messages_say_what_is_actually_wrong(text, says):
     assert not verdict.correct and says in verdict.message, verdict.message
     assert "v_{1x}" not in verdict.message and "sigma" not in verdict.message
     assert "you gave" not in verdict.message  # nothing was misread as a number
+
+
+@pytest.mark.parametrize("answer, text, says", [
+    ("omega1", "4.9 Hz", "'Hz' counts turns per second, a frequency f; this answer is an angular speed, ω = 2πf"),
+    ("energy_loss", "2 kg·m", "'kg·m' is not a unit of this answer, which is an energy: write it in J"),
+    ("impulse_t", "2 kg*m^2", "'kg*m^2' is a unit of inertia, but this answer is an impulse"),
+])
+def test_a_unit_of_another_kind_is_named_as_one_not_as_unknown(answer, text, says):
+    """kg·m for an inertia and Hz for an angular speed were "Unknown unit": a student who knows their
+    units reads that as a typo, when the quantity is what is wrong."""
+    _, _, judge, answers = setup("disk_wall")
+    verdict = judge.check(answers[answer], text)
+    assert not verdict.correct and says in verdict.message and "Unknown" not in verdict.message, verdict.message
 
 
 @pytest.mark.parametrize("text", ["(Rω+2Vsinθ)/3", "2/3 Vsinθ + Rω/3", "(R*omega + 2*V*sin(theta))/3 m/s",
