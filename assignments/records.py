@@ -834,12 +834,23 @@ def attempt_count(assignment_id: int, bound: Engine | None = None) -> int:
 
 # -- what a student is told
 
-def slip_name(slip: str) -> str:
-    """A slip's short name: its hint's first clause ("e where e² belongs", "A sign")."""
+def slip_name(slip: str, telling: bool = False) -> str:
+    """A slip's short name: its hint's first clause ("e where e² belongs", "A sign"), which gives no hint away.
+    ``telling`` (the instructor's gradebook and statistics, where answers' slips are compared): a first clause of a
+    word or two runs on to the next comma ("A sign: the rod reverses its direction of rotation at the bounce")."""
     generic = {"sign": "the sign", "rounded": "a rounded coefficient"}
     if slip in generic:
         return generic[slip]
-    return re.split(r"[:;.]", slip, maxsplit=1)[0].strip()
+    first, *rest = re.split(r"[:;.]", slip, maxsplit=1)
+    if telling and rest and len(first.split()) <= 2 and (more := re.split(r"[,;.(]", rest[0], maxsplit=1)[0].strip()):
+        return f"{first.strip()}: {more}"
+    return first.strip()
+
+
+def slip_shown(slip: str | None, settings: Settings) -> str:
+    """A slip as a student's own list of attempts names it: as their feedback did (hints on, or slips named),
+    else not at all."""
+    return slip_name(slip) if slip and (settings.hints or settings.slip_names) else ""
 
 
 def feedback(message: str, correct: bool, slip: str, settings: Settings | None) -> str:
@@ -916,7 +927,7 @@ def _cells(settings: Settings, grants: dict[str, Grant], labels: Iterable[str],
         cell = cells[key]
         cell.attempts += 1
         cell.marked += bool(attempt.marks())
-        if attempt.slip and (name := slip_name(attempt.slip)) not in cell.slips:
+        if attempt.slip and (name := slip_name(attempt.slip, telling=True)) not in cell.slips:
             cell.slips.append(name)
         if attempt.credit > cell.credit:
             cell.credit, cell.first_right, cell.first_right_at = attempt.credit, attempt.number, attempt.at
@@ -982,8 +993,8 @@ class Gradebook:
             late = sum(c.first_right is not None and c.credit < 1 or "late" in c.no_credit_why for c in cells)
             other = sum(c.first_right is None and c.right_no_credit is not None and "late" not in c.no_credit_why
                         for c in cells)
-            lines = [f"{on_time} of {len(tried)} students who tried it ({_percent(on_time, len(tried))}) "
-                     "got it right in time."]
+            lines = [f"{on_time} of {len(tried)} student{'s' if len(tried) > 1 else ''} who tried it "
+                     f"({_percent(on_time, len(tried))}) got it right in time."]
             if late:
                 lines.append(f"{late} more ({_percent(late, len(tried))}) got it right after the due time "
                              f"({'late credit: ' + self.settings.late_rule() if self.settings.late_policy != 'none' else 'no late credit'}).")

@@ -435,6 +435,8 @@ def test_feedback_policy_per_assignment_and_practice_keeps_its_hints(course):
     records.edit(aid, records.replace(records.assignment(aid), slip_names=False))
     page = answer(student(link_query(ann)), "theta_rebound", typed[:-2])
     assert page.error[0].value.startswith("Not right. Check each step")
+    mine = next(t.value for t in page.table if "slip" in t.value.columns)  # nor does the list of attempts name it
+    assert len(mine) == 3 and set(mine["slip"]) == {""}
     practice = AppTest.from_file(str(ROOT / "pages" / "pendulum_rebound.py"), default_timeout=60)
     practice.query_params.update({"practice": "1"})
     practice = answer(practice.run(), "theta_rebound", slip_value(pendulum_rebound.solve().params))

@@ -543,6 +543,29 @@ def test_feedback_follows_the_assignments_policy():
     assert records.feedback("Right: 3 m/s.", True, "", settings(hints=False)) == "Right: 3 m/s."
 
 
+SIGN_SLIPS = [m.feedback for m in registry.solver("pendulum_rebound").MISTAKES if m.feedback.startswith("A sign")]
+
+
+def test_a_slip_s_name_tells_the_instructor_which_and_the_student_no_more_than_their_feedback():
+    """Two of the pendulum's slips are "A sign…": the gradebook named both “A sign”. The instructor's name runs
+    on to what the sign is; a student's own list of attempts names a slip only as their feedback did."""
+    telling = [records.slip_name(slip, telling=True) for slip in SIGN_SLIPS]
+    assert len(SIGN_SLIPS) == 2 and len(set(telling)) == 2 and all(t.startswith("A sign: ") for t in telling)
+    assert all(t.split(": ", 1)[1] in slip for t, slip in zip(telling, SIGN_SLIPS))
+    assert records.slip_name(E_FOR_E2, telling=True) == records.slip_name(E_FOR_E2) == "e where e² belongs"
+    hint = SIGN_SLIPS[0]
+    assert records.slip_shown(hint, settings()) == records.slip_shown(hint, settings(hints=False)) == "A sign"
+    assert records.slip_shown(hint, settings(hints=False, slip_names=False)) == ""
+    assert records.slip_shown(None, settings()) == ""
+
+
+def test_the_statistics_of_one_student_say_one_student(database):
+    aid, students = new_assignment(database, ["s01"])
+    attempt(database, students[0], slip=SIGN_SLIPS[0])
+    assert records.gradebook(aid, database).statistics()[THETA][0] == (
+        "0 of 1 student who tried it (0 %) got it right in time.")
+
+
 def test_the_upgrade_keeps_an_assignment_made_before_problem_sets(database):
     """Revision 0001's assignment (one problem, its answers) and its attempts survive 0002."""
     from alembic import command

@@ -377,7 +377,7 @@ def your_attempts(link: StudentLink, answers, solution=None, system: str = "si")
             return "no: " + ", ".join(a.marks()) if a.marks() else "no"
 
         st.table([{"#": a.number, "answer": labels.get(a.answer, a.answer), "you typed": literal(a.typed),
-                   "verdict": "right" if a.correct else "not right", "slip": literal(records.slip_name(a.slip)),
+                   "verdict": "right" if a.correct else "not right", "slip": literal(records.slip_shown(a.slip, standing.settings)),
                    "time": records.when_text(a.at, zone), "counts": earned(a)} for a in mine])
 
 
