@@ -433,6 +433,43 @@ def test_a_body_dragged_larger_stays_inside_the_axes(browser, app_url, pid, key)
     context.close()
 
 
+SCENE_REACH = """(g) => {
+  const full = g._fullLayout.scene, axes = ['xaxis', 'yaxis', 'zaxis'];
+  const posed = g.data.map((t, n) => n).filter((n) => g._fullData[n].visible === 'legendonly');
+  let outside = 0;
+  for (const n of posed) ['x', 'y', 'z'].forEach((c, k) => { const [lo, hi] = full[axes[k]].range;
+    for (const v of g.data[n][c] || []) if (v !== null && isFinite(v) && (v < lo - 1e-9 || v > hi + 1e-9)) outside++; });
+  return {posed: posed.length, outside, ranges: axes.map((a) => full[a].range.slice()),
+          given: axes.map((a) => g.layout.scene[a].range.slice())};
+}"""
+
+
+def test_a_3d_body_dragged_larger_stays_inside_its_scene(browser, app_url):
+    """Euler's disk's r dragged from 37.5 mm to its top on a projector: the disk grew out of its ±40 mm box, the
+    rim drawn off the scene and over the page above it, until release. The box grows with it (one scale on all
+    three axes) while the mouse is held, and after release the run's own figure is drawn."""
+    context, page, errors = open_page(browser, f"{app_url}/eulers_disk?lecture=1", 1280, 720)
+    page.wait_for_timeout(500)
+    graph = page.locator(f"{STAGE} .dl-graph").first
+    before = graph.evaluate(SCENE_REACH)
+    control = page.locator(".st-key-eulers_disk__si__r")
+    thumb = control.locator("input[type='range']")
+    low, high, value = (float(thumb.get_attribute(a)) for a in ("min", "max", "value"))
+    hold_drag(page, control.locator("[role='group'] > [data-orientation]").first.bounding_box(), (value - low) / (high - low), 1.0, 15)
+    page.wait_for_timeout(1500)  # the last pose drawn (a 3-D redraw in software)
+    held = graph.evaluate(SCENE_REACH)
+    assert held["posed"] >= 2 and held["outside"] == 0, held  # the rim and the radius, whole inside the box
+    assert held["ranges"][0][1] > 5 * before["ranges"][0][1], (held, before)  # (0.5 m against 37.5 mm: widened)
+    page.mouse.up()
+    page.wait_for_function(f"() => new URL(location.href).searchParams.get('r') === '{high:g}'", timeout=30_000)
+    wait_until_idle(page)
+    page.wait_for_timeout(1500)
+    after = graph.evaluate(SCENE_REACH)
+    assert after["posed"] == 0 and after["ranges"] == after["given"], after  # the run's figure, its own box
+    assert not errors, errors
+    context.close()
+
+
 @pytest.mark.parametrize("pid", ["driven_cart", "sliding_ladder"])
 def test_the_companion_figures_keep_their_size_when_the_view_puts_them_first(browser, app_url, pid):
     """Study to Lecture in one visit puts the companion figures before the answers, in the element they

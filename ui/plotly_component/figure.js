@@ -336,11 +336,13 @@ class Figure {
   }
   // A held pose past a 2-D plot's axes (a longer ladder, a larger cart dragged) widens them to hold it,
   // by a fifth of their span more than it needs, so that a drag onward redraws seldom; never narrower
-  // during the drag, and put back on release (a run's new figure comes with its own). Returns plotly's
-  // redraw, or null where the pose fits.
+  // during the drag, and put back on release (a run's new figure comes with its own). A 3-D scene's box
+  // (Euler's disk dragged larger) grows as a whole (widenScene). Returns plotly's redraw, or null where
+  // the pose fits.
   widen(traces, data) {
     const layout = this.graph._fullLayout;
-    if (!this.held || this.scene || !layout) return null;
+    if (!this.held || !layout) return null;
+    if (this.scene) return this.widenScene(traces, data);
     const reach = {};  // axis name -> [lowest, highest] of the pose on it
     traces.forEach((t, n) => {
       const trace = this.graph._fullData[t];
@@ -364,6 +366,45 @@ class Figure {
     if (!Object.keys(update).length) return null;
     traces.forEach((t, n) => Object.assign(this.graph.data[t], {x: data[n].x, y: data[n].y}));  // drawn by the relayout
     return this.Plotly.relayout(this.graph, update);
+  }
+  // A 3-D scene's box grown about the origin by one factor on every axis (one scale on all three kept; the
+  // axis titles, anchored at its edges, moved with them), enough to hold the pose and a fifth more; its one
+  // redraw in WebGL, then the pose over it. Null where the pose fits, or an axis's range leaves out 0.
+  widenScene(traces, data) {
+    const given = this.graph.layout.scene, full = this.graph._fullLayout.scene, scene = this.scene;
+    const axes = ["xaxis", "yaxis", "zaxis"];
+    if (!given || !full || axes.some((a) => !given[a] || !Array.isArray(given[a].range))) return null;
+    let need = 1;
+    traces.forEach((_, n) => ["x", "y", "z"].forEach((c, k) => {
+      const [lo, hi] = full[axes[k]].range;
+      for (const v of data[n][c] || []) if (v !== null && Number.isFinite(v)) {
+        if (v > hi) need = hi > 0 ? Math.max(need, v / hi) : Infinity;
+        if (v < lo) need = lo < 0 ? Math.max(need, v / lo) : Infinity;
+      }
+    }));
+    if (need <= 1 || !Number.isFinite(need)) return null;
+    const grow = 1.2 * need, update = {};
+    const ranges = (this.held.ranges ??= {});  // what release puts back
+    for (const a of axes) {
+      update[`scene.${a}.range`] = full[a].range.map((v) => v * grow);
+      ranges[`scene.${a}.range`] ??= [...given[a].range];
+      if (Array.isArray(given[a].tickvals)) {  // the figure's few ticks would crowd its old box: plotly's own, as few
+        Object.assign(update, {[`scene.${a}.tickvals`]: null, [`scene.${a}.nticks`]: 4});
+        ranges[`scene.${a}.tickvals`] ??= [...given[a].tickvals];
+        ranges[`scene.${a}.nticks`] ??= given[a].nticks ?? null;
+      }
+    }
+    if (given.annotations) {
+      update["scene.annotations"] = full.annotations.map(
+        (n, i) => Object.assign({}, given.annotations[i], {x: n.x * grow, y: n.y * grow, z: n.z * grow}));
+      ranges["scene.annotations"] ??= given.annotations.map((n) => Object.assign({}, n));
+    }
+    const held = this.held;
+    return this.Plotly.relayout(this.graph, update).then(() => {
+      if (this.held !== held || !this.scene || !this.scene.glplot) return;
+      this.scene.glplot.redraw();  // (its loop parked while held: this one frame, at the new scale)
+      this.sceneOverlay(traces, data);
+    });
   }
   // Play keeps the animation's stated time (frames × frame time): each animation frame of the
   // browser draws the frame due at that moment, and a frame whose time has passed while the last
