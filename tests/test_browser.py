@@ -919,3 +919,34 @@ def test_a_phone_steps_a_stage_slider_one_step_a_tap(browser, app_url):
     assert page.evaluate(LIVE_CELLS) == expected(start + 1)
     assert not errors, errors
     context.close()
+
+
+EQUATIONS_DRAWN = """() => [...document.querySelectorAll('.dl-math .katex-display')].map((d) => {
+  const box = d.getBoundingClientRect(), tex = (d.querySelector('annotation') || {}).textContent || '';
+  let top = Infinity, bottom = -Infinity;
+  for (const e of d.querySelectorAll('.katex-html *')) {
+    const r = e.getBoundingClientRect();
+    if (r.width && r.height) { top = Math.min(top, r.top); bottom = Math.max(bottom, r.bottom); }
+  }
+  return {tex: tex.slice(0, 80), above: box.top - top, below: bottom - box.bottom,
+          smaller: /\\\\(small|footnotesize|scriptsize)\\b/.test(tex)};
+})"""
+
+
+@pytest.mark.parametrize("width, height, phone", [(1400, 1000, False), (390, 844, True)], ids=["laptop", "phone"])
+def test_every_derivation_equation_is_drawn_whole_and_a_laptop_sets_none_smaller(browser, app_url, width, height, phone):
+    """The stick's x_rev = 2·π·0.5000 / 1.200 had its numerator's top cut off (a display equation scrolls
+    sideways, which clips it above and below), and the ladder's |θ̇_f| was set at 60 % of the others' size on a
+    laptop with room to spare (its rows broken for a phone). Every equation of every page is whole, and on a
+    laptop none is set smaller."""
+    for problem in PROBLEMS:
+        context, page, errors = open_page(browser, f"{app_url}/{problem.id}", width, height, phone=phone)
+        page.locator(".dl-math .katex-display").first.wait_for(timeout=30_000)
+        drawn = page.evaluate(EQUATIONS_DRAWN)
+        assert drawn, problem.id
+        cut = [e for e in drawn if e["above"] > 0.5 or e["below"] > 0.5]
+        assert not cut, (problem.id, cut)
+        if not phone:
+            assert not [e["tex"] for e in drawn if e["smaller"]], problem.id
+        assert not errors, errors
+        context.close()

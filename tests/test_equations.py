@@ -15,7 +15,7 @@ from hypothesis import given, settings, strategies as st
 
 from tests import strategies
 from ui.catalog import PROBLEMS
-from ui.equations import PHONE_WIDTH_EM, _broken, broken, tokens, width
+from ui.equations import PHONE_WIDTH_EM, WIDE_WIDTH_EM, _broken, broken, tokens, wide_too, width
 
 SCAFFOLD = {r"\begin", r"\end", "aligned", "&", r"\\", r"\quad", r"\small", r"\footnotesize", r"\scriptsize",
             r"\Bigl", r"\Bigr", r"\left", r"\right", r"\,", "{", "}", r"\qquad", r"\;", ","}  # layout only
@@ -47,10 +47,20 @@ def test_broken_steps_keep_the_algebra_and_close_every_group_on_its_row(problem,
     except ValueError:
         return  # a refused case shows no derivation
     for step in solution.steps:
-        shown = broken(step.latex)
-        if shown == step.latex:
-            assert width(tokens(shown)) <= PHONE_WIDTH_EM
-            continue
+        variants = wide_too(step.latex)  # a phone's rows, and a wide column's where the phone's set one smaller
+        assert variants[0] == broken(step.latex) and (len(variants) == 1) == (not re.search(SMALLER, variants[0]))
+        for shown, limit in zip(variants, (PHONE_WIDTH_EM, WIDE_WIDTH_EM)):
+            check_rows(step, shown, limit)
+
+
+SMALLER = r"\\(small|footnotesize|scriptsize)\b"
+
+
+def check_rows(step, shown: str, limit: float) -> None:
+    """``shown`` (``step`` broken to ``limit`` em) says the step's algebra, every group closed on its row."""
+    if shown == step.latex:
+        assert width(tokens(shown)) <= limit
+    else:
         before, after = content(step.latex), content(shown)
         opened = shown.count(r"\frac {1}") - step.latex.count(r"\frac {1}") - step.latex.count(r"\frac{1}")
         assert after - before <= Counter({"1": max(opened, 0)}), (step.title, shown)

@@ -130,12 +130,12 @@ def derivation_shown(at: AppTest) -> dict:
 
 def latex_text(at: AppTest) -> list[str]:
     """The derivation's display equations, in order."""
-    return [tex for _, tex in derivation_shown(at)["steps"]]
+    return [tex for _, tex, *_ in derivation_shown(at)["steps"]]  # (the phone's rows; a wide column's beside some)
 
 
 def derivation_text(at: AppTest, d: dict | None = None) -> str:
     d = d or derivation_shown(at)
-    parts = [d["heading"], d["caption"], *(f"{title}\n\n{tex}" for title, tex in d["steps"])]
+    parts = [d["heading"], d["caption"], *(f"{title}\n\n{tex}" for title, tex, *_ in d["steps"])]
     return "\n\n".join(parts + ([d["slips_heading"], *d["slips"]] if d["slips"] else []))
 
 

@@ -183,7 +183,7 @@ def test_a_physical_limit_keeps_the_method_and_what_shows_why(pid, query, figure
     assert_clean(at)
     assert at.error and at.metric
     method = derivation_shown(at)
-    assert "without numbers" in method["caption"] and method["steps"] and all(tex for _, tex in method["steps"])
+    assert "without numbers" in method["caption"] and method["steps"] and all(tex for _, tex, *_ in method["steps"])
     assert sum(getattr(e, "type", None) == "bidi_component" for e in at.main) == figures_shown + 1  # figures, derivation
 
 

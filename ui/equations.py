@@ -21,6 +21,10 @@ import re
 # 360 px phone's content box (328 px) holds 18.8 em at the phone font size of the derivation
 # (ui/page.py PHONE_CSS); the estimate runs up to 15 % short of KaTeX's real layout.
 PHONE_WIDTH_EM = 16.0
+# The width a row may take where the column is wide (a laptop, a projector): a step whose phone rows
+# include one set smaller (below) is sent broken at this width too, and the page takes that where its
+# column holds it (ui/plotly_component/text.js), so a laptop draws it at full size.
+WIDE_WIDTH_EM = 36.0
 # Smaller sizes KaTeX offers in math mode, for a row that no relation or sign can split (a wide
 # fraction): the largest that fits is used.
 _SIZES = ((0.9, r"\small"), (0.8, r"\footnotesize"), (0.7, r"\scriptsize"))
@@ -336,6 +340,14 @@ def _broken(latex: str, limit: float) -> str:
         return latex
     rows = [row for connective, clause in _clauses(latex) for row in _rows_of_clause(connective, clause, limit)]
     return r"\begin{aligned}" + r" \\ ".join(_scaled(row, limit) for row in rows) + r"\end{aligned}"
+
+
+def wide_too(latex: str) -> list[str]:
+    """``broken(latex)`` for a phone, and where that sets a row smaller, ``broken`` at ``WIDE_WIDTH_EM`` too."""
+    narrow = broken(latex)
+    if not any(size in narrow for _, size in _SIZES):
+        return [narrow]
+    return [narrow, broken(latex, WIDE_WIDTH_EM)]
 
 
 def _scaled(row: str, limit: float) -> str:

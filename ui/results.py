@@ -10,7 +10,7 @@ import streamlit as st
 from solvers.core import Answer, PhysicalLimitError, Solution
 from solvers import units
 from ui import figure
-from ui.equations import broken
+from ui.equations import WIDE_WIDTH_EM, wide_too
 
 ANSWERS_HEADING = "Answers"
 LEDGER_HEADING = "Across the impact"
@@ -79,14 +79,15 @@ def derivation(solution: Solution, caption: str = "", slips: tuple[str, ...] = (
     one element of our own (ui/plotly_component/text.js): the browser typesets each equation
     once per distinct text and leaves alone the steps a new value does not change (the symbolic
     ones), where Streamlit's Markdown would typeset and lay out the whole derivation again. A
-    display equation too wide for a phone is broken over aligned rows (``broken``)."""
+    display equation too wide for a phone is broken over aligned rows (``broken``), and where that sets a row
+    smaller, also at a laptop's width (``wide_too``)."""
     figure.declared(figure.DERIVATION)(data=derivation_data(solution, caption, slips), key="derivation")
 
 
 def derivation_data(solution: Solution, caption: str = "", slips: tuple[str, ...] = ()) -> bytes:
     """What the derivation's element is sent (``derivation``)."""
     payload = {"view": "derivation", "heading": DERIVATION_HEADING, "caption": caption,
-               "steps": [[step.title, broken(step.latex)] for step in solution.steps],
+               "steps": [[step.title, *wide_too(step.latex)] for step in solution.steps], "wide_em": WIDE_WIDTH_EM,
                "slips_heading": SLIPS_HEADING, "slips": list(slips), "katex": figure.katex_url()}
     return orjson.dumps(payload)
 

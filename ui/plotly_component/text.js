@@ -23,7 +23,9 @@ const CSS = `
 .dl-text .dl-muted { color: var(--st-gray-text-color, inherit); }
 .dl-text .dl-caption { opacity: 0.75; }
 .dl-text .dl-math { margin: 0 0 1rem 0; }
-.dl-text .dl-math .katex-display { margin: 0.5em 0; overflow-x: auto; overflow-y: hidden; }
+/* A wide equation scrolls sideways, which clips it above and below too: its room between equations is padding,
+   inside the clip, so a tall numerator (2·π·0.5000 over 1.200) is never cut off at its top. */
+.dl-text .dl-math .katex-display { margin: 0; padding: 0.75em 0; overflow-x: auto; overflow-y: hidden; }
 .dl-text ul { margin: 0 0 1rem 0; padding-left: 1.5rem; line-height: 1.6; }
 .dl-text li { margin: 0.2em 0; }
 .dl-text table { border-collapse: collapse; margin: 0 0 1rem 0; line-height: 1.6; }
@@ -201,8 +203,14 @@ class Derivation {
       p.append(make("strong"), make("span"));
       step.append(p, make("div", "dl-math"));
       return step;
-    }).forEach((step, i) => {
-      const [title, tex] = d.steps[i];
+    });
+    // A step broken for a phone with a row set smaller comes broken for a wide column too: taken where the
+    // column holds that width in KaTeX's em (the server's estimate runs up to 15 % short).
+    const drawn = this.steps.querySelector(".katex-display > .katex");  // (before any: KaTeX's 1.21 em of the page's 0.9)
+    const katexEm = parseFloat(getComputedStyle(drawn || this.steps).fontSize) * (drawn ? 1 : 1.21 * 0.9);
+    const wide = this.steps.clientWidth >= d.wide_em / 0.85 * katexEm;
+    [...this.steps.children].forEach((step, i) => {
+      const [title, narrow, broad] = d.steps[i], tex = broad && wide ? broad : narrow;
       put(step.firstChild, [i, title], (p) => {
         p.firstChild.textContent = `${i + 1}.`;
         p.lastChild.replaceChildren(" ");
