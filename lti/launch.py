@@ -37,6 +37,15 @@ CLAIM = "https://purl.imsglobal.org/spec/lti/claim/"
 DL_CLAIM = "https://purl.imsglobal.org/spec/lti-dl/claim/"
 AGS_CLAIM = "https://purl.imsglobal.org/spec/lti-ags/claim/endpoint"
 NRPS_CLAIM = "https://purl.imsglobal.org/spec/lti-nrps/claim/namesroleservice"
+# The type each claim this tool reads has in the LTI 1.3 specs (Core §5, Deep Linking §4.4, AGS §3.1,
+# NRPS §3.6): a launch whose claim is of another type is refused before anything reads it.
+CLAIM_TYPES = {
+    **{CLAIM + name: dict for name in ("resource_link", "context", "tool_platform", "launch_presentation", "lis",
+                                       "custom")},
+    **{CLAIM + name: str for name in ("message_type", "version", "deployment_id", "target_link_uri")},
+    CLAIM + "roles": list, DL_CLAIM + "deep_linking_settings": dict, AGS_CLAIM: dict, NRPS_CLAIM: dict,
+    "sub": str, "nonce": str, "name": str, "given_name": str, "family_name": str, "email": str,
+}
 MESSAGES = ("LtiResourceLinkRequest", "LtiDeepLinkingRequest")
 STAFF = ("Instructor", "TeachingAssistant", "Administrator")  # of the context (a Mentor is a parent or advisor)
 STATE_SECONDS, HANDOFF_SECONDS, LEEWAY = 600, 120, 60
@@ -146,6 +155,9 @@ def verify(form: dict, spend) -> Launch:
         raise refuse(f"expired id_token from {platform.issuer}", "This launch has expired.") from None
     except (jwt.PyJWKClientError, jwt.InvalidTokenError) as error:
         raise refuse(f"id_token from {platform.issuer} failed verification: {type(error).__name__}: {error}") from None
+    wrong = [name for name, kind in CLAIM_TYPES.items() if name in claims and not isinstance(claims[name], kind)]
+    if wrong:  # a platform's bug (a resource_link sent as a string): refused in words, never a 500
+        raise refuse(f"id_token from {platform.issuer} with claims of the wrong type: {', '.join(wrong)}")
     audience = claims["aud"]
     if isinstance(audience, list) and len(audience) > 1 and claims.get("azp") != platform.client_id:
         raise refuse(f"id_token with several audiences and azp {claims.get('azp')!r}")

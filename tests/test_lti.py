@@ -597,3 +597,36 @@ def test_a_hostile_title_is_text_in_the_deep_link_pages(tool, lms):
                                             "answer": ["theta_rebound"], "tolerance": "many", "attempts": "2",
                                             "due": "2031-03-01T12:00"})
     assert bad.status_code == 200 and "<b>x</b>" not in bad.text and "<script>alert" not in bad.text
+
+
+def resigned(token: str, lms, changes: dict) -> str:
+    """The platform's id_token with ``changes`` to its claims, signed again with the platform's own key (as a
+    buggy LMS would send it: the emulator sets the deep-linking claims after any extra ones)."""
+    import jwt as pyjwt
+
+    header = pyjwt.get_unverified_header(token)
+    claims = {**pyjwt.decode(token, options={"verify_signature": False}), **changes}
+    return pyjwt.encode(claims, lms.private_key, algorithm="RS256", headers={"kid": header["kid"]})
+
+
+@SQLITE_ONLY
+@pytest.mark.parametrize("role, deep_link, claim, value", [
+    (LEARNER, False, lti.CLAIM + "resource_link", "x"),
+    (LEARNER, False, lti.CLAIM + "resource_link", ["x"]),
+    (LEARNER, False, lti.CLAIM + "context", ["x"]),
+    (INSTRUCTOR, False, lti.CLAIM + "context", "abc"),
+    (INSTRUCTOR, True, lti.DL_CLAIM + "deep_linking_settings", "x"),
+    (INSTRUCTOR, False, lti.NRPS_CLAIM, ["https://lms.example/roster"]),
+    (LEARNER, False, lti.CLAIM + "roles", "Learner"),
+])
+def test_a_claim_of_the_wrong_type_from_a_registered_platform_is_refused_not_a_500(tool, lms, caplog, role, deep_link,
+                                                                                    claim, value):
+    """A token signed by the platform's own key with a resource_link, context or deep-linking settings of the
+    wrong type (a buggy LMS) was a 500 with a traceback in the log: it is refused in words, and said why."""
+    aid = assignment(tool.database)
+    form = form_of(tool, lms, "someone-1", role, deep_link=deep_link, custom=custom_for(aid))
+    form = {**form, "id_token": resigned(form["id_token"], lms, {claim: value})}
+    with caplog.at_level(logging.WARNING, "dynamics_lab.lti"):
+        answer = tool.post("/lti/launch", data=form)
+    assert answer.status_code == 400 and "Not accepted" in answer.text and "Traceback" not in answer.text
+    assert "wrong type" in caplog.text and claim in caplog.text
