@@ -62,9 +62,14 @@ SESSION_TIMEOUT = 120.0
 SOURCE_ADDRESSES = [f"127.0.0.{n}" for n in range(2, 255)]
 
 
+ONE_ADDRESS = {"on": False}  # --one-address: the whole hall behind one NAT
+
+
 def source_address(n: int) -> str:
-    """The loopback address session ``n`` connects from (253 of them, reused round the list)."""
-    return SOURCE_ADDRESSES[n % len(SOURCE_ADDRESSES)]
+    """The loopback address session ``n`` connects from (253 of them, reused round the list; with
+    ``--one-address``, 127.0.0.1 for all: a lecture hall behind one NAT, which the fair share serves as one
+    address, one run at a time)."""
+    return "127.0.0.1" if ONE_ADDRESS["on"] else SOURCE_ADDRESSES[n % len(SOURCE_ADDRESSES)]
 
 
 @dataclass
@@ -314,7 +319,9 @@ def main() -> None:
     parser.add_argument("--spread", action="store_true",
                         help="each session moves its control by its own random steps (no shared states)")
     parser.add_argument("--json", type=Path, help="also write {processes: {page: row}} here")
+    parser.add_argument("--one-address", action="store_true", help="every session from 127.0.0.1 (one NAT)")
     args = parser.parse_args()
+    ONE_ADDRESS["on"] = args.one_address
     results = {}
     for processes in args.processes:
         rows = run_topology(processes, args.pages, args)

@@ -9,7 +9,15 @@ change took 27 s). So each connection gets a token bucket: ``RATE`` messages a s
 replaces an older one (each rerun carries every widget's value, so the latest is the state the
 person sees; a rerun that carries a button's click is never replaced). Every connection from one
 client address also draws on that address's bucket (``ADDRESS_RATE``, a lecture hall's NAT), so a
-script cannot multiply its share by opening many tabs. A connection held back
+script cannot multiply its share by opening many tabs. Nor can it by runs at once: the rate a
+process can serve is far below what a burst lets through (ten tabs' first 300 reruns, all new values,
+were six seconds of script for every other student to wait behind), so an address has at most
+``ADDRESS_RUNS`` session running the page at once (from a rerun let through until Streamlit says the
+run finished, for ``RUN_COUNTS`` seconds at most: a run that waits on a worker process holds no one); a
+rerun of another of its sessions waits, merged, for it to finish. One at a time loses a lecture hall's
+NAT nothing (one interpreter runs one script at a time anyway) and keeps a script's tabs to one
+student's share. A wait for the address's turn is no flood of the session's own: only its own rate
+counts towards ``DROP_AFTER``. A connection held back
 continuously for ``DROP_AFTER`` seconds is closed (1008, policy violation), and so is one with
 more than ``MAX_HELD`` messages, or ``MAX_HELD_BYTES``, waiting that cannot be merged. Nothing here touches another address's connections,
 and a person at a person's pace never meets the limit.
@@ -25,6 +33,7 @@ import logging
 import time
 
 from streamlit.proto.BackMsg_pb2 import BackMsg
+from streamlit.proto.ForwardMsg_pb2 import ForwardMsg
 
 RATE = 10.0        # messages a second, sustained: more than a person can send
 BURST = 30         # a quick series of changes (a held arrow key) passes untouched
@@ -34,6 +43,9 @@ DROP_AFTER = 15.0  # seconds held back without a break: no person does that
 MAX_HELD = 64      # messages waiting that cannot be merged (clicks): a bound on memory...
 MAX_HELD_BYTES = 1 << 20  # ... and on their size (a rerun is a few hundred bytes)
 MAX_ADDRESSES = 10_000  # addresses remembered at most (the least recently seen forgotten)
+ADDRESS_RUNS = 1   # an address's sessions running at once: one interpreter serves every address
+RUN_COUNTS = 1.0   # seconds a run holds its address's place at most (one waiting on a worker holds none)
+FINISHED_MAX_BYTES = 256  # a script_finished message is a few bytes: larger messages are not read
 STREAM_PATH = "/_stcore/stream"
 ONE_SHOT = {"trigger_value", "string_trigger_value", "json_trigger_value", "chat_input_value"}
 
@@ -75,12 +87,72 @@ def mergeable(message: dict) -> bool:
     return not any(w.WhichOneof("value") in ONE_SHOT for w in back.rerun_script.widget_states.widgets)
 
 
-class SessionBudget:
-    """The receive side of one websocket connection, metered by its own bucket and its address's."""
+def starts_run(message: dict) -> bool:
+    """A rerun: the page's script runs for it."""
+    data = message.get("bytes")
+    if not data:
+        return False
+    back = BackMsg()
+    try:
+        back.ParseFromString(data)
+    except Exception:  # noqa: BLE001 - Streamlit itself refuses and closes it
+        return False
+    return back.WhichOneof("type") == "rerun_script"
 
-    def __init__(self, receive, send, who: str, clock=time.monotonic, shared: TokenBucket | None = None):
+
+def finishes_run(message: dict) -> bool:
+    """Streamlit's word that a session's run is over (not one stopped for the next rerun)."""
+    data = message.get("bytes")
+    if not data or len(data) > FINISHED_MAX_BYTES:
+        return False
+    forward = ForwardMsg()
+    try:
+        forward.ParseFromString(data)
+    except Exception:  # noqa: BLE001 - not ours to judge
+        return False
+    return forward.WhichOneof("type") == "script_finished" and forward.script_finished != ForwardMsg.FINISHED_EARLY_FOR_RERUN
+
+
+class AddressRuns:
+    """One address's sessions running the page, each since when; ``freed`` resolves when one finishes."""
+
+    def __init__(self, clock=time.monotonic):
+        self.clock = clock
+        self.running: dict[int, float] = {}
+        self.freed: asyncio.Future | None = None
+
+    def room_for(self, session: int) -> bool:
+        now = self.clock()
+        for other, since in list(self.running.items()):
+            if now - since > RUN_COUNTS:
+                del self.running[other]
+        return session in self.running or len(self.running) < ADDRESS_RUNS
+
+    def start(self, session: int) -> None:
+        self.running[session] = self.clock()
+
+    def finish(self, session: int) -> None:
+        if self.running.pop(session, None) is not None and self.freed is not None and not self.freed.done():
+            self.freed.set_result(None)
+
+    def next_free(self) -> asyncio.Future:
+        if self.freed is None or self.freed.done():
+            self.freed = asyncio.get_running_loop().create_future()
+        return self.freed
+
+    def seconds_to_expiry(self) -> float:
+        return max(0.0, min((RUN_COUNTS - (self.clock() - since) for since in self.running.values()), default=0.0))
+
+
+class SessionBudget:
+    """The receive side of one websocket connection, metered by its own bucket and its address's, and by
+    its address's runs at once."""
+
+    def __init__(self, receive, send, who: str, clock=time.monotonic, shared: TokenBucket | None = None,
+                 runs: AddressRuns | None = None):
         self.inner, self.send, self.who, self.clock = receive, send, who, clock
         self.buckets = (TokenBucket(clock=clock), shared or TokenBucket(ADDRESS_RATE, ADDRESS_BURST, clock))
+        self.runs = runs or AddressRuns(clock)
         self.held: collections.deque[tuple[dict, bool]] = collections.deque()  # (message, mergeable)
         self.held_bytes = 0
         self.reader: asyncio.Future | None = None
@@ -88,39 +160,56 @@ class SessionBudget:
         self.slowed = self.closed = False
 
     async def send_to_client(self, message: dict) -> None:
-        """The app's send, silent once this budget has closed the connection."""
+        """The app's send, silent once this budget has closed the connection; a finished run frees its
+        address's place."""
+        if finishes_run(message):
+            self.runs.finish(id(self))
         if not self.closed:
             await self.send(message)
 
     def _wait(self) -> float:
         return max(bucket.wait() for bucket in self.buckets)
 
-    def _take(self) -> None:
+    def _may_pass(self, message: dict) -> bool:
+        """Whether ``message`` may go to Streamlit now: a token in both buckets, and for a rerun a place
+        among its address's runs (taken as it passes)."""
+        if self._wait() > 0:
+            return False
+        if starts_run(message):
+            if not self.runs.room_for(id(self)):
+                return False
+            self.runs.start(id(self))
         for bucket in self.buckets:
             bucket.take()
+        return True
 
     async def receive(self) -> dict:
         while True:
-            if self.held and self._wait() == 0:
-                self._take()
+            if self.held and self._may_pass(self.held[0][0]):
                 message, _ = self.held.popleft()
                 self.held_bytes -= len(message.get("bytes") or b"")
+                if not self.held and self.buckets[0].wait() == 0:  # (it waited its address's turn, not its own)
+                    self.over_since = None
                 return message
             if self.held and self.clock() - self.over_since > DROP_AFTER:
                 return await self._drop(f"held back for {DROP_AFTER:.0f} s")
             if self.reader is None:
                 self.reader = asyncio.ensure_future(self.inner())
-            timeout = self._wait() if self.held else None
-            done, _ = await asyncio.wait({self.reader}, timeout=timeout)
-            if not done:
+            waiting = {self.reader}
+            timeout = None
+            if self.held:  # a token, a place among the address's runs (one finishing, or one timing out)
+                timeout = self._wait() or self.runs.seconds_to_expiry() or 0.05
+                waiting.add(self.runs.next_free())
+            done, _ = await asyncio.wait(waiting, timeout=timeout, return_when=asyncio.FIRST_COMPLETED)
+            if self.reader not in done:
                 continue
             message, self.reader = self.reader.result(), None
             if message["type"] != "websocket.receive":
                 self.held.clear()  # a disconnect needs no rerun before it
                 self.held_bytes = 0
+                self.runs.finish(id(self))
                 return message
-            if not self.held and self._wait() == 0:  # the usual case: at a person's pace
-                self._take()
+            if not self.held and self._may_pass(message):  # the usual case: at a person's pace
                 self.over_since = None
                 return message
             self._hold(message)
@@ -143,6 +232,7 @@ class SessionBudget:
         log.warning("session from %s dropped (%s)", self.who, why)
         self.held.clear()
         self.held_bytes = 0
+        self.runs.finish(id(self))
         if self.reader is not None:
             self.reader.cancel()
         self.closed = True
@@ -154,14 +244,15 @@ class SessionBudget:
 
 
 class AddressBuckets:
-    """A token bucket per client address, the ``MAX_ADDRESSES`` most recently seen remembered."""
+    """A token bucket per client address (or what ``make`` makes), the ``MAX_ADDRESSES`` most recently seen
+    remembered."""
 
-    def __init__(self, rate: float, burst: int):
-        self.rate, self.burst = rate, burst
-        self.addresses: collections.OrderedDict[str, TokenBucket] = collections.OrderedDict()
+    def __init__(self, rate: float = ADDRESS_RATE, burst: int = ADDRESS_BURST, make=None):
+        self.make = make or (lambda: TokenBucket(rate, burst))
+        self.addresses: collections.OrderedDict[str, object] = collections.OrderedDict()
 
-    def __call__(self, address: str) -> TokenBucket:
-        bucket = self.addresses.pop(address, None) or TokenBucket(self.rate, self.burst)
+    def __call__(self, address: str):
+        bucket = self.addresses.pop(address, None) or self.make()
         while len(self.addresses) >= MAX_ADDRESSES:
             self.addresses.popitem(last=False)
         self.addresses[address] = bucket
@@ -180,14 +271,22 @@ class FairShare:
     def __init__(self, app):
         self.app = app
         self.address_bucket = AddressBuckets(ADDRESS_RATE, ADDRESS_BURST)
+        self.address_runs = AddressBuckets(make=AddressRuns)
 
     async def __call__(self, scope, receive, send):
         if scope["type"] != "websocket" or not scope["path"].endswith(STREAM_PATH):
             return await self.app(scope, receive, send)
         address = client_address(scope)
-        budget = SessionBudget(receive, send, address, shared=self.address_bucket(address))
+        budget = SessionBudget(receive, send, address, shared=self.address_bucket(address),
+                               runs=self.address_runs(address))
         try:
             await self.app(scope, budget.receive, budget.send_to_client)
+        except Exception:  # noqa: BLE001
+            # Streamlit's endpoint, told of the disconnect of a session this budget dropped, may try to
+            # close it again and raise (WebSocketDisconnected: a close was sent): the drop is logged already.
+            if not budget.closed:
+                raise
         finally:
+            budget.runs.finish(id(budget))
             if budget.reader is not None:
                 budget.reader.cancel()
