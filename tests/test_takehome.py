@@ -311,7 +311,7 @@ def test_a_download_link_makes_the_files_of_the_page_state_it_names():
     expected = {name: make() for _, name, _, make in
                 takehome.files(problem, solution, problem.answers_of(solution), "si", "http://h/disk_wall?e=0.5")}
     for name, text in expected.items():
-        status, kind, body = takehome.made("disk_wall", name, "e=0.5", "http://h/disk_wall?e=0.5")
+        status, kind, body = takehome.made("disk_wall", name, "e=0.5", "http://h/disk_wall")
         assert status == 200 and body.decode() == text, name
     assert takehome.made("disk_wall", "disk_wall.py", "e=0.5", "")[2] != takehome.made("disk_wall", "disk_wall.py", "", "")[2]
     for problem_id, name, query in [("disk_wall", "x.py", ""), ("nope", "nope.py", ""), ("disk_wall", "disk_wall.py", "e=NaN"),
@@ -329,9 +329,13 @@ def test_the_download_route_serves_files_passes_the_rest_on_and_bounds_a_flood()
 
     client = TestClient(DownloadServer(PlainTextResponse("streamlit")))
     started = time.monotonic()  # this client's bucket is filled at its first download, just below
-    answer = client.get("/download/stick_ball/stick_ball-derivation.md?units=us")
-    assert answer.status_code == 200 and 'filename="stick_ball-derivation.md"' in answer.headers["content-disposition"]
-    assert "http://testserver/stick_ball?units=us" in answer.text  # the file cites the page it came from
+    answer = client.get("/download/pendulum_rebound/pendulum_rebound-derivation.md?units=us&L=3.5"
+                        "&x=)](https://evil.example/login)&assignment=1&seed=7&student=s001&sig=abc")
+    assert answer.status_code == 200 and 'filename="pendulum_rebound-derivation.md"' in answer.headers["content-disposition"]
+    # the file cites the page it came from, with the numbers it was made from and nothing else of the link
+    # (a name the problem does not know made a Markdown link showing this address and going elsewhere)
+    assert "(http://testserver/pendulum_rebound?L=3.5&units=us)" in answer.text
+    assert "evil" not in answer.text and "sig=" not in answer.text
     assert client.get("/stick_ball").text == "streamlit"
     codes = [client.get("/download/stick_ball/stick_ball.py").status_code for _ in range(DOWNLOAD_BURST + 10)]
     refilled = DOWNLOAD_RATE * (time.monotonic() - started)  # tokens that came back meanwhile

@@ -133,7 +133,7 @@ def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[
     address, which the file cites), or a plain-text refusal. No Streamlit."""
     from solvers.core import within_model_range
     from ui.catalog import BY_ID
-    from ui.params import parameters_of_link
+    from ui.params import read_link
 
     plain_text = "text/plain; charset=utf-8"
     problem = BY_ID.get(problem_id)
@@ -144,7 +144,7 @@ def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[
         return 400, plain_text, b"This link is too long to be a page's address."
     query = dict(urllib.parse.parse_qsl(query_string, keep_blank_values=True))  # the last value wins, as on the page
     system = "us" if query.get("units") == "us" and problem.us_units else "si"
-    values, refusals = parameters_of_link(problem, query, system, markdown=False)
+    values, linked, refusals = read_link(problem, query, system, markdown=False)
     if refusals:
         return 400, plain_text, ("This link's numbers cannot be made into a file:\n" + "\n".join(refusals)).encode()
     try:
@@ -152,6 +152,11 @@ def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[
     except ValueError as error:
         return 400, plain_text, f"These numbers have no solution in this model: {error}".encode()
     mime, kind = listed[name]
+    # The file cites the page with the numbers it was made from, and nothing else of the link: a name the
+    # problem does not know (?x=)](https://elsewhere) made a Markdown link that showed this app's address
+    # and went elsewhere) or an assignment link's (whose numbers are not these) is left out.
+    cited = {k: v if isinstance(v, str) else f"{v:g}" for k, v in linked.items()} | ({"units": "us"} if system == "us" else {})
+    page_url = page_url + ("?" + urllib.parse.urlencode(cited) if cited else "")
     text = maker(problem, solution, problem.answers_of(solution), system, page_url, kind)()
     return 200, f"{mime}; charset=utf-8", text.encode() if isinstance(text, str) else text
 
@@ -193,14 +198,13 @@ class DownloadServer:
 
 
 def page_url(scope, problem_id: str) -> str:
-    """The lesson page's address a download link came from: this server, the page's path (the
-    download's, with /download/<id>/<file> replaced by /<id>), the same query."""
+    """The lesson page's address a download link came from: this server and the page's path (the
+    download's, with /download/<id>/<file> replaced by /<id>); ``made`` adds the numbers."""
     headers = dict(scope.get("headers") or [])
     host = headers.get(b"host", b"").decode("latin-1")
     path = DOWNLOAD.sub(f"/{problem_id}", scope["path"])
-    query = scope.get("query_string", b"").decode("latin-1")
     origin = f"{scope.get('scheme', 'http')}://{host}" if host else ""
-    return origin + path + (f"?{query}" if query else "")
+    return origin + path
 
 
 def downloads(problem: Problem, solution: Solution, answers, system: str, exercise: bool = False) -> None:
