@@ -60,6 +60,8 @@ def _number_in_si(text: str, answer: Answer, system: str) -> tuple[float, str, s
     value = float(match.group(1).replace("−", "-"))
     if not math.isfinite(value):
         raise ValueError("That number is too large.")
+    if value == 0 and re.search(r"[1-9]", match.group(1).lower().split("e")[0]):  # 1e-400: no double holds it
+        raise ValueError("That number is too small to tell from zero: write it with an exponent above −300.")
     unit_text = (match.group(2) or "").strip()
     if not unit_text:
         return _in_unit_shown(value, answer, system) + ("",)

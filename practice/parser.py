@@ -94,7 +94,8 @@ def tokenize(text: str) -> list[Token]:
             where = len(text) - len(text[position:].lstrip())
             if bad == "." and tokens and tokens[-1].kind == "number" and where == position:
                 raise ValueError(_two_points(text, tokens[-1].position, position + 1))
-            raise ValueError(f"The character {bad!r} (U+{ord(bad):04X}) {_where(text, where)} is not "
+            shown = f"'{bad}'" if bad.isprintable() else repr(bad)  # (a backslash as typed, not as Python's '\\')
+            raise ValueError(f"The character {shown} (U+{ord(bad):04X}) {_where(text, where)} is not "
                              "allowed: use numbers, the problem's symbols, + − * / ^ ( ) and "
                              "sin cos tan asin acos atan sqrt exp log abs.")
         kind = match.lastgroup
@@ -317,6 +318,8 @@ class _Parser:
             as_float = float(token.text)
             if not math.isfinite(as_float) or abs(as_float) > MAX_MAGNITUDE:
                 raise ValueError(f"The number {_where(self.text, token.position)} is too large.")
+            if as_float == 0 and re.search(r"[1-9]", token.text.lower().split("e")[0]):  # 1e-400
+                raise ValueError(f"The number {_where(self.text, token.position)} is too small to tell from zero.")
             value = sp.Rational(token.text) if "e" not in token.text.lower() else sp.Float(token.text, 15)
         self.check(value)
         return value
