@@ -551,12 +551,18 @@ class Figure {
     // column at the right, not in rows above it.
     if (layout.scene && layout.showlegend !== false && this.root.clientWidth > SCENE_GROWTH * layout.height)
       layout.legend = Object.assign({}, layout.legend, {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"});
+    // A motion drawn to scale beside a legend in a column (the lecture's) that takes the width its scale
+    // needs (the stick on a 1024 px projector: 190 px of plot beside 330 px of names) has it in rows above.
+    if (style && squeezedBeside(spec.data, layout, this.root.clientWidth))
+      layout.legend = Object.assign({}, layout.legend, {orientation: "h", x: 0, xanchor: "left", y: 1.02, yanchor: "bottom",
+                                                        entrywidth: 0, entrywidthmode: "pixels"});  // (each its own width)
     const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
+    const legendRoom = legendWidth(spec.data, layout);
     layout.height = sceneHeight(layout, layout.height, this.root.clientWidth);
     // WebGL sizes the scene's box to the graph's height: where the graph is wider than tall (beside its
     // legend), the box is drawn up to SCENE_GROWTH times larger, to fill the width too.
     if (layout.scene && layout.scene.aspectratio) {
-      const wide = (this.root.clientWidth - (legendBeside ? LEGEND_BESIDE : 0)) / Math.max(1, plotHeight(layout));
+      const wide = (this.root.clientWidth - (legendBeside ? legendRoom : 0)) / Math.max(1, plotHeight(layout));
       const grow = Math.min(SCENE_GROWTH, Math.max(1, wide)), ratio = layout.scene.aspectratio;
       layout.scene = Object.assign({}, layout.scene, {aspectratio: {x: ratio.x * grow, y: ratio.y * grow, z: ratio.z * grow}});
     }
@@ -564,7 +570,7 @@ class Figure {
     if (slider && !layout.scene)  // the lowest plot's x tick labels and title, no more
       layout.margin.b = Math.min(layout.margin.b, Math.ceil(lowest));
     const side = beside(layout, this.root.clientWidth - (layout.margin.l ?? 80) - (layout.margin.r ?? 80)
-                                - (legendBeside ? LEGEND_BESIDE : 0), plotHeight(layout));
+                                - (legendBeside ? legendRoom : 0), plotHeight(layout));
     if (side) {  // both plots' x axes now at the foot
       applied(layout, side);
       layout.margin.b = Math.max(layout.margin.b, Math.ceil(Math.max(lowest, axisRoom(layout, layout.xaxis || {}))));
@@ -829,7 +835,30 @@ function stacked(layout, height) {
 // MIN_BESIDE px (its tick labels side by side, not slanted over each other). Null where stacking is as
 // good (a wide motion, a phone) or the layout has no such pair.
 const MIN_BESIDE = 210;  // (three bars' names in lecture type)
-const LEGEND_BESIDE = 200;  // the width a legend in a column beside a plot or a 3-D scene takes, before plotly draws it
+// The width a legend in a column beside a plot or a 3-D scene takes, before plotly draws it: its longest
+// name at 0.42 em a character (plotly's sans-serif, measured: "centre of mass G (at rest)" 240 px at 18 px),
+// and its symbol and padding.
+function legendWidth(data, layout) {
+  return 40 + 0.42 * legendSize(layout) * Math.max(0, ...legendNames(data).map((name) => name.length));
+}
+const legendSize = (layout) => ((layout.legend || {}).font || {}).size || (layout.font || {}).size || 12;
+const legendNames = (data) => data.filter((t) => t.showlegend !== false && t.name).map((t) => String(t.name));
+
+// Whether a single motion drawn to scale beside a legend in a column would be drawn larger (by more than a
+// tenth) with the legend in rows above it: the rows (as many as plotly's equal columns of the widest name
+// need) take height, the column takes width.
+function squeezedBeside(data, layout, width) {
+  const xa = layout.xaxis || {}, ya = layout.yaxis || {};
+  if (layout.showlegend === false || (layout.legend || {}).orientation !== "v" || layout.scene || layout.yaxis2
+      || !ya.scaleanchor || !Array.isArray(xa.range) || !Array.isArray(ya.range)) return false;
+  const spanX = Math.abs(xa.range[1] - xa.range[0]), spanY = Math.abs(ya.range[1] - ya.range[0]);
+  const plotWidth = width - ((layout.margin || {}).l ?? 80) - ((layout.margin || {}).r ?? 80), height = plotHeight(layout);
+  const column = legendWidth(data, layout), names = legendNames(data).length;
+  const rows = Math.ceil(names / Math.max(1, Math.floor(plotWidth / column))) * 1.45 * legendSize(layout);
+  const beside = Math.min((plotWidth - column) / spanX, height / spanY);
+  const above = Math.min(plotWidth / spanX, (height - rows) / spanY);
+  return spanX > 0 && spanY > 0 && above > 1.1 * beside;
+}
 function beside(layout, width, height) {
   const up = layout.yaxis || {}, low = layout.yaxis2 || {}, xa = layout.xaxis || {};
   if (!up.domain || !low.domain || low.domain[1] > up.domain[0] || !layout.xaxis2 || !up.scaleanchor
