@@ -950,3 +950,26 @@ def test_every_derivation_equation_is_drawn_whole_and_a_laptop_sets_none_smaller
             assert not [e["tex"] for e in drawn if e["smaller"]], problem.id
         assert not errors, errors
         context.close()
+
+
+FOCUS_SEEN = """() => { const e = document.activeElement, outlined = e.closest('label') || e, s = getComputedStyle(outlined);
+  return {role: e.getAttribute('role'), tag: e.tagName, style: s.outlineStyle, width: parseFloat(s.outlineWidth)}; }"""
+
+
+def test_keyboard_focus_is_seen_on_a_switch_and_on_the_main_area(browser, app_url):
+    """Tabbing onto "No slip at the contact" showed only a label background 1.1:1 against the page, and the main
+    area (the skip link's target, a tab stop) showed nothing: both are outlined, 2 px, in the text's colour."""
+    context, page, errors = open_page(browser, f"{app_url}/disk_wall")
+    seen = {}
+    for _ in range(60):
+        page.keyboard.press("Tab")
+        focus = page.evaluate(FOCUS_SEEN)
+        key = "switch" if focus["role"] == "switch" else "main" if focus["tag"] == "MAIN" else None
+        if key and key not in seen:
+            seen[key] = focus
+        if len(seen) == 2:
+            break
+    assert set(seen) == {"switch", "main"}, seen
+    assert all(f["style"] == "solid" and f["width"] >= 2 for f in seen.values()), seen
+    assert not errors, errors
+    context.close()

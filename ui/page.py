@@ -105,6 +105,11 @@ STAGE_CSS = """
 RUN_CSS = """
 <style>
   [data-stale] { transition: none !important; opacity: 1 !important; }
+  /* Keyboard focus seen (in either theme: the text's own colour): a switch showed it only as a label
+     background 1.1:1 against the page, and the main area (Streamlit's skip link's target) not at all. */
+  [data-testid='stCheckbox'] label:has(input:focus-visible) { outline: 2px solid currentColor; outline-offset: 3px;
+    border-radius: 4px; }
+  [data-testid='stMain']:focus-visible { outline: 2px solid currentColor; outline-offset: -4px; }
 </style>
 """
 

@@ -206,8 +206,8 @@ class Derivation {
     });
     // A step broken for a phone with a row set smaller comes broken for a wide column too: taken where the
     // column holds that width in KaTeX's em (the server's estimate runs up to 15 % short).
-    const drawn = this.steps.querySelector(".katex-display > .katex");  // (before any: KaTeX's 1.21 em of the page's 0.9)
-    const katexEm = parseFloat(getComputedStyle(drawn || this.steps).fontSize) * (drawn ? 1 : 1.21 * 0.9);
+X
+    const katexEm = parseFloat(getComputedStyle(drawn || this.steps).fontSize) * (drawn ? 1 : 1.21);
     const wide = this.steps.clientWidth >= d.wide_em / 0.85 * katexEm;
     [...this.steps.children].forEach((step, i) => {
       const [title, narrow, broad] = d.steps[i], tex = broad && wide ? broad : narrow;
