@@ -546,3 +546,20 @@ def test_an_edit_that_lowers_no_one_s_share_saves_at_once(course):
     assert records.points_taken(aid, settings=records.replace(s, due=s.due + dt.timedelta(days=3))) == []
     taken = records.points_taken(aid, settings=records.replace(s, due=records.now() - dt.timedelta(days=1)))
     assert [t.label for t in taken] == ["s01"] and taken[0].after == 0 < taken[0].before
+
+
+def test_the_points_boxes_come_in_reading_order(course):
+    """Four columns of "Points:" boxes put the first, fifth… answers in one column: the page's order (and the
+    Tab key's) went down each column. Rows of four keep the answers' own order, on creation and in the edit."""
+    from solvers import disk_wall
+    from ui.practice import answer_label
+
+    names = [f"Points: {answer_label(a)}" for a in disk_wall.ANSWERS]
+    at = instructor()
+    at.multiselect(key="assign__problems").set_value(["disk_wall"]).run()
+    shown = [w.label for w in at.number_input if w.label.startswith("Points:")]
+    assert len(names) > 4 and shown == names
+    aid, _, _ = one_assignment(problems=("disk_wall",), title="Week 9: the wall")
+    book = instructor()
+    edited = [w.label for w in book.number_input if w.label.startswith("Points:") and w.key.startswith(f"assign__edit{aid}_")]
+    assert len(edited) == len(disk_wall.ANSWERS) and edited == shown

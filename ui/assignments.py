@@ -503,11 +503,8 @@ def _new_assignment() -> None:
             counted = st.multiselect("Answers that count", list(answers), default=list(answers),
                                      format_func=lambda name, answers=answers: answer_label(answers[name]),
                                      key=f"{p}answers_{pid}")
-            weights = []
-            columns = st.columns(4)
-            for n, name in enumerate(counted):
-                weights.append(columns[n % 4].number_input(f"Points: {answer_label(answers[name])}", 0.1, 1000.0,
-                                                           1.0, 0.5, key=f"{p}weight_{pid}_{name}"))
+            weights = [cell.number_input(f"Points: {answer_label(answers[name])}", 0.1, 1000.0, 1.0, 0.5,
+                                         key=f"{p}weight_{pid}_{name}") for cell, name in zip(_in_rows(len(counted)), counted)]
         parts.append(records.Part(pid, tuple(counted), tuple(weights)))
     c1, c2 = st.columns(2)
     tolerance = c1.number_input("Tolerance for numbers (%)", 0.01, 10.0, RELATIVE_TOLERANCE * 100, 0.1,
@@ -607,6 +604,12 @@ def _version(*values) -> str:
     return hashlib.sha256(repr(values).encode()).hexdigest()[:8]
 
 
+def _in_rows(count: int, across: int = 4) -> list:
+    """``count`` cells in rows of ``across`` columns, in reading order: the Tab key goes along a row, then to
+    the next (four columns of boxes took it down each column first)."""
+    return [cell for start in range(0, count, across) for cell in st.columns(across)][:count]
+
+
 def _edit(aid: int, s: records.Settings) -> None:
     p = f"assign__edit{aid}_{_version(s)}_"
     with st.expander("Edit: due time, attempts, tolerance, late work, feedback, points"):
@@ -624,15 +627,12 @@ def _edit(aid: int, s: records.Settings) -> None:
             hints, names, after, before = _feedback_inputs(p, s)
             labels = _answer_labels(s)
             parts = []
-            columns = st.columns(4)
-            n = 0
+            cells = iter(_in_rows(sum(len(part.answers) for part in s.parts)))
             for part in s.parts:
-                weights = []
-                for name in part.answers:
-                    weights.append(columns[n % 4].number_input(f"Points: {labels[(part.problem, name)]}", 0.1, 1000.0,
-                                                               part.weight(name), 0.5, key=f"{p}w_{part.problem}_{name}"))
-                    n += 1
-                parts.append(replace(part, weights=tuple(weights)))
+                weights = tuple(next(cells).number_input(f"Points: {labels[(part.problem, name)]}", 0.1, 1000.0,
+                                                         part.weight(name), 0.5, key=f"{p}w_{part.problem}_{name}")
+                                for name in part.answers)
+                parts.append(replace(part, weights=weights))
             save = st.form_submit_button("Save the changes")
         if save:
             new = replace(s, title=title, tolerance=tolerance / 100, attempts_allowed=int(attempts),
