@@ -72,32 +72,29 @@ class TokenBucket:
         self.tokens -= 1
 
 
-def mergeable(message: dict) -> bool:
-    """A rerun without a click: a newer one stands for it."""
+def _rerun(message: dict):
+    """The rerun a message from the browser asks for (its RerunScript), or None (another message, or none
+    Streamlit could read: it refuses and closes those itself)."""
     data = message.get("bytes")
     if not data:
-        return False
+        return None
     back = BackMsg()
     try:
         back.ParseFromString(data)
-    except Exception:  # noqa: BLE001 - Streamlit itself refuses and closes it
-        return False
-    if back.WhichOneof("type") != "rerun_script":
-        return False
-    return not any(w.WhichOneof("value") in ONE_SHOT for w in back.rerun_script.widget_states.widgets)
+    except Exception:  # noqa: BLE001
+        return None
+    return back.rerun_script if back.WhichOneof("type") == "rerun_script" else None
+
+
+def mergeable(message: dict) -> bool:
+    """A rerun without a click: a newer one stands for it."""
+    rerun = _rerun(message)
+    return rerun is not None and not any(w.WhichOneof("value") in ONE_SHOT for w in rerun.widget_states.widgets)
 
 
 def starts_run(message: dict) -> bool:
     """A rerun: the page's script runs for it."""
-    data = message.get("bytes")
-    if not data:
-        return False
-    back = BackMsg()
-    try:
-        back.ParseFromString(data)
-    except Exception:  # noqa: BLE001 - Streamlit itself refuses and closes it
-        return False
-    return back.WhichOneof("type") == "rerun_script"
+    return _rerun(message) is not None
 
 
 def finishes_run(message: dict) -> bool:
