@@ -206,7 +206,7 @@ class Derivation {
     });
     // A step broken for a phone with a row set smaller comes broken for a wide column too: taken where the
     // column holds that width in KaTeX's em (the server's estimate runs up to 15 % short).
-X
+    const drawn = this.steps.querySelector(".katex-display > .katex");  // (before any: KaTeX's 1.21 em)
     const katexEm = parseFloat(getComputedStyle(drawn || this.steps).fontSize) * (drawn ? 1 : 1.21);
     const wide = this.steps.clientWidth >= d.wide_em / 0.85 * katexEm;
     [...this.steps.children].forEach((step, i) => {
