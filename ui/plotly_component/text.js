@@ -209,14 +209,29 @@ class Derivation {
     const drawn = this.steps.querySelector(".katex-display > .katex");  // (before any: KaTeX's 1.21 em)
     const katexEm = parseFloat(getComputedStyle(drawn || this.steps).fontSize) * (drawn ? 1 : 1.21);
     const wide = this.steps.clientWidth >= d.wide_em / 0.85 * katexEm;
+    const column = this.steps.clientWidth;
     [...this.steps.children].forEach((step, i) => {
-      const [title, narrow, broad] = d.steps[i], tex = broad && wide ? broad : narrow;
+      const [title, narrow, broad] = d.steps[i];
+      const roomy = broad && wide && !(step.dlTooWide >= column);  // (where it overflowed, not again at this width)
       put(step.firstChild, [i, title], (p) => {
         p.firstChild.textContent = `${i + 1}.`;
         p.lastChild.replaceChildren(" ");
         inline(katex, title, p.lastChild);
       });
-      put(step.lastChild, tex, (math) => { math.innerHTML = html(katex, tex, true); });
+      const draw = (tex) => put(step.lastChild, tex, (math) => { math.innerHTML = html(katex, tex, true); });
+      draw(roomy ? broad : narrow);
+      // Where the estimate fell short (it is measured once KaTeX's fonts are in: wider than the fallback's), the
+      // phone's rows.
+      const fits = () => {
+        const display = step.lastChild.querySelector(".katex-display");
+        if (step.lastChild.dlShown !== JSON.stringify(broad) || !display || display.scrollWidth <= display.clientWidth + 1) return;
+        step.dlTooWide = this.steps.clientWidth;
+        draw(narrow);
+      };
+      if (roomy) {
+        fits();
+        document.fonts.ready.then(() => requestAnimationFrame(fits));
+      }
     });
     put(this.slips, [d.slips_heading, d.slips], (el) => {
       el.replaceChildren();
