@@ -86,15 +86,13 @@ def _rerun(message: dict):
     return back.rerun_script if back.WhichOneof("type") == "rerun_script" else None
 
 
-def mergeable(message: dict) -> bool:
-    """A rerun without a click: a newer one stands for it."""
+def kind_of(message: dict) -> tuple[bool, bool]:
+    """(whether the page's script runs for it: a rerun; whether a newer rerun stands for it: a rerun without
+    a click), from one reading of the message."""
     rerun = _rerun(message)
-    return rerun is not None and not any(w.WhichOneof("value") in ONE_SHOT for w in rerun.widget_states.widgets)
-
-
-def starts_run(message: dict) -> bool:
-    """A rerun: the page's script runs for it."""
-    return _rerun(message) is not None
+    if rerun is None:
+        return False, False
+    return True, not any(w.WhichOneof("value") in ONE_SHOT for w in rerun.widget_states.widgets)
 
 
 def finishes_run(message: dict) -> bool:
@@ -150,7 +148,7 @@ class SessionBudget:
         self.inner, self.send, self.who, self.clock = receive, send, who, clock
         self.buckets = (TokenBucket(clock=clock), shared or TokenBucket(ADDRESS_RATE, ADDRESS_BURST, clock))
         self.runs = runs or AddressRuns(clock)
-        self.held: collections.deque[tuple[dict, bool]] = collections.deque()  # (message, mergeable)
+        self.held: collections.deque[tuple[dict, bool, bool]] = collections.deque()  # (message, kind_of it)
         self.held_bytes = 0
         self.reader: asyncio.Future | None = None
         self.over_since: float | None = None  # held back since, without a message passing at once
@@ -167,12 +165,12 @@ class SessionBudget:
     def _wait(self) -> float:
         return max(bucket.wait() for bucket in self.buckets)
 
-    def _may_pass(self, message: dict) -> bool:
-        """Whether ``message`` may go to Streamlit now: a token in both buckets, and for a rerun a place
-        among its address's runs (taken as it passes)."""
+    def _may_pass(self, runs: bool) -> bool:
+        """Whether a message may go to Streamlit now: a token in both buckets, and for one the page's script
+        ``runs`` for a place among its address's runs (taken as it passes)."""
         if self._wait() > 0:
             return False
-        if starts_run(message):
+        if runs:
             if not self.runs.room_for(id(self)):
                 return False
             self.runs.start(id(self))
@@ -182,8 +180,8 @@ class SessionBudget:
 
     async def receive(self) -> dict:
         while True:
-            if self.held and self._may_pass(self.held[0][0]):
-                message, _ = self.held.popleft()
+            if self.held and self._may_pass(self.held[0][1]):
+                message, *_ = self.held.popleft()
                 self.held_bytes -= len(message.get("bytes") or b"")
                 if not self.held and self.buckets[0].wait() == 0:  # (it waited its address's turn, not its own)
                     self.over_since = None
@@ -206,23 +204,23 @@ class SessionBudget:
                 self.held_bytes = 0
                 self.runs.finish(id(self))
                 return message
-            if not self.held and self._may_pass(message):  # the usual case: at a person's pace
+            runs, merges = kind_of(message)
+            if not self.held and self._may_pass(runs):  # the usual case: at a person's pace
                 self.over_since = None
                 return message
-            self._hold(message)
+            self._hold(message, runs, merges)
             if len(self.held) > MAX_HELD or self.held_bytes > MAX_HELD_BYTES:
                 return await self._drop("too many messages waiting")
 
-    def _hold(self, message: dict) -> None:
+    def _hold(self, message: dict, runs: bool, merges: bool) -> None:
         if not self.slowed:
             self.slowed = True
             log.warning("session from %s sends more than %g messages a second: slowed", self.who, RATE)
         if self.over_since is None:
             self.over_since = self.clock()
-        merges = mergeable(message)
-        if self.held and self.held[-1][1] and merges:
+        if self.held and self.held[-1][2] and merges:
             self.held_bytes -= len(self.held.pop()[0].get("bytes") or b"")
-        self.held.append((message, merges))
+        self.held.append((message, runs, merges))
         self.held_bytes += len(message.get("bytes") or b"")
 
     async def _drop(self, why: str) -> dict:

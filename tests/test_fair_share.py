@@ -10,7 +10,7 @@ from streamlit.proto.BackMsg_pb2 import BackMsg
 
 from edge import fair_share
 from edge.fair_share import (ADDRESS_BURST, ADDRESS_RATE, BURST, MAX_HELD_BYTES, RATE, FairShare, SessionBudget,
-                             TokenBucket, mergeable)
+                             TokenBucket, kind_of)
 
 
 def rerun(value: float, click: bool = False) -> dict:
@@ -72,7 +72,12 @@ def test_token_bucket_gives_a_burst_then_the_rate():
     assert bucket.tokens < 4 and bucket.wait() == 0
 
 
+def mergeable(message: dict) -> bool:
+    return kind_of(message)[1]
+
+
 def test_mergeable_only_reruns_without_a_click():
+    assert kind_of(rerun(1.0)) == (True, True) and kind_of(rerun(1.0, click=True)) == (True, False)
     assert mergeable(rerun(1.0))
     assert not mergeable(rerun(1.0, click=True))
     heartbeat = BackMsg()
