@@ -17,7 +17,7 @@ import numpy as np
 import sympy as sp
 
 from practice.mistakes import mistakes_for
-from practice.parser import FUNCTIONS, GREEK, MAX_LENGTH, UnknownName, _symbol_table, parse_expression
+from practice.parser import FUNCTIONS, GREEK, MAX_LENGTH, UnknownName, _symbol_table, parse_expression, underflows
 from practice.worker import shared_worker
 from solvers.core import Answer, Derivation, Solution
 from solvers import units
@@ -60,7 +60,7 @@ def _number_in_si(text: str, answer: Answer, system: str) -> tuple[float, str, s
     value = float(match.group(1).replace("−", "-"))
     if not math.isfinite(value):
         raise ValueError("That number is too large.")
-    if value == 0 and re.search(r"[1-9]", match.group(1).lower().split("e")[0]):  # 1e-400: no double holds it
+    if underflows(match.group(1), value):  # 1e-400
         raise ValueError("That number is too small to tell from zero: write it with an exponent above −300.")
     unit_text = (match.group(2) or "").strip()
     if not unit_text:

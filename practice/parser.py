@@ -110,6 +110,11 @@ def tokenize(text: str) -> list[Token]:
     return tokens
 
 
+def underflows(text: str, value: float) -> bool:
+    """Whether a number typed as ``text`` (1e-400) is not zero but read as ``value`` 0: no double holds it."""
+    return value == 0 and re.search(r"[1-9]", text.lower().split("e")[0]) is not None
+
+
 def _two_points(text: str, start: int, end: int) -> str:
     """A run of digits with a second decimal point (1.0.8, 3..2), and where that point is."""
     run = text[start:end]
@@ -318,7 +323,7 @@ class _Parser:
             as_float = float(token.text)
             if not math.isfinite(as_float) or abs(as_float) > MAX_MAGNITUDE:
                 raise ValueError(f"The number {_where(self.text, token.position)} is too large.")
-            if as_float == 0 and re.search(r"[1-9]", token.text.lower().split("e")[0]):  # 1e-400
+            if underflows(token.text, as_float):
                 raise ValueError(f"The number {_where(self.text, token.position)} is too small to tell from zero.")
             value = sp.Rational(token.text) if "e" not in token.text.lower() else sp.Float(token.text, 15)
         self.check(value)
