@@ -371,7 +371,7 @@ class Figure {
   // axis titles, anchored at its edges, moved with them), enough to hold the pose and a fifth more; its one
   // redraw in WebGL, then the pose over it. Null where the pose fits, or an axis's range leaves out 0.
   widenScene(traces, data) {
-    const given = this.graph.layout.scene, full = this.graph._fullLayout.scene, scene = this.scene;
+    const given = this.graph.layout.scene, full = this.graph._fullLayout.scene;
     const axes = ["xaxis", "yaxis", "zaxis"];
     if (!given || !full || axes.some((a) => !given[a] || !Array.isArray(given[a].range))) return null;
     let need = 1;
@@ -550,12 +550,11 @@ class Figure {
     // A 3-D scene is drawn as large as the graph's height allows: on a wide graph its legend stands in a
     // column at the right, not in rows above it.
     if (layout.scene && layout.showlegend !== false && this.root.clientWidth > SCENE_GROWTH * layout.height)
-      layout.legend = Object.assign({}, layout.legend, {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"});
+      layout.legend = Object.assign({}, layout.legend, LEGEND_BESIDE);
     // A motion drawn to scale beside a legend in a column (the lecture's) that takes the width its scale
     // needs (the stick on a 1024 px projector: 190 px of plot beside 330 px of names) has it in rows above.
     if (style && squeezedBeside(spec.data, layout, this.root.clientWidth))
-      layout.legend = Object.assign({}, layout.legend, {orientation: "h", x: 0, xanchor: "left", y: 1.02, yanchor: "bottom",
-                                                        entrywidth: 0, entrywidthmode: "pixels"});  // (each its own width)
+      layout.legend = Object.assign({}, layout.legend, LEGEND_ABOVE);
     const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
     const legendRoom = legendWidth(spec.data, layout);
     layout.height = sceneHeight(layout, layout.height, this.root.clientWidth);
@@ -782,7 +781,7 @@ function emphasised(data, layout, style) {
   layout.font = at(layout.font);
   layout.legend = Object.assign({}, layout.legend, {font: at((layout.legend || {}).font)},
     // (not beside a 3-D scene, which is as wide as it is deep and needs the width)
-    style.legend_right && !layout.scene ? {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"} : {});
+    style.legend_right && !layout.scene ? LEGEND_BESIDE : {});
   if (layout.title) layout.title = Object.assign({}, layout.title, {font: at(Object.assign({size: style.title_font}, (layout.title || {}).font))});
   const axis = (a) => Object.assign({}, a, {tickfont: at((a || {}).tickfont), automargin: true,
     title: Object.assign({}, (a || {}).title, {font: at(((a || {}).title || {}).font)})});
@@ -835,6 +834,9 @@ function stacked(layout, height) {
 // MIN_BESIDE px (its tick labels side by side, not slanted over each other). Null where stacking is as
 // good (a wide motion, a phone) or the layout has no such pair.
 const MIN_BESIDE = 210;  // (three bars' names in lecture type)
+// A legend in a column at the plot's right, or in rows above it (as viz.common.base_layout puts it).
+const LEGEND_BESIDE = {orientation: "v", x: 1.02, xanchor: "left", y: 1, yanchor: "top"};
+const LEGEND_ABOVE = {orientation: "h", x: 0, xanchor: "left", y: 1.02, yanchor: "bottom"};
 // The width a legend in a column beside a plot or a 3-D scene takes, before plotly draws it: its longest
 // name at 0.42 em a character (plotly's sans-serif, measured: "centre of mass G (at rest)" 240 px at 18 px),
 // and its symbol and padding.
