@@ -876,6 +876,7 @@ class Cell:
     credit: float = 0.0  # the fraction of the answer's points earned
     late_by: dt.timedelta = dt.timedelta(0)  # that attempt's lateness
     right_no_credit: int | None = None  # a right attempt that earns nothing (late, over the limit, after the solution)
+    right_no_credit_at: dt.datetime | None = None
     no_credit_why: str = ""
     slips: list[str] = field(default_factory=list)  # short names, first seen first
     marked: int = 0  # attempts kept but marked (late, over the limit, after the solution)
@@ -883,6 +884,10 @@ class Cell:
     def right_at(self) -> int | None:
         """The number of the first attempt that was right (earning its points or not), or None."""
         return self.first_right if self.first_right is not None else self.right_no_credit
+
+    def right_when(self) -> dt.datetime | None:
+        """When that attempt was made."""
+        return self.first_right_at if self.first_right is not None else self.right_no_credit_at
 
     def done(self) -> str:
         """The answer settled, in words for the student's banner ("done (right)", "done (right, 2 h
@@ -933,7 +938,7 @@ def _cells(settings: Settings, grants: dict[str, Grant], labels: Iterable[str],
             cell.credit, cell.first_right, cell.first_right_at = attempt.credit, attempt.number, attempt.at
             cell.late_by = attempt.late_by
         elif attempt.correct and attempt.credit == 0 and cell.right_no_credit is None:
-            cell.right_no_credit = attempt.number
+            cell.right_no_credit, cell.right_no_credit_at = attempt.number, attempt.at
             cell.no_credit_why = ("over the limit" if attempt.over_limit else "after the solution"
                                   if attempt.solution_shown else f"{duration_text(attempt.late_by)} late")
     return cells
@@ -1139,15 +1144,17 @@ def question_name(settings: Settings, question: Question) -> str:
     return question[1] if len(settings.parts) == 1 else f"{question[0]}/{question[1]}"
 
 
-def gradebook_csv(book: Gradebook) -> str:
-    """One row per student: label, variant, points, out of, percent, how the score was computed,
-    then per answer the points earned, the status in words, the attempt that earned them and its
-    time, the attempts used and allowed, and the slips named."""
+def gradebook_csv(book: Gradebook, names: dict[Question, str] | None = None) -> str:
+    """One row per student: label, variant, points, out of, percent, how the score was computed
+    (each answer called by ``names``, as the page calls it), then per answer the points earned, the
+    status in words, the first right attempt and its time (whether it earned points or not: a
+    right-but-late answer's time is the student's evidence), the attempts used and allowed, and the
+    slips named."""
     s = book.settings
     header = ["label", "seed", "score", "out_of", "percent", "late_answers", "extension_until_utc", "how"]
     for q in s.questions:
         name = question_name(s, q)
-        header += [f"{name}:points", f"{name}:status", f"{name}:earned_at_attempt", f"{name}:earned_at_utc",
+        header += [f"{name}:points", f"{name}:status", f"{name}:right_at_attempt", f"{name}:right_at_utc",
                    f"{name}:attempts_used", f"{name}:attempts_allowed", f"{name}:slips"]
     rows = []
     for student in book.students:
@@ -1155,10 +1162,10 @@ def gradebook_csv(book: Gradebook) -> str:
         score = book.score(student.label)
         row: list[object] = [student.label, student.seed if student.seed >= 0 else "", _points(score),
                              _points(s.out_of), _points(100 * score / s.out_of) if s.out_of else 0,
-                             book.late_right(student.label), _time(grant.extended_due), book.how(student.label)]
+                             book.late_right(student.label), _time(grant.extended_due), book.how(student.label, names)]
         for q in s.questions:
             c = book.cell(student.label, q)
-            row += [_points(s.weight(q) * c.credit), c.status(s), c.first_right or "", _time(c.first_right_at),
+            row += [_points(s.weight(q) * c.credit), c.status(s), c.right_at() or "", _time(c.right_when()),
                     c.attempts, c.allowed, "; ".join(c.slips)]
         rows.append(row)
     return safe_csv(header, rows)

@@ -131,7 +131,7 @@ def test_an_assignment_end_to_end(course):
     assert list(shown["student"]) == ["s01", "s02"] and list(shown["score"]) == ["1 / 6", "0 / 6"]
     assert records.attempt_count(aid) == 2
     rows = list(csv.DictReader(io.StringIO(records.gradebook_csv(records.gradebook(aid)))))
-    assert rows[0]["theta_rebound:earned_at_attempt"] == "2" and rows[1]["theta_rebound:attempts_used"] == "0"
+    assert rows[0]["theta_rebound:right_at_attempt"] == "2" and rows[1]["theta_rebound:attempts_used"] == "0"
 
 
 def test_a_link_cannot_change_the_numbers_it_was_issued_with(course):

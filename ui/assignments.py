@@ -805,7 +805,7 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
     st.table(rows)
     st.markdown(LEGEND)
     c1, c2 = st.columns(2)
-    c1.download_button("Download the gradebook (CSV)", records.gradebook_csv(book),
+    c1.download_button("Download the gradebook (CSV)", records.gradebook_csv(book, labels),
                        file_name=f"assignment-{aid}-gradebook.csv", mime="text/csv", key="assign__book_csv")
     c2.download_button("Download every attempt (CSV)", records.attempts_csv(aid),
                        file_name=f"assignment-{aid}-attempts.csv", mime="text/csv", key="assign__attempts_csv")
