@@ -50,20 +50,25 @@ def instructor(*, key: bool = True) -> AppTest:
 
 
 def create(at: AppTest, roster: str = "label\ns01\ns02\n", before: bool = False, title: str = "Week 9: the bounce",
-           problems=("pendulum_rebound",), **settings) -> AppTest:
-    """Fill in the new assignment (the problems first, as an instructor would) and press Create."""
-    at.multiselect(key="assign__problems").set_value(list(problems)).run()
-    at.text_input(key="assign__title").input(title)
-    at.text_area(key="assign__roster").input(roster)
+           problems=("pendulum_rebound",), press: bool = True, **settings) -> AppTest:
+    """Fill in the new assignment (the problems first, as an instructor would) and press Create
+    (unless not ``press``)."""
+    at.multiselect(key=new_key(at, "problems")).set_value(list(problems)).run()
+    at.text_input(key=new_key(at, "title")).input(title)
+    at.text_area(key=new_key(at, "roster")).input(roster)
     if before:
-        at.checkbox(key="assign__before").check()
+        at.checkbox(key=new_key(at, "before")).check()
     at.run()
     for key, value in settings.items():  # one at a time: a choice may bring the next input
-        widget = next(w for w in at.main if getattr(w, "key", None) == f"assign__{key}")
-        widget.set_value(value).run()
-    if at.button(key="assign__create").disabled:  # flagged: the test reads why
+        widget(at, "assign__new", f"_{key}").set_value(value).run()
+    if at.button(key=new_key(at, "create")).disabled or not press:  # flagged: the test reads why
         return at
-    return at.button(key="assign__create").click().run()
+    return at.button(key=new_key(at, "create")).click().run()
+
+
+def new_key(at: AppTest, name: str) -> str:
+    """The key of the new assignment form's input ``name`` (the form's keys are renewed once one is created)."""
+    return widget(at, "assign__new", f"_{name}").key
 
 
 def widget(at: AppTest, prefix: str, suffix: str):
@@ -325,10 +330,14 @@ def test_late_credit_is_set_on_the_page_and_explained(course):
 
 def test_create_twice_or_after_a_reload_makes_one_assignment(course):
     at = create(instructor())
-    at.button(key="assign__create").click().run()  # a second click
-    assert any("already created" in i.value for i in at.info)
-    again = create(instructor())  # a reload: a new session, the same form
+    # created: the form emptied (Create not pressable twice), the new assignment chosen and said so
+    assert "Assignment 1 created for 2 students" in at.success[0].value
+    assert at.text_input(key=new_key(at, "title")).value == "" and at.button(key=new_key(at, "create")).disabled
+    assert at.selectbox(key="assign__chosen").value == 1
+    again = create(instructor(), press=False)  # a reload: a new session, the same form
     assert any("exists already" in i.value for i in again.info)
+    again.button(key=new_key(again, "create")).click().run()
+    assert "Assignment 1 was already created" in again.success[0].value and "nothing was added" in again.success[0].value
     assert len(records.assignments()) == 1
 
 
@@ -344,16 +353,16 @@ def test_bad_input_is_flagged_before_creating(course, change, flagged):
     at = create(instructor(), **change)
     assert not at.exception
     assert any(flagged in e.value.replace("\\", "") for e in at.error), [e.value for e in at.error]
-    assert at.button(key="assign__create").disabled and records.assignments() == []
+    assert at.button(key=new_key(at, "create")).disabled and records.assignments() == []
 
 
 def test_a_title_naming_another_problem_is_flagged(course):
     """"Week 13: ladder" became a disk assignment (the picker sat outside the form)."""
     at = create(instructor(), title="Week 13: ladder", problems=("disk_wall",))
     assert any("“ladder”" in w.value and "Ladder sliding" in w.value for w in at.warning)
-    assert at.button(key="assign__create").disabled and records.assignments() == []
-    at.checkbox(key="assign__confirm").check().run()
-    at.button(key="assign__create").click().run()
+    assert at.button(key=new_key(at, "create")).disabled and records.assignments() == []
+    at.checkbox(key=new_key(at, "confirm")).check().run()
+    at.button(key=new_key(at, "create")).click().run()
     assert records.assignments()[0][1].problems == ("disk_wall",)
 
 
@@ -483,7 +492,7 @@ def test_a_title_too_long_is_kept_and_refused_in_words(course):
     """The title box had max_chars=120: Streamlit dropped a longer paste without a word (the box stayed
     empty). It is kept as typed, the check above Create says the limit, and nothing is created."""
     at = create(instructor(), title="Week 9: " + "the bouncing pendulum, " * 6)
-    assert at.text_input(key="assign__title").value.startswith("Week 9: the bouncing pendulum")
+    assert at.text_input(key=new_key(at, "title")).value.startswith("Week 9: the bouncing pendulum")
     assert "The title needs 1 to 120 characters (it has 146)." in page_text(at)
     assert records.assignments() == []
 
@@ -556,7 +565,7 @@ def test_the_points_boxes_come_in_reading_order(course):
 
     names = [f"Points: {answer_label(a)}" for a in disk_wall.ANSWERS]
     at = instructor()
-    at.multiselect(key="assign__problems").set_value(["disk_wall"]).run()
+    at.multiselect(key=new_key(at, "problems")).set_value(["disk_wall"]).run()
     shown = [w.label for w in at.number_input if w.label.startswith("Points:")]
     assert len(names) > 4 and shown == names
     aid, _, _ = one_assignment(problems=("disk_wall",), title="Week 9: the wall")

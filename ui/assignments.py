@@ -487,10 +487,13 @@ def _roster_text(prefix: str) -> tuple[str, str]:
         return "", "The roster file is not UTF-8 text: save it as CSV UTF-8 and upload it again."
 
 
+NEW_FORM = "assign__new"  # the new assignment's inputs: keys f"{NEW_FORM}{n}_…", a fresh n once one is created
+
+
 def _new_assignment() -> None:
     st.markdown("Nothing is created until you press **Create**; the check above the button lists what "
                 "would be wrong first.")
-    p = "assign__"
+    p = f"{NEW_FORM}{st.session_state.get('assign__made', 0)}_"
     title = st.text_input("Title", key=f"{p}title", placeholder="Week 9: the bouncing pendulum")
     chosen = st.multiselect("Problems (one, or several for a problem set; in this order)", [q.id for q in PROBLEMS],
                             format_func=_title, key=f"{p}problems")
@@ -567,12 +570,15 @@ def _new_assignment() -> None:
         except ValueError as error:
             st.error(plain(str(error)))
             return
-        st.session_state[f"{p}chosen"] = made.id
-        if made.new:
-            st.success(f"Assignment {made.id} created for {made.students} students: its links are below.")
-        else:
-            st.info(f"Assignment {made.id} was already created ({records.when_text(made.created_at, zone)}), "
-                    f"for {made.students} students: nothing was added. Its links are below.")
+        # the form emptied and folded (its inputs under new keys), the assignment chosen below, where it says so
+        st.session_state["assign__made"] = st.session_state.get("assign__made", 0) + 1
+        st.session_state["assign__drafting"] = False
+        st.session_state["assign__chosen"] = made.id
+        st.session_state["assign__said"] = (
+            f"Assignment {made.id} created for {made.students} students: its links are below." if made.new else
+            f"Assignment {made.id} was already created ({records.when_text(made.created_at, zone)}), for "
+            f"{made.students} students: nothing was added. Its links are below.")
+        st.rerun()
 
 
 def _assignment_choice(existing) -> int | None:
