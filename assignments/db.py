@@ -100,6 +100,8 @@ class Attempt(Base):
     # the due time and the student's extension as they are then (an extension applies to the past).
     late: Mapped[bool] = mapped_column(Boolean)
     solution_shown: Mapped[bool] = mapped_column(Boolean)  # the student had seen this problem's solution
+    # What the judge read (practice.judge.Verdict.reading): the same reading twice in a row is one attempt.
+    reading: Mapped[str] = mapped_column(String(64), default="", server_default="")
 
 
 class Reveal(Base):

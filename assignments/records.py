@@ -729,11 +729,14 @@ def _normal(typed: str) -> str:
 
 @_guarded
 def record_attempt(identity: StudentIdentity, answer: str, typed: str, correct: bool, message: str, slip: str = "",
-                   bound: Engine | None = None, when: dt.datetime | None = None, problem: str | None = None) -> Recorded:
+                   bound: Engine | None = None, when: dt.datetime | None = None, problem: str | None = None,
+                   reading: str = "") -> Recorded:
     """Write one attempt (an answer the judge could read) at ``answer`` of ``problem`` (the
     assignment's first problem by default); return it as recorded, once its transaction has
-    committed. The same text as the student's previous attempt at this answer is not recorded
-    again: that attempt comes back, marked ``repeated``. ``NotAccepted`` if the assignment is closed."""
+    committed. The same answer as the student's previous attempt at this answer is not recorded
+    again: that attempt comes back, marked ``repeated``. The same answer: the same ``reading``
+    (the judge's: the same value read, with the same verdict, however it was typed), or, where
+    either has none, the same text. ``NotAccepted`` if the assignment is closed."""
     when = when or now()
     with db.session(bound) as s:
         with s.begin():
@@ -755,7 +758,8 @@ def record_attempt(identity: StudentIdentity, answer: str, typed: str, correct: 
             previous = s.scalar(select(db.Attempt).where(
                 db.Attempt.assignment_id == identity.assignment_id, db.Attempt.label == identity.label,
                 db.Attempt.problem == problem, db.Attempt.answer == answer).order_by(db.Attempt.id.desc()).limit(1))
-            if previous is not None and _normal(previous.typed) == _normal(_storable(typed, MAX_TYPED)):
+            if previous is not None and (previous.reading == reading if previous.reading and reading else
+                                         _normal(previous.typed) == _normal(_storable(typed, MAX_TYPED))):
                 kept_id, repeated = previous.id, True
             else:
                 grant = _grants(s, identity.assignment_id, identity.label).get(identity.label, Grant())
@@ -765,7 +769,7 @@ def record_attempt(identity: StudentIdentity, answer: str, typed: str, correct: 
                 attempt = db.Attempt(assignment_id=identity.assignment_id, label=identity.label, problem=problem,
                                      answer=answer, typed=_storable(typed, MAX_TYPED), correct=bool(correct),
                                      message=_storable(message, 1000), slip=_storable(slip, 400), at=when,
-                                     late=when > due_for(settings, grant), solution_shown=shown)
+                                     late=when > due_for(settings, grant), solution_shown=shown, reading=reading)
                 s.add(attempt)
                 s.flush()
                 kept_id, repeated = attempt.id, False
@@ -786,7 +790,7 @@ def record_checked(identity: StudentIdentity, problem: str, answer: str, typed: 
     if not getattr(verdict, "readable", True) or not typed.strip():
         return None
     return record_attempt(identity, answer, typed, verdict.correct, verdict.message, verdict.mistake, bound, when,
-                          problem)
+                          problem, getattr(verdict, "reading", ""))
 
 
 @_guarded

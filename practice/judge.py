@@ -8,10 +8,11 @@ from __future__ import annotations
 
 import difflib
 import functools
+import hashlib
 import importlib
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import sympy as sp
@@ -44,6 +45,20 @@ class Verdict:
     # unknown name, a unit of another dimension, a value that is not real): the message explains,
     # and an assignment neither records nor counts it (a typo costs nothing).
     readable: bool = True
+    # What was read, as a key: two texts with one reading and one verdict are one answer ("-14.54"
+    # where ° is shown, and "-14.54 °"); "" for text not read.
+    reading: str = ""
+
+
+def _read_as(verdict: Verdict, what: str) -> Verdict:
+    """The verdict with its reading: ``what`` was read (a number in SI, or an expression's structure),
+    with the verdict given, hashed to a short key."""
+    key = f"{what}|{verdict.correct}|{verdict.mistake}".encode()
+    return replace(verdict, reading=hashlib.sha256(key).hexdigest()[:32])
+
+
+def _number_read(si: float) -> str:
+    return f"number {si:.12g}"
 
 
 def unreadable(message: str, understood: str = "") -> Verdict:
@@ -291,14 +306,14 @@ class Judge:
             return unreadable(str(error))
         if as_number is not None:
             value, how, unit = as_number
-            return self._judge_number(answer, value, how, correct, system, unit=unit)
+            return _read_as(self._judge_number(answer, value, how, correct, system, unit=unit), _number_read(value))
         try:
             expr, unit = self._read(text, answer, system)
         except ValueError as error:
             return unreadable(str(error))  # (_read names a unit of another dimension itself)
         if not expr.free_symbols:
             return self._judge_numeric_expression(answer, expr, unit, correct, system)
-        return self._judge_expression(answer, expr, system)
+        return _read_as(self._judge_expression(answer, expr, system), f"expression {sp.srepr(expr)}")
 
     def _read(self, text: str, answer: Answer, system: str) -> tuple[sp.Expr, str]:
         """(the expression, the unit written after it or "") for typed text. A unit of this answer
@@ -338,7 +353,8 @@ class Judge:
                 and (expr.has(sp.pi) or any(isinstance(f, _INVERSE_TRIG) for f in sp.preorder_traversal(expr)))
                 and self._close(value.real, correct, scale)):
             si, how = value.real, "read in radians, as ° and asin, acos, atan give them"
-        return self._judge_number(answer, si, how, correct, system, understood, unit=unit, expr=expr)
+        return _read_as(self._judge_number(answer, si, how, correct, system, understood, unit=unit, expr=expr),
+                        _number_read(si))
 
     def _scale(self) -> float:
         return max(abs(v) for v in self.values.values() if math.isfinite(v)) or 1.0

@@ -227,6 +227,11 @@ def test_a_typo_costs_no_attempt_and_the_icon_matches_the_verdict(course):
     assert recorded.icon == ":material/cancel:" and page.error[0].icon == ":material/cancel:"
     page = answer(page, "theta_rebound", "1")  # the same answer again: not a second attempt
     assert any("not counted again" in i.value for i in page.info) and records.attempt_count(aid) == 1
+    # the same value typed another way (its unit, an expression of it) is the same answer too
+    for same in ("1 °", "1deg", "2/2", " 1.000 "):
+        page = answer(page, "theta_rebound", same)
+        assert any("not counted again" in i.value for i in page.info), same
+    assert records.attempt_count(aid) == 1
     page = answer(page, "theta_rebound", rebound_in_degrees(ann))
     right = next(s for s in page.success if "Recorded: attempt 2 of 3" in s.value)
     assert "it counts" in right.value and right.icon == ":material/task_alt:"

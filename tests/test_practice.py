@@ -763,3 +763,19 @@ def test_an_angle_written_with_degrees_inside_an_expression_is_read_in_radians()
     assert judge.check(answers["theta_leave"], "asin(2/3*sin(60°))").correct
     assert judge.check(answers["theta_leave"], "asin(2/3*sin(60°))*180/pi").correct
     assert judge.check(answers["theta_leave"], "(35 + 0.26)°").correct
+
+
+def test_one_answer_typed_two_ways_reads_the_same_and_another_does_not():
+    """An assignment counts the same answer twice in a row once: the judge's reading is what was read
+    (in SI) with its verdict, not the text, and not the text alone either (a bare 5 is m/s in SI, ft/s
+    in US units)."""
+    _, _, judge, answers = setup("disk_wall")
+    v = answers["v1x"]
+    reading = {(text, system): judge.check(v, text, system).reading
+               for text in ("5", "5 m/s", "5.0m/s", "10/2", "5 ft/s", "5.1") for system in ("si", "us")}
+    assert reading["5", "si"] == reading["5 m/s", "si"] == reading["5.0m/s", "si"] == reading["10/2", "si"]
+    assert reading["5", "us"] == reading["5 ft/s", "si"] == reading["5 ft/s", "us"]
+    assert len({reading["5", "si"], reading["5", "us"], reading["5.1", "si"]}) == 3
+    assert judge.check(v, "hello", "si").reading == ""  # not read: no reading
+    symbolic = {judge.check(v, text).reading for text in ("2*V/3", "2V/3", "(2/3)*V")}
+    assert len(symbolic) == 1 and "" not in symbolic and symbolic != {reading["5", "si"]}
