@@ -53,6 +53,8 @@ class Verdict:
 def _read_as(verdict: Verdict, what: str) -> Verdict:
     """The verdict with its reading: ``what`` was read (a number in SI, or an expression's structure),
     with the verdict given, hashed to a short key."""
+    if not verdict.readable:
+        return verdict
     key = f"{what}|{verdict.correct}|{verdict.mistake}".encode()
     return replace(verdict, reading=hashlib.sha256(key).hexdigest()[:32])
 
@@ -168,6 +170,7 @@ DEGREE_HINTS = {
     ("angular_speed", "radians as degrees", True): "That looks like rad/s labelled deg/s: write rad/s "
                                                    "after it, or convert to deg/s.",
 }
+LEFT_OUT_SLIPS = {"rad": "radians as degrees", "deg/s": "degrees as radians"}  # a unit left out, as DEGREE_HINTS name it
 CALCULATOR_HINTS = {
     "radian": "Your calculator seems to be in radian mode: the page gives its angles in degrees. Switch "
               "it to degrees, or convert each angle to radians first.",
@@ -306,7 +309,8 @@ class Judge:
             return unreadable(str(error))
         if as_number is not None:
             value, how, unit = as_number
-            return _read_as(self._judge_number(answer, value, how, correct, system, unit=unit), _number_read(value))
+            return _read_as(self._judge_number(answer, value, how, correct, system, unit=unit, bare=not unit),
+                            _number_read(value))
         try:
             expr, unit = self._read(text, answer, system)
         except ValueError as error:
@@ -359,9 +363,12 @@ class Judge:
     def _scale(self) -> float:
         return max(abs(v) for v in self.values.values() if math.isfinite(v)) or 1.0
 
-    def _judge_number(self, answer, value, how, correct, system, understood="", unit="", expr=None) -> Verdict:
+    def _judge_number(self, answer, value, how, correct, system, understood="", unit="", expr=None,
+                      bare=False) -> Verdict:
         """A number (SI) as read (``how``; ``unit`` as typed, "" for none; ``expr``: the expression
-        it came from, if any)."""
+        it came from, if any; ``bare``: a number typed alone). A bare number that is the answer in
+        another unit of its kind (deg/s where rad/s is read, ft/s on an SI page) is a unit left out,
+        not a wrong answer: explained, and not judged (an assignment does not count it)."""
         shown = units.format_quantity(value, answer.dimension, system)
         scale = self._scale()
         known = [(m, self._value_of(m.wrong(dict(self.solution.params))))
@@ -376,6 +383,14 @@ class Judge:
             return Verdict(True, f"Right: {shown}" + (f" ({how})." if how else "."), understood)
         generic = (self._degree_slip(answer, value, correct, scale, unit, expr, system)
                    or self._generic_number_mistake(answer, value, correct, scale))
+        # (a calculator in the wrong mode is a wrong number, even where it happens to match another unit)
+        if bare and generic not in CALCULATOR_HINTS.values() and (
+                meant := self._unit_left_out(answer, value, correct, scale, system)):
+            read_in = units.unit(answer.dimension, system)
+            hint = DEGREE_HINTS.get((answer.dimension, LEFT_OUT_SLIPS.get(meant), False)) or (
+                f"That looks like the value in {meant}: a number alone is read in {read_in} on this page. "
+                f"Write {meant} after it, or convert it to {read_in}.")
+            return Verdict(False, hint, understood, hint, readable=False)
         message = f"Not right: you gave {shown}" + (f" ({how})" if how else "") + "."
         if generic:
             return Verdict(False, f"{message} {generic}", understood, generic)
@@ -383,6 +398,18 @@ class Judge:
 
     def _close(self, a: float, b: float, scale: float) -> bool:
         return abs(a - b) <= self.tolerance * max(abs(b), 1e-9 * scale)
+
+    def _unit_left_out(self, answer, value, correct, scale, system) -> str:
+        """The unit in which the number typed alone (``value``: as read, in SI) is the answer: the unit
+        the other unit system shows, radians for an angle, deg/s or rpm for an angular speed; "" if none."""
+        typed = units.to_display(value, answer.dimension, system)
+        other = units.unit(answer.dimension, "us" if system == "si" else "si")
+        meant = [other] + {"angle": ["rad"], "angular_speed": ["deg/s", "rpm"]}.get(answer.dimension, [])
+        for unit in meant:
+            factor = units.si_per_unit(unit, answer.dimension)
+            if factor and unit != units.unit(answer.dimension, system) and self._close(typed * factor, correct, scale):
+                return unit
+        return ""
 
     def _degree_slip(self, answer, value, correct, scale, unit, expr, system) -> str:
         """The hint for degrees where radians belong (or the reverse), in the form this number

@@ -284,7 +284,7 @@ def test_an_attempt_after_a_right_one_changes_nothing_and_says_so(course, late):
     for wrong in ("1", "2"):
         page = answer(page, "theta_rebound", wrong)
         said = [i for i in page.info if "Recorded" in i.value]
-        assert len(said) == 1 and "your attempt 1 at highest angle after the bounce was already right, and it " \
+        assert len(said) == 1 and "your attempt 1 at “Highest angle after the bounce” was already right, and it " \
             "stands: this one changes nothing" in said[0].value and "attempts left" not in said[0].value
     assert records.attempt_count(aid) == 3  # every attempt is still recorded
     banner = page.info[0].value.replace("\\", "")
@@ -303,13 +303,13 @@ def test_an_answer_past_the_graded_attempts_is_not_called_attempt_4_of_3(course)
     for typed in ("1", "2", rebound_in_degrees(ann), "3", rebound_in_degrees(ann) + " deg"):
         page = answer(page, "theta_rebound", typed)
     said = " ".join(m.value for m in [*page.info, *page.success, *page.warning] if "Recorded" in m.value)
-    assert "of 3" not in said and "answer 5 at highest angle after the bounce, past your 3 graded attempts" in said, said
+    assert "of 3" not in said and "answer 5 at “Highest angle after the bounce”, past your 3 graded attempts" in said, said
     assert records.attempt_count(aid) == 5  # every answer is still recorded
     fresh = student(link_query(bob))
     for typed in ("1", "2", "3", "4"):
         fresh = answer(fresh, "theta_rebound", typed)
     said = " ".join(m.value for m in fresh.warning if "Recorded" in m.value)
-    assert "answer 4 at highest angle after the bounce, past your 3 graded attempts" in said and "of 3" not in said, said
+    assert "answer 4 at “Highest angle after the bounce”, past your 3 graded attempts" in said and "of 3" not in said, said
 
 
 @pytest.mark.parametrize("length", [201, 10_000])

@@ -22,7 +22,7 @@ from streamlit.testing.v1 import AppTest
 
 from hypothesis import given, settings, strategies as hst
 
-from practice.judge import Judge, _number_in_si
+from practice.judge import CALCULATOR_HINTS, Judge, _number_in_si
 from practice.parser import MAX_LENGTH, MAX_TOKENS, tokenize
 from solvers import registry
 from practice.variants import MAX_SEED, variant, variants_csv
@@ -740,7 +740,11 @@ def check_degree_slips(pid, params):
         # each word said (or, for a tuple of them, one of them: the sin(50) or cos(30) typed)
         assert all(any(w in verdict.message for w in ((word,) if isinstance(word, str) else word))
                    for word in words), (name, text, words, verdict.message)
-        assert verdict.mistake, (name, text, verdict.message)  # named as a slip (an assignment counts it)
+        assert verdict.mistake, (name, text, verdict.message)  # named as a slip
+        # a number alone that is the answer in the unit left out is not judged (an assignment does not
+        # count it); with a unit typed, or as an expression, it is a wrong answer
+        left_out = re.fullmatch(r"-?[\d.e+-]+", text) and "calculator" not in verdict.message
+        assert verdict.readable == (not left_out), (name, text, verdict.message)
     return slips
 
 
@@ -779,3 +783,27 @@ def test_one_answer_typed_two_ways_reads_the_same_and_another_does_not():
     assert judge.check(v, "hello", "si").reading == ""  # not read: no reading
     symbolic = {judge.check(v, text).reading for text in ("2*V/3", "2V/3", "(2/3)*V")}
     assert len(symbolic) == 1 and "" not in symbolic and symbolic != {reading["5", "si"]}
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(max_examples=4, deadline=None)
+@given(seed=hst.integers(0, MAX_SEED))
+def test_the_answer_in_the_other_systems_unit_typed_alone_is_a_unit_left_out(pid, seed):
+    """A number alone is read in the unit the page shows: the answer's number in the other system's unit
+    (ft/s on an SI page, m/s on a US one) is said to be a unit left out and not judged (an assignment
+    counts no attempt); with that unit written after it, it is right."""
+    solver = importlib.import_module(f"solvers.{pid}")
+    _, solution, judge, answers = setup(pid, **variant(solver, pid, seed))
+    for name, answer in answers.items():
+        value = solution.answers.get(name)
+        if not isinstance(value, float) or answer.dimension not in units.DIMENSIONS or abs(value) < 1e-6:
+            continue
+        for system, other in (("si", "us"), ("us", "si")):
+            meant = units.unit(answer.dimension, other)
+            if meant == units.unit(answer.dimension, system):
+                continue
+            number = f"{units.to_display(value, answer.dimension, other):.6g}"
+            assert judge.check(answer, f"{number} {meant}", system).correct, (name, number, meant)
+            verdict = judge.check(answer, number, system)
+            if not verdict.correct and verdict.mistake not in CALCULATOR_HINTS.values():  # (a coincidence: 1 ft = 0.3 m)
+                assert not verdict.readable and meant in verdict.message, (name, number, system, verdict.message)

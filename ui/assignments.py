@@ -230,20 +230,25 @@ def recording(link: StudentLink, solution=None, system: str = "si") -> Recording
     return Recording(settings.tolerance, on_verdict, on_reveal, revealed, blocked, say)
 
 
+def _named(label: str) -> str:
+    """An answer's label inside a sentence: quoted as the page writes it ("speed of G" kept, not "g")."""
+    return f"“{label}”"
+
+
 def _said_recorded(kept: records.Recorded, label: str, link: StudentLink, solution, answer, system: str) -> None:
     """The recorded attempt in words, under an icon that matches what it earned."""
     standing = _standing(link)
     allowed = standing.allowed if standing else link.settings.attempts_allowed
-    what = (f"attempt {kept.number} of {allowed} at {label.lower()}" if kept.number <= allowed else
-            f"answer {kept.number} at {label.lower()}, past your {allowed} graded attempts")  # never "4 of 3"
+    what = (f"attempt {kept.number} of {allowed} at {_named(label)}" if kept.number <= allowed else
+            f"answer {kept.number} at {_named(label)}, past your {allowed} graded attempts")  # never "4 of 3"
     if kept.repeated:
-        st.info(f"The same as your last attempt at {label.lower()}: not counted again (it stays {what}).",
+        st.info(f"The same as your last attempt at {_named(label)}: not counted again (it stays {what}).",
                 icon=":material/repeat:")
         return
     right_at = standing.cells[(link.problem, answer.name)].right_at() if standing else None
     if right_at is not None and right_at < kept.number:  # settled before: nothing after it can earn more
         st.info(f"Recorded: {what}. {'Right' if kept.correct else 'Not right'}; your attempt {right_at} at "
-                f"{label.lower()} was already right, and it stands: this one changes nothing.",
+                f"{_named(label)} was already right, and it stands: this one changes nothing.",
                 icon=":material/task_alt:")
         return
     if kept.over_limit:
@@ -271,7 +276,7 @@ def _said_recorded(kept: records.Recorded, label: str, link: StudentLink, soluti
 def _show_answer(answer, solution, system: str, label: str) -> None:
     value = solution.answers.get(answer.name)
     if isinstance(value, (int, float)):
-        st.info(f"You have used every attempt at {label.lower()}. The answer: "
+        st.info(f"You have used every attempt at {_named(label)}. The answer: "
                 f"{units.format_quantity(value, answer.dimension, system)}.", icon=":material/lightbulb:")
 
 

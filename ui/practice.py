@@ -81,6 +81,13 @@ def answer_label(answer) -> str:
     return answer.label[:1].upper() + answer.label[1:]
 
 
+def answer_choice(answer, system: str) -> str:
+    """An answer as the answer box offers it: its label and the unit a number typed alone is read in
+    ("Angular velocity just after impact, in rad/s")."""
+    unit = units.unit(answer.dimension, system) if answer.dimension in units.DIMENSIONS else ""
+    return answer_label(answer) + (f", in {unit}" if unit else "")
+
+
 def statement(problem: Problem, solution: Solution, answers, system: str, judge: Judge) -> str:
     """The problem as an exercise: every given with its value, then what to find."""
     rows = ["| given | symbol, typed as | value |", "|---|---|---|"]
@@ -162,13 +169,14 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         st.markdown(statement(problem, solution, answers, system, judge))
         st.markdown(method(solution.steps[: solution.symbolic_steps], judge.derivation))
     with st.form(key=f"{problem.id}__practice"):
-        answer = st.selectbox("Answer to check", answers, format_func=answer_label,
+        answer = st.selectbox("Answer to check", answers, format_func=lambda a: answer_choice(a, system),
                               key=f"{problem.id}__attempt_answer")
         box, tolerance = st.columns([5, 1], vertical_alignment="bottom")
         # No max_chars: Streamlit drops a paste longer than it without a word; the judge says the limit
         text = box.text_input("Your answer", key=f"{problem.id}__attempt",
                               help="A number, with a unit (mm, kN, ft/s, slug·ft² …; units are case-sensitive) "
-                                   "or read in the unit the page shows, degrees for angles; or an expression in "
+                                   "or alone: read in the unit named with the answer above (degrees for angles); "
+                                   "or an expression in "
                                    f"the givens: {judge.givens_text()}, written as by hand (2V sinθ/3 is "
                                    "2·V·sin θ/3), with a unit after it if you like. Write powers as ^ or **, "
                                    "e.g. (a + b)^2/3, sqrt(x), sin(θ), or 30° inside sin.")
