@@ -413,16 +413,37 @@ def test_the_instructor_edits_closes_reopens_extends_and_undoes(course):
     shown = next(t.value for t in book.table if "change" in t.value.columns)
     assert len(shown) == len(history) and "s02" in shown["what"].iloc[0]
     first_edit = history[-2]  # attempts 3 → 5, hints off
-    book.selectbox(key=f"assign__undo_pick{aid}").select(first_edit.id).run()
+    widget(book, f"assign__undo_pick{aid}_", "").select(first_edit.id).run()
     book.button(key=f"assign__undo{aid}").click().run()
     assert not book.exception and any("Undone" in m.value for m in book.success)
     back = records.assignment(aid)
     assert back.attempts_allowed == 3 and back.hints and records.standing(bob).allowed == 4
     assert widget(book, f"assign__edit{aid}_", "_attempts").value == 3  # the form shows what is stored
     closed = next(e for e in history if e.action == "closed")  # reopened since: refused, in words
-    book.selectbox(key=f"assign__undo_pick{aid}").select(closed.id).run()
+    widget(book, f"assign__undo_pick{aid}_", "").select(closed.id).run()
     book.button(key=f"assign__undo{aid}").click().run()
     assert any("changed since" in e.value for e in book.error) and records.assignment(aid).status == "open"
+
+
+def test_after_a_change_the_undo_offers_the_newest_and_the_extension_follows_the_due_time(course):
+    """An instructor picked an older change in "Undo a change", then edited the due time on the same page:
+    Undo took back the older one (a student's extension), not the edit just made. And the extension's
+    suggested date stayed the old due time's."""
+    aid, s, _ = one_assignment()
+    book = instructor()
+    book.selectbox(key=f"assign__grant{aid}_who").select("s02").run()
+    widget(book, f"assign__grant{aid}_", "_extend_s02").check()
+    book.button[[b.label for b in book.button].index("Save for this student")].click().run()
+    granted = records.history(aid)[0]
+    assert granted.action == "student"
+    widget(book, f"assign__undo_pick{aid}_", "").select(granted.id).run()
+    book.selectbox(key=f"assign__grant{aid}_who").select("s01").run()  # its form shown before the edit
+    new_due = s.due + dt.timedelta(days=3)
+    widget(book, f"assign__edit{aid}_", "_due_day").set_value(new_due.date())
+    book.button[[b.label for b in book.button].index("Save the changes")].click().run()
+    edited = records.history(aid)[0]
+    assert edited.action == "edited" and widget(book, f"assign__undo_pick{aid}_", "").value == edited.id
+    assert widget(book, f"assign__grant{aid}_", "_s01_due_day").value == (new_due + dt.timedelta(days=2)).date()
 
 
 def slip_value(params: dict) -> str:
@@ -545,7 +566,7 @@ def test_an_edit_that_takes_points_already_earned_asks_first_and_says_whose(cour
     # an undo that lowers a score says so after
     records.grant(aid, "s02", extended_due=records.now() + dt.timedelta(days=2))
     book = instructor()
-    book.selectbox(key=f"assign__undo_pick{aid}").select(records.history(aid)[0].id).run()
+    widget(book, f"assign__undo_pick{aid}_", "").select(records.history(aid)[0].id).run()
     book.button(key=f"assign__undo{aid}").click().run()
     assert any("It lowered the score of 1 student: s02" in m.value for m in book.success)
 

@@ -707,7 +707,7 @@ def _per_student(aid: int, book: records.Gradebook) -> None:
             return
         who = st.selectbox("Student", labels, key=f"assign__grant{aid}_who")
         grant = book.grants.get(who, records.Grant())
-        p = f"assign__grant{aid}_{_version(grant)}_"
+        p = f"assign__grant{aid}_{_version(grant, s.due)}_"  # (a new due time: a new suggested extension)
         with st.form(f"{p}form"):
             extend = st.checkbox("An extension: a later due time for this student", grant.extended_due is not None,
                                  key=f"{p}extend_{who}")
@@ -882,7 +882,8 @@ def _history(aid: int, s: records.Settings) -> None:
     undoable = [e for e in entries if e.action not in ("created", "roster") and not e.undone]
     c1, c2, c3 = st.columns([3, 1, 2])
     if undoable:
-        chosen = c1.selectbox("Undo a change", [e.id for e in undoable], key=f"assign__undo_pick{aid}",
+        # keyed by the newest change: after another change the newest is chosen again, not the one picked before
+        chosen = c1.selectbox("Undo a change", [e.id for e in undoable], key=f"assign__undo_pick{aid}_{undoable[0].id}",
                               format_func=lambda i: f"#{i}: " + next(e.summary for e in undoable if e.id == i)[:80])
         if c2.button("Undo", key=f"assign__undo{aid}"):
             try:
