@@ -446,6 +446,23 @@ def test_after_a_change_the_undo_offers_the_newest_and_the_extension_follows_the
     assert widget(book, f"assign__grant{aid}_", "_s01_due_day").value == (new_due + dt.timedelta(days=2)).date()
 
 
+def test_opening_the_solution_in_an_assignment_asks_first(course):
+    """One tap on "Show the solution" (under Check, on a phone) cost every later answer its points, unasked."""
+    aid, _, (ann, _) = one_assignment(before=True)
+    page = student(link_query(ann))
+    page.button(key="pendulum_rebound__reveal").click().run()
+    assert any("Opening the solution is recorded" in w.value for w in page.warning)
+    assert not records.solution_shown(ann)
+    page.button(key="pendulum_rebound__reveal_keep").click().run()
+    assert not any("Opening the solution" in w.value for w in page.warning) and not records.solution_shown(ann)
+    page.button(key="pendulum_rebound__reveal").click().run()
+    page.button(key="pendulum_rebound__reveal_sure").click().run()
+    assert records.solution_shown(ann) and not page.exception
+    page = answer(page, "theta_rebound", rebound_in_degrees(ann))
+    said = next(w.value for w in page.warning if "Recorded" in w.value)
+    assert "you had opened the solution" in said and "right but after the solution" in said and "late" not in said
+
+
 def slip_value(params: dict) -> str:
     """The rebound angle (degrees) that the e-for-e² slip gives at these givens."""
     from practice.judge import Judge

@@ -293,6 +293,7 @@ def test_an_assignment_link_offers_only_the_exercise_until_the_solution_is_shown
     for name, text in files.items():
         assert leaks(text, solution, answers.values(), judge) == [], name
     page.button(key="pendulum_rebound__reveal").click().run()
+    page.button(key="pendulum_rebound__reveal_sure").click().run()  # (an assignment asks first)
     files = downloads_shown(page)
     assert "pendulum_rebound.ipynb" in files
     for name, text in files.items():

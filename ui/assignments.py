@@ -227,7 +227,9 @@ def recording(link: StudentLink, solution=None, system: str = "si") -> Recording
             st.error(f"{error} The solution stays hidden until it can be recorded.")
             return False
 
-    return Recording(settings.tolerance, on_verdict, on_reveal, revealed, blocked, say)
+    costs = ("Opening the solution is recorded, and your instructor sees it. After it, no answer to this problem "
+             "earns points: answers already right keep theirs.")
+    return Recording(settings.tolerance, on_verdict, on_reveal, revealed, blocked, say, costs)
 
 
 def _named(label: str) -> str:
@@ -262,9 +264,9 @@ def _said_recorded(kept: records.Recorded, label: str, link: StudentLink, soluti
         why = ("you had opened the solution" if kept.solution_shown else
                f"it is {records.duration_text(kept.late_by)} after your due time, and this assignment gives no "
                "late credit")
+        seen = "after the solution" if kept.solution_shown else "late"  # (as the gradebook calls it)
         st.warning(f"Recorded: {what}. Right, but it earns no points: {why}. It is kept, and your instructor "
-                   "sees it as right but late." if kept.late else f"Recorded: {what}. Right, but it earns no "
-                   f"points: {why}.", icon=":material/schedule:")
+                   f"sees it as right but {seen}.", icon=":material/schedule:")
     else:
         left = max(allowed - kept.number, 0)
         st.info(f"Recorded: {what}. Not right; {left} attempt{'s' if left != 1 else ''} left at this answer.",

@@ -148,6 +148,7 @@ class Recording:
     revealed: bool = False  # the student has already seen the solution (recorded earlier)
     reveal_blocked: str = ""  # why "Show the solution" is not offered yet ("" when it is)
     say: Callable[[Verdict], str] | None = None  # the verdict's message under the feedback policy
+    reveal_costs: str = ""  # what opening the solution costs, asked to confirm first ("": opened at once)
 
 
 def practice_panel(problem: Problem, solution: Solution, answers, system: str,
@@ -201,11 +202,32 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
             recording.on_verdict(answer, text or "", verdict)
     if not revealed and recording is not None and recording.reveal_blocked:
         st.markdown(plain(recording.reveal_blocked))
-    elif not revealed and st.button("Show the solution", key=f"{problem.id}__reveal"):
-        if recording is None or recording.on_reveal():
-            st.session_state[revealed_key] = signature
-            st.rerun()
+    elif not revealed:
+        _reveal(problem, recording, revealed_key, signature)
     return revealed
+
+
+def _reveal(problem: Problem, recording: Recording | None, revealed_key: str, signature: str) -> None:
+    """"Show the solution"; where opening it costs something (an assignment's points), said first and
+    opened only on a second, deliberate press (on a phone it sits under Check)."""
+    asking = f"{problem.id}__reveal_asked"
+    if st.session_state.get(asking) == signature and recording is not None and recording.reveal_costs:
+        st.warning(recording.reveal_costs, icon=":material/visibility:")
+        open_it, keep = st.columns(2)
+        if keep.button("Keep it hidden", key=f"{problem.id}__reveal_keep"):
+            st.session_state.pop(asking, None)
+            st.rerun()
+        if not open_it.button("Open the solution", key=f"{problem.id}__reveal_sure"):
+            return
+    elif not st.button("Show the solution", key=f"{problem.id}__reveal"):
+        return
+    elif recording is not None and recording.reveal_costs:
+        st.session_state[asking] = signature
+        st.rerun()
+    st.session_state.pop(asking, None)
+    if recording is None or recording.on_reveal():
+        st.session_state[revealed_key] = signature
+        st.rerun()
 
 
 def instructor_key_entry(key: str, what: str = "the answer keys") -> bool:
