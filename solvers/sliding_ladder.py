@@ -165,8 +165,7 @@ def derivation() -> tuple[Derivation, dict]:
              r"N_B = " + sp.latex(floor)),
         Step("Just after release (θ = θ₀, θ̇ = 0)",
              latex_eq(N_A0, wall_0) + r",\quad " + latex_eq(N_B0, floor_0)),
-        Step("The wall cannot pull: $N_A$ reaches zero, and the top leaves the wall, at two-thirds of its "
-             "initial height", r"N_A = 0 \;\Rightarrow\; \sin\theta_\ell = " + sp.latex(leaving_sin)
+        Step("The wall cannot pull: the top leaves the wall where $N_A$ reaches zero", r"N_A = 0 \;\Rightarrow\; \sin\theta_\ell = " + sp.latex(leaving_sin)
              + r",\quad " + latex_eq(w_l, omega_l.subs(th_l, leave_angle).simplify())),
         Step("G's speed away from the wall then (θ̇ < 0 while it falls)",
              latex_eq(v_l, speed_l)),

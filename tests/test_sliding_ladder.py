@@ -376,3 +376,11 @@ def test_the_floor_pushes_a_quarter_of_the_weight_as_the_top_leaves_the_wall(the
     want_wall, want_floor = _pushes_leaving(p)
     weight = p["m"] * p["g"]
     assert abs(wall - want_wall) <= 1e-9 * weight and abs(floor - want_floor) <= 1e-9 * weight, (wall, floor, weight)
+
+
+def test_the_method_shown_before_the_solution_does_not_state_where_the_top_leaves():
+    """Practice and an assignment show the derivation's step titles before "Show the solution": the
+    leaving step said "at two-thirds of its initial height", a graded answer (θ_ℓ) in words."""
+    solution = ladder.solve()
+    shown = " ".join(step.title for step in solution.steps[: solution.symbolic_steps]).lower()
+    assert not any(words in shown for words in ("two-thirds", "2/3", "⅔", "two thirds"))
