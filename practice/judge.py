@@ -370,6 +370,11 @@ class Judge:
         another unit of its kind (deg/s where rad/s is read, ft/s on an SI page) is a unit left out,
         not a wrong answer: explained, and not judged (an assignment does not count it)."""
         shown = units.format_quantity(value, answer.dimension, system)
+        factor = units.si_per_unit(unit, answer.dimension) if unit and expr is None else None
+        if factor:  # a number in another unit: said as typed and as the page shows it ("5.604 ft/s = 1.708 m/s")
+            if not math.isclose(value / factor, units.to_display(value, answer.dimension, system)):
+                shown = f"{units.format_value(value / factor, 4)} {unit[:20]} = {shown}"
+            how = ""
         scale = self._scale()
         known = [(m, self._value_of(m.wrong(dict(self.solution.params))))
                  for m in mistakes_for(self.solution.problem, answer.name, dict(self.solution.params))]

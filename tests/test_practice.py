@@ -807,3 +807,13 @@ def test_the_answer_in_the_other_systems_unit_typed_alone_is_a_unit_left_out(pid
             verdict = judge.check(answer, number, system)
             if not verdict.correct and verdict.mistake not in CALCULATOR_HINTS.values():  # (a coincidence: 1 ft = 0.3 m)
                 assert not verdict.readable and meant in verdict.message, (name, number, system, verdict.message)
+
+
+def test_a_number_in_another_unit_is_said_as_typed_and_as_the_page_shows_it():
+    """"Right: 1.708 m/s (read as ft/s)" read as if 1.708 had been typed in ft/s."""
+    _, solution, judge, answers = setup("disk_wall")
+    v = solution.answers["v1x"]
+    typed = f"{v / units.FT:.4g}"
+    assert judge.check(answers["v1x"], f"{typed} ft/s").message == \
+        f"Right: {typed} ft/s = {units.format_quantity(v, 'speed')}."
+    assert judge.check(answers["v1x"], f"{v:.4f} m/s").message == f"Right: {units.format_quantity(v, 'speed')}."
