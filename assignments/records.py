@@ -418,11 +418,47 @@ def _describe(name: str, before, after, zone: str) -> str:
             return f"±{v * 100:g} %"
         if name == "late_value":
             return f"{v * 100:g} %"
-        if name == "parts":
-            return "; ".join(f"{p['problem']}: " + ", ".join(f"{a} ×{_number(w)}" for a, w in zip(p["answers"], p["weights"]))
-                             for p in v)
         return str(v)
+    if name == "parts":
+        return "; ".join(_parts_changed(before, after)) or "points unchanged"
     return f"{words.get(name, name)} {show(before)} → {show(after)}"
+
+
+def _answer_named(problem: str, answer: str, in_a_set: bool) -> str:
+    """An answer as the instructor's page calls it: its label (with its problem's title in a problem set)."""
+    try:
+        solver = registry.solver(problem)
+    except KeyError:
+        return f"{problem}/{answer}"
+    label = next((a.label for a in solver.ANSWERS if a.name == answer), answer)
+    label = f"“{label[:1].upper()}{label[1:]}”"
+    return f"{solver.ABOUT.title}: {label}" if in_a_set else label
+
+
+def _parts_changed(before: list[dict], after: list[dict]) -> list[str]:
+    """What an edit of the problems, answers and points changed, answer by answer, in the page's words
+    ("“Highest angle after the bounce” 1 → 2 points", "“Angle at impact” no longer counts")."""
+    old = {p["problem"]: dict(zip(p["answers"], p["weights"])) for p in before}
+    new = {p["problem"]: dict(zip(p["answers"], p["weights"])) for p in after}
+    in_a_set = len(old) > 1 or len(new) > 1
+    said = []
+    for problem in list(old) + [p for p in new if p not in old]:
+        if problem not in new or problem not in old:
+            title = registry.solver(problem).ABOUT.title if problem in registry.PROBLEM_IDS else problem
+            said.append(f"{title} {'removed' if problem not in new else 'added'}")
+            continue
+        for answer in list(old[problem]) + [a for a in new[problem] if a not in old[problem]]:
+            name = _answer_named(problem, answer, in_a_set)
+            was, now = old[problem].get(answer), new[problem].get(answer)
+            if was is None:
+                said.append(f"{name} counts ({_number(now)} point{'s' if now != 1 else ''})")
+            elif now is None:
+                said.append(f"{name} no longer counts")
+            elif was != now:
+                said.append(f"{name} {_number(was)} → {_number(now)} point{'s' if now != 1 else ''}")
+    if not said and [p["problem"] for p in before] != [p["problem"] for p in after]:
+        said.append("the problems' order changed")
+    return said
 
 
 @_guarded

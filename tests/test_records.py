@@ -593,3 +593,18 @@ def test_the_upgrade_keeps_an_assignment_made_before_problem_sets(database):
     assert old.parts == (records.Part("disk_wall", ("v1x", "v1y")),) and old.status == "open" and old.hints
     assert records.gradebook(7, database).score("s01") == 1
     assert records.attempts_of(StudentIdentity(7, "s01", 5), database)[0].problem == "disk_wall"
+
+
+def test_an_edit_of_the_points_is_said_answer_by_answer_in_the_pages_words(database):
+    """"Saved: problems, answers and weights pendulum_rebound: theta_impact ×1, …" named the answers by
+    their ids and listed everything before and after; the instructor's page calls them by their labels."""
+    aid, _ = new_assignment(database)
+    before = records.assignment(aid, database)
+    changed = records.Part("pendulum_rebound", ("theta_rebound", "omega_after"), (2, 1))
+    said = records.edit(aid, records.replace(before, parts=(changed,)), database)
+    assert said == ["“Highest angle after the bounce” 1 → 2 points; “Moment of inertia about the pivot” no longer "
+                    "counts; “Angular velocity just after impact” counts (1 point)"]
+    assert records.history(aid, database)[0].summary == "; ".join(said)
+    with_disk = (changed, records.Part("disk_wall", ("v1x",), (3,)))
+    assert records.edit(aid, records.replace(before, parts=with_disk), database) == [
+        "Spinning disk hits a rough wall added"]

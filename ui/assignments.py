@@ -777,6 +777,7 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
     slot = st.empty()  # always there, so the expanders below keep their place (and stay open)
     if said:
         slot.success(plain(said))
+        st.toast(plain(said)[:300], icon=":material/check:")  # seen where the button was pressed, below
     st.markdown(f"Due {records.when_text(s.due, s.timezone)} · {s.attempts_allowed} attempts per answer · numbers "
                 f"within ±{s.tolerance * 100:g} % · late: {plain(s.late_rule())} · feedback: {s.feedback_rule()}"
                 f"{'; the answer after the last attempt' if s.answer_after_last else ''} · solution before the due "
