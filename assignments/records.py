@@ -1185,16 +1185,16 @@ def question_name(settings: Settings, question: Question) -> str:
 
 
 def gradebook_csv(book: Gradebook, names: dict[Question, str] | None = None) -> str:
-    """One row per student: label, variant, points, out of, percent, how the score was computed
-    (each answer called by ``names``, as the page calls it), then per answer the points earned, the
-    status in words, the first right attempt and its time (whether it earned points or not: a
-    right-but-late answer's time is the student's evidence), the attempts used and allowed, and the
-    slips named."""
+    """One row per student: label, variant, points, out of, percent, the answers right only after the
+    due time, the extension, how the score was computed; then per answer (called by ``names``, as the
+    page calls it, else by its id) the points earned and possible, the status in words, the first
+    right attempt and its time (whether it earned points or not: a right-but-late answer's time is the
+    student's evidence), the attempts used and allowed, and the slips named."""
     s = book.settings
-    header = ["label", "seed", "score", "out_of", "percent", "late_answers", "extension_until_utc", "how"]
+    header = ["label", "seed", "score", "out_of", "percent", "right_but_late", "extension_until_utc", "how"]
     for q in s.questions:
-        name = question_name(s, q)
-        header += [f"{name}:points", f"{name}:status", f"{name}:right_at_attempt", f"{name}:right_at_utc",
+        name = " ".join(names[q].split()) if names and q in names else question_name(s, q)
+        header += [f"{name}:points", f"{name}:out_of", f"{name}:status", f"{name}:right_at_attempt", f"{name}:right_at_utc",
                    f"{name}:attempts_used", f"{name}:attempts_allowed", f"{name}:slips"]
     rows = []
     for student in book.students:
@@ -1205,7 +1205,8 @@ def gradebook_csv(book: Gradebook, names: dict[Question, str] | None = None) -> 
                              book.late_right(student.label), _time(grant.extended_due), book.how(student.label, names)]
         for q in s.questions:
             c = book.cell(student.label, q)
-            row += [_points(s.weight(q) * c.credit), c.status(s), c.right_at() or "", _time(c.right_when()),
+            row += [_points(s.weight(q) * c.credit), _points(s.weight(q)), c.status(s), c.right_at() or "",
+                    _time(c.right_when()),
                     c.attempts, c.allowed, "; ".join(c.slips)]
         rows.append(row)
     return safe_csv(header, rows)

@@ -367,11 +367,12 @@ def test_right_but_late_is_visible_everywhere(database):
     assert book.how("s01") == "no points = 0 of 2 (theta_rebound right but 3 h 5 min late: no credit)"
     assert book.how("s02") == "theta_rebound 1 = 1 of 2"
     row = next(csv.DictReader(io.StringIO(records.gradebook_csv(book, {THETA: "Highest angle"}))))
-    assert row["theta_rebound:status"].startswith("right but 3 h 5 min late") and row["late_answers"] == "1"
+    assert row["Highest angle:status"].startswith("right but 3 h 5 min late") and row["right_but_late"] == "1"
     # the late answer's attempt and time are in the gradebook too (the student's evidence), and the
     # score's words call the answer as the page does
-    assert (row["theta_rebound:points"], row["theta_rebound:right_at_attempt"]) == ("0", "1")
-    assert row["theta_rebound:right_at_utc"] == (DUE + dt.timedelta(hours=3, minutes=5)).strftime("%Y-%m-%d %H:%M:%S")
+    assert (row["Highest angle:points"], row["Highest angle:out_of"], row["Highest angle:right_at_attempt"]) == \
+        ("0", "1", "1")
+    assert row["Highest angle:right_at_utc"] == (DUE + dt.timedelta(hours=3, minutes=5)).strftime("%Y-%m-%d %H:%M:%S")
     assert row["how"] == "no points = 0 of 2 (Highest angle right but 3 h 5 min late: no credit)"
 
 
