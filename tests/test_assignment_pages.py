@@ -463,6 +463,23 @@ def test_opening_the_solution_in_an_assignment_asks_first(course):
     assert "you had opened the solution" in said and "right but after the solution" in said and "late" not in said
 
 
+def test_adding_students_checks_the_labels_first_and_counts_in_words(course):
+    aid, s, _ = one_assignment()
+    book = instructor()
+    book.text_area(key=f"assign__more{aid}_roster").input("s03\nJane Doe\n").run()
+    assert any("Line 2" in e.value for e in book.error)  # said before pressing, as in the new assignment's form
+    assert book.button(key=f"assign__more{aid}_add").disabled
+    book.text_area(key=f"assign__more{aid}_roster").input("s02\ns03\n").run()
+    assert not book.button(key=f"assign__more{aid}_add").disabled and not book.warning
+    book.button(key=f"assign__more{aid}_add").click().run()
+    assert "Added 1 student; 1 student was on the roster already" in book.success[0].value
+    assert [st_.label for st_ in records.roster(aid)] == ["s01", "s02", "s03"]
+    records.edit(aid, records.replace(s, due=records.now() - dt.timedelta(hours=1)))
+    book = instructor()
+    book.text_area(key=f"assign__more{aid}_roster").input("s04\n").run()
+    assert any("students added now start late" in w.value for w in book.warning)
+
+
 def slip_value(params: dict) -> str:
     """The rebound angle (degrees) that the e-for-e² slip gives at these givens."""
     from practice.judge import Judge

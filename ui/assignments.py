@@ -737,25 +737,34 @@ def _save_grant(aid: int, who: str, grant: records.Grant) -> None:
     st.rerun()
 
 
-def _add_students(aid: int) -> None:
+def _add_students(aid: int, s: records.Settings) -> None:
     p = f"assign__more{aid}_"
     with st.expander("Add students to the roster"):
-        text, file_error = _roster_text(p)
-        if st.button("Add these students", key=f"{p}add"):
-            if file_error:
-                st.error(file_error)
-                return
+        text, problem = _roster_text(p)
+        labels: list[str] = []
+        if text.strip() and not problem:
             try:
                 labels = records.parse_roster(text)
             except ValueError as error:
-                st.error(plain(str(error)))
-                return
-            before = {s.label for s in records.roster(aid)}
+                problem = str(error)
+        if problem:  # said as it is typed, as the new assignment's form does
+            st.error(plain(problem), icon=":material/error:")
+        if labels and s.due < records.now():
+            st.warning(f"The due time has passed ({records.when_text(s.due, s.timezone)}): students added now start "
+                       "late. Give each an extension under “One student” once added.", icon=":material/schedule:")
+        if st.button("Add these students", key=f"{p}add", disabled=not labels or bool(problem)):
+            before = {st_.label for st_ in records.roster(aid)}
             records.enrol(aid, labels)
-            new = [l for l in labels if l not in before]
-            st.session_state["assign__said"] = (f"Added {len(new)} students; {len(labels) - len(new)} were on the "
-                                                "roster already (their links are unchanged).")
+            new = [label for label in labels if label not in before]
+            had = len(labels) - len(new)
+            st.session_state["assign__said"] = (
+                f"Added {_students(len(new))}" + (f"; {_students(had)} {'was' if had == 1 else 'were'} on the roster "
+                                                  "already (their links are unchanged)" if had else "") + ".")
             st.rerun()
+
+
+def _students(n: int) -> str:
+    return f"{n} student{'' if n == 1 else 's'}"
 
 
 LEGEND = ("**Reading the gradebook.** Each answer's cell says where the student stands, in words: *right at "
@@ -785,7 +794,7 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
     _status_actions(aid, s)
     _edit(aid, s)
     _per_student(aid, book)
-    _add_students(aid)
+    _add_students(aid, s)
 
     st.markdown("#### Links, one per student")
     st.markdown("Send each student their own link (by your course's messaging, not in a public place): it opens "
