@@ -123,7 +123,7 @@ def test_an_assignment_end_to_end(course):
     answer(page, "theta_rebound", rebound_in_degrees(ann))
     assert any("attempt 2 of 3" in i.value and "it counts" in i.value for i in page.success)
     table = page.table[-1].value
-    assert list(table["#"]) == [1, 2] and list(table["counts"]) == ["no", "yes"]
+    assert list(table["attempt"]) == [1, 2] and list(table["counts"]) == ["no", "yes"]
 
     # Bob changes his link's variant to Ann's: refused, nothing recorded.
     tampered = student(link_query(bob) | {"seed": str(ann.seed)})

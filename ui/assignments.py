@@ -383,7 +383,9 @@ def your_attempts(link: StudentLink, answers, solution=None, system: str = "si")
                 return f"{a.credit * 100:g} % (late)"
             return "no: " + ", ".join(a.marks()) if a.marks() else "no"
 
-        st.table([{"#": a.number, "answer": labels.get(a.answer, a.answer), "you typed": literal(a.typed),
+        # in time order; each attempt numbered at its answer, as "Recorded: attempt 2 of 3" said it
+        # ("#" drew as a blank heading over numbers that restart per answer)
+        st.table([{"answer": labels.get(a.answer, a.answer), "attempt": a.number, "you typed": literal(a.typed),
                    "verdict": "right" if a.correct else "not right", "slip": literal(records.slip_shown(a.slip, standing.settings)),
                    "time": records.when_text(a.at, zone), "counts": earned(a)} for a in mine])
 
@@ -889,7 +891,7 @@ def _history(aid: int, s: records.Settings) -> None:
     st.markdown("#### History")
     st.markdown("Every change to this assignment, newest first, with its time. Undoing a change is itself a "
                 "change, kept here.")
-    st.table([{"#": e.id, "time": records.when_text(e.at, s.timezone), "change": e.action,
+    st.table([{"number": e.id, "time": records.when_text(e.at, s.timezone), "change": e.action,
                "what": plain(e.summary) + (" (undone)" if e.undone else "")} for e in entries])
     undoable = [e for e in entries if e.action not in ("created", "roster") and not e.undone]
     c1, c2, c3 = st.columns([3, 1, 2])
