@@ -544,8 +544,14 @@ def test_a_problem_set_is_one_assignment_with_one_score(course):
     other.button(key="disk_wall__check").click().run()
     assert any("it counts" in m.value for m in other.success)
     answer(page, "theta_rebound", rebound_in_degrees(ann))
-    row = gradebook_table(instructor()).iloc[0]
+    book = instructor()
+    row = gradebook_table(book).iloc[0]
     assert row["score"] == "2 / 13"
+    # the table heads each answer with its problem's number, the titles said once above it
+    assert row["P1: Highest angle after the bounce"] == "right at attempt 1"
+    assert row["how"].startswith("P1: Highest angle after the bounce 1 + P2: Velocity after, along the wall 1 =")
+    assert any("**P1**: Rod" in m.value and "**P2**: Spinning disk" in m.value for m in book.markdown), \
+        [m.value[:60] for m in book.markdown]
 
 
 def test_a_title_too_long_is_kept_and_refused_in_words(course):

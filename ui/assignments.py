@@ -81,6 +81,20 @@ def _answer_labels(settings: records.Settings) -> dict[tuple[str, str], str]:
     return out
 
 
+def _short_labels(settings: records.Settings) -> tuple[dict[tuple[str, str], str], str]:
+    """Each question as the gradebook's table heads it, and the key to them: in a problem set "P1: Angle
+    at impact" with "P1: Rod-and-sphere pendulum…" said once above (the title in every heading and
+    every "how" made a row taller than a projector's screen); one problem's labels as they are."""
+    if len(settings.parts) == 1:
+        return _answer_labels(settings), ""
+    short, key = {}, []
+    for i, part in enumerate(settings.parts, 1):
+        key.append(f"**P{i}**: {plain(_title(part.problem))}")
+        one = _answer_labels(records.replace(settings, parts=(part,)))
+        short |= {q: f"P{i}: {label}" for q, label in one.items()}
+    return short, " · ".join(key)
+
+
 # -- the student's side
 
 @dataclass
@@ -808,6 +822,9 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
         st.table([{"label": literal(st_.label), "link": student_url(base, s.problem, st_)} for st_ in book.students])
 
     st.markdown("#### Gradebook")
+    short, key = _short_labels(s)
+    if key:
+        st.markdown(key)
     rows = []
     for student in book.students:
         grant = book.grants.get(student.label, records.Grant())
@@ -818,14 +835,14 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
             words = c.status(s)
             if c.slips:
                 words += "; slips: " + ", ".join(map(literal, c.slips))
-            row[labels[q]] = words
+            row[short[q]] = words
         granted = []
         if grant.extended_due:
             granted.append(f"due {records.when_text(grant.extended_due, s.timezone)}")
         if grant.extra_attempts:
             granted.append(f"+{grant.extra_attempts} attempts")
         row["extension"] = ", ".join(granted) or "—"
-        row["how"] = book.how(student.label, labels)
+        row["how"] = book.how(student.label, short)
         rows.append(row)
     st.table(rows)
     st.markdown(LEGEND)
