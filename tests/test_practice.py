@@ -817,3 +817,14 @@ def test_a_number_in_another_unit_is_said_as_typed_and_as_the_page_shows_it():
     assert judge.check(answers["v1x"], f"{typed} ft/s").message == \
         f"Right: {typed} ft/s = {units.format_quantity(v, 'speed')}."
     assert judge.check(answers["v1x"], f"{v:.4f} m/s").message == f"Right: {units.format_quantity(v, 'speed')}."
+
+
+@pytest.mark.parametrize("units_query, inertia", [({}, "kg·m²"), ({"units": "us"}, "slug·ft²")])
+def test_the_answer_box_and_the_statement_name_the_unit_a_number_alone_is_read_in(units_query, inertia):
+    """"291.7" for an angular speed in deg/s was a wrong, graded attempt while nothing on the page said a
+    number alone is read in rad/s: each answer names it, where it is chosen and in the statement."""
+    at = run_page("pendulum_rebound", {"practice": "1", **units_query})
+    options = at.selectbox(key="pendulum_rebound__attempt_answer").options
+    assert {"Angular velocity just after impact, in rad/s", "Highest angle after the bounce, in degrees",
+            f"Moment of inertia about the pivot, in {inertia}"} <= set(options), options
+    assert "Highest angle after the bounce, $\\theta_f$, in degrees" in page_text(at)

@@ -81,11 +81,16 @@ def answer_label(answer) -> str:
     return answer.label[:1].upper() + answer.label[1:]
 
 
+def read_in(answer, system: str) -> str:
+    """The unit a number typed alone is read in, in words for degrees; "" for a number without one."""
+    unit = units.unit(answer.dimension, system) if answer.dimension in units.DIMENSIONS else ""
+    return "degrees" if unit == "°" else unit
+
+
 def answer_choice(answer, system: str) -> str:
     """An answer as the answer box offers it: its label and the unit a number typed alone is read in
     ("Angular velocity just after impact, in rad/s")."""
-    unit = units.unit(answer.dimension, system) if answer.dimension in units.DIMENSIONS else ""
-    return answer_label(answer) + (f", in {unit}" if unit else "")
+    return answer_label(answer) + (f", in {unit}" if (unit := read_in(answer, system)) else "")
 
 
 def statement(problem: Problem, solution: Solution, answers, system: str, judge: Judge) -> str:
@@ -99,7 +104,8 @@ def statement(problem: Problem, solution: Solution, answers, system: str, judge:
             sym = judge.givens.get(p.name)
             typed = f"`{judge.typed_name(sym)}`" if sym is not None else ""
             rows.append(f"| {plain(p.label)} | ${p.symbol}$ {typed} | {units.format_quantity(value, p.dimension, system)} |")
-    find = "\n".join(f"- {plain(answer_label(a))}, ${a.symbol}$" for a in answers)
+    find = "\n".join(f"- {plain(answer_label(a))}, ${a.symbol}$" + (f", in {plain(u)}" if (u := read_in(a, system)) else "")
+                     for a in answers)
     return "\n\n".join(["### The problem", "\n".join(rows),
                         "**Find**", find])
 
