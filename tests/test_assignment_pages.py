@@ -480,6 +480,30 @@ def test_adding_students_checks_the_labels_first_and_counts_in_words(course):
     assert any("students added now start late" in w.value for w in book.warning)
 
 
+def test_the_instructor_adds_a_problem_and_changes_what_counts(course):
+    """The edit had the points of the answers chosen at creation only: no problem could be added, no
+    answer counted or dropped, short of a new assignment and new links for everyone."""
+    aid, s, (ann, _) = one_assignment()
+    book = instructor()
+    widget(book, f"assign__parts{aid}_", "_problems").set_value(["pendulum_rebound", "disk_wall"]).run()
+    widget(book, f"assign__parts{aid}_", "_answers_disk_wall").set_value(["v1x", "omega1"]).run()
+    widget(book, f"assign__parts{aid}_", "_weight_disk_wall_omega1").set_value(2.0)
+    widget(book, f"assign__parts{aid}_", "_answers_pendulum_rebound").set_value(["theta_rebound"]).run()
+    widget(book, f"assign__parts{aid}_", "_save").click().run()
+    assert not book.exception
+    saved = records.assignment(aid)
+    assert saved.problems == ("pendulum_rebound", "disk_wall") and saved.part("pendulum_rebound").answers == ("theta_rebound",)
+    assert saved.part("disk_wall").weights == (1.0, 2.0) and saved.out_of == 1 + 3
+    assert "Spinning disk hits a rough wall added" in book.success[0].value
+    # Ann's link, as sent, now lists both problems; the new one takes her answers
+    page = student(link_query(ann))
+    assert "This assignment has 2 problems" in page_text(page)
+    # with the first problem taken out, the link sent before points to the assignment's problems
+    records.edit(aid, records.replace(saved, parts=(saved.part("disk_wall"),)))
+    refused = student(link_query(ann))
+    assert "not part of this assignment" in refused.error[0].value and "(disk_wall?assignment=" in refused.error[0].value
+
+
 def slip_value(params: dict) -> str:
     """The rebound angle (degrees) that the e-for-e² slip gives at these givens."""
     from practice.judge import Judge
@@ -636,5 +660,5 @@ def test_the_points_boxes_come_in_reading_order(course):
     assert len(names) > 4 and shown == names
     aid, _, _ = one_assignment(problems=("disk_wall",), title="Week 9: the wall")
     book = instructor()
-    edited = [w.label for w in book.number_input if w.label.startswith("Points:") and w.key.startswith(f"assign__edit{aid}_")]
+    edited = [w.label for w in book.number_input if w.label.startswith("Points:") and w.key.startswith(f"assign__parts{aid}_")]
     assert len(edited) == len(disk_wall.ANSWERS) and edited == shown

@@ -172,9 +172,10 @@ def student_link(problem: Problem) -> StudentLink | None:
     if problem.id not in settings.problems and identity.source == "lti":
         return None  # an LMS student on another page of the app: practice, as anyone
     if problem.id not in settings.problems:
-        right = " or ".join(f"“{_title(p)}”" for p in settings.problems)
-        return StudentLink(refused=f"This assignment link belongs to the page {right}, not this one. Open the "
-                                   "link exactly as you received it.")
+        query = urllib.parse.urlencode(link_query(identity))
+        right = " or ".join(f"[{_title(p)}]({p}?{query})" for p in settings.problems)
+        return StudentLink(refused=f"This page is not part of this assignment (your instructor may have changed "
+                                   f"its problems): open {right}.")
     return StudentLink(identity, settings=settings, problem=problem.id)
 
 
@@ -513,6 +514,27 @@ def _roster_text(prefix: str) -> tuple[str, str]:
 NEW_FORM = "assign__new"  # the new assignment's inputs: keys f"{NEW_FORM}{n}_…", a fresh n once one is created
 
 
+def _parts_inputs(p: str, chosen: list[str], s: records.Settings | None = None) -> list[records.Part]:
+    """For each chosen problem, the answers that count and their points (as ``s`` has them, where it has
+    the problem; every answer at 1 point otherwise)."""
+    parts = []
+    for pid in chosen:
+        problem = BY_ID[pid]
+        answers = {a.name: a for a in _answers_of(problem)}
+        had = s.part(pid) if s is not None else None
+        with st.container(border=True):
+            st.markdown(f"**{plain(problem.title)}**")
+            counted = st.multiselect("Answers that count", list(answers),
+                                     default=[a for a in had.answers if a in answers] if had else list(answers),
+                                     format_func=lambda name, answers=answers: answer_label(answers[name]),
+                                     key=f"{p}answers_{pid}")
+            weights = [cell.number_input(f"Points: {answer_label(answers[name])}", 0.1, 1000.0,
+                                         float(had.weight(name)) if had and name in had.answers else 1.0, 0.5,
+                                         key=f"{p}weight_{pid}_{name}") for cell, name in zip(_in_rows(len(counted)), counted)]
+        parts.append(records.Part(pid, tuple(counted), tuple(weights)))
+    return parts
+
+
 def _new_assignment() -> None:
     st.markdown("Nothing is created until you press **Create**; the check above the button lists what "
                 "would be wrong first.")
@@ -520,18 +542,7 @@ def _new_assignment() -> None:
     title = st.text_input("Title", key=f"{p}title", placeholder="Week 9: the bouncing pendulum")
     chosen = st.multiselect("Problems (one, or several for a problem set; in this order)", [q.id for q in PROBLEMS],
                             format_func=_title, key=f"{p}problems")
-    parts = []
-    for pid in chosen:
-        problem = BY_ID[pid]
-        answers = {a.name: a for a in _answers_of(problem)}
-        with st.container(border=True):
-            st.markdown(f"**{plain(problem.title)}**")
-            counted = st.multiselect("Answers that count", list(answers), default=list(answers),
-                                     format_func=lambda name, answers=answers: answer_label(answers[name]),
-                                     key=f"{p}answers_{pid}")
-            weights = [cell.number_input(f"Points: {answer_label(answers[name])}", 0.1, 1000.0, 1.0, 0.5,
-                                         key=f"{p}weight_{pid}_{name}") for cell, name in zip(_in_rows(len(counted)), counted)]
-        parts.append(records.Part(pid, tuple(counted), tuple(weights)))
+    parts = _parts_inputs(p, chosen)
     c1, c2 = st.columns(2)
     tolerance = c1.number_input("Tolerance for numbers (%)", 0.01, 10.0, RELATIVE_TOLERANCE * 100, 0.1,
                                 key=f"{p}tolerance")
@@ -641,7 +652,7 @@ def _in_rows(count: int, across: int = 4) -> list:
 
 def _edit(aid: int, s: records.Settings) -> None:
     p = f"assign__edit{aid}_{_version(s)}_"
-    with st.expander("Edit: due time, attempts, tolerance, late work, feedback, points"):
+    with st.expander("Edit: due time, attempts, tolerance, late work, feedback"):
         with st.form(f"{p}form"):
             title = st.text_input("Title", s.title, key=f"{p}title")
             c1, c2 = st.columns(2)
@@ -654,20 +665,37 @@ def _edit(aid: int, s: records.Settings) -> None:
             due = _due_inputs(p, s.timezone, s.due)
             policy, value = _late_inputs(p, s.late_policy, s.late_value)
             hints, names, after, before = _feedback_inputs(p, s)
-            labels = _answer_labels(s)
-            parts = []
-            cells = iter(_in_rows(sum(len(part.answers) for part in s.parts)))
-            for part in s.parts:
-                weights = tuple(next(cells).number_input(f"Points: {labels[(part.problem, name)]}", 0.1, 1000.0,
-                                                         part.weight(name), 0.5, key=f"{p}w_{part.problem}_{name}")
-                                for name in part.answers)
-                parts.append(replace(part, weights=weights))
             save = st.form_submit_button("Save the changes")
         if save:
             new = replace(s, title=title, tolerance=tolerance / 100, attempts_allowed=int(attempts),
                           due=due.astimezone(UTC), late_policy=policy, late_value=value, hints=hints,
-                          slip_names=names, answer_after_last=after, solution_before_due=before, timezone=zone,
-                          parts=tuple(parts))
+                          slip_names=names, answer_after_last=after, solution_before_due=before, timezone=zone)
+            if new.errors():
+                for problem in new.errors():
+                    st.error(plain(problem))
+                return
+            st.session_state[f"{p}pending"] = new
+        new = st.session_state.get(f"{p}pending")
+        if new is not None:
+            _unless_it_takes_points(p, records.points_taken(aid, settings=new), lambda: _save_edit(aid, s, new))
+
+
+def _edit_parts(aid: int, s: records.Settings) -> None:
+    """The problems, the answers that count and their points: a problem added or taken out, an answer
+    counted or not, its points (outside a form, so a problem chosen brings its answers at once)."""
+    p = f"assign__parts{aid}_{_version(s)}_"
+    with st.expander("Edit: problems, answers that count, points"):
+        st.session_state.setdefault(f"{p}problems", list(s.problems))
+        chosen = st.multiselect("Problems (in this order)", [q.id for q in PROBLEMS], format_func=_title,
+                                key=f"{p}problems")
+        parts = _parts_inputs(p, chosen, s)
+        if chosen and chosen[0] != s.problem:
+            st.info(f"Students' links open the first problem. The links already sent open “{_title(s.problem)}”"
+                    + (", which still lists the assignment's problems." if s.problem in chosen else
+                       ": that page will point them to this assignment's problems.")
+                    + " “Download the links” gives the new ones.", icon=":material/link:")
+        if st.button("Save problems and points", key=f"{p}save"):
+            new = replace(s, parts=tuple(parts))
             if new.errors():
                 for problem in new.errors():
                     st.error(plain(problem))
@@ -809,6 +837,7 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
                 f"time: {'yes' if s.solution_before_due else 'no'} · {records._number(s.out_of)} points")
     _status_actions(aid, s)
     _edit(aid, s)
+    _edit_parts(aid, s)
     _per_student(aid, book)
     _add_students(aid, s)
 
