@@ -176,17 +176,19 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         st.markdown(statement(problem, solution, answers, system, judge))
         st.markdown(method(solution.steps[: solution.symbolic_steps], judge.derivation))
     with st.form(key=f"{problem.id}__practice"):
+        # How to type an answer is the chooser's help: its "?" comes before the choice, so Tab goes from the
+        # choice straight into the box (a "?" in the box's label took the first Tab, and the typing went nowhere)
         answer = st.selectbox("Answer to check", answers, format_func=lambda a: answer_choice(a, system),
-                              key=f"{problem.id}__attempt_answer")
+                              key=f"{problem.id}__attempt_answer",
+                              help="Type a number, with a unit (mm, kN, ft/s, slug·ft² …; units are case-sensitive) "
+                                   "or alone: read in the unit named with the answer (degrees for angles); or an "
+                                   f"expression in the givens: {judge.givens_text()}, written as by hand (2V sinθ/3 "
+                                   "is 2·V·sin θ/3), with a unit after it if you like. Write powers as ^ or **, "
+                                   "e.g. (a + b)^2/3, sqrt(x), sin(θ), or 30° inside sin.")
         box, tolerance = st.columns([5, 1], vertical_alignment="bottom")
         # No max_chars: Streamlit drops a paste longer than it without a word; the judge says the limit
         text = box.text_input("Your answer", key=f"{problem.id}__attempt",
-                              help="A number, with a unit (mm, kN, ft/s, slug·ft² …; units are case-sensitive) "
-                                   "or alone: read in the unit named with the answer above (degrees for angles); "
-                                   "or an expression in "
-                                   f"the givens: {judge.givens_text()}, written as by hand (2V sinθ/3 is "
-                                   "2·V·sin θ/3), with a unit after it if you like. Write powers as ^ or **, "
-                                   "e.g. (a + b)^2/3, sqrt(x), sin(θ), or 30° inside sin.")
+                              placeholder="a number (with a unit), or an expression in the givens")
         tolerance.markdown(f"within {tolerance_text(tolerance_value)}", help="A number counts as right within this relative "
                            "tolerance, unless it is nearer a known slip's value. An expression must equal "
                            "the answer.")
