@@ -247,8 +247,9 @@ def instructor_key_entry(key: str, what: str = "the answer keys") -> bool:
     if is_instructor():
         return True
     st.text_input("Instructor key", type="password", key=key, on_change=_key_typed, args=(key,),
-                  help="Set by the course admin. Entered once per browser session; an "
-                       "instructor link (?instructor=KEY) does the same.")
+                  help="Set by the course admin. Kept by this tab only, never in a cookie (a shared "
+                       "lecture-hall computer keeps no instructor behind): a reload or a new tab asks again. "
+                       "An instructor link (?instructor=KEY) does the same.")
     if st.session_state.get(KEY_MESSAGE):
         st.error(st.session_state[KEY_MESSAGE])
     return False
