@@ -666,18 +666,24 @@ def _edit(aid: int, s: records.Settings) -> None:
             policy, value = _late_inputs(p, s.late_policy, s.late_value)
             hints, names, after, before = _feedback_inputs(p, s)
             save = st.form_submit_button("Save the changes")
-        if save:
-            new = replace(s, title=title, tolerance=tolerance / 100, attempts_allowed=int(attempts),
-                          due=due.astimezone(UTC), late_policy=policy, late_value=value, hints=hints,
-                          slip_names=names, answer_after_last=after, solution_before_due=before, timezone=zone)
-            if new.errors():
-                for problem in new.errors():
-                    st.error(plain(problem))
-                return
-            st.session_state[f"{p}pending"] = new
-        new = st.session_state.get(f"{p}pending")
-        if new is not None:
-            _unless_it_takes_points(p, records.points_taken(aid, settings=new), lambda: _save_edit(aid, s, new))
+        _check_and_save(aid, s, p, replace(s, title=title, tolerance=tolerance / 100, attempts_allowed=int(attempts),
+                                           due=due.astimezone(UTC), late_policy=policy, late_value=value, hints=hints,
+                                           slip_names=names, answer_after_last=after, solution_before_due=before,
+                                           timezone=zone) if save else None)
+
+
+def _check_and_save(aid: int, s: records.Settings, p: str, asked: records.Settings | None) -> None:
+    """An edit asked for (``asked``, on a press of Save; None otherwise): its errors said, or kept while
+    a warning that it lowers scores waits for an answer, and saved."""
+    if asked is not None:
+        if asked.errors():
+            for problem in asked.errors():
+                st.error(plain(problem))
+            return
+        st.session_state[f"{p}pending"] = asked
+    new = st.session_state.get(f"{p}pending")
+    if new is not None:
+        _unless_it_takes_points(p, records.points_taken(aid, settings=new), lambda: _save_edit(aid, s, new))
 
 
 def _edit_parts(aid: int, s: records.Settings) -> None:
@@ -694,16 +700,8 @@ def _edit_parts(aid: int, s: records.Settings) -> None:
                     + (", which still lists the assignment's problems." if s.problem in chosen else
                        ": that page will point them to this assignment's problems.")
                     + " “Download the links” gives the new ones.", icon=":material/link:")
-        if st.button("Save problems and points", key=f"{p}save"):
-            new = replace(s, parts=tuple(parts))
-            if new.errors():
-                for problem in new.errors():
-                    st.error(plain(problem))
-                return
-            st.session_state[f"{p}pending"] = new
-        new = st.session_state.get(f"{p}pending")
-        if new is not None:
-            _unless_it_takes_points(p, records.points_taken(aid, settings=new), lambda: _save_edit(aid, s, new))
+        save = st.button("Save problems and points", key=f"{p}save")
+        _check_and_save(aid, s, p, replace(s, parts=tuple(parts)) if save else None)
 
 
 def _save_edit(aid: int, s: records.Settings, new: records.Settings) -> None:
