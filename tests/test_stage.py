@@ -124,6 +124,10 @@ def stage_faults(page, problem, height: int) -> list[str]:
         faults.append(f"controls {controls['y']:.0f}–{controls['y'] + controls['height']:.0f}")
     if overlaps(graph, controls):
         faults.append("controls over the figure")
+    caption = figure.locator(".dl-description").evaluate(
+        "e => ({y: e.getBoundingClientRect().top, line: parseFloat(getComputedStyle(e).lineHeight), text: e.textContent})")
+    if caption["text"] and caption["y"] < height < caption["y"] + caption["line"]:  # (a projector cut it in half)
+        faults.append(f"the caption's first line {caption['y']:.0f}–{caption['y'] + caption['line']:.0f} cut at the foot")
     faults += stepper_faults(page, height)
     m = figure.locator(".dl-graph").evaluate(MEASURE)
     if m["scene"]:  # Euler's disk: its disk as drawn fills the 3-D scene's plot area as a 2-D stage's bodies do

@@ -506,8 +506,16 @@ class Figure {
     const controls = stage && stage.querySelector(".st-key-dl_stage_controls");
     const box = controls && controls.getBoundingClientRect();
     const below = box && box.height && box.top > graph.top ? box.bottom - graph.bottom : 0;  // caption, controls
-    const room = Math.floor(window.innerHeight - top - below - 12);
+    const room = Math.floor(window.innerHeight - top - (below || this.captionLine()) - 12);
     return room < MIN_FITTED ? height : Math.min(height, room);
+  }
+
+  // The caption's first line, kept on the first screen under the motion where nothing else is counted
+  // below it (a projector cut that line in half at the screen's foot); 0 without a caption.
+  captionLine() {
+    if (!this.description.textContent) return 0;
+    const style = getComputedStyle(this.description);
+    return Math.ceil(parseFloat(style.lineHeight) || 1.5 * parseFloat(style.fontSize)) + 4;
   }
 
   async draw(args, theme, seq) {
