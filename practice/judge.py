@@ -357,8 +357,8 @@ class Judge:
                 and (expr.has(sp.pi) or any(isinstance(f, _INVERSE_TRIG) for f in sp.preorder_traversal(expr)))
                 and self._close(value.real, correct, scale)):
             si, how = value.real, "read in radians, as ° and asin, acos, atan give them"
-        return _read_as(self._judge_number(answer, si, how, correct, system, understood, unit=unit, expr=expr),
-                        _number_read(si))
+        return _read_as(self._judge_number(answer, si, how, correct, system, understood, unit=unit, expr=expr,
+                                           bare=not unit), _number_read(si))
 
     def _scale(self) -> float:
         return max(abs(v) for v in self.values.values() if math.isfinite(v)) or 1.0
@@ -366,9 +366,11 @@ class Judge:
     def _judge_number(self, answer, value, how, correct, system, understood="", unit="", expr=None,
                       bare=False) -> Verdict:
         """A number (SI) as read (``how``; ``unit`` as typed, "" for none; ``expr``: the expression
-        it came from, if any; ``bare``: a number typed alone). A bare number that is the answer in
-        another unit of its kind (deg/s where rad/s is read, ft/s on an SI page) is a unit left out,
-        not a wrong answer: explained, and not judged (an assignment does not count it)."""
+        it came from, if any; ``bare``: a number, or arithmetic of numbers, with no unit). A bare number
+        that is the answer in another unit of its kind (deg/s where rad/s is read, ft/s on an SI page,
+        kN where N is) is a unit left out, not a wrong answer: explained, and not judged (an assignment
+        does not count it). A number labelled with a unit that is the answer in another is said to be
+        that (a wrong answer, its hint the unit's)."""
         shown = units.format_quantity(value, answer.dimension, system)
         factor = units.si_per_unit(unit, answer.dimension) if unit and expr is None else None
         if factor:  # a number in another unit: said as typed and as the page shows it ("5.604 ft/s = 1.708 m/s")
@@ -388,14 +390,16 @@ class Judge:
             return Verdict(True, f"Right: {shown}" + (f" ({how})." if how else "."), understood)
         generic = (self._degree_slip(answer, value, correct, scale, unit, expr, system)
                    or self._generic_number_mistake(answer, value, correct, scale))
-        # (a calculator in the wrong mode is a wrong number, even where it happens to match another unit)
-        if bare and generic not in CALCULATOR_HINTS.values() and (
-                meant := self._unit_left_out(answer, value, correct, scale, system)):
+        unit_slip = not generic or generic in DEGREE_HINTS.values()  # (not a slip of the working: sin(50), a calculator)
+        if bare and unit_slip and (meant := self._meant_in(answer, value, None, correct, scale, system)):
             read_in = units.unit(answer.dimension, system)
             hint = DEGREE_HINTS.get((answer.dimension, LEFT_OUT_SLIPS.get(meant), False)) or (
                 f"That looks like the value in {meant}: a number alone is read in {read_in} on this page. "
                 f"Write {meant} after it, or convert it to {read_in}.")
             return Verdict(False, hint, understood, hint, readable=False)
+        if (unit and not generic in DEGREE_HINTS.values() and units.si_per_unit(unit, answer.dimension)
+                and (meant := self._meant_in(answer, value, unit, correct, scale, system))):
+            generic = f"That number is the answer in {meant}, labelled {unit[:20]}: write {meant} after it, or convert it."
         message = f"Not right: you gave {shown}" + (f" ({how})" if how else "") + "."
         if generic:
             return Verdict(False, f"{message} {generic}", understood, generic)
@@ -404,16 +408,25 @@ class Judge:
     def _close(self, a: float, b: float, scale: float) -> bool:
         return abs(a - b) <= self.tolerance * max(abs(b), 1e-9 * scale)
 
-    def _unit_left_out(self, answer, value, correct, scale, system) -> str:
-        """The unit in which the number typed alone (``value``: as read, in SI) is the answer: the unit
-        the other unit system shows, radians for an angle, deg/s or rpm for an angular speed; "" if none."""
-        typed = units.to_display(value, answer.dimension, system)
-        other = units.unit(answer.dimension, "us" if system == "si" else "si")
-        meant = [other] + {"angle": ["rad"], "angular_speed": ["deg/s", "rpm"]}.get(answer.dimension, [])
-        for unit in meant:
-            factor = units.si_per_unit(unit, answer.dimension)
-            if factor and unit != units.unit(answer.dimension, system) and self._close(typed * factor, correct, scale):
-                return unit
+    def _meant_in(self, answer, value, unit, correct, scale, system) -> str:
+        """The unit in which the number as typed (read as ``value`` in SI, in ``unit``, or with none in the
+        unit the page shows) is the answer: the other unit system's, then each one-word unit of its kind
+        (deg/s, rpm, kN, ms, mph…), one of each size; "" if none."""
+        dimension = answer.dimension
+        read = units.si_per_unit(unit, dimension) if unit else units.to_si(1.0, dimension, system)
+        if not read:
+            return ""
+        typed = value / read
+        candidates = [units.unit(dimension, "us" if system == "si" else "si"), units.unit(dimension, system)]
+        candidates += [s for s in units.SPELLINGS.get(dimension, {}) if re.fullmatch(r"[A-Za-z°]+(/[a-z]+)?", s)]
+        sizes = {read}
+        for candidate in candidates:
+            factor = units.si_per_unit(candidate, dimension)
+            if not factor or any(math.isclose(factor, size) for size in sizes):
+                continue
+            sizes.add(factor)
+            if self._close(typed * factor, correct, scale):
+                return candidate
         return ""
 
     def _degree_slip(self, answer, value, correct, scale, unit, expr, system) -> str:

@@ -828,3 +828,22 @@ def test_the_answer_box_and_the_statement_name_the_unit_a_number_alone_is_read_i
     assert {"Angular velocity just after impact, in rad/s", "Highest angle after the bounce, in degrees",
             f"Moment of inertia about the pivot, in {inertia}"} <= set(options), options
     assert "Highest angle after the bounce, $\\theta_f$, in degrees" in page_text(at)
+
+
+def test_a_unit_left_out_of_arithmetic_or_a_prefix_left_out_is_not_judged_and_a_wrong_label_is_named():
+    """"9.208*180/pi" (the answer in deg/s, as arithmetic), "2.5506" (the cart's front load in kN) and
+    "80.94" (Euler's disk's period in ms) were wrong, graded attempts where the bare 527.6 was not; and
+    the disk's energy in J labelled ft·lbf was called a calculator in radian mode."""
+    _, solution, judge, answers = setup("disk_wall")
+    omega = solution.answers["omega1"]
+    for text in (f"{omega:.6g}*180/pi", f"{math.degrees(omega) * 2:.6g}/2"):
+        verdict = judge.check(answers["omega1"], text)
+        assert not verdict.readable and "deg/s" in verdict.message, (text, verdict.message)
+    lost = solution.answers["energy_loss"]
+    labelled = judge.check(answers["energy_loss"], f"{lost:.6g} ft*lbf")
+    assert labelled.readable and not labelled.correct and "the answer in J, labelled ft*lbf" in labelled.message
+    for pid, name, scale, unit in (("driven_cart", "N_front", 1e-3, "kN"), ("eulers_disk", "period", 1e3, "ms")):
+        _, solution, judge, answers = setup(pid)
+        verdict = judge.check(answers[name], f"{solution.answers[name] * scale:.6g}")
+        assert not verdict.readable and f"the value in {unit}" in verdict.message, (pid, verdict.message)
+        assert judge.check(answers[name], f"{solution.answers[name] * scale:.6g} {unit}").correct
