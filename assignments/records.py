@@ -624,7 +624,7 @@ def parse_roster(text: str) -> list[str]:
         if not cell or (not labels and not bad and cell.lower() in ("label", "student", "code")):
             continue
         if not signing.valid_label(cell):
-            bad.append(n)
+            bad.append(f"{n} (“{cell[:40]}{'…' if len(cell) > 40 else ''}”)")
         elif cell in first_line:
             repeated.append(f"{cell} (lines {first_line[cell]} and {n})")
         else:
@@ -632,7 +632,7 @@ def parse_roster(text: str) -> list[str]:
             labels.append(cell)
     problems = []
     if bad:
-        lines = ", ".join(map(str, bad[:10])) + (" …" if len(bad) > 10 else "")
+        lines = ", ".join(bad[:10]) + (" …" if len(bad) > 10 else "")
         problems.append(f"Line{'s' if len(bad) > 1 else ''} {lines}: a student label is {signing.LABEL_RULE}.")
     if repeated:
         problems.append(f"Repeated label{'s' if len(repeated) > 1 else ''}: {', '.join(repeated[:10])}"
@@ -1228,17 +1228,19 @@ def lms_csv(book: Gradebook, lms: str = "canvas") -> str:
 
 
 @_guarded
-def attempts_csv(assignment_id: int, bound: Engine | None = None) -> str:
-    """Every attempt, as recorded (typed text included, neutralised), with what it earned."""
+def attempts_csv(assignment_id: int, bound: Engine | None = None, names: dict[Question, str] | None = None) -> str:
+    """Every attempt, as recorded (typed text included, neutralised), with what it earned; each answer by
+    its ids and as the page names it (``names``)."""
     with db.session(bound) as s:
         row = s.get(db.Assignment, assignment_id)
         settings = _settings(row) if row else None
         grants = _grants(s, assignment_id)
         attempts = _numbered(s.scalars(select(db.Attempt).where(db.Attempt.assignment_id == assignment_id)).all(),
                              settings, grants)
-    header = ["label", "problem", "answer", "attempt", "typed", "correct", "slip", "time_utc", "late", "late_hours",
-              "over_limit", "solution_shown", "credit"]
-    return safe_csv(header, ([a.label, a.problem, a.answer, a.number, a.typed, a.correct, a.slip, _time(a.at), a.late,
+    header = ["label", "problem", "answer", "answer_name", "attempt", "typed", "correct", "slip", "time_utc", "late",
+              "late_hours", "over_limit", "solution_shown", "credit"]
+    named = names or {}
+    return safe_csv(header, ([a.label, a.problem, a.answer, named.get((a.problem, a.answer), a.answer), a.number, a.typed, a.correct, a.slip, _time(a.at), a.late,
                               round(a.late_by.total_seconds() / 3600, 2), a.over_limit, a.solution_shown,
                               _points(a.credit)] for a in attempts))
 

@@ -632,7 +632,7 @@ def test_an_edit_that_takes_points_already_earned_asks_first_and_says_whose(cour
     book = instructor()
     widget(book, f"assign__undo_pick{aid}_", "").select(records.history(aid)[0].id).run()
     book.button(key=f"assign__undo{aid}").click().run()
-    assert any("It lowered the score of 1 student: s02" in m.value for m in book.success)
+    assert any("It lowered the share of the points earned by 1 student: s02" in m.value for m in book.success)
 
 
 def test_an_edit_that_lowers_no_one_s_share_saves_at_once(course):

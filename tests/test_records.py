@@ -216,7 +216,7 @@ def test_rosters_are_opaque_labels_with_bad_lines_named():
     assert records.parse_roster("label\ns01\ns02\n\ns03\n") == ["s01", "s02", "s03"]
     with pytest.raises(ValueError, match=r"Repeated label: s01 \(lines 2 and 5\)"):  # was dropped silently
         records.parse_roster("label\ns01\ns02\n\ns01\n")
-    with pytest.raises(ValueError, match="Lines 2, 3: .*no names"):
+    with pytest.raises(ValueError, match="Lines 2 \(“Jane Doe”\), 3 \(“=cmd\(\)”\): .*no names"):
         records.parse_roster("s01\nJane Doe\n=cmd()\n")
     with pytest.raises(ValueError, match="no labels"):
         records.parse_roster("label\n")
@@ -508,8 +508,9 @@ def test_the_csvs_open_as_numbers_and_import_into_an_lms(database):
     attempt(database, ann, typed="-1.2")
     attempt(database, ann, correct=True)
     book = records.gradebook(aid, database)
-    attempts = list(csv.reader(io.StringIO(records.attempts_csv(aid, database))))
-    assert attempts[1][4] == "-1.2"  # a typed number stays a number (it was '-1.2)
+    attempts = list(csv.DictReader(io.StringIO(records.attempts_csv(aid, database, {THETA: "Highest angle"}))))
+    assert attempts[0]["typed"] == "-1.2"  # a typed number stays a number (it was '-1.2)
+    assert (attempts[0]["answer"], attempts[0]["answer_name"]) == ("theta_rebound", "Highest angle")
     canvas = list(csv.reader(io.StringIO(records.lms_csv(book, "canvas"))))
     assert canvas[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Week 9, the bounce"]
     assert canvas[1] == ["Points Possible", "", "", "", "", "2"]

@@ -259,7 +259,8 @@ def _said_recorded(kept: records.Recorded, label: str, link: StudentLink, soluti
     what = (f"attempt {kept.number} of {allowed} at {_named(label)}" if kept.number <= allowed else
             f"answer {kept.number} at {_named(label)}, past your {allowed} graded attempts")  # never "4 of 3"
     if kept.repeated:
-        st.info(f"The same as your last attempt at {_named(label)}: not counted again (it stays {what}).",
+        st.info(f"The same answer as your last attempt at {_named(label)}: not counted again (it stays attempt "
+                f"{kept.number}{f' of {allowed}' if kept.number <= allowed else ''}).",
                 icon=":material/repeat:")
         return
     right_at = standing.cells[(link.problem, answer.name)].right_at() if standing else None
@@ -732,7 +733,7 @@ def _unless_it_takes_points(p: str, taken: list[records.PointsTaken], save) -> N
         save()
         return
     st.warning(f"**Nothing is saved yet.** This change applies to the answers already recorded too, and lowers "
-               f"the score of {_whose(taken)}.", icon=":material/warning:")
+               f"the share of the points earned by {_whose(taken)}.", icon=":material/warning:")
     save_anyway, keep = st.columns(2)
     if save_anyway.button("Save it anyway", key=f"{p}anyway"):
         st.session_state.pop(f"{p}pending", None)
@@ -876,7 +877,7 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
     c1, c2 = st.columns(2)
     c1.download_button("Download the gradebook (CSV)", records.gradebook_csv(book, labels),
                        file_name=f"assignment-{aid}-gradebook.csv", mime="text/csv", key="assign__book_csv")
-    c2.download_button("Download every attempt (CSV)", records.attempts_csv(aid),
+    c2.download_button("Download every attempt (CSV)", records.attempts_csv(aid, names=labels),
                        file_name=f"assignment-{aid}-attempts.csv", mime="text/csv", key="assign__attempts_csv")
     c3, c4 = st.columns(2)
     c3.download_button("Grades for Canvas (CSV)", records.lms_csv(book, "canvas"),
@@ -951,7 +952,7 @@ def _history(aid: int, s: records.Settings) -> None:
                 st.error(plain(str(error)))
                 return
             taken = records.lowered(before, records.gradebook(aid)) if said else []
-            st.session_state["assign__said"] = (f"Undone: {said}." + (f" It lowered the score of {_whose(taken)}."
+            st.session_state["assign__said"] = (f"Undone: {said}." + (f" It lowered the share of the points earned by {_whose(taken)}."
                                                 if taken else "") if said else "Nothing to undo.")
             st.rerun()
     c3.download_button("Download the history (CSV)", records.history_csv(entries),
