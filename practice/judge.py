@@ -390,16 +390,17 @@ class Judge:
             return Verdict(True, f"Right: {shown}" + (f" ({how})." if how else "."), understood)
         generic = (self._degree_slip(answer, value, correct, scale, unit, expr, system)
                    or self._generic_number_mistake(answer, value, correct, scale))
-        unit_slip = not generic or generic in DEGREE_HINTS.values()  # (not a slip of the working: sin(50), a calculator)
-        if bare and unit_slip and (meant := self._meant_in(answer, value, None, correct, scale, system)):
-            read_in = units.unit(answer.dimension, system)
-            hint = DEGREE_HINTS.get((answer.dimension, LEFT_OUT_SLIPS.get(meant), False)) or (
-                f"That looks like the value in {meant}: a number alone is read in {read_in} on this page. "
-                f"Write {meant} after it, or convert it to {read_in}.")
-            return Verdict(False, hint, understood, hint, readable=False)
+        # A slip of the working (sin(50), a factor 2) stays one; a calculator's mode gives way to the other unit
+        # system, the likelier reading of a page with a unit switch.
+        working = generic and generic not in DEGREE_HINTS.values() and generic not in CALCULATOR_HINTS.values()
+        if bare and not working and (meant := self._meant_in(answer, value, None, correct, scale, system, free=True)):
+            return unreadable(self._left_out_hint(answer, meant, system), understood)
+        if bare and not working and not generic and (meant := self._meant_in(answer, value, None, correct, scale, system)):
+            generic = self._left_out_hint(answer, meant, system)  # (kN for N, g, rpm, min: counted, with a hint)
         if (unit and not generic in DEGREE_HINTS.values() and units.si_per_unit(unit, answer.dimension)
                 and (meant := self._meant_in(answer, value, unit, correct, scale, system))):
-            generic = f"That number is the answer in {meant}, labelled {unit[:20]}: write {meant} after it, or convert it."
+            # (the unit as typed is not in the hint: "ft/s" and "ft / s" are one answer, one reading)
+            generic = f"That number is the answer in {meant}, not in the unit written after it: write {meant}, or convert it."
         message = f"Not right: you gave {shown}" + (f" ({how})" if how else "") + "."
         if generic:
             return Verdict(False, f"{message} {generic}", understood, generic)
@@ -408,24 +409,34 @@ class Judge:
     def _close(self, a: float, b: float, scale: float) -> bool:
         return abs(a - b) <= self.tolerance * max(abs(b), 1e-9 * scale)
 
-    def _meant_in(self, answer, value, unit, correct, scale, system) -> str:
+    def _left_out_hint(self, answer, meant: str, system: str) -> str:
+        read_in = units.unit(answer.dimension, system)
+        return DEGREE_HINTS.get((answer.dimension, LEFT_OUT_SLIPS.get(meant), False)) or (
+            f"That looks like the value in {meant}: a number alone is read in {read_in} on this page. "
+            f"Write {meant} after it, or convert it to {read_in}.")
+
+    def _meant_in(self, answer, value, unit, correct, scale, system, free=False) -> str:
         """The unit in which the number as typed (read as ``value`` in SI, in ``unit``, or with none in the
-        unit the page shows) is the answer: the other unit system's, then each one-word unit of its kind
-        (deg/s, rpm, kN, ms, mph…), one of each size; "" if none."""
+        unit the page shows) is the answer: the other unit system's, radians for an angle, deg/s for an
+        angular speed (``free``: only these, a page's reading conventions); else also each one-word unit of
+        its kind (rpm, kN, ms, g, mph…), one of each size; "" if none. Within the page's default tolerance
+        at most (an assignment's looser one would widen every unit's window, a search per attempt)."""
         dimension = answer.dimension
         read = units.si_per_unit(unit, dimension) if unit else units.to_si(1.0, dimension, system)
         if not read:
             return ""
         typed = value / read
         candidates = [units.unit(dimension, "us" if system == "si" else "si"), units.unit(dimension, system)]
-        candidates += [s for s in units.SPELLINGS.get(dimension, {}) if re.fullmatch(r"[A-Za-z°]+(/[a-z]+)?", s)]
-        sizes = {read}
+        candidates += {"angle": ["rad"], "angular_speed": ["deg/s"]}.get(dimension, [])
+        if not free:
+            candidates += [s for s in units.SPELLINGS.get(dimension, {}) if re.fullmatch(r"[A-Za-z°]+(/[a-z]+)?", s)]
+        sizes, tolerance = {read}, min(self.tolerance, RELATIVE_TOLERANCE)
         for candidate in candidates:
             factor = units.si_per_unit(candidate, dimension)
             if not factor or any(math.isclose(factor, size) for size in sizes):
                 continue
             sizes.add(factor)
-            if self._close(typed * factor, correct, scale):
+            if abs(typed * factor - correct) <= tolerance * max(abs(correct), 1e-9 * scale):
                 return candidate
         return ""
 

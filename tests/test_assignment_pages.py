@@ -414,14 +414,14 @@ def test_the_instructor_edits_closes_reopens_extends_and_undoes(course):
     assert len(shown) == len(history) and "s02" in shown["what"].iloc[0]
     first_edit = history[-2]  # attempts 3 → 5, hints off
     widget(book, f"assign__undo_pick{aid}_", "").select(first_edit.id).run()
-    book.button(key=f"assign__undo{aid}").click().run()
+    widget(book, f"assign__undo{aid}_", "").click().run()
     assert not book.exception and any("Undone" in m.value for m in book.success)
     back = records.assignment(aid)
     assert back.attempts_allowed == 3 and back.hints and records.standing(bob).allowed == 4
     assert widget(book, f"assign__edit{aid}_", "_attempts").value == 3  # the form shows what is stored
     closed = next(e for e in history if e.action == "closed")  # reopened since: refused, in words
     widget(book, f"assign__undo_pick{aid}_", "").select(closed.id).run()
-    book.button(key=f"assign__undo{aid}").click().run()
+    widget(book, f"assign__undo{aid}_", "").click().run()
     assert any("changed since" in e.value for e in book.error) and records.assignment(aid).status == "open"
 
 
@@ -502,6 +502,34 @@ def test_the_instructor_adds_a_problem_and_changes_what_counts(course):
     records.edit(aid, records.replace(saved, parts=(saved.part("disk_wall"),)))
     refused = student(link_query(ann))
     assert "not part of this assignment" in refused.error[0].value and "(disk_wall?assignment=" in refused.error[0].value
+
+
+def test_a_warned_edit_is_dropped_once_its_inputs_change(course):
+    """The problems' section stands outside a form: pressing Save, reading the warning, correcting a
+    weight and pressing "Save it anyway" saved the edit as it was before the correction."""
+    aid, s, (ann, _) = one_assignment()
+    answer(student(link_query(ann)), "theta_rebound", rebound_in_degrees(ann))
+    book = instructor()
+    counted = list(s.part("pendulum_rebound").answers)
+    widget(book, f"assign__parts{aid}_", "_answers_pendulum_rebound").set_value(
+        [a for a in counted if a != "theta_rebound"]).run()
+    widget(book, f"assign__parts{aid}_", "_save").click().run()
+    assert any("Nothing is saved yet" in w.value for w in book.warning)
+    widget(book, f"assign__parts{aid}_", "_answers_pendulum_rebound").set_value(counted).run()  # corrected
+    assert not any("Nothing is saved yet" in w.value for w in book.warning)
+    assert not [b for b in book.button if b.label == "Save it anyway"] and records.assignment(aid) == s
+
+
+def test_a_unit_left_out_is_explained_whatever_the_feedback(course):
+    """With hints and slip names off, an answer in deg/s where rad/s is read said "Not right. Check each
+    step" and "not counted": the student was told to redo right work."""
+    aid, _, (ann, _) = one_assignment(hints=False, slip_names=False)
+    params = parameters(ann, pendulum_rebound, "pendulum_rebound")
+    after = pendulum_rebound.solve(**params).answers["omega_after"]
+    page = answer(student(link_query(ann)), "omega_after", f"{math.degrees(after):.6g}")
+    said = " ".join(w.value for w in page.warning)
+    assert "deg/s" in said and "not counted as an attempt" in said and "Check each step" not in said
+    assert records.attempt_count(aid) == 0
 
 
 def slip_value(params: dict) -> str:
@@ -631,7 +659,7 @@ def test_an_edit_that_takes_points_already_earned_asks_first_and_says_whose(cour
     records.grant(aid, "s02", extended_due=records.now() + dt.timedelta(days=2))
     book = instructor()
     widget(book, f"assign__undo_pick{aid}_", "").select(records.history(aid)[0].id).run()
-    book.button(key=f"assign__undo{aid}").click().run()
+    widget(book, f"assign__undo{aid}_", "").click().run()
     assert any("It lowered the share of the points earned by 1 student: s02" in m.value for m in book.success)
 
 

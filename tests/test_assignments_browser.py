@@ -76,7 +76,7 @@ def main_text(page) -> str:
 def check(page, typed: str, expect: str) -> str:
     """Type an answer, press Check, wait for ``expect``; the page's main text."""
     page.get_by_label("Your answer", exact=True).fill(typed)
-    page.get_by_role("button", name="Check").click()
+    page.get_by_role("button", name="Check", exact=True).click()
     wait_for_text(page, expect)
     return main_text(page)
 
@@ -194,7 +194,7 @@ def test_an_assignment_end_to_end(browser, course_url):
     tampered = bea["link"].replace(f"seed={bea['seed']}", f"seed={ann['seed']}")
     tctx, tpage, _ = open_at(browser, tampered, "laptop", "UTC")
     wait_for_text(tpage, "changed since your instructor issued it")
-    assert tpage.get_by_role("button", name="Check").count() == 0
+    assert tpage.get_by_role("button", name="Check", exact=True).count() == 0
     tctx.close()
 
     # The instructor moves the due time to that minute, once it has begun (after Ann's answer, before

@@ -232,10 +232,10 @@ def test_practice_mode_in_the_browser(browser, app_url):
     context, page, errors = open_page(browser, f"{app_url}/disk_wall?practice=1&seed=5")
     assert "not a proctored assessment" in main_text(page)
     page.get_by_role("textbox", name="Your answer").fill("2/3*V*sin(theta) + R*omega/3")
-    page.get_by_role("button", name="Check").click()
+    page.get_by_role("button", name="Check", exact=True).click()
     page.get_by_text("Right: that is the answer").wait_for(timeout=30_000)
     page.get_by_role("textbox", name="Your answer").fill("![x](http://example.invalid/x.png)")
-    page.get_by_role("button", name="Check").click()
+    page.get_by_role("button", name="Check", exact=True).click()
     page.get_by_text("is not allowed").wait_for(timeout=30_000)
     assert page.locator("[data-testid='stMain'] img[src*='example.invalid']").count() == 0
     context.close()

@@ -128,7 +128,7 @@ def run_journey(page, lms, shots: bool = True) -> None:
     seed = records.student_seed(aid, label)
     v1x = disk_wall.solve(**variant(disk_wall, "disk_wall", seed, ASSIGNMENT)).answers["v1x"]
     frame.get_by_label("Your answer", exact=True).fill(f"{units.to_display(v1x, 'speed'):.5g}")
-    frame.get_by_role("button", name="Check").click()
+    frame.get_by_role("button", name="Check", exact=True).click()
     frame.get_by_text("Recorded: attempt 1 of 3").first.wait_for(timeout=60_000)
     wait_until_idle(tool)
     shoot(page, "learner-in-lms", tool, shots)

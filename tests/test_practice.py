@@ -37,6 +37,8 @@ from ui.practice import flat_latex
 
 ROOT = Path(__file__).resolve().parent.parent
 IDS = registry.PROBLEM_IDS
+for _pid in IDS:  # each problem's own test module, imported here: imported first inside a @given test (this
+    strategies.problem_tests(_pid)  # file run alone), hypothesis took its import for a nested @given
 
 
 def mistake_params(pid: str, params: dict) -> dict:
@@ -709,6 +711,8 @@ def degree_slips(pid: str, params: dict) -> list[tuple[str, str, tuple]]:
             wrong = math.radians(wrong)  # the calculator's number, read as degrees
         if answer.dimension in ("angle", "angular_speed"):  # else it is one of the slips above
             known += [math.degrees(value), math.radians(value)]
+        # (a number alone that is also the answer in the other unit system is read as that: the likelier slip)
+        known += [units.to_si(units.to_display(value, answer.dimension, "us"), answer.dimension, "si")]
         if distinct(wrong):
             slips.append((name, f"{units.to_display(wrong, answer.dimension):.4g}", ("calculator", "radian")))
             text = _typed_with_numbers(expr, judge, dict(solution.params), degrees_in_trig=True)
@@ -740,7 +744,7 @@ def check_degree_slips(pid, params):
         # each word said (or, for a tuple of them, one of them: the sin(50) or cos(30) typed)
         assert all(any(w in verdict.message for w in ((word,) if isinstance(word, str) else word))
                    for word in words), (name, text, words, verdict.message)
-        assert verdict.mistake, (name, text, verdict.message)  # named as a slip
+        assert verdict.mistake or not verdict.readable, (name, text, verdict.message)  # named as a slip, or not judged
         # a number alone that is the answer in the unit left out is not judged (an assignment does not
         # count it); with a unit typed, or as an expression, it is a wrong answer
         left_out = re.fullmatch(r"-?[\d.e+-]+", text) and "calculator" not in verdict.message
@@ -830,10 +834,10 @@ def test_the_answer_box_and_the_statement_name_the_unit_a_number_alone_is_read_i
     assert "Highest angle after the bounce, $\\theta_f$, in degrees" in page_text(at)
 
 
-def test_a_unit_left_out_of_arithmetic_or_a_prefix_left_out_is_not_judged_and_a_wrong_label_is_named():
-    """"9.208*180/pi" (the answer in deg/s, as arithmetic), "2.5506" (the cart's front load in kN) and
-    "80.94" (Euler's disk's period in ms) were wrong, graded attempts where the bare 527.6 was not; and
-    the disk's energy in J labelled ft·lbf was called a calculator in radian mode."""
+def test_a_unit_left_out_of_arithmetic_is_not_judged_a_prefix_is_named_and_so_is_a_wrong_label():
+    """"9.208*180/pi" (the answer in deg/s, as arithmetic) was a wrong, graded attempt where the bare 527.6
+    was not; "2.5506" (the cart's front load in kN) and "80.94" (Euler's disk's period in ms) said nothing of
+    the unit; the disk's energy in J labelled ft·lbf was called a calculator in radian mode."""
     _, solution, judge, answers = setup("disk_wall")
     omega = solution.answers["omega1"]
     for text in (f"{omega:.6g}*180/pi", f"{math.degrees(omega) * 2:.6g}/2"):
@@ -841,9 +845,12 @@ def test_a_unit_left_out_of_arithmetic_or_a_prefix_left_out_is_not_judged_and_a_
         assert not verdict.readable and "deg/s" in verdict.message, (text, verdict.message)
     lost = solution.answers["energy_loss"]
     labelled = judge.check(answers["energy_loss"], f"{lost:.6g} ft*lbf")
-    assert labelled.readable and not labelled.correct and "the answer in J, labelled ft*lbf" in labelled.message
+    assert labelled.readable and not labelled.correct and "the answer in J, not in the unit written" in labelled.message
+    assert judge.check(answers["energy_loss"], f"{lost:.6g} ft·lbf").reading == labelled.reading  # one answer
+    # a prefix left out (kN where N is read, ms where s) is a wrong number, counted, with the unit named: only
+    # the page's own conventions (the other unit system, degrees and radians) are free
     for pid, name, scale, unit in (("driven_cart", "N_front", 1e-3, "kN"), ("eulers_disk", "period", 1e3, "ms")):
         _, solution, judge, answers = setup(pid)
         verdict = judge.check(answers[name], f"{solution.answers[name] * scale:.6g}")
-        assert not verdict.readable and f"the value in {unit}" in verdict.message, (pid, verdict.message)
+        assert verdict.readable and not verdict.correct and f"the value in {unit}" in verdict.message, (pid, verdict.message)
         assert judge.check(answers[name], f"{solution.answers[name] * scale:.6g} {unit}").correct

@@ -673,15 +673,21 @@ def _edit(aid: int, s: records.Settings) -> None:
                                            timezone=zone) if save else None)
 
 
-def _check_and_save(aid: int, s: records.Settings, p: str, asked: records.Settings | None) -> None:
+def _check_and_save(aid: int, s: records.Settings, p: str, asked: records.Settings | None,
+                    shown: records.Settings | None = None) -> None:
     """An edit asked for (``asked``, on a press of Save; None otherwise): its errors said, or kept while
-    a warning that it lowers scores waits for an answer, and saved."""
+    a warning that it lowers scores waits for an answer, and saved. ``shown``: what inputs outside a form
+    show now; a waiting edit they no longer show is dropped (the warning goes: "Save it anyway" would
+    have saved what the instructor had since corrected)."""
     if asked is not None:
+        st.session_state.pop(f"{p}pending", None)
         if asked.errors():
             for problem in asked.errors():
                 st.error(plain(problem))
             return
         st.session_state[f"{p}pending"] = asked
+    if shown is not None and st.session_state.get(f"{p}pending") not in (None, shown):
+        st.session_state.pop(f"{p}pending")
     new = st.session_state.get(f"{p}pending")
     if new is not None:
         _unless_it_takes_points(p, records.points_taken(aid, settings=new), lambda: _save_edit(aid, s, new))
@@ -702,7 +708,8 @@ def _edit_parts(aid: int, s: records.Settings) -> None:
                        ": that page will point them to this assignment's problems.")
                     + " “Download the links” gives the new ones.", icon=":material/link:")
         save = st.button("Save problems and points", key=f"{p}save")
-        _check_and_save(aid, s, p, replace(s, parts=tuple(parts)) if save else None)
+        shown = replace(s, parts=tuple(parts))
+        _check_and_save(aid, s, p, shown if save else None, shown)
 
 
 def _save_edit(aid: int, s: records.Settings, new: records.Settings) -> None:
@@ -944,7 +951,9 @@ def _history(aid: int, s: records.Settings) -> None:
         # keyed by the newest change: after another change the newest is chosen again, not the one picked before
         chosen = c1.selectbox("Undo a change", [e.id for e in undoable], key=f"assign__undo_pick{aid}_{undoable[0].id}",
                               format_func=lambda i: f"#{i}: " + next(e.summary for e in undoable if e.id == i)[:80])
-        if c2.button("Undo", key=f"assign__undo{aid}"):
+        # (keyed by the newest change too: a change logged meanwhile, by another tab, drops this press rather
+        # than undoing what is newest now instead of what was picked)
+        if c2.button("Undo", key=f"assign__undo{aid}_{undoable[0].id}"):
             try:
                 before = records.gradebook(aid)
                 said = records.undo(aid, chosen)

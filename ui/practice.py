@@ -198,7 +198,8 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         if verdict.understood:
             st.markdown("Read as:")  # not st.caption: its grey fails AA contrast
             st.latex(verdict.understood)
-        message = recording.say(verdict) if recording is not None and recording.say else verdict.message
+        # (an answer not read is explained whatever the feedback: it is a typo, or a unit left out, never judged)
+        message = recording.say(verdict) if recording is not None and recording.say and verdict.readable else verdict.message
         if not verdict.readable:  # a typo, an unknown name, a unit of another kind: explained, not judged
             st.warning(plain(message) + (" This is not counted as an attempt." if recording is not None else ""),
                        icon=":material/edit_note:")
