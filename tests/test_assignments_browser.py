@@ -239,8 +239,8 @@ def test_an_assignment_end_to_end(browser, course_url):
     assert "Velocity after, along the wall 1 × 80 % (late) = 0.8 of 7" in body  # how the score was computed
     assert "Reading the gradebook" in body and "History" in body
     book = list(csv.DictReader(io.StringIO(download(page, "Download the gradebook (CSV)"))))
-    v1x = "Velocity after, along the wall"  # the columns call each answer as the page does
-    assert [(r["label"], r["score"], r[f"{v1x}:points"], r[f"{v1x}:out_of"]) for r in book] == [
+    named = "Velocity after, along the wall"  # the columns call each answer as the page does
+    assert [(r["label"], r["score"], r[f"{named}:points"], r[f"{named}:out_of"]) for r in book] == [
         ("s01", "1", "1", "1"), ("s02", "0.8", "0.8", "1"), ("s03", "1", "1", "1")]
     assert book[1]["right_but_late"] == "1" and book[2]["extension_until_utc"]
     canvas = list(csv.reader(io.StringIO(download(page, "Grades for Canvas (CSV)"))))
