@@ -309,8 +309,7 @@ class Judge:
             return unreadable(str(error))
         if as_number is not None:
             value, how, unit = as_number
-            return _read_as(self._judge_number(answer, value, how, correct, system, unit=unit, bare=not unit),
-                            _number_read(value))
+            return _read_as(self._judge_number(answer, value, how, correct, system, unit=unit), _number_read(value))
         try:
             expr, unit = self._read(text, answer, system)
         except ValueError as error:
@@ -357,20 +356,19 @@ class Judge:
                 and (expr.has(sp.pi) or any(isinstance(f, _INVERSE_TRIG) for f in sp.preorder_traversal(expr)))
                 and self._close(value.real, correct, scale)):
             si, how = value.real, "read in radians, as ° and asin, acos, atan give them"
-        return _read_as(self._judge_number(answer, si, how, correct, system, understood, unit=unit, expr=expr,
-                                           bare=not unit), _number_read(si))
+        return _read_as(self._judge_number(answer, si, how, correct, system, understood, unit=unit, expr=expr),
+                        _number_read(si))
 
     def _scale(self) -> float:
         return max(abs(v) for v in self.values.values() if math.isfinite(v)) or 1.0
 
-    def _judge_number(self, answer, value, how, correct, system, understood="", unit="", expr=None,
-                      bare=False) -> Verdict:
+    def _judge_number(self, answer, value, how, correct, system, understood="", unit="", expr=None) -> Verdict:
         """A number (SI) as read (``how``; ``unit`` as typed, "" for none; ``expr``: the expression
-        it came from, if any; ``bare``: a number, or arithmetic of numbers, with no unit). A bare number
-        that is the answer in another unit of its kind (deg/s where rad/s is read, ft/s on an SI page,
-        kN where N is) is a unit left out, not a wrong answer: explained, and not judged (an assignment
-        does not count it). A number labelled with a unit that is the answer in another is said to be
-        that (a wrong answer, its hint the unit's)."""
+        it came from, if any: arithmetic of numbers). A bare number (no unit) that is the answer in a
+        unit of the page's conventions (deg/s where rad/s is read, ft/s on an SI page) is a unit left out:
+        explained, and not judged (an assignment does not count it); in another unit of its kind (kN
+        where N is read, g, rpm) a wrong answer whose hint names the unit. A number labelled with a unit
+        that is the answer in another is said to be that (a wrong answer, its hint the unit's)."""
         shown = units.format_quantity(value, answer.dimension, system)
         factor = units.si_per_unit(unit, answer.dimension) if unit and expr is None else None
         if factor:  # a number in another unit: said as typed and as the page shows it ("5.604 ft/s = 1.708 m/s")
@@ -393,12 +391,13 @@ class Judge:
         # A slip of the working (sin(50), a factor 2) stays one; a calculator's mode gives way to the other unit
         # system, the likelier reading of a page with a unit switch.
         working = generic and generic not in DEGREE_HINTS.values() and generic not in CALCULATOR_HINTS.values()
-        if bare and not working and (meant := self._meant_in(answer, value, None, correct, scale, system, free=True)):
+        meant = self._meant_in(answer, value, None, correct, scale, system) if not unit and not working else ""
+        if meant in self._conventions(answer.dimension, system):  # ("" is none)
             return unreadable(self._left_out_hint(answer, meant, system), understood)
-        if bare and not working and not generic and (meant := self._meant_in(answer, value, None, correct, scale, system)):
+        if meant and not generic:
             generic = self._left_out_hint(answer, meant, system)  # (kN for N, g, rpm, min: counted, with a hint)
-        if (unit and not generic in DEGREE_HINTS.values() and units.si_per_unit(unit, answer.dimension)
-                and (meant := self._meant_in(answer, value, unit, correct, scale, system))):
+        if unit and generic not in DEGREE_HINTS.values() and (meant := self._meant_in(answer, value, unit, correct,
+                                                                                      scale, system)):
             # (the unit as typed is not in the hint: "ft/s" and "ft / s" are one answer, one reading)
             generic = f"That number is the answer in {meant}, not in the unit written after it: write {meant}, or convert it."
         message = f"Not right: you gave {shown}" + (f" ({how})" if how else "") + "."
@@ -415,21 +414,25 @@ class Judge:
             f"That looks like the value in {meant}: a number alone is read in {read_in} on this page. "
             f"Write {meant} after it, or convert it to {read_in}.")
 
-    def _meant_in(self, answer, value, unit, correct, scale, system, free=False) -> str:
+    @staticmethod
+    def _conventions(dimension: str, system: str) -> list[str]:
+        """The units a page's own conventions may have meant a number in: the other unit system's, radians
+        for an angle, deg/s for an angular speed (one left out is not judged)."""
+        return ([units.unit(dimension, "us" if system == "si" else "si")]
+                + {"angle": ["rad"], "angular_speed": ["deg/s"]}.get(dimension, []))
+
+    def _meant_in(self, answer, value, unit, correct, scale, system) -> str:
         """The unit in which the number as typed (read as ``value`` in SI, in ``unit``, or with none in the
-        unit the page shows) is the answer: the other unit system's, radians for an angle, deg/s for an
-        angular speed (``free``: only these, a page's reading conventions); else also each one-word unit of
-        its kind (rpm, kN, ms, g, mph…), one of each size; "" if none. Within the page's default tolerance
-        at most (an assignment's looser one would widen every unit's window, a search per attempt)."""
+        unit the page shows) is the answer: the page's own unit, its conventions, then each one-word unit of its
+        kind (rpm, kN, ms, g, mph…), one of each size; "" if none. Within the page's default tolerance at
+        most (an assignment's looser one would widen every unit's window, a search per attempt)."""
         dimension = answer.dimension
         read = units.si_per_unit(unit, dimension) if unit else units.to_si(1.0, dimension, system)
         if not read:
             return ""
         typed = value / read
-        candidates = [units.unit(dimension, "us" if system == "si" else "si"), units.unit(dimension, system)]
-        candidates += {"angle": ["rad"], "angular_speed": ["deg/s"]}.get(dimension, [])
-        if not free:
-            candidates += [s for s in units.SPELLINGS.get(dimension, {}) if re.fullmatch(r"[A-Za-z°]+(/[a-z]+)?", s)]
+        candidates = [units.unit(dimension, system)] + self._conventions(dimension, system) + [
+            s for s in units.SPELLINGS.get(dimension, {}) if re.fullmatch(r"[A-Za-z°]+(/[a-z]+)?", s)]
         sizes, tolerance = {read}, min(self.tolerance, RELATIVE_TOLERANCE)
         for candidate in candidates:
             factor = units.si_per_unit(candidate, dimension)
