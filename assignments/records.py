@@ -430,8 +430,7 @@ def _answer_named(problem: str, answer: str, in_a_set: bool) -> str:
         solver = registry.solver(problem)
     except KeyError:
         return f"{problem}/{answer}"
-    label = next((a.label for a in solver.ANSWERS if a.name == answer), answer)
-    label = f"“{label[:1].upper()}{label[1:]}”"
+    label = f"“{next((a.heading for a in solver.ANSWERS if a.name == answer), answer)}”"
     return f"{solver.ABOUT.title}: {label}" if in_a_set else label
 
 

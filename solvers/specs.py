@@ -146,6 +146,12 @@ class Answer:
     symbol: str  # LaTeX
     dimension: str
 
+    @property
+    def heading(self) -> str:
+        """The label as a heading or a list item: its first letter capitalised, the rest as written (cm,
+        v_cm, I_O, G)."""
+        return self.label[:1].upper() + self.label[1:]
+
 
 def validate_params(spec: Sequence[Param], given: Mapping[str, Any]) -> dict[str, Any]:
     """Check names, types and ranges; return every parameter with defaults filled in."""

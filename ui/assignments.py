@@ -728,7 +728,7 @@ def _whose(taken: list[records.PointsTaken]) -> str:
     named = ", ".join(f"{literal(t.label)} {records._number(t.before)} of {records._number(t.out_of_before)} → "
                       f"{records._number(t.after)} of {records._number(t.out_of_after)}" for t in taken[:MAX_TAKEN_SHOWN])
     more = f" and {len(taken) - MAX_TAKEN_SHOWN} more" if len(taken) > MAX_TAKEN_SHOWN else ""
-    return f"{len(taken)} student{'s' if len(taken) > 1 else ''}: {named}{more}"
+    return f"{_students(len(taken))}: {named}{more}"
 
 
 def _unless_it_takes_points(p: str, taken: list[records.PointsTaken], save) -> None:

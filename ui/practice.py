@@ -78,7 +78,7 @@ def is_instructor() -> bool:
 
 def answer_label(answer) -> str:
     """The label with its first letter capitalised and the rest as written (cm, v_cm, I_O)."""
-    return answer.label[:1].upper() + answer.label[1:]
+    return answer.heading
 
 
 def read_in(answer, system: str) -> str:
@@ -219,9 +219,9 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
 def _reveal(problem: Problem, recording: Recording | None, revealed_key: str, signature: str) -> None:
     """"Show the solution"; where opening it costs something (an assignment's points), said first and
     opened only on a second, deliberate press (on a phone it sits under Check)."""
-    asking = f"{problem.id}__reveal_asked"
-    if st.session_state.get(asking) == signature and recording is not None and recording.reveal_costs:
-        st.warning(recording.reveal_costs, icon=":material/visibility:")
+    asking, costs = f"{problem.id}__reveal_asked", recording.reveal_costs if recording is not None else ""
+    if st.session_state.get(asking) == signature and costs:
+        st.warning(costs, icon=":material/visibility:")
         open_it, keep = st.columns(2)
         if keep.button("Keep it hidden", key=f"{problem.id}__reveal_keep"):
             st.session_state.pop(asking, None)
@@ -230,7 +230,7 @@ def _reveal(problem: Problem, recording: Recording | None, revealed_key: str, si
             return
     elif not st.button("Show the solution", key=f"{problem.id}__reveal"):
         return
-    elif recording is not None and recording.reveal_costs:
+    elif costs:
         st.session_state[asking] = signature
         st.rerun()
     st.session_state.pop(asking, None)
