@@ -85,7 +85,7 @@ def _number_in_si(text: str, answer: Answer, system: str) -> tuple[float, str, s
     factor = units.si_per_unit(unit_text, answer.dimension)
     if factor is None:
         return None
-    return value * factor, f"read as {unit_text[:20]}", unit_text
+    return value * factor, f"read as {units.written(unit_text)[:20]}", unit_text
 
 
 def _in_unit_shown(value: float, answer: Answer, system: str) -> tuple[float, str]:
@@ -348,7 +348,7 @@ class Judge:
         if abs(value.imag) > 1e-12 or not math.isfinite(value.real):
             return unreadable("That evaluates to a number that is not real and finite.", understood)
         if unit:
-            si, how = value.real * units.si_per_unit(unit, answer.dimension), f"read as {unit[:20]}"
+            si, how = value.real * units.si_per_unit(unit, answer.dimension), f"read as {units.written(unit)[:20]}"
         else:
             si, how = _in_unit_shown(value.real, answer, system)
         scale = self._scale()
@@ -373,7 +373,7 @@ class Judge:
         factor = units.si_per_unit(unit, answer.dimension) if unit and expr is None else None
         if factor:  # a number in another unit: said as typed and as the page shows it ("5.604 ft/s = 1.708 m/s")
             if not math.isclose(value / factor, units.to_display(value, answer.dimension, system)):
-                shown = f"{units.format_value(value / factor, 4)} {unit[:20]} = {shown}"
+                shown = f"{units.format_value(value / factor, 4)} {units.written(unit)[:20]} = {shown}"
             how = ""
         scale = self._scale()
         known = [(m, self._value_of(m.wrong(dict(self.solution.params))))

@@ -192,6 +192,15 @@ def made_of_units(text: str) -> bool:
     return bool(pieces) and all(p in SIMPLE_UNITS or p == "1" for p in pieces) and any(p != "1" for p in pieces)
 
 
+def written(text: str) -> str:
+    """A unit as typed, written as the pages write units: the factors the student separated joined by ·,
+    powers 2 and 3 as ² and ³, no spaces around / ("kg*m^2", "kg m**2": kg·m²; "ft / s": ft/s; "N-m": N·m).
+    Letters typed together stay together (kgm^2: kgm²): which units they are is not this function's guess."""
+    t = re.sub(r"\s*([/^])\s*", r"\1", text.strip().rstrip(".").replace("**", "^"))
+    t = re.sub(r"\s*[*·⋅]\s*|\s+|(?<=[A-Za-z°²³\d])-(?=[A-Za-z°])", "·", t)
+    return re.sub(r"\^([23])(?!\d)", lambda power: "²" if power[1] == "2" else "³", t)
+
+
 def close_spellings(text: str) -> list[str]:
     """Accepted spellings equal to ``text`` but for case (kn for kN), across all dimensions."""
     key = normalise(text).lower()

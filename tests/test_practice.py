@@ -823,6 +823,22 @@ def test_a_number_in_another_unit_is_said_as_typed_and_as_the_page_shows_it():
     assert judge.check(answers["v1x"], f"{v:.4f} m/s").message == f"Right: {units.format_quantity(v, 'speed')}."
 
 
+def test_a_unit_typed_is_said_back_as_the_pages_write_units():
+    """"Right: 2.469 kg·m² = 1.821 slug·ft²", not "2.469 kg*m^2": the factors the student separated joined
+    by ·, powers as ², no spaces around /; and it is still the unit the student typed (it reads back the same)."""
+    _, solution, judge, answers = setup("pendulum_rebound")
+    inertia = solution.answers["I_O"]
+    for typed in ("kg*m^2", "kg m**2", "kg · m ^ 2"):
+        message = judge.check(answers["I_O"], f"{inertia:.4g} {typed}", "us").message
+        assert message == f"Right: {inertia:.4g} kg·m² = {units.format_quantity(inertia, 'inertia', 'us')}.", message
+    for dimension, table in units.SPELLINGS.items():
+        for spelling in table:
+            for typed in (spelling, spelling.replace("^2", " ** 2"), re.sub(r"^(kg|slug|lb|g)(?=[a-z])", r"\1 * ", spelling)):
+                said = units.written(typed)
+                assert units.si_per_unit(said, dimension) == table[spelling], (typed, said)
+                assert not re.search(r"[*\s]|\^2|\^3", said), (typed, said)
+
+
 @pytest.mark.parametrize("units_query, inertia", [({}, "kg·m²"), ({"units": "us"}, "slug·ft²")])
 def test_the_answer_box_and_the_statement_name_the_unit_a_number_alone_is_read_in(units_query, inertia):
     """"291.7" for an angular speed in deg/s was a wrong, graded attempt while nothing on the page said a
