@@ -942,7 +942,7 @@ class Cell:
 
     def status(self, settings: Settings) -> str:
         """The cell in words: "right at attempt 2", "right 1 day late (attempt 1): 80 %", "not right
-        yet: 1 of 3 attempts used"."""
+        yet: 1 of 3 attempts used", "not right: 4 attempts, 3 allowed"."""
         if self.first_right is not None:
             if self.credit >= 1:
                 return f"right at attempt {self.first_right}"
@@ -952,9 +952,10 @@ class Cell:
             return f"right but {self.no_credit_why} (attempt {self.right_no_credit}): no credit"
         if not self.attempts:
             return "not tried"
-        if self.attempts >= self.allowed:
-            return f"not right: all {self.allowed} attempts used" + (
-                f" ({self.attempts - self.allowed} more over the limit)" if self.attempts > self.allowed else "")
+        if self.attempts > self.allowed:  # (tries past the limit are kept, marked; or the limit was lowered)
+            return f"not right: {self.attempts} attempts, {self.allowed} allowed"
+        if self.attempts == self.allowed:
+            return f"not right: all {self.allowed} attempts used"
         return f"not right yet: {self.attempts} of {self.allowed} attempts used"
 
 

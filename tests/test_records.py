@@ -350,6 +350,14 @@ def test_a_changed_assignment_is_not_found_by_its_first_settings(database):
     assert records.create(settings(), ["s01"], database).id == third.id  # a repeated click still finds it
 
 
+def test_a_cell_past_its_limit_says_how_many_of_how_many():
+    """A student who went on past the limit (kept, marked) or whose limit was lowered: "4 attempts, 3
+    allowed", one short phrase (was "all 3 attempts used (1 more over the limit)")."""
+    words = {n: records.Cell(attempts=n, allowed=3).status(settings()) for n in (0, 2, 3, 4)}
+    assert words == {0: "not tried", 2: "not right yet: 2 of 3 attempts used", 3: "not right: all 3 attempts used",
+                     4: "not right: 4 attempts, 3 allowed"}
+
+
 def test_right_but_late_is_visible_everywhere(database):
     """A right answer after the due time: the student's attempt, the gradebook's cell, its
     statistics and the CSVs all say right-but-late (no late credit by default)."""

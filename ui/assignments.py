@@ -821,7 +821,7 @@ LEGEND = ("**Reading the gradebook.** Each answer's cell says where the student 
           "attempt 2* (on time, full points); *right 3 h late (attempt 1): 80 % credit* (after the student's due "
           "time, with the late credit you set); *right but 1 day late: no credit* (no late credit set; kept so you "
           "can decide); *right but over the limit* or *after the solution* (no credit); *not right yet: 1 of 3 "
-          "attempts used*; *not tried*. **Score** is the points earned out of the points possible (each answer's "
+          "attempts used*; *not right: 4 attempts, 3 allowed* (tries past the limit are kept); *not tried*. **Score** is the points earned out of the points possible (each answer's "
           "points × the credit it earned); **how** shows the sum. An answer the page could not read (a typo) is "
           "never an attempt; the same answer twice in a row counts once. Slips are the known mistakes a student's "
           "wrong answers matched.")
