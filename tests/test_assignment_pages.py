@@ -501,7 +501,9 @@ def test_the_instructor_adds_a_problem_and_changes_what_counts(course):
     # with the first problem taken out, the link sent before points to the assignment's problems
     records.edit(aid, records.replace(saved, parts=(saved.part("disk_wall"),)))
     refused = student(link_query(ann))
-    assert "not part of this assignment" in refused.error[0].value and "(disk_wall?assignment=" in refused.error[0].value
+    assert "not part of this assignment" in refused.error[0].value
+    problems = next(h.proto.body for h in refused.get("html") if "<ol>" in h.proto.body)  # opened in this tab
+    assert '<a href="disk_wall?assignment=' in problems and 'target="_self"' in problems, problems
 
 
 def test_a_warned_edit_is_dropped_once_its_inputs_change(course):

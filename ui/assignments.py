@@ -171,12 +171,18 @@ def student_link(problem: Problem) -> StudentLink | None:
                                    "your code is not on its roster). Ask your instructor for a new link.")
     if problem.id not in settings.problems and identity.source == "lti":
         return None  # an LMS student on another page of the app: practice, as anyone
-    if problem.id not in settings.problems:
-        query = urllib.parse.urlencode(link_query(identity))
-        right = " or ".join(f"[{_title(p)}]({p}?{query})" for p in settings.problems)
-        return StudentLink(refused=f"This page is not part of this assignment (your instructor may have changed "
-                                   f"its problems): open {right}.")
+    if problem.id not in settings.problems:  # (its problems listed below the refusal: refused_links)
+        return StudentLink(identity, refused="This page is not part of this assignment (your instructor may have "
+                                             "changed its problems). Open one of its problems:",
+                           settings=settings, problem=problem.id)
     return StudentLink(identity, settings=settings, problem=problem.id)
+
+
+def refused_links(link: StudentLink) -> None:
+    """Below a refusal of a page the assignment no longer has: its problems, each a link that opens in this
+    tab (or LMS frame) with the same signed query."""
+    if link.settings is not None and link.problem not in link.settings.problems:
+        st.html(_problem_links(link))
 
 
 def _standing(link: StudentLink) -> records.Standing | None:

@@ -352,6 +352,7 @@ def problem_page(problem_id: str) -> None:
         _heading(problem, heading, [])
         if link.refused:
             st.error(link.refused, icon=":material/link_off:")
+            assignments.refused_links(link)
             return
         _assignment(problem, link, system)
         return
