@@ -221,6 +221,18 @@ def test_an_assignment_end_to_end(browser, course_url):
     text = check(bpage, v1x(bea), "late credit")
     assert "earns 80 % of its points" in text
     assert "Your score so far: 0.8 of 7 points" in banner(bpage)
+    # By keyboard, "Show the solution" asks first; the next button takes the focus each time (it was left on the
+    # page's body, and Tab started again from the top); kept hidden, so the grades below stand.
+    bpage.get_by_role("button", name="Show the solution").focus()
+    bpage.keyboard.press("Enter")
+    wait_for_text(bpage, "Opening the solution is recorded")
+    bpage.wait_for_function("document.activeElement && document.activeElement.innerText.includes('Open the solution')")
+    bpage.keyboard.press("Tab")
+    assert bpage.evaluate("document.activeElement.innerText").strip() == "Keep it hidden"
+    bpage.keyboard.press("Enter")
+    bpage.get_by_role("button", name="Show the solution").wait_for()
+    bpage.wait_for_function("document.activeElement && document.activeElement.innerText.includes('Show the solution')")
+    assert "Opening the solution is recorded" not in main_text(bpage)
 
     # Cem, in New York: a typo, then right within his extension.
     cctx, cpage, cerrors = open_at(browser, cem["link"], "laptop", "America/New_York")

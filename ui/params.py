@@ -17,6 +17,7 @@ import streamlit as st
 from solvers.core import Choice, Number, ParameterError
 from solvers import units
 from ui.catalog import Problem
+from ui.inline_scripts import SLIDER_NAMES
 from ui.results import literal, plain
 
 MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed
@@ -232,23 +233,6 @@ def _label(p: Any, system: str) -> str:
         return p.label.capitalize()
     u = units.unit(p.dimension, system)
     return f"{symbol_text(p.symbol)} — {p.label}" + (f" ({u})" if u else "")
-
-
-# Streamlit names a slider's thumb twice: its aria-label, and an aria-labelledby that lists the thumb
-# and its group, which carries the same aria-label ("θ₀ — release angle … θ₀ — release angle …").
-# Without the aria-labelledby a screen reader reads the label once. Installed once per page load; it
-# follows every slider Streamlit draws later.
-SLIDER_NAMES = """<script>
-(() => {
-  if (window.dlSliderNames) return;
-  window.dlSliderNames = true;
-  const once = () => document.querySelectorAll("[data-testid='stSlider'] input[type='range'][aria-labelledby]")
-    .forEach((thumb) => thumb.removeAttribute("aria-labelledby"));
-  new MutationObserver(once).observe(document.body, {childList: true, subtree: true, attributes: true,
-                                                     attributeFilter: ["aria-labelledby"]});
-  once();
-})();
-</script>"""
 
 
 def _slider(p: Number, key: str, system: str, container, others: dict | None = None) -> float:

@@ -4,6 +4,7 @@ solution on request. The instructor's side (the variant export, and Study or Lec
 link) needs the instructor key. Nothing a student types is evaluated or rendered as Markdown."""
 from __future__ import annotations
 
+import html
 import ipaddress
 import re
 from dataclasses import dataclass
@@ -19,6 +20,7 @@ from practice.variants import MAX_SEED, variants_csv
 from solvers.core import Choice, Derivation, Solution
 from solvers import units
 from ui.catalog import Problem
+from ui.inline_scripts import TAKE_FOCUS
 from ui.results import literal, plain, plain_with_math
 
 INSTRUCTOR = "dl_instructor"  # session flag: the key was entered (once per session, for every page)
@@ -216,23 +218,37 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
     return revealed
 
 
+def _take_focus(key: str | None) -> None:
+    """The button keyed ``key`` takes the keyboard's focus once this run is drawn (inline_scripts.TAKE_FOCUS)."""
+    if key:
+        st.html(f'<span data-dl-focus="{html.escape(key)}" hidden></span>{TAKE_FOCUS}', unsafe_allow_javascript=True)
+
+
 def _reveal(problem: Problem, recording: Recording | None, revealed_key: str, signature: str) -> None:
     """"Show the solution"; where opening it costs something (an assignment's points), said first and
     opened only on a second, deliberate press (on a phone it sits under Check)."""
     asking, costs = f"{problem.id}__reveal_asked", recording.reveal_costs if recording is not None else ""
+    focus = f"{problem.id}__reveal_focus"  # the button to take the keyboard's focus on the run after a press
     if st.session_state.get(asking) == signature and costs:
         st.warning(costs, icon=":material/visibility:")
         open_it, keep = st.columns(2)
         if keep.button("Keep it hidden", key=f"{problem.id}__reveal_keep"):
             st.session_state.pop(asking, None)
+            st.session_state[focus] = f"{problem.id}__reveal"
             st.rerun()
-        if not open_it.button("Open the solution", key=f"{problem.id}__reveal_sure"):
+        pressed = open_it.button("Open the solution", key=f"{problem.id}__reveal_sure")
+        _take_focus(st.session_state.pop(focus, None))
+        if not pressed:
             return
-    elif not st.button("Show the solution", key=f"{problem.id}__reveal"):
-        return
-    elif costs:
-        st.session_state[asking] = signature
-        st.rerun()
+    else:
+        pressed = st.button("Show the solution", key=f"{problem.id}__reveal")
+        _take_focus(st.session_state.pop(focus, None))
+        if not pressed:
+            return
+        if costs:
+            st.session_state[asking] = signature
+            st.session_state[focus] = f"{problem.id}__reveal_sure"
+            st.rerun()
     st.session_state.pop(asking, None)
     if recording is None or recording.on_reveal():
         st.session_state[revealed_key] = signature

@@ -1,0 +1,41 @@
+"""The app's own inline scripts, each put in a page by ``st.html(..., unsafe_allow_javascript=True)``.
+
+The Content-Security-Policy (edge/headers.py) allows an inline script only by the hash of its exact text,
+so each is a fixed text: what varies goes in the HTML beside it, never into the script.
+"""
+
+# Streamlit names a slider's thumb twice: its aria-label, and an aria-labelledby that lists the thumb
+# and its group, which carries the same aria-label ("θ₀ — release angle … θ₀ — release angle …").
+# Without the aria-labelledby a screen reader reads the label once. Installed once per page load; it
+# follows every slider Streamlit draws later.
+SLIDER_NAMES = """<script>
+(() => {
+  if (window.dlSliderNames) return;
+  window.dlSliderNames = true;
+  const once = () => document.querySelectorAll("[data-testid='stSlider'] input[type='range'][aria-labelledby]")
+    .forEach((thumb) => thumb.removeAttribute("aria-labelledby"));
+  new MutationObserver(once).observe(document.body, {childList: true, subtree: true, attributes: true,
+                                                     attributeFilter: ["aria-labelledby"]});
+  once();
+})();
+</script>"""
+
+
+# The press that asks before opening the solution (or keeps it hidden) reruns the page without the button
+# pressed, which left the keyboard's focus on the page's body (Tab started again from the top): the button
+# that follows takes it. Drawn beside a ``data-dl-focus`` naming that button's key (ui.practice._take_focus),
+# on the one run after the press; Streamlit runs it each time it draws it.
+TAKE_FOCUS = """<script>
+(() => {
+  const here = document.currentScript && document.currentScript.parentNode;
+  const key = here && here.querySelector("[data-dl-focus]") ? here.querySelector("[data-dl-focus]").dataset.dlFocus : "";
+  let tries = 0;
+  const take = () => {
+    const button = key && document.querySelector(".st-key-" + CSS.escape(key) + " button");
+    if (button) button.focus(); else if (key && ++tries < 60) requestAnimationFrame(take);
+  };
+  take();
+})();
+</script>"""
+
+ALL = (SLIDER_NAMES, TAKE_FOCUS)
