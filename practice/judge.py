@@ -13,6 +13,7 @@ import importlib
 import math
 import re
 from dataclasses import dataclass, replace
+from fractions import Fraction
 
 import numpy as np
 import sympy as sp
@@ -179,6 +180,51 @@ CALCULATOR_HINTS = {
 }
 
 
+def _mlt(expr: sp.Expr, of: dict) -> tuple[Fraction, ...] | None:
+    """The powers of mass, length and time in ``expr``, each given's from ``of`` (symbol -> powers); None where
+    the expression is not one quantity: a sum of terms in different units, a function of a quantity with units
+    (sin of a length), a power with a symbol in its exponent."""
+    none = (Fraction(0),) * 3
+    if expr.is_Symbol:
+        return of.get(expr)
+    if expr.is_number:
+        return none
+    if isinstance(expr, sp.Abs):
+        return _mlt(expr.args[0], of)
+    parts = [_mlt(arg, of) for arg in expr.args]
+    if any(p is None for p in parts):
+        return None
+    if expr.is_Mul:
+        return tuple(sum(p[i] for p in parts) for i in range(3))
+    if expr.is_Pow:
+        base, exponent = parts
+        if expr.exp.is_Rational:
+            return tuple(b * Fraction(int(expr.exp.p), int(expr.exp.q)) for b in base)
+        return none if base == none and exponent == none else None
+    if expr.is_Add:
+        return parts[0] if all(p == parts[0] for p in parts) else None
+    if isinstance(expr, sp.Function):  # sin, asin, exp, log …: of a pure number, a pure number
+        return none if all(p == none for p in parts) else None
+    return None
+
+
+def _typing_slip(text: str, answer: Answer, system: str) -> str:
+    """What is wrong with text that would be read as a number nobody meant: two signs in a row before a number
+    (--44.94 is +44.94), the degree sign twice (44.94°° is 44.94 × π/180 degrees), a degree sign after an
+    answer that is not an angle (−315.8° for an angular speed; ° inside sin(30°) is an angle, and stays)."""
+    if re.match(r"\s*[-+−]\s*[-+−]", text):
+        return "Two signs in a row before the number: write one."
+    if re.search(r"°\s*°", text):
+        return "The degree sign twice: write it once."
+    if answer.dimension != "angle" and re.search(r"\d\s*°\s*$", text):
+        return _unit_text_message("°", answer, system)
+    return ""
+
+
+def _units_text(powers) -> str:
+    return "no units" if not any(powers) else "units of " + units.si_units_of(powers)
+
+
 def _unit_message(text: str, answer: Answer, system: str) -> str | None:
     """What is wrong with the unit after a number, if the text is a number and a unit-like word
     that is not a unit of this answer (None if it does not look like one)."""
@@ -303,6 +349,9 @@ class Judge:
         if len(text) > MAX_LENGTH:
             return unreadable(f"That answer is too long ({len(text)} characters; at most {MAX_LENGTH}).")
         correct = self.values[answer.name]
+        text = text.replace("º", "°").replace("˚", "°")  # the ordinal º and the ring ˚ some keyboards give for °
+        if slip := _typing_slip(text, answer, system):  # read, each would be a wrong number (+44.94 for --44.94)
+            return unreadable(slip)
         try:
             as_number = _number_in_si(text, answer, system)
         except ValueError as error:
@@ -316,7 +365,36 @@ class Judge:
             return unreadable(str(error))  # (_read names a unit of another dimension itself)
         if not expr.free_symbols:
             return self._judge_numeric_expression(answer, expr, unit, correct, system)
+        if (wrong_units := self._in_other_units(text, expr, answer)) is not None:
+            return unreadable(wrong_units, sp.latex(expr))
         return _read_as(self._judge_expression(answer, expr, system), f"expression {sp.srepr(expr)}")
+
+    def _in_other_units(self, text: str, expr: sp.Expr, answer: Answer) -> str | None:
+        """What to say of an expression whose units are not the answer's (None if they are, or cannot be told):
+        not judged, as a unit of another kind is not. Most are a unit typed as letters that are also givens'
+        names ("-44.9 dge": d·g·e; "0.5 ms": m_s; "1.55 kg m2"); a formula off by units is a slip a
+        check of its units finds before any number does."""
+        if answer.dimension not in units.DIMENSIONS:
+            return None
+        of = {sym: tuple(map(Fraction, units.mlt(spec.dimension))) for spec in self.solver.PARAMS
+              if (sym := self.givens.get(spec.name)) is not None and getattr(spec, "dimension", None) in units.DIMENSIONS}
+        found, wanted = _mlt(expr, of), tuple(map(Fraction, units.mlt(answer.dimension)))
+        if found is None or found == wanted:
+            return None
+        glued = re.fullmatch(r"\s*[-+−]?[\d.]+(?:[eE][-+]?\d+)?\s*([A-Za-z°º/][A-Za-z0-9°º/^ ]*)\s*", text)
+        hint = ""
+        if glued:
+            typed = glued.group(1).strip()[:20]
+            near = difflib.get_close_matches(units.normalise(typed), list(units.SPELLINGS[answer.dimension]), n=1,
+                                             cutoff=0.5)
+            shown = [label for label in {units.unit(answer.dimension, s) for s in units.SYSTEMS}
+                     if near and units.normalise(label) == near[0]]
+            hint = (f" If “{typed}” was meant as a unit, write one the page reads"
+                    + (f" (did you mean {(shown or [units.written(near[0])])[0]}?)" if near else "") + ".")
+        kind = answer.dimension.replace("_", " ").replace("inertia", "moment of inertia")
+        return (f"That reads as an expression in the givens with {_units_text(found)}, but this answer is "
+                f"{'an' if kind[0] in 'aeiou' else 'a'} {kind} ({_units_text(wanted)}).{hint} Not judged: an "
+                "expression must have the answer's units.")
 
     def _read(self, text: str, answer: Answer, system: str) -> tuple[sp.Expr, str]:
         """(the expression, the unit written after it or "") for typed text. A unit of this answer

@@ -41,52 +41,53 @@ class Dimension:
     spellings: Mapping[str, float]
     us_label: str | None = None  # the US customary unit pages show; None: as in SI
     us_factor: float | None = None
+    mlt: tuple[int, int, int] = (0, 0, 0)  # the powers of mass, length and time in it (an angle: none)
 
 
 DIMENSIONS: Mapping[str, Dimension] = MappingProxyType({
     "mass": Dimension("kg", 1.0, r"\mathrm{kg}", {"kg": 1.0, "g": 1e-3, "mg": 1e-6, "lb": LB, "slug": SLUG},
-                      "lb", 1 / LB),
+                      "lb", 1 / LB, mlt=(1, 0, 0)),
     "length": Dimension("m", 1.0, r"\mathrm{m}", {"m": 1.0, "cm": 0.01, "mm": 1e-3, "km": 1e3, "ft": FT, "in": INCH},
-                        "ft", 1 / FT),
+                        "ft", 1 / FT, mlt=(0, 1, 0)),
     "angle": Dimension("°", 180 / math.pi, r"\mathrm{rad}",
                        {"rad": 1.0, "deg": DEG, "°": DEG, "degree": DEG, "degrees": DEG}),
     "speed": Dimension("m/s", 1.0, r"\mathrm{m/s}",
                        {"m/s": 1.0, "cm/s": 0.01, "mm/s": 1e-3, "km/s": 1e3, "km/h": 1 / 3.6, "ft/s": FT,
                         "ft/sec": FT, "in/s": INCH, "mph": 1609.344 / 3600},
-                       "ft/s", 1 / FT),
+                       "ft/s", 1 / FT, mlt=(0, 1, -1)),
     "angular_speed": Dimension("rad/s", 1.0, r"\mathrm{rad/s}",
                                {"rad/s": 1.0, "rad/sec": 1.0, "1/s": 1.0, "/s": 1.0, "deg/s": DEG, "°/s": DEG,
-                                "rpm": math.pi / 30, "rev/min": math.pi / 30, "rev/s": 2 * math.pi}),
+                                "rpm": math.pi / 30, "rev/min": math.pi / 30, "rev/s": 2 * math.pi}, mlt=(0, 0, -1)),
     "acceleration": Dimension("m/s²", 1.0, r"\mathrm{m/s^2}",
                               {"m/s^2": 1.0, "cm/s^2": 0.01, "mm/s^2": 1e-3, "ft/s^2": FT, "in/s^2": INCH, "g": G0},
-                              "ft/s²", 1 / FT),
+                              "ft/s²", 1 / FT, mlt=(0, 1, -2)),
     "force": Dimension("N", 1.0, r"\mathrm{N}",
-                       {"N": 1.0, "kN": 1e3, "mN": 1e-3, "MN": 1e6, "lbf": LBF, "lb": LBF, "kip": 1000 * LBF},
-                       "lbf", 1 / LBF),
+                       {"N": 1.0, "kN": 1e3, "mN": 1e-3, "MN": 1e6, "kgm/s^2": 1.0, "lbf": LBF, "lb": LBF, "kip": 1000 * LBF},
+                       "lbf", 1 / LBF, mlt=(1, 1, -2)),
     "impulse": Dimension("N·s", 1.0, r"\mathrm{N\,s}",
                          {"Ns": 1.0, "kNs": 1e3, "mNs": 1e-3, "kgm/s": 1.0, "lbfs": LBF, "lbs": LBF,
                           "slugft/s": SLUG * FT},
-                         "lbf·s", 1 / LBF),
+                         "lbf·s", 1 / LBF, mlt=(1, 1, -1)),
     "angular_momentum": Dimension("kg·m²/s", 1.0, r"\mathrm{kg\,m^2/s}",
                                   {"kgm^2/s": 1.0, "Nms": 1.0, "Js": 1.0, "ftlbfs": FT_LBF, "lbffts": FT_LBF,
                                    "slugft^2/s": SLUG * FT**2},
-                                  "ft·lbf·s", 1 / FT_LBF),
+                                  "ft·lbf·s", 1 / FT_LBF, mlt=(1, 2, -1)),
     "energy": Dimension("J", 1.0, r"\mathrm{J}",
-                        {"J": 1.0, "kJ": 1e3, "mJ": 1e-3, "MJ": 1e6, "Nm": 1.0, "kNm": 1e3, "ftlbf": FT_LBF,
+                        {"J": 1.0, "kJ": 1e3, "mJ": 1e-3, "MJ": 1e6, "Nm": 1.0, "kNm": 1e3, "kgm^2/s^2": 1.0, "ftlbf": FT_LBF,
                          "ftlb": FT_LBF, "lbft": FT_LBF, "lbfft": FT_LBF},
-                        "ft·lbf", 1 / FT_LBF),
+                        "ft·lbf", 1 / FT_LBF, mlt=(1, 2, -2)),
     "inertia": Dimension("kg·m²", 1.0, r"\mathrm{kg\,m^2}",
                          {"kgm^2": 1.0, "gcm^2": 1e-7, "slugft^2": SLUG * FT**2, "lbft^2": LB * FT**2,
                           "lbin^2": LB * INCH**2},
-                         "slug·ft²", 1 / (SLUG * FT**2)),
+                         "slug·ft²", 1 / (SLUG * FT**2), mlt=(1, 2, 0)),
     "stiffness": Dimension("N·m/rad", 1.0, r"\mathrm{N\,m/rad}",
                            {"Nm/rad": 1.0, "Nm": 1.0, "ftlbf/rad": FT_LBF, "ftlb/rad": FT_LBF, "lbft/rad": FT_LBF},
-                           "ft·lbf/rad", 1 / FT_LBF),
+                           "ft·lbf/rad", 1 / FT_LBF, mlt=(1, 2, -2)),
     "torque": Dimension("N·m", 1.0, r"\mathrm{N\,m}",
-                        {"Nm": 1.0, "kNm": 1e3, "mNm": 1e-3, "J": 1.0, "ftlbf": FT_LBF, "ftlb": FT_LBF,
+                        {"Nm": 1.0, "kNm": 1e3, "mNm": 1e-3, "J": 1.0, "kgm^2/s^2": 1.0, "ftlbf": FT_LBF, "ftlb": FT_LBF,
                          "lbft": FT_LBF, "lbfft": FT_LBF},
-                        "ft·lbf", 1 / FT_LBF),
-    "time": Dimension("s", 1.0, r"\mathrm{s}", {"s": 1.0, "ms": 1e-3, "sec": 1.0, "min": 60.0}),
+                        "ft·lbf", 1 / FT_LBF, mlt=(1, 2, -2)),
+    "time": Dimension("s", 1.0, r"\mathrm{s}", {"s": 1.0, "ms": 1e-3, "sec": 1.0, "min": 60.0}, mlt=(0, 0, 1)),
     "dimensionless": Dimension("", 1.0, "", {}),
 })
 
@@ -106,6 +107,21 @@ SPELLINGS = MappingProxyType({name: d.spellings for name, d in DIMENSIONS.items(
 def unit(dimension: str, system: str = "si") -> str:
     """The unit a page shows for ``dimension`` in ``system`` ("si" or "us")."""
     return SYSTEMS[system][dimension][0]
+
+
+def mlt(dimension: str) -> tuple[int, int, int]:
+    """The powers of mass, length and time in ``dimension`` (an angle and a ratio: none)."""
+    return DIMENSIONS[dimension].mlt
+
+
+def si_units_of(powers) -> str:
+    """Powers of mass, length and time written in SI base units, as the pages write units: kg·m²/s², 1/s, m^(1/2)."""
+    def power(symbol, n):
+        n = abs(n)
+        return symbol + ({1: "", 2: "²", 3: "³", 4: "⁴"}.get(n) if n in (1, 2, 3, 4) else f"^({n})" if "/" in str(n) else f"^{n}")
+    up = [power(u, n) for u, n in zip(("kg", "m", "s"), powers) if n > 0]
+    down = [power(u, n) for u, n in zip(("kg", "m", "s"), powers) if n < 0]
+    return ("·".join(up) or "1") + ("/" + "·".join(down) if down else "") if up or down else "1"
 
 
 def to_display(x: float, dimension: str, system: str = "si") -> float:

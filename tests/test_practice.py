@@ -22,6 +22,7 @@ from streamlit.testing.v1 import AppTest
 
 from hypothesis import given, settings, strategies as hst
 
+from practice.mistakes import mistakes_for
 from practice.judge import CALCULATOR_HINTS, Judge, _number_in_si
 from practice.parser import MAX_LENGTH, MAX_TOKENS, tokenize
 from solvers import registry
@@ -821,6 +822,57 @@ def test_a_number_in_another_unit_is_said_as_typed_and_as_the_page_shows_it():
     assert judge.check(answers["v1x"], f"{typed} ft/s").message == \
         f"Right: {typed} ft/s = {units.format_quantity(v, 'speed')}."
     assert judge.check(answers["v1x"], f"{v:.4f} m/s").message == f"Right: {units.format_quantity(v, 'speed')}."
+
+
+@pytest.mark.parametrize("pid, name, text, hint", [
+    ("pendulum_rebound", "theta_impact", "-44.9 dge", "deg"),  # d·g·e: a length times an acceleration
+    ("pendulum_rebound", "omega_impact", "-315.8 deg", "deg/s"),  # an angular speed's unit without its /s
+    ("stick_ball", "v_cm", "0.5 ms", "m/s"),  # m_s, a mass
+    ("stick_ball", "v_cm", "0.5 /s", "m/s"),  # over s, the offset
+    ("rod_disk_spring", "I_O", "1.553 kg m2", "kg·m²"),  # k·g·m₂
+])
+def test_a_unit_typed_as_givens_letters_is_not_judged(pid, name, text, hint):
+    """A typo in a unit whose letters are givens' names was read as an expression (−44.9·d·g·e), judged
+    "not equivalent" and recorded as an attempt, while the same typo on a page without those givens cost
+    nothing: an expression whose units are not the answer's is not judged, and says which unit was meant."""
+    _, _, judge, answers = setup(pid)
+    verdict = judge.check(answers[name], text)
+    assert not verdict.readable and not verdict.reading, verdict
+    assert f"did you mean {hint}?" in verdict.message and "Not judged" in verdict.message, verdict.message
+
+
+def test_typing_slips_that_would_read_as_numbers_nobody_meant_are_not_judged():
+    """--35.65 was read as +35.65 and charged with the sign slip; 35.65°° as 35.65 × π/180 degrees; −238.2° for
+    an angular speed as −238.2 × π/180 rad/s; º (an ordinal) was a character not allowed: the slips are
+    explained and not judged, º reads as °, and kg·m²/s² is a unit of energy."""
+    _, solution, judge, answers = setup("pendulum_rebound")
+    angle = math.degrees(solution.answers["theta_impact"])
+    speed, energy = solution.answers["omega_impact"], solution.answers["energy_loss"]
+    for name, text, says in (("theta_impact", f"--{abs(angle):.4g}", "Two signs in a row"),
+                             ("theta_impact", f"{angle:.4g} °°", "degree sign twice"),
+                             ("omega_impact", f"{math.degrees(speed):.4g} °", "'°' is a unit of angle")):
+        verdict = judge.check(answers[name], text)
+        assert not verdict.readable and says in verdict.message, (text, verdict.message)
+    assert judge.check(answers["theta_impact"], f"{angle:.4g}º").correct
+    assert judge.check(answers["omega_impact"], "2*sin(30°)").readable  # ° inside a function is an angle's
+    assert judge.check(answers["energy_loss"], f"{energy:.4g} kg m^2/s^2").correct
+
+
+@settings(max_examples=25, deadline=None)
+@given(pid=hst.sampled_from(registry.PROBLEM_IDS), seed=hst.integers(0, MAX_SEED))
+def test_every_derived_answer_and_known_slip_has_the_answer_s_units(pid, seed):
+    """The units check stands between a student's expression and its verdict, so it must pass the answer
+    itself and every slip the judge names (else their hints would never be given): each derived expression's
+    powers of mass, length and time, from the givens' dimensions, are its answer's (or cannot be told: the
+    ladder's times, an integral)."""
+    solver = importlib.import_module(f"solvers.{pid}")
+    _, solution, judge, answers = setup(pid, **variant(solver, pid, seed))
+    for answer in answers.values():
+        right = judge.derivation.expression_of(answer.name)
+        assert judge._in_other_units("x", right, answer) is None, (answer.name, right)
+        for mistake in mistakes_for(pid, answer.name, dict(solution.params)):
+            wrong = judge.derivation.in_parameters(mistake.wrong(dict(solution.params)))
+            assert judge._in_other_units("x", wrong, answer) is None, (answer.name, mistake.feedback)
 
 
 def test_a_unit_typed_is_said_back_as_the_pages_write_units():

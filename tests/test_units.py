@@ -79,3 +79,21 @@ def test_a_value_round_in_the_shown_unit_reads_back_round_after_four_figures_in_
     si = float(f"{units.to_si(us, dimension, 'us'):.4g}")
     assert units.shown_value(si, dimension, "us") == pytest.approx(us, rel=1e-12)
     assert units.shown_value(si, dimension, "si") == si  # nothing to convert: as it is
+
+
+BASE = {"kg": (1, 0, 0), "m": (0, 1, 0), "s": (0, 0, 1), "N": (1, 1, -2), "J": (1, 2, -2), "rad": (0, 0, 0),
+        "°": (0, 0, 0)}
+
+
+def test_each_dimension_s_powers_of_mass_length_and_time_are_its_si_label_s():
+    """``Dimension.mlt`` (what the judge checks an expression's units against) read off the SI label the pages
+    print, each factor of it in base units: kg·m²/s is (1, 2, −1), N·m/rad is N times m, J is kg·m²/s²."""
+    for name, dimension in units.DIMENSIONS.items():
+        powers = [0, 0, 0]
+        numerator, *denominators = dimension.label.split("/")
+        for sign, part in [(1, numerator)] + [(-1, d) for d in denominators]:
+            for factor in filter(None, part.split("·")):
+                power = {"²": 2, "³": 3}.get(factor[-1], 1)
+                base = BASE[factor.rstrip("²³")] if factor != "1" else (0, 0, 0)
+                powers = [p + sign * power * b for p, b in zip(powers, base)]
+        assert tuple(powers) == units.mlt(name), name
