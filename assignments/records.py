@@ -724,6 +724,7 @@ class Recorded:
     credit: float = 0.0  # the fraction of the answer's points it earns (late credit included)
     message: str = ""
     repeated: bool = False  # the same text as the attempt before it: not recorded again
+    after_right: bool = False  # an earlier attempt at this answer was right: this one earns nothing more
 
     @property
     def counts(self) -> bool:
@@ -732,11 +733,12 @@ class Recorded:
 
     def marks(self) -> list[str]:
         return [m for m, on in (("late", self.late), ("over the limit", self.over_limit),
-                                ("after the solution", self.solution_shown)) if on]
+                                ("after the solution", self.solution_shown), ("already right", self.after_right)) if on]
 
 
 def _numbered(rows: Iterable[db.Attempt], settings: Settings | None, grants: dict[str, Grant]) -> list[Recorded]:
     seen: Counter = Counter()
+    right: set = set()  # the answers an earlier attempt got right: a later one earns nothing (no double credit)
     out = []
     default_problem = settings.problem if settings else ""
     for r in sorted(rows, key=lambda r: r.id):
@@ -744,6 +746,9 @@ def _numbered(rows: Iterable[db.Attempt], settings: Settings | None, grants: dic
         key = (r.label, problem, r.answer)
         seen[key] += 1
         n = seen[key]
+        after_right = key in right
+        if r.correct:
+            right.add(key)
         grant = grants.get(r.label, Grant())
         if settings is None:
             out.append(Recorded(r.id, r.label, n, r.answer, r.typed, r.correct, r.slip, r.at, r.late,
@@ -752,9 +757,10 @@ def _numbered(rows: Iterable[db.Attempt], settings: Settings | None, grants: dic
         due = due_for(settings, grant)
         late_by = max(r.at - due, dt.timedelta(0))
         over = n > allowed_for(settings, grant)
-        credit = settings.late_credit(late_by) if r.correct and not over and not r.solution_shown else 0.0
+        credit = (settings.late_credit(late_by) if r.correct and not over and not r.solution_shown and not after_right
+                  else 0.0)
         out.append(Recorded(r.id, r.label, n, r.answer, r.typed, r.correct, r.slip, r.at, late_by > dt.timedelta(0),
-                            r.solution_shown, over, problem, late_by, credit, r.message))
+                            r.solution_shown, over, problem, late_by, credit, r.message, after_right=after_right))
     return out
 
 
@@ -977,7 +983,7 @@ def _cells(settings: Settings, grants: dict[str, Grant], labels: Iterable[str],
         if attempt.credit > cell.credit:
             cell.credit, cell.first_right, cell.first_right_at = attempt.credit, attempt.number, attempt.at
             cell.late_by = attempt.late_by
-        elif attempt.correct and attempt.credit == 0 and cell.right_no_credit is None:
+        elif attempt.correct and attempt.credit == 0 and cell.right_no_credit is None and not attempt.after_right:
             cell.right_no_credit, cell.right_no_credit_at = attempt.number, attempt.at
             cell.no_credit_why = ("over the limit" if attempt.over_limit else "after the solution"
                                   if attempt.solution_shown else f"{duration_text(attempt.late_by)} late")
@@ -1238,10 +1244,10 @@ def attempts_csv(assignment_id: int, bound: Engine | None = None, names: dict[Qu
         attempts = _numbered(s.scalars(select(db.Attempt).where(db.Attempt.assignment_id == assignment_id)).all(),
                              settings, grants)
     header = ["label", "problem", "answer", "answer_name", "attempt", "typed", "correct", "slip", "time_utc", "late",
-              "late_hours", "over_limit", "solution_shown", "credit"]
+              "late_hours", "over_limit", "solution_shown", "after_right", "credit"]
     named = names or {}
     return safe_csv(header, ([a.label, a.problem, a.answer, named.get((a.problem, a.answer), a.answer), a.number, a.typed, a.correct, a.slip, _time(a.at), a.late,
-                              round(a.late_by.total_seconds() / 3600, 2), a.over_limit, a.solution_shown,
+                              round(a.late_by.total_seconds() / 3600, 2), a.over_limit, a.solution_shown, a.after_right,
                               _points(a.credit)] for a in attempts))
 
 

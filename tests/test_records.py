@@ -350,6 +350,22 @@ def test_a_changed_assignment_is_not_found_by_its_first_settings(database):
     assert records.create(settings(), ["s01"], database).id == third.id  # a repeated click still finds it
 
 
+def test_a_right_answer_given_again_earns_nothing_more(database):
+    """Right at attempt 1, then right again (another value within the tolerance): the page said "this one changes
+    nothing", but the student's table said "counts: yes" twice and the attempts CSV gave each a credit of 1 (a
+    sum per answer counted it twice). The second earns nothing, marked "already right"; the gradebook is as before."""
+    aid, (ann, _) = new_assignment(database)
+    attempt(database, ann, correct=True)
+    again = attempt(database, ann, correct=True)
+    assert again.after_right and again.credit == 0 and "already right" in again.marks()
+    mine = records.attempts_of(ann, database)
+    assert [(a.number, a.credit, a.after_right) for a in mine] == [(1, 1.0, False), (2, 0.0, True)]
+    rows = list(csv.DictReader(io.StringIO(records.attempts_csv(aid, database))))
+    assert [(r["attempt"], r["after_right"], r["credit"]) for r in rows] == [("1", "False", "1"), ("2", "True", "0")]
+    book = records.gradebook(aid, database)
+    assert book.cell("s01", THETA).status(book.settings) == "right at attempt 1" and book.score("s01") == 1
+
+
 def test_a_cell_past_its_limit_says_how_many_of_how_many():
     """A student who went on past the limit (kept, marked) or whose limit was lowered: "4 attempts, 3
     allowed", one short phrase (was "all 3 attempts used (1 more over the limit)")."""
