@@ -26,6 +26,7 @@ from lti import launch as lti_launch, passback, roster as lti_roster, store as l
 from practice.judge import RELATIVE_TOLERANCE, Verdict
 from solvers import units
 from ui.catalog import BY_ID, PROBLEMS, Problem
+from ui.inline_scripts import SCROLLABLE_TABLES
 from ui.practice import Recording, answer_label, instructor_key_entry
 from ui.results import literal, plain
 
@@ -410,6 +411,7 @@ def your_attempts(link: StudentLink, answers, solution=None, system: str = "si")
         st.table([{"answer": labels.get(a.answer, a.answer), "attempt": a.number, "you typed": literal(a.typed),
                    "verdict": "right" if a.correct else "not right", "slip": literal(records.slip_shown(a.slip, standing.settings)),
                    "time": records.when_text(a.at, zone), "counts": earned(a)} for a in mine])
+        _tables_by_keyboard()
 
 
 # -- the instructor's page
@@ -885,7 +887,7 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
         row["extension"] = ", ".join(granted) or "—"
         row["how"] = book.how(student.label, short)
         rows.append(row)
-    st.table(rows)
+    st.table(rows, alt="Gradebook")
     st.markdown(LEGEND)
     c1, c2 = st.columns(2)
     c1.download_button("Download the gradebook (CSV)", records.gradebook_csv(book, labels),
@@ -907,6 +909,12 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
     st.markdown("\n".join(f"- **{plain(labels[q])}**: " + " ".join(plain(line) for line in lines)
                           for q, lines in book.statistics().items()))
     _history(aid, s)
+    _tables_by_keyboard()
+
+
+def _tables_by_keyboard() -> None:
+    """A table wider than the page scrolls sideways: reachable by keyboard (inline_scripts.SCROLLABLE_TABLES)."""
+    st.html(SCROLLABLE_TABLES, unsafe_allow_javascript=True)
 
 
 def _passback(aid: int) -> None:

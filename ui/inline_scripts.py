@@ -38,4 +38,25 @@ TAKE_FOCUS = """<script>
 })();
 </script>"""
 
-ALL = (SLIDER_NAMES, TAKE_FOCUS)
+# A table wider than its column scrolls sideways in Streamlit's box, which a keyboard cannot reach (axe-core:
+# scrollable-region-focusable; the gradebook with several problems on a projector): such a box is made a
+# focusable, named region (Tab to it, then the arrow keys scroll), as Streamlit does for a table it sizes in
+# pixels. Installed once per page load; it follows every table drawn or resized later.
+SCROLLABLE_TABLES = """<script>
+(() => {
+  if (window.dlScrollableTables) return;
+  window.dlScrollableTables = true;
+  const mark = () => document.querySelectorAll("[data-testid='stTable'] > div:not([tabindex])").forEach((box) => {
+    if (box.scrollWidth <= box.clientWidth + 1) return;
+    const table = box.querySelector("table");
+    box.setAttribute("tabindex", "0");
+    box.setAttribute("role", "region");
+    box.setAttribute("aria-label", ((table && table.getAttribute("aria-label")) || "Table") + ", scrolls sideways");
+  });
+  new MutationObserver(mark).observe(document.body, {childList: true, subtree: true});
+  window.addEventListener("resize", mark);
+  mark();
+})();
+</script>"""
+
+ALL = (SLIDER_NAMES, TAKE_FOCUS, SCROLLABLE_TABLES)
