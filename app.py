@@ -24,7 +24,7 @@ st.html("""<style>
     outline: 2px solid currentColor; outline-offset: -2px;
   }
   /* A table cell is 400 px at most: a student's link (one long word) was cut mid-signature. */
-  [data-testid='stTable'] td a { overflow-wrap: anywhere; }
+  [data-testid='stTable'] td a, [data-testid='stTable'] td code { overflow-wrap: anywhere; }
   /* A choice longer than its box (an answer's label on a phone) ends in "…", not cut mid-word with no sign. */
   [data-testid='stSelectbox'] input { text-overflow: ellipsis; }
 </style>""")

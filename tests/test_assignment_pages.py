@@ -380,6 +380,12 @@ def test_the_instructor_edits_closes_reopens_extends_and_undoes(course):
     assert any("attempts per answer 3 → 5" in m.value for m in book.success)
     assert records.assignment(aid).attempts_allowed == 5 and not records.assignment(aid).hints
 
+    # a tighter tolerance: said to apply from now on (a verdict already given stands; nothing said so)
+    widget(book, f"assign__edit{aid}_", "_tolerance").set_value(0.01)
+    book.button[[b.label for b in book.button].index("Save the changes")].click().run()
+    assert any("tolerance" in m.value and "from now on" in m.value and "keep the verdict" in m.value
+               for m in book.success), [m.value for m in book.success]
+
     due = records.assignment(aid).due
     widget(book, f"assign__edit{aid}_", "_zone").set_value("Asia/Tokyo")  # a new zone alone
     book.button[[b.label for b in book.button].index("Save the changes")].click().run()
@@ -504,6 +510,16 @@ def test_the_instructor_adds_a_problem_and_changes_what_counts(course):
     assert "not part of this assignment" in refused.error[0].value
     problems = next(h.proto.body for h in refused.get("html") if "<ol>" in h.proto.body)  # opened in this tab
     assert '<a href="disk_wall?assignment=' in problems and 'target="_self"' in problems, problems
+
+
+def test_the_links_say_that_opening_one_answers_as_its_student(course):
+    """An instructor who clicked a student's link in the table answered as that student (recorded, and the
+    solution there costs the student its points): the page says so, and shows the links as text to copy."""
+    aid, s, _ = one_assignment()
+    book = instructor()
+    assert any("answers as that student" in w.value for w in book.warning)
+    links = next(t.value for t in book.table if "link" in t.value.columns)
+    assert all(cell.startswith("`http") and cell.endswith("`") for cell in links["link"]), links
 
 
 def test_a_warned_edit_is_dropped_once_its_inputs_change(course):

@@ -666,7 +666,7 @@ def _edit(aid: int, s: records.Settings) -> None:
             title = st.text_input("Title", s.title, key=f"{p}title")
             c1, c2 = st.columns(2)
             tolerance = c1.number_input("Tolerance for numbers (%)", 0.01, 10.0, s.tolerance * 100, 0.1,
-                                        key=f"{p}tolerance")
+                                        key=f"{p}tolerance", help=TOLERANCE_FROM_NOW)
             attempts = c2.number_input("Attempts allowed per answer", 1, 100, s.attempts_allowed, key=f"{p}attempts")
             zone = _zone_picker(f"{p}zone", s.timezone)
             # The date and time fields read in the zone their labels name, the assignment's own: a
@@ -720,9 +720,16 @@ def _edit_parts(aid: int, s: records.Settings) -> None:
         _check_and_save(aid, s, p, shown if save else None, shown)
 
 
+# A verdict is the judge's when the answer was checked (what the student was told, and what the attempt counts
+# as): a new tolerance is not applied to answers already recorded.
+TOLERANCE_FROM_NOW = ("Applies to answers checked from now on: those already recorded keep the verdict their "
+                      "student was given.")
+
+
 def _save_edit(aid: int, s: records.Settings, new: records.Settings) -> None:
     passed = (" The new due time has passed: answers after it are late, those already recorded included."
               if new.due < records.now() <= s.due else "")
+    passed += f" The new tolerance: {TOLERANCE_FROM_NOW[0].lower()}{TOLERANCE_FROM_NOW[1:]}" if new.tolerance != s.tolerance else ""
     said = records.edit(aid, new)
     st.session_state["assign__said"] = (f"Saved: {'; '.join(said)}.{passed}" if said else "Nothing changed.")
     st.rerun()
@@ -835,6 +842,12 @@ LEGEND = ("**Reading the gradebook.** Each answer's cell says where the student 
           "wrong answers matched.")
 
 
+# A student's link is that student: whoever opens it answers as them (no key is asked of a student).
+OPENING_A_LINK = ("Opening a student's link answers as that student: every answer checked there is recorded as "
+                  "theirs, and opening the solution there costs them its points. The links are shown to copy, not to "
+                  "click; to try the assignment yourself, open its problems in Practice.")
+
+
 def _gradebook(aid: int, course: dict | None = None) -> None:
     book = records.gradebook(aid)
     s = book.settings
@@ -859,10 +872,11 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
     st.markdown("Send each student their own link (by your course's messaging, not in a public place): it opens "
                 "their variant, and a changed link is refused."
                 + (" A link opens the first problem; the page lists the others." if len(s.parts) > 1 else ""))
+    st.warning(OPENING_A_LINK, icon=":material/warning:")
     st.download_button("Download the links (CSV)", _links_csv(base, s.problem, book.students),
                        file_name=f"assignment-{aid}-links.csv", mime="text/csv", key="assign__links_csv")
-    with st.expander(f"The links ({len(book.students)})"):
-        st.table([{"label": literal(st_.label), "link": student_url(base, s.problem, st_)} for st_ in book.students])
+    with st.expander(f"The links ({len(book.students)})"):  # as text to copy, not to click (OPENING_A_LINK)
+        st.table([{"label": literal(st_.label), "link": f"`{student_url(base, s.problem, st_)}`"} for st_ in book.students])
 
     st.markdown("#### Gradebook")
     short, key = _short_labels(s)
