@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from assignments import records
+from assignments import records, signing
 from scripts.live_app import CHROMIUM, wait_until_idle
 from solvers import disk_wall
 from tests.conftest import INSTRUCTOR_KEY as KEY
@@ -116,6 +116,16 @@ def segment(scope, label: str, digits: str) -> None:
     box = scope.get_by_role("spinbutton", name=label, exact=True)
     box.click()
     box.page.keyboard.type(digits)
+
+
+def until(page, condition: str, timeout: float = 30) -> None:
+    """Wait until ``condition`` (JavaScript) holds, asked from outside the page: Playwright's wait_for_function
+    polls by evaluating a string in the page, which the app's CSP (no 'unsafe-eval') refuses."""
+    for _ in range(int(timeout * 10)):
+        if page.evaluate(condition):
+            return
+        page.wait_for_timeout(100)
+    raise AssertionError(f"never true: {condition}")
 
 
 def download(page, button: str) -> str:
@@ -226,12 +236,12 @@ def test_an_assignment_end_to_end(browser, course_url):
     bpage.get_by_role("button", name="Show the solution").focus()
     bpage.keyboard.press("Enter")
     wait_for_text(bpage, "Opening the solution is recorded")
-    bpage.wait_for_function("document.activeElement && document.activeElement.innerText.includes('Open the solution')")
+    until(bpage, "document.activeElement && document.activeElement.innerText.includes('Open the solution')")
     bpage.keyboard.press("Tab")
     assert bpage.evaluate("document.activeElement.innerText").strip() == "Keep it hidden"
     bpage.keyboard.press("Enter")
     bpage.get_by_role("button", name="Show the solution").wait_for()
-    bpage.wait_for_function("document.activeElement && document.activeElement.innerText.includes('Show the solution')")
+    until(bpage, "document.activeElement && document.activeElement.innerText.includes('Show the solution')")
     assert "Opening the solution is recorded" not in main_text(bpage)
 
     # Cem, in New York: a typo, then right within his extension.
@@ -275,6 +285,40 @@ def test_an_assignment_end_to_end(browser, course_url):
     assert not errors and not aerrors and not berrors and not cerrors
     for c in (context, actx, bctx, cctx):
         c.close()
+
+
+def test_a_wide_gradebook_scrolls_by_keyboard(browser, course_url, monkeypatch):
+    """Three problems' answers on a 1280×720 projector: the gradebook is wider than the page and scrolled
+    sideways only with a mouse (axe-core: scrollable-region-focusable, serious). Its box is a named region
+    that Tab reaches and the arrow keys scroll."""
+    import importlib
+
+    from sqlalchemy import create_engine
+
+    from tests.conftest import _DATA_DIRS, COURSE_SECRET
+    from ui.catalog import BY_ID
+
+    monkeypatch.setenv(signing.SECRET_ENV, COURSE_SECRET)  # the shared server's, which signs the roster's links
+    bound = create_engine(f"sqlite:///{Path(_DATA_DIRS[0]) / 'dynamics-lab.sqlite'}")  # the shared server's records
+    parts = tuple(records.Part(pid, tuple(a.name for a in importlib.import_module(f"solvers.{pid}").ANSWERS)[:4])
+                  for pid in ("pendulum_rebound", "disk_wall", "sliding_ladder"))
+    due = dt.datetime.now(dt.timezone.utc) + dt.timedelta(days=2)
+    title = "Three problems, twelve answers"
+    aid = records.create(records.Settings(title, parts, 5e-3, due, 3), ["s01", "s02"], bound).id
+    context, page, errors = open_at(browser, f"{course_url}/gradebook", "projector", "UTC")
+    enter_key(page)
+    choose(page, "Assignment", f"{aid}: {title} ({', '.join(BY_ID[p.problem].title for p in parts)})")
+    wait_for_text(page, "Reading the gradebook")
+    box = page.locator("[data-testid='stTable'] > div").filter(has=page.locator("table[aria-label='Gradebook']"))
+    assert box.evaluate("b => b.scrollWidth > b.clientWidth")  # wider than the page: the case at hand
+    assert (box.get_attribute("tabindex"), box.get_attribute("role")) == ("0", "region")
+    assert box.get_attribute("aria-label") == "Gradebook, scrolls sideways"
+    box.focus()
+    page.keyboard.press("ArrowRight")
+    until(page, "document.activeElement.scrollLeft > 0")
+    assert serious_violations(page) == []
+    assert not errors
+    context.close()
 
 
 def records_of(page) -> list[str]:
