@@ -365,8 +365,8 @@ class Judge:
             return unreadable(str(error))  # (_read names a unit of another dimension itself)
         if not expr.free_symbols:
             return self._judge_numeric_expression(answer, expr, unit, correct, system)
-        if (wrong_units := self._in_other_units(text, expr, answer)) is not None:
-            return unreadable(wrong_units, sp.latex(expr))
+        if (wrong_units := self._in_other_units(text, expr, answer)) is not None:  # (read as d·e·g, not "deg")
+            return unreadable(wrong_units, sp.latex(expr, mul_symbol="dot"))
         return _read_as(self._judge_expression(answer, expr, system), f"expression {sp.srepr(expr)}")
 
     def _in_other_units(self, text: str, expr: sp.Expr, answer: Answer) -> str | None:

@@ -839,6 +839,8 @@ def test_a_unit_typed_as_givens_letters_is_not_judged(pid, name, text, hint):
     verdict = judge.check(answers[name], text)
     assert not verdict.readable and not verdict.reading, verdict
     assert f"did you mean {hint}?" in verdict.message and "Not judged" in verdict.message, verdict.message
+    if text == "-44.9 dge":  # "Read as" shows the givens' product as one (juxtaposed, it read "deg")
+        assert r"d \cdot e \cdot g" in verdict.understood, verdict.understood
 
 
 def test_typing_slips_that_would_read_as_numbers_nobody_meant_are_not_judged():
