@@ -245,7 +245,7 @@ def _checks(p, a) -> tuple[Check, ...]:
     )
 
 
-BALL_RADIUS = 0.04  # the ball's drawn radius, as a fraction of l (the model's ball is a point)
+BALL_RADIUS = 0.06  # the ball's drawn radius, as a fraction of l (the model's ball is a point)
 
 
 def motion(solution: Solution, frames: int = 45) -> dict:
