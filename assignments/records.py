@@ -1071,8 +1071,8 @@ class PointsTaken:
 
 def points_taken(assignment_id: int, settings: Settings | None = None, grants: dict[str, Grant] | None = None,
                  bound: Engine | None = None) -> list[PointsTaken]:
-    """The students whose share of the points would drop under ``settings`` (an earlier due time, a tighter
-    tolerance, a harsher late rule…) or ``grants`` (an extension taken back…), ordered by label. (Points
+    """The students whose share of the points would drop under ``settings`` (an earlier due time, fewer
+    attempts, a harsher late rule, an answer no longer counted…; a tolerance applies to answers checked after it) or ``grants`` (an extension taken back…), ordered by label. (Points
     doubled or halved everywhere lower no one.)"""
     now_, then = gradebook(assignment_id, bound), gradebook(assignment_id, bound, settings, grants)
     return lowered(now_, then) if now_ is not None and then is not None else []
@@ -1244,11 +1244,11 @@ def attempts_csv(assignment_id: int, bound: Engine | None = None, names: dict[Qu
         attempts = _numbered(s.scalars(select(db.Attempt).where(db.Attempt.assignment_id == assignment_id)).all(),
                              settings, grants)
     header = ["label", "problem", "answer", "answer_name", "attempt", "typed", "correct", "slip", "time_utc", "late",
-              "late_hours", "over_limit", "solution_shown", "after_right", "credit"]
+              "late_hours", "over_limit", "solution_shown", "credit", "after_right"]  # (new columns last)
     named = names or {}
     return safe_csv(header, ([a.label, a.problem, a.answer, named.get((a.problem, a.answer), a.answer), a.number, a.typed, a.correct, a.slip, _time(a.at), a.late,
-                              round(a.late_by.total_seconds() / 3600, 2), a.over_limit, a.solution_shown, a.after_right,
-                              _points(a.credit)] for a in attempts))
+                              round(a.late_by.total_seconds() / 3600, 2), a.over_limit, a.solution_shown,
+                              _points(a.credit), a.after_right] for a in attempts))
 
 
 def history_csv(entries: list[Logged]) -> str:

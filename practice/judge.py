@@ -31,6 +31,8 @@ TOLERANCE_TEXT = f"±{RELATIVE_TOLERANCE * 100:g} %"  # the practice default
 def tolerance_text(tolerance: float) -> str:
     return f"±{tolerance * 100:g} %"
 # a number, then a unit: one that starts with a digit (1/s) only after a space
+# A number, then letters (and /, ^, powers, spaces) only: a unit, typed or mistyped, or a product of givens.
+_GLUED = re.compile(r"\s*([-+−]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z°/][A-Za-z0-9°/^ ]*)\s*")
 _NUMBER_WITH_UNIT = re.compile(r"^\s*([-+−]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*((?<=\s)\S.*|[^\d\s].*)?$")
 _UNIT_LIKE = re.compile(r"[A-Za-zμ°][A-Za-zμ°/^²³·⋅*\s0-9.\-]*")
 LOOKALIKES = {"w": "omega", "W": "Omega", "u": "mu", "t": "theta", "th": "theta", "o": "omega"}
@@ -209,14 +211,16 @@ def _mlt(expr: sp.Expr, of: dict) -> tuple[Fraction, ...] | None:
 
 
 def _typing_slip(text: str, answer: Answer, system: str) -> str:
-    """What is wrong with text that would be read as a number nobody meant: two signs in a row before a number
-    (--44.94 is +44.94), the degree sign twice (44.94°° is 44.94 × π/180 degrees), a degree sign after an
+    """What is wrong with text that would be read as a number nobody meant: two signs in a row (--44.94 is
+    +44.94; 1 - -5.157 is 6.157), the degree sign twice (44.94°° is 44.94 × π/180 degrees), a degree sign after an
     answer that is not an angle (−315.8° for an angular speed; ° inside sin(30°) is an angle, and stays)."""
-    if re.match(r"\s*[-+−]\s*[-+−]", text):
-        return "Two signs in a row before the number: write one."
+    if re.search(r"[-+−]\s*[-+−]", text):
+        return "Two signs in a row: write one."
     if re.search(r"°\s*°", text):
         return "The degree sign twice: write it once."
-    if answer.dimension != "angle" and re.search(r"\d\s*°\s*$", text):
+    if answer.dimension != "angle" and re.fullmatch(r"\s*[-+−]?[\d.]+(?:[eE][-+]?\d+)?\s*°\s*", text):
+        if answer.dimension == "angular_speed":
+            return "° is a unit of angle; an angular speed is an angle per second: write °/s, deg/s or rad/s."
         return _unit_text_message("°", answer, system)
     return ""
 
@@ -365,34 +369,39 @@ class Judge:
             return unreadable(str(error))  # (_read names a unit of another dimension itself)
         if not expr.free_symbols:
             return self._judge_numeric_expression(answer, expr, unit, correct, system)
-        if (wrong_units := self._in_other_units(text, expr, answer)) is not None:  # (read as d·e·g, not "deg")
-            return unreadable(wrong_units, sp.latex(expr, mul_symbol="dot"))
+        if (glued := _GLUED.fullmatch(text)) and (said := self._letters_after_a_number(glued, expr, answer, system)):
+            return unreadable(said, sp.latex(expr, mul_symbol="dot"))  # (read as d·e·g, not "deg")
         return _read_as(self._judge_expression(answer, expr, system), f"expression {sp.srepr(expr)}")
 
-    def _in_other_units(self, text: str, expr: sp.Expr, answer: Answer) -> str | None:
-        """What to say of an expression whose units are not the answer's (None if they are, or cannot be told):
-        not judged, as a unit of another kind is not. Most are a unit typed as letters that are also givens'
-        names ("-44.9 dge": d·g·e; "0.5 ms": m_s; "1.55 kg m2"); a formula off by units is a slip a
-        check of its units finds before any number does."""
-        if answer.dimension not in units.DIMENSIONS:
-            return None
+    def units_of(self, expr: sp.Expr) -> tuple[Fraction, ...] | None:
+        """The powers of mass, length and time in ``expr`` (an expression in the givens), from each given's
+        dimension; None where they cannot be told (``_mlt``)."""
         of = {sym: tuple(map(Fraction, units.mlt(spec.dimension))) for spec in self.solver.PARAMS
               if (sym := self.givens.get(spec.name)) is not None and getattr(spec, "dimension", None) in units.DIMENSIONS}
-        found, wanted = _mlt(expr, of), tuple(map(Fraction, units.mlt(answer.dimension)))
+        return _mlt(expr, of)
+
+    def _letters_after_a_number(self, glued: re.Match, expr: sp.Expr, answer: Answer, system: str) -> str:
+        """A number and letters that read as givens ("0.25 s", "-44.9 dge": 0.25·s, −44.9·d·g·e) is most often a
+        unit typed or mistyped: what to say, and not judge, when the letters are a unit (of another kind: the
+        answer's own were read as a unit already) or when the product's units are not the answer's; "" to judge
+        it (2551 mg for a force, m·g, is a product of the answer's units). A formula with operators is judged."""
+        typed = glued.group(2).strip()[:20]
+        if units.dimensions_of(typed):  # ("0.25 s" for a length: seconds, or the given s? said both ways)
+            given = self.typed_name(next(iter(expr.free_symbols))) if len(expr.free_symbols) == 1 else ""
+            product = f" To multiply by the given {given}, write {glued.group(1)}*{given}." if given and typed[0].isalpha() else ""
+            return _unit_text_message(typed, answer, system) + product
+        if answer.dimension not in units.DIMENSIONS:
+            return ""
+        found, wanted = self.units_of(expr), tuple(map(Fraction, units.mlt(answer.dimension)))
         if found is None or found == wanted:
-            return None
-        glued = re.fullmatch(r"\s*[-+−]?[\d.]+(?:[eE][-+]?\d+)?\s*([A-Za-z°º/][A-Za-z0-9°º/^ ]*)\s*", text)
-        hint = ""
-        if glued:
-            typed = glued.group(1).strip()[:20]
-            near = difflib.get_close_matches(units.normalise(typed), list(units.SPELLINGS[answer.dimension]), n=1,
-                                             cutoff=0.5)
-            shown = [label for label in {units.unit(answer.dimension, s) for s in units.SYSTEMS}
-                     if near and units.normalise(label) == near[0]]
-            hint = (f" If “{typed}” was meant as a unit, write one the page reads"
-                    + (f" (did you mean {(shown or [units.written(near[0])])[0]}?)" if near else "") + ".")
+            return ""
+        near = difflib.get_close_matches(units.normalise(typed), list(units.SPELLINGS[answer.dimension]), n=1, cutoff=0.5)
+        shown = [label for label in {units.unit(answer.dimension, s) for s in units.SYSTEMS}
+                 if near and units.normalise(label) == near[0]]
+        hint = (f" If “{typed}” was meant as a unit, write one the page reads"
+                + (f" (did you mean {(shown or [units.written(near[0])])[0]}?)" if near else "") + ".")
         kind = answer.dimension.replace("_", " ").replace("inertia", "moment of inertia")
-        return (f"That reads as an expression in the givens with {_units_text(found)}, but this answer is "
+        return (f"That reads as a number times givens, with {_units_text(found)}, but this answer is "
                 f"{'an' if kind[0] in 'aeiou' else 'a'} {kind} ({_units_text(wanted)}).{hint} Not judged: an "
                 "expression must have the answer's units.")
 

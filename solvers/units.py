@@ -121,7 +121,8 @@ def si_units_of(powers) -> str:
         return symbol + ({1: "", 2: "²", 3: "³", 4: "⁴"}.get(n) if n in (1, 2, 3, 4) else f"^({n})" if "/" in str(n) else f"^{n}")
     up = [power(u, n) for u, n in zip(("kg", "m", "s"), powers) if n > 0]
     down = [power(u, n) for u, n in zip(("kg", "m", "s"), powers) if n < 0]
-    return ("·".join(up) or "1") + ("/" + "·".join(down) if down else "") if up or down else "1"
+    below = "·".join(down) if len(down) < 2 else "(" + "·".join(down) + ")"  # 1/(m·s), not 1/m·s
+    return ("·".join(up) or "1") + ("/" + below if down else "") if up or down else "1"
 
 
 def to_display(x: float, dimension: str, system: str = "si") -> float:
@@ -213,7 +214,7 @@ def written(text: str) -> str:
     powers 2 and 3 as ² and ³, no spaces around / ("kg*m^2", "kg m**2": kg·m²; "ft / s": ft/s; "N-m": N·m).
     Letters typed together stay together (kgm^2: kgm²): which units they are is not this function's guess."""
     t = re.sub(r"\s*([/^])\s*", r"\1", text.strip().rstrip(".").replace("**", "^"))
-    t = re.sub(r"\s*[*·⋅]\s*|\s+|(?<=[A-Za-z°²³\d])-(?=[A-Za-z°])", "·", t)
+    t = re.sub(r"(?<=[A-Za-z°²³\d])\s*-\s*(?=[A-Za-z°])|\s*[*·⋅]\s*|\s+", "·", t)
     return re.sub(r"\^([23])(?!\d)", lambda power: "²" if power[1] == "2" else "³", t)
 
 

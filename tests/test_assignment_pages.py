@@ -517,7 +517,7 @@ def test_the_links_say_that_opening_one_answers_as_its_student(course):
     solution there costs the student its points): the page says so, and shows the links as text to copy."""
     aid, s, _ = one_assignment()
     book = instructor()
-    assert any("answers as that student" in w.value for w in book.warning)
+    assert any("answers as that student" in w.value for w in book.info)
     links = next(t.value for t in book.table if "link" in t.value.columns)
     assert all(cell.startswith("`http") and cell.endswith("`") for cell in links["link"]), links
 

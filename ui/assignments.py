@@ -844,7 +844,7 @@ LEGEND = ("**Reading the gradebook.** Each answer's cell says where the student 
 
 # A student's link is that student: whoever opens it answers as them (no key is asked of a student).
 OPENING_A_LINK = ("Opening a student's link answers as that student: every answer checked there is recorded as "
-                  "theirs, and opening the solution there costs them its points. The links are shown to copy, not to "
+                  "theirs, and opening the solution there costs them the points of the answers not yet right. The links are shown to copy, not to "
                   "click; to try the assignment yourself, open its problems in Practice.")
 
 
@@ -872,7 +872,7 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
     st.markdown("Send each student their own link (by your course's messaging, not in a public place): it opens "
                 "their variant, and a changed link is refused."
                 + (" A link opens the first problem; the page lists the others." if len(s.parts) > 1 else ""))
-    st.warning(OPENING_A_LINK, icon=":material/warning:")
+    st.info(OPENING_A_LINK, icon=":material/person:")
     st.download_button("Download the links (CSV)", _links_csv(base, s.problem, book.students),
                        file_name=f"assignment-{aid}-links.csv", mime="text/csv", key="assign__links_csv")
     with st.expander(f"The links ({len(book.students)})"):  # as text to copy, not to click (OPENING_A_LINK)

@@ -53,7 +53,9 @@ SCROLLABLE_TABLES = """<script>
     box.setAttribute("role", "region");
     box.setAttribute("aria-label", ((table && table.getAttribute("aria-label")) || "Table") + ", scrolls sideways");
   });
-  new MutationObserver(mark).observe(document.body, {childList: true, subtree: true});
+  // (an expander opened shows a table that was not laid out before: "open" and aria-expanded change)
+  new MutationObserver(mark).observe(document.body, {childList: true, subtree: true, attributes: true,
+                                                     attributeFilter: ["open", "aria-expanded"]});
   window.addEventListener("resize", mark);
   mark();
 })();

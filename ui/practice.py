@@ -190,7 +190,7 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         box, tolerance = st.columns([5, 1], vertical_alignment="bottom")
         # No max_chars: Streamlit drops a paste longer than it without a word; the judge says the limit
         text = box.text_input("Your answer", key=f"{problem.id}__attempt",
-                              placeholder="a number and unit, or an expression")  # (whole in a phone's box)
+                              placeholder="a number (unit optional), or an expression")  # (whole in a phone's box)
         tolerance.markdown(f"within {tolerance_text(tolerance_value)}", help="A number counts as right within this relative "
                            "tolerance, unless it is nearer a known slip's value. An expression must equal "
                            "the answer.")
