@@ -30,10 +30,11 @@ TOLERANCE_TEXT = f"±{RELATIVE_TOLERANCE * 100:g} %"  # the practice default
 
 def tolerance_text(tolerance: float) -> str:
     return f"±{tolerance * 100:g} %"
+_NUMBER = r"[-+−]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"  # a number as typed: -1.5, .5, 2e-3
 # a number, then a unit: one that starts with a digit (1/s) only after a space
+_NUMBER_WITH_UNIT = re.compile(rf"^\s*({_NUMBER})\s*((?<=\s)\S.*|[^\d\s].*)?$")
 # A number, then letters (and /, ^, powers, spaces) only: a unit, typed or mistyped, or a product of givens.
-_GLUED = re.compile(r"\s*([-+−]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z°/][A-Za-z0-9°/^ ]*)\s*")
-_NUMBER_WITH_UNIT = re.compile(r"^\s*([-+−]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*((?<=\s)\S.*|[^\d\s].*)?$")
+_GLUED = re.compile(rf"\s*({_NUMBER})\s*([A-Za-z°/][A-Za-z0-9°/^ ]*)\s*")
 _UNIT_LIKE = re.compile(r"[A-Za-zμ°][A-Za-zμ°/^²³·⋅*\s0-9.\-]*")
 LOOKALIKES = {"w": "omega", "W": "Omega", "u": "mu", "t": "theta", "th": "theta", "o": "omega"}
 
@@ -182,11 +183,11 @@ CALCULATOR_HINTS = {
 }
 
 
-def _mlt(expr: sp.Expr, of: dict) -> tuple[Fraction, ...] | None:
+def _mlt(expr: sp.Expr, of: dict) -> tuple[int | Fraction, ...] | None:
     """The powers of mass, length and time in ``expr``, each given's from ``of`` (symbol -> powers); None where
     the expression is not one quantity: a sum of terms in different units, a function of a quantity with units
     (sin of a length), a power with a symbol in its exponent."""
-    none = (Fraction(0),) * 3
+    none = (0, 0, 0)
     if expr.is_Symbol:
         return of.get(expr)
     if expr.is_number:
@@ -218,11 +219,19 @@ def _typing_slip(text: str, answer: Answer, system: str) -> str:
         return "Two signs in a row: write one."
     if re.search(r"°\s*°", text):
         return "The degree sign twice: write it once."
-    if answer.dimension != "angle" and re.fullmatch(r"\s*[-+−]?[\d.]+(?:[eE][-+]?\d+)?\s*°\s*", text):
+    if answer.dimension != "angle" and re.fullmatch(rf"\s*{_NUMBER}\s*°\s*", text):
         if answer.dimension == "angular_speed":
             return "° is a unit of angle; an angular speed is an angle per second: write °/s, deg/s or rad/s."
         return _unit_text_message("°", answer, system)
     return ""
+
+
+def _answer_kind(answer: Answer) -> str:
+    """What kind of quantity an answer is, in words: "an angular speed", "a moment of inertia", "a pure number"."""
+    if answer.dimension == "dimensionless":
+        return "a pure number"
+    words = answer.dimension.replace("_", " ").replace("inertia", "moment of inertia")
+    return f"{'an' if words[0] in 'aeiou' else 'a'} {words}"
 
 
 def _units_text(powers) -> str:
@@ -244,8 +253,7 @@ def _unit_text_message(unit_text: str, answer: Answer, system: str) -> str:
     dimension, a unit in the wrong case, or no unit at all."""
     shown, si = units.unit(answer.dimension, system), units.unit(answer.dimension, "si")
     example = " or ".join(dict.fromkeys(u for u in (shown, si) if u)) or "no unit (a pure number)"
-    wanted = answer.dimension.replace("_", " ")
-    kind = "a pure number" if answer.dimension == "dimensionless" else f"{'an' if wanted[0] in 'aeiou' else 'a'} {wanted}"
+    kind = _answer_kind(answer)
     elsewhere = units.dimensions_of(unit_text)
     if elsewhere:
         return (f"{unit_text[:20]!r} is a unit of {elsewhere[0].replace('_', ' ')}, but this answer is {kind}: "
@@ -373,10 +381,10 @@ class Judge:
             return unreadable(said, sp.latex(expr, mul_symbol="dot"))  # (read as d·e·g, not "deg")
         return _read_as(self._judge_expression(answer, expr, system), f"expression {sp.srepr(expr)}")
 
-    def units_of(self, expr: sp.Expr) -> tuple[Fraction, ...] | None:
+    def units_of(self, expr: sp.Expr) -> tuple[int | Fraction, ...] | None:
         """The powers of mass, length and time in ``expr`` (an expression in the givens), from each given's
         dimension; None where they cannot be told (``_mlt``)."""
-        of = {sym: tuple(map(Fraction, units.mlt(spec.dimension))) for spec in self.solver.PARAMS
+        of = {sym: units.mlt(spec.dimension) for spec in self.solver.PARAMS
               if (sym := self.givens.get(spec.name)) is not None and getattr(spec, "dimension", None) in units.DIMENSIONS}
         return _mlt(expr, of)
 
@@ -392,7 +400,7 @@ class Judge:
             return _unit_text_message(typed, answer, system) + product
         if answer.dimension not in units.DIMENSIONS:
             return ""
-        found, wanted = self.units_of(expr), tuple(map(Fraction, units.mlt(answer.dimension)))
+        found, wanted = self.units_of(expr), units.mlt(answer.dimension)
         if found is None or found == wanted:
             return ""
         near = difflib.get_close_matches(units.normalise(typed), list(units.SPELLINGS[answer.dimension]), n=1, cutoff=0.5)
@@ -400,9 +408,8 @@ class Judge:
                  if near and units.normalise(label) == near[0]]
         hint = (f" If “{typed}” was meant as a unit, write one the page reads"
                 + (f" (did you mean {(shown or [units.written(near[0])])[0]}?)" if near else "") + ".")
-        kind = answer.dimension.replace("_", " ").replace("inertia", "moment of inertia")
         return (f"That reads as a number times givens, with {_units_text(found)}, but this answer is "
-                f"{'an' if kind[0] in 'aeiou' else 'a'} {kind} ({_units_text(wanted)}).{hint} Not judged: an "
+                f"{_answer_kind(answer)} ({_units_text(wanted)}).{hint} Not judged: an "
                 "expression must have the answer's units.")
 
     def _read(self, text: str, answer: Answer, system: str) -> tuple[sp.Expr, str]:

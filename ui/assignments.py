@@ -666,7 +666,7 @@ def _edit(aid: int, s: records.Settings) -> None:
             title = st.text_input("Title", s.title, key=f"{p}title")
             c1, c2 = st.columns(2)
             tolerance = c1.number_input("Tolerance for numbers (%)", 0.01, 10.0, s.tolerance * 100, 0.1,
-                                        key=f"{p}tolerance", help=TOLERANCE_FROM_NOW)
+                                        key=f"{p}tolerance", help=f"A new tolerance {TOLERANCE_FROM_NOW}.")
             attempts = c2.number_input("Attempts allowed per answer", 1, 100, s.attempts_allowed, key=f"{p}attempts")
             zone = _zone_picker(f"{p}zone", s.timezone)
             # The date and time fields read in the zone their labels name, the assignment's own: a
@@ -722,14 +722,14 @@ def _edit_parts(aid: int, s: records.Settings) -> None:
 
 # A verdict is the judge's when the answer was checked (what the student was told, and what the attempt counts
 # as): a new tolerance is not applied to answers already recorded.
-TOLERANCE_FROM_NOW = ("Applies to answers checked from now on: those already recorded keep the verdict their "
-                      "student was given.")
+TOLERANCE_FROM_NOW = ("applies to answers checked from now on: those already recorded keep the verdict their "
+                      "student was given")
 
 
 def _save_edit(aid: int, s: records.Settings, new: records.Settings) -> None:
     passed = (" The new due time has passed: answers after it are late, those already recorded included."
               if new.due < records.now() <= s.due else "")
-    passed += f" The new tolerance: {TOLERANCE_FROM_NOW[0].lower()}{TOLERANCE_FROM_NOW[1:]}" if new.tolerance != s.tolerance else ""
+    passed += f" The new tolerance {TOLERANCE_FROM_NOW}." if new.tolerance != s.tolerance else ""
     said = records.edit(aid, new)
     st.session_state["assign__said"] = (f"Saved: {'; '.join(said)}.{passed}" if said else "Nothing changed.")
     st.rerun()

@@ -27,8 +27,8 @@ SLIDER_NAMES = """<script>
 # on the one run after the press; Streamlit runs it each time it draws it.
 TAKE_FOCUS = """<script>
 (() => {
-  const here = document.currentScript && document.currentScript.parentNode;
-  const key = here && here.querySelector("[data-dl-focus]") ? here.querySelector("[data-dl-focus]").dataset.dlFocus : "";
+  const marker = document.currentScript && document.currentScript.parentNode.querySelector("[data-dl-focus]");
+  const key = marker ? marker.dataset.dlFocus : "";
   let tries = 0;
   const take = () => {
     const button = key && document.querySelector(".st-key-" + CSS.escape(key) + " button");

@@ -229,7 +229,8 @@ def _reveal(problem: Problem, recording: Recording | None, revealed_key: str, si
     opened only on a second, deliberate press (on a phone it sits under Check)."""
     asking, costs = f"{problem.id}__reveal_asked", recording.reveal_costs if recording is not None else ""
     focus = f"{problem.id}__reveal_focus"  # the button to take the keyboard's focus on the run after a press
-    if st.session_state.get(asking) == signature and costs:
+    asked = st.session_state.get(asking) == signature and costs
+    if asked:
         st.warning(costs, icon=":material/visibility:")
         open_it, keep = st.columns(2)
         if keep.button("Keep it hidden", key=f"{problem.id}__reveal_keep"):
@@ -237,18 +238,15 @@ def _reveal(problem: Problem, recording: Recording | None, revealed_key: str, si
             st.session_state[focus] = f"{problem.id}__reveal"
             st.rerun()
         pressed = open_it.button("Open the solution", key=f"{problem.id}__reveal_sure")
-        _take_focus(st.session_state.pop(focus, None))
-        if not pressed:
-            return
     else:
         pressed = st.button("Show the solution", key=f"{problem.id}__reveal")
-        _take_focus(st.session_state.pop(focus, None))
-        if not pressed:
-            return
-        if costs:
-            st.session_state[asking] = signature
-            st.session_state[focus] = f"{problem.id}__reveal_sure"
-            st.rerun()
+    _take_focus(st.session_state.pop(focus, None))
+    if not pressed:
+        return
+    if costs and not asked:
+        st.session_state[asking] = signature
+        st.session_state[focus] = f"{problem.id}__reveal_sure"
+        st.rerun()
     st.session_state.pop(asking, None)
     if recording is None or recording.on_reveal():
         st.session_state[revealed_key] = signature
