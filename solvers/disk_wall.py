@@ -33,6 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
+from .diagram import Body, Circle, Diagram, Load, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
@@ -93,20 +94,47 @@ def _vec(*components) -> sp.Matrix:
     return sp.Matrix(components)
 
 
+I_C = sp.Rational(1, 2) * m * R**2
+
+
+def _impact_values(solution) -> dict:
+    """Every symbol of the impact's diagram, from the solution (its answers are the solver's)."""
+    p, a = solution.params, solution.answers
+    return {m: p["m"], R: p["R"], V: p["V"], theta: p["theta"], omega: p["omega"], P_t: a["impulse_t"],
+            P_n: a["impulse_n"], v1x: a["v1x"], v1y: a["v1y"], omega1: a["omega1"]}
+
+
+# Step 2: the disk at the impact. The wall's impulse at B is the only one: gravity and the table's
+# support are finite (and act out of the plane), negligible against it over the impact's instant.
+IMPACT = Diagram(
+    "impact", "At the impact", "impulse",
+    bodies=(Body("the disk", points={"C": (0, 0), "B": (0, R)}, centre="C", about="C",
+                 kinetic=(m * (v1x - V * sp.sin(theta)), m * (v1y - V * sp.cos(theta)), I_C * (omega1 - omega)),
+                 kinetic_latex=(r"m\left(v_{1x} - V\sin\theta\right)", r"m\left(v_{1y} - V\cos\theta\right)",
+                                r"I_C\left(\omega_1 - \omega\right)"),
+                 outline=(Circle("C", R),)),),
+    loads=(Load("P", "the wall's impulse", "the wall", "the disk", at="B", kind="impulse",
+                components=(P_t, P_n)),),
+    values=_impact_values,
+    note="Gravity and the table's support are finite and act out of the plane: negligible against the impulse.",
+)
+
+
+def free_body_diagrams(params) -> tuple[Diagram, ...]:
+    """The diagrams the derivation uses, for these parameters (one: the impact's instant)."""
+    return (IMPACT,)
+
+
 @functools.cache
 def derivation(regime: str) -> Derivation:
     """The symbolic derivation for ``regime`` = "stick" or "slip" (done once per process)."""
-    I_C = sp.Rational(1, 2) * m * R**2
     v_before = _vec(V * sp.sin(theta), V * sp.cos(theta), 0)
     r_BC = _vec(0, R, 0)
     v_B_before = v_before + _vec(0, 0, omega).cross(r_BC)
     v_after = _vec(v1x, v1y, 0)
     v_B_after = v_after + _vec(0, 0, omega1).cross(r_BC)
-    impulse = _vec(P_t, P_n, 0)
-    angular_impulse = r_BC.cross(impulse)[2]
-
-    linear = [sp.Eq(m * (v_after[i] - v_before[i]), impulse[i]) for i in range(2)]
-    angular = sp.Eq(I_C * (omega1 - omega), angular_impulse)
+    linear_x, linear_y, angular = balance(IMPACT, "the disk")  # written from the diagram (Step 3)
+    linear = [linear_x, linear_y]
     restitution = sp.Eq(v1y, -e * v_before[1])
     if regime == "stick":
         tangential = sp.Eq(v_B_after[0], 0)
@@ -118,14 +146,14 @@ def derivation(regime: str) -> Derivation:
 
     T = lambda v, w: sp.Rational(1, 2) * m * (v[0] ** 2 + v[1] ** 2) + sp.Rational(1, 2) * I_C * w**2
     steps = [
-        Step("Velocity of the centre before impact",
-             sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_C^-"), v_before[:2, :], evaluate=False))),
+        Step(r"Origin at the centre C at the instant of impact; $\mathbf{E}_x$ along the wall, $\mathbf{E}_y$ "
+             r"the wall's normal into the wall, $\mathbf{E}_z$ out of the page (ω counter-clockwise +). "
+             "Velocity of the centre before impact",
+             sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_C^-"), v_before[:2, :], evaluate=False)), part=1),
         Step(r"Velocity of the contact point $B = C + R\,\mathbf{E}_y$: $\mathbf{v}_B = \mathbf{v}_C + \omega\mathbf{E}_z \times R\,\mathbf{E}_y$",
-             sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_B^-"), v_B_before[:2, :], evaluate=False))),
-        Step("Linear impulse–momentum (the impulse P acts at B)",
-             r" \qquad ".join(sp.latex(eq) for eq in linear)),
-        Step(r"Angular impulse–momentum about C, with $I_C = \tfrac12 m R^2$ and $(R\,\mathbf{E}_y \times \mathbf{P})\cdot\mathbf{E}_z = -R P_t$",
-             sp.latex(angular)),
+             sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_B^-"), v_B_before[:2, :], evaluate=False)), part=1),
+        *fbd_steps(IMPACT),
+        *balance_steps(IMPACT),
         Step("Newton's restitution on the normal velocity (the normal component reverses)",
              sp.latex(restitution)),
     ]

@@ -7,11 +7,21 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 
+# The course's four steps (the worked solutions' method): every derivation step belongs to one.
+PARTS = {
+    1: "Step 1: origin, coordinates and basis; the kinematics",
+    2: "Step 2: the free-body diagram",
+    3: "Step 3: the balance laws, written from the diagram",
+    4: "Step 4: the analysis",
+}
+
+
 @dataclass(frozen=True)
 class Step:
     title: str
     latex: str
     numeric: bool = False  # the step puts in the numbers (hidden while a student practises)
+    part: int = 4  # which of the course's four steps (PARTS) it belongs to; the numbers are the analysis
 
 
 @dataclass(frozen=True)
