@@ -13,6 +13,7 @@ import pytest
 
 from solvers import registry
 from solvers.core import Answer, Choice, Number
+from solvers.diagram import Diagram
 from solvers.protocol import About, Mistake, Variants
 from viz.common import thumbnail
 
@@ -86,6 +87,13 @@ def solver_lacks(pid: str, solver) -> list[str]:
     for name in ("solve", "derivation_of", "motion", "_checks"):
         if not callable(getattr(solver, name, None)):
             missing.append(f"{pid}: no {name}()")
+    declare = getattr(solver, "free_body_diagrams", None)
+    if not callable(declare):
+        missing.append(f"{pid}: no free_body_diagrams(params) (the course's Step 2: a tuple of solvers.diagram.Diagram)")
+    elif callable(getattr(solver, "solve", None)):
+        diagrams = declare(solver.solve().params)
+        if not diagrams or not _tuple_of(diagrams, Diagram):
+            missing.append(f"{pid}: free_body_diagrams() gives no Diagram (a non-empty tuple of solvers.diagram.Diagram)")
     return missing
 
 
@@ -164,9 +172,10 @@ def test_what_a_problem_lacks_is_named():
     assert solver_lacks("sliding_ladder", copied(solver, without=("MISTAKES",))) == ["sliding_ladder: no MISTAKES (a non-empty tuple of Mistake)"]
     assert solver_lacks("sliding_ladder", copied(solver, MISTAKES=())) == ["sliding_ladder: no MISTAKES (a non-empty tuple of Mistake)"]
     for name in ("ABOUT", "PARAMS", "ANSWERS", "ERRATA", "VARIANTS", "LIMIT_LABELS", "WARM", "SYMBOLS",
-                 "DIMENSIONS", "solve", "derivation_of", "motion", "_checks"):
+                 "DIMENSIONS", "solve", "derivation_of", "motion", "_checks", "free_body_diagrams"):
         found = solver_lacks("sliding_ladder", copied(solver, without=(name,)))
         assert any(m.startswith(f"sliding_ladder: no {name}") for m in found), (name, found)
+    assert "gives no Diagram" in solver_lacks("sliding_ladder", copied(solver, free_body_diagrams=lambda p: ()))[0]
     wrong = Mistake("no_such_answer", "feedback", lambda p: 0)
     assert solver_lacks("sliding_ladder", copied(solver, MISTAKES=(wrong,))) == [
         "sliding_ladder: MISTAKES name what is not an answer: ['no_such_answer']"]

@@ -65,8 +65,10 @@ ensuremath textbackslash textless textgreater textbar ldots
 alpha beta gamma delta Delta theta tau mu pi sigma psi omega phi lambda rho Sigma ell infty int le ge approx
 cdot times circ to surd sqrt frac tfrac dfrac left right lvert rvert quad qquad Rightarrow iff limits
 sin cos tan operatorname mathbf mathrm boldsymbol hat dot ddot vec text small footnotesize scriptsize
-""".split())
-ENVIRONMENTS = {"document", "tabular", "itemize", "enumerate", "equation*", "aligned", "matrix"}
+subsubsection setcounter sum
+draw fill node
+""".split())  # the last line: TikZ's, in a free-body diagram's tikzpicture
+ENVIRONMENTS = {"document", "tabular", "itemize", "enumerate", "equation*", "aligned", "matrix", "center", "tikzpicture"}
 
 
 def macros(tex: str) -> set[str]:

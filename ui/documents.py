@@ -18,7 +18,9 @@ from solvers.core import Choice, Solution
 from ui import results
 from ui.catalog import Problem
 from ui.equations import broken
-from ui.practice import answer_label, flat_latex, result_forms
+from solvers.solution import PARTS
+from ui.practice import answer_label, exercise_steps as method_steps
+from viz import diagram as fbd
 
 
 @dataclass(frozen=True)
@@ -40,6 +42,8 @@ class Document:
     exercise: bool = False
     heading: str = ""  # a handout's line above the title ("Variant 17", a roster's label)
     work_space: bool = False  # a student's sheet: room to work instead of the method
+    parts: tuple[tuple[int, str], ...] = ()  # (index of a step, the heading of the course's step it opens)
+    diagrams: tuple[fbd.Drawing, ...] = ()  # the free-body diagrams, drawn under Step 2's heading
 
 
 def givens(problem: Problem, solution: Solution, system: str = "si") -> tuple[tuple[str, str, str], ...]:
@@ -54,12 +58,18 @@ def givens(problem: Problem, solution: Solution, system: str = "si") -> tuple[tu
     return tuple(rows)
 
 
+def _parts(parts_of_steps) -> tuple[tuple[int, str], ...]:
+    out, last = [], None
+    for i, part in enumerate(parts_of_steps):
+        if part != last:
+            out.append((i, PARTS[part]))
+            last = part
+    return tuple(out)
+
+
 def exercise_steps(solution: Solution, derivation) -> tuple[tuple[str, str], ...]:
-    """The method as the Practice view shows it: every symbolic step's title, and its equation only
-    where it shows no result (by symbol or closed form)."""
-    forms = result_forms(derivation)
-    return tuple((s.title, "" if any(f in flat_latex(s.latex) for f in forms) else s.latex)
-                 for s in solution.steps[: solution.symbolic_steps])
+    """The method as the Practice view shows it (``ui.practice.exercise_steps``): (title, equation or "")."""
+    return tuple((title, tex) for _, title, tex in method_steps(solution.steps[: solution.symbolic_steps], derivation))
 
 
 def document(problem: Problem, solution: Solution, answers, system: str = "si", link: str = "",
@@ -69,16 +79,26 @@ def document(problem: Problem, solution: Solution, answers, system: str = "si", 
     common = dict(title=problem.title, blurb=problem.blurb, source=problem.source, link=link,
                   givens=givens(problem, solution, system), find=find, heading=heading)
     if exercise:
-        return Document(**common, steps=exercise_steps(solution, problem.solver.derivation_of(solution)), exercise=True)
+        shown = method_steps(solution.steps[: solution.symbolic_steps], problem.solver.derivation_of(solution))
+        return Document(**common, steps=tuple((title, tex) for _, title, tex in shown), exercise=True,
+                        parts=_parts(part for part, _, _ in shown))
     checks = tuple(f"{'agrees' if ok else 'DIFFERS'}: {name}: {closed} vs {second}" + (f" ({why})" if why else "")
                    for ok, name, closed, second, why in results.checks(solution))
     return Document(**common, steps=tuple((s.title, s.latex) for s in solution.steps),
                     answers=tuple(map(tuple, results.answer_rows(solution, answers, system))),
-                    notes=tuple(solution.notes), checks=checks, slips=tuple(problem.solver.ERRATA))
+                    notes=tuple(solution.notes), checks=checks, slips=tuple(problem.solver.ERRATA),
+                    parts=_parts(s.part for s in solution.steps), diagrams=tuple(fbd.drawings(problem.solver, solution)))
 
 
 # ------------------------------------------------------------------------------------------------
 # Markdown with $$ math
+
+def _data_uri(drawing) -> str:
+    """A free-body diagram as an image a Markdown viewer shows (its SVG, base64 in a data: URI)."""
+    import base64
+
+    return "data:image/svg+xml;base64," + base64.b64encode(fbd.svg(drawing).encode()).decode()
+
 
 def _cell(text: str) -> str:
     return text.replace("|", r"\|")
@@ -102,7 +122,12 @@ def markdown(doc: Document) -> str:
     out += ["## The method" if doc.exercise else "## Derivation, step by step", ""]
     if doc.exercise:
         out += ["The steps to take; equations that lead to a result come with the solution.", ""]
+    heads = dict(doc.parts)
     for i, (title, tex) in enumerate(doc.steps, start=1):
+        if i - 1 in heads:
+            out += [f"### {heads[i - 1]}", ""]
+            if heads[i - 1] == PARTS[2]:
+                out += [f"![{d.text}]({_data_uri(d)})" for d in doc.diagrams] + ([""] if doc.diagrams else [])
         out += [f"**{i}.** {title}", ""] + ([f"$$\n{tex}\n$$", ""] if tex else [])
     if doc.checks:
         out += ["## Checked a second way", ""] + [f"- {check}" for check in doc.checks] + [""]
@@ -243,10 +268,21 @@ def tex_body(doc: Document) -> str:
     out.append(r"\subsection*{" + ("The method" if doc.exercise else "Derivation, step by step") + "}")
     if doc.exercise:
         out.append(r"The steps to take; equations that lead to a result come with the solution.\par")
-    out.append(r"\begin{enumerate}")
-    for title, tex in doc.steps:
-        out.append(r"\item " + tex_text(title) + ("\n" + display_math(tex) if tex else ""))
-    out.append(r"\end{enumerate}")
+    heads = dict(doc.parts)
+    opened = False
+    for i, (title, tex) in enumerate(doc.steps):
+        if i in heads or not opened:
+            if opened:
+                out.append(r"\end{enumerate}")
+            if i in heads:  # the course's step: its heading is kept with what follows it on paper
+                out.append(r"\subsubsection*{" + tex_text(heads[i]) + "}")
+                if heads[i] == PARTS[2] and doc.diagrams:
+                    out += [r"\begin{center}", r"\quad".join(fbd.tikz(d) for d in doc.diagrams), r"\end{center}"]
+            out += [r"\begin{enumerate}", r"\setcounter{enumi}{" + str(i) + "}"]
+            opened = True
+        out.append(r"\item " + tex_markdown(title) + ("\n" + display_math(tex) if tex else ""))
+    if opened:
+        out.append(r"\end{enumerate}")
     if doc.checks:
         out += [r"\subsection*{Checked a second way}", r"\begin{itemize}"]
         out += [r"\item " + tex_text(check) for check in doc.checks] + [r"\end{itemize}"]
@@ -256,9 +292,14 @@ def tex_body(doc: Document) -> str:
     return "\n".join(out) + "\n"
 
 
+def _preamble(docs) -> str:
+    """The preamble, with TikZ where a free-body diagram is drawn."""
+    return PREAMBLE + (r"\usepackage{tikz}" + "\n" if any(d.diagrams for d in docs) else "")
+
+
 def latex(doc: Document) -> str:
     """A standalone .tex file: ``pdflatex`` compiles it as it is."""
-    return PREAMBLE + "\\begin{document}\n" + tex_body(doc) + "\\end{document}\n"
+    return _preamble([doc]) + "\\begin{document}\n" + tex_body(doc) + "\\end{document}\n"
 
 
 def ascii_only(text: str) -> bool:
@@ -274,7 +315,8 @@ def character_names(chars: set[str]) -> list[str]:
 
 def statement_sheet(doc: Document) -> Document:
     """A student's sheet: the statement with their givens, and room to work instead of the method."""
-    return replace(doc, steps=(), answers=(), notes=(), checks=(), slips=(), exercise=True, work_space=True)
+    return replace(doc, steps=(), answers=(), notes=(), checks=(), slips=(), exercise=True, work_space=True,
+                   parts=(), diagrams=())
 
 
 def key_sheet(doc: Document) -> Document:
@@ -285,7 +327,7 @@ def key_sheet(doc: Document) -> Document:
 
 def handout_latex(docs: list[Document]) -> str:
     """Several sheets in one .tex, each from a new page; a statement ends with room to work."""
-    return PREAMBLE + "\\begin{document}\n" + "\\newpage\n".join(tex_body(doc) for doc in docs) + "\\end{document}\n"
+    return _preamble(docs) + "\\begin{document}\n" + "\\newpage\n".join(tex_body(doc) for doc in docs) + "\\end{document}\n"
 
 
 def handout_markdown(docs: list[Document]) -> str:

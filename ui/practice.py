@@ -18,6 +18,7 @@ from practice import instructor
 from practice.judge import RELATIVE_TOLERANCE, Judge, Verdict, tolerance_text
 from practice.variants import MAX_SEED, variants_csv
 from solvers.core import Choice, Derivation, Solution
+from solvers.solution import PARTS
 from solvers import units
 from ui.catalog import Problem
 from ui.inline_scripts import TAKE_FOCUS
@@ -132,17 +133,38 @@ def result_forms(derivation: Derivation) -> list[str]:
     return forms
 
 
-def method(steps, derivation: Derivation) -> str:
-    """The method: every symbolic step's title, and the equation only of the steps that show no
-    result (no unknown, answer or intermediate value, by symbol or by closed form), so no step shows
-    what it leads to."""
+DRAW_IT = ("Draw the free-body diagram: isolate the body, and put on it every force, impulse and couple, each "
+           "at the point where it acts (the diagram comes with the solution).")
+
+
+def exercise_steps(steps, derivation: Derivation) -> list[tuple[int, str, str]]:
+    """The method as an exercise shows it, (part, title, equation or ""): every step's title, and the
+    equation only of the steps that show no result (no unknown, answer or intermediate value, by
+    symbol or by closed form); the free-body diagram (Step 2) is the student's to draw, so its steps
+    are one instruction and the balance laws written from it (Step 3) keep their titles alone."""
     forms = result_forms(derivation)
-    blocks = []
-    for i, step in enumerate(steps, start=1):
-        blocks.append(f"**{i}.** {plain_with_math(step.title)}")
+    out = []
+    for step in steps:
+        if step.part == 2:
+            if not out or out[-1][0] != 2:
+                out.append((2, DRAW_IT, ""))
+            continue
         flat = flat_latex(step.latex)
-        if not any(form in flat for form in forms):
-            blocks.append(f"$$\n{step.latex}\n$$")
+        shows = step.part == 3 or any(form in flat for form in forms)
+        out.append((step.part, step.title, "" if shows else step.latex))
+    return out
+
+
+def method(steps, derivation: Derivation) -> str:
+    """The method (``exercise_steps``) under the course's four headings."""
+    blocks, last = [], None
+    for i, (part, title, tex) in enumerate(exercise_steps(steps, derivation), start=1):
+        if part != last:
+            blocks.append(f"#### {PARTS[part]}")
+            last = part
+        blocks.append(f"**{i}.** {plain_with_math(title)}")
+        if tex:
+            blocks.append(f"$$\n{tex}\n$$")
     return "\n\n".join(["### The method", ":gray[The steps to take. Equations that lead to a result appear "
                         "with the solution.]", *blocks])
 

@@ -8,9 +8,11 @@ import orjson
 import streamlit as st
 
 from solvers.core import Answer, PhysicalLimitError, Solution
-from solvers import units
+from solvers import registry, units
+from solvers.solution import PARTS
 from ui import figure
 from ui.equations import WIDE_WIDTH_EM, wide_too
+from viz import diagram
 
 ANSWERS_HEADING = "Answers"
 LEDGER_HEADING = "Across the impact"
@@ -84,10 +86,29 @@ def derivation(solution: Solution, caption: str = "", slips: tuple[str, ...] = (
     figure.declared(figure.DERIVATION)(data=derivation_data(solution, caption, slips), key="derivation")
 
 
+def parts(steps) -> list[list]:
+    """[index of the first step, heading] for each of the course's four steps the derivation has."""
+    out, last = [], None
+    for i, step in enumerate(steps):
+        if step.part != last:
+            out.append([i, PARTS[step.part]])
+            last = step.part
+    return out
+
+
+def diagrams(solution: Solution) -> list[list[str]]:
+    """[SVG, its text alternative] for each free-body diagram of the solution (Step 2)."""
+    if solution.problem not in registry.PROBLEM_IDS:
+        return []
+    return [[diagram.svg(d), d.text] for d in diagram.drawings(registry.solver(solution.problem), solution)]
+
+
 def derivation_data(solution: Solution, caption: str = "", slips: tuple[str, ...] = ()) -> bytes:
-    """What the derivation's element is sent (``derivation``)."""
+    """What the derivation's element is sent (``derivation``): the steps under the course's four
+    headings, the free-body diagrams drawn at the head of Step 2."""
     payload = {"view": "derivation", "heading": DERIVATION_HEADING, "caption": caption,
                "steps": [[step.title, *wide_too(step.latex)] for step in solution.steps], "wide_em": WIDE_WIDTH_EM,
+               "parts": parts(solution.steps), "diagrams": diagrams(solution),
                "slips_heading": SLIPS_HEADING, "slips": list(slips), "katex": figure.katex_url()}
     return orjson.dumps(payload)
 

@@ -36,6 +36,13 @@ const CSS = `
 .dl-text .dl-bad { color: var(--st-red-text-color, #9E303B); }
 .dl-text .dl-changes { color: var(--st-orange-text-color, #9B4519); }
 .dl-text .dl-mark { display: inline-block; min-width: 1.1em; text-align: center; font-weight: 700; margin-right: 0.2em; }
+/* The course's four steps, and the free-body diagrams drawn at the head of Step 2 (server-made SVG). */
+.dl-text h4.dl-part { font-size: 1.2rem; padding: 0.5rem 0 0.6rem 0; }
+.dl-text figure.dl-fbd-figure { margin: 0 0 1rem 0; display: inline-block; vertical-align: top; margin-right: 1rem;
+  width: min(100%, 30rem); }
+.dl-text figure.dl-fbd-figure svg { width: 100%; height: auto; display: block; border: 1px solid rgba(49, 51, 63, 0.2);
+  border-radius: 0.25rem; }
+.dl-text figure.dl-fbd-figure figcaption { font-size: 0.9em; opacity: 0.8; margin-top: 0.25rem; }
 .dl-text .dl-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }
 `;
 
@@ -201,9 +208,12 @@ class Derivation {
       const step = make("div");
       const p = make("p");
       p.append(make("strong"), make("span"));
-      step.append(p, make("div", "dl-math"));
+      step.append(make("div", "dl-before"), p, make("div", "dl-math"));
       return step;
     });
+    // Each of the course's four steps opens with its heading; Step 2 with the free-body diagrams, drawn by
+    // the server from the problem's declarations (viz/diagram.py: only numbers and declared labels in them).
+    const heads = new Map((d.parts || []).map(([at, title]) => [at, title]));
     // A step broken for a phone with a row set smaller comes broken for a wide column too: taken where the
     // column holds that width in KaTeX's em (the server's estimate runs up to 15 % short).
     const drawn = this.steps.querySelector(".katex-display > .katex");  // (before any: KaTeX's 1.21 em)
@@ -213,7 +223,21 @@ class Derivation {
     [...this.steps.children].forEach((step, i) => {
       const [title, narrow, broad] = d.steps[i];
       const roomy = broad && wide && !(step.dlTooWide >= column);  // (where it overflowed, not again at this width)
-      put(step.firstChild, [i, title], (p) => {
+      const part = heads.get(i);
+      const isDiagrams = part !== undefined && /^Step 2/.test(part);
+      put(step.firstChild, [part, isDiagrams ? d.diagrams : null], (before) => {
+        before.replaceChildren();
+        if (part === undefined) return;
+        before.append(make("h4", "dl-part", part));
+        if (!isDiagrams) return;
+        for (const [svg, text] of d.diagrams || []) {
+          const fig = make("figure", "dl-fbd-figure");
+          fig.innerHTML = svg;
+          fig.append(make("figcaption", "", text.split(":")[0]));
+          before.append(fig);
+        }
+      });
+      put(step.children[1], [i, title], (p) => {
         p.firstChild.textContent = `${i + 1}.`;
         p.lastChild.replaceChildren(" ");
         inline(katex, title, p.lastChild);

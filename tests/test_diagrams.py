@@ -1,0 +1,162 @@
+"""The free-body diagrams (solvers/diagram.py, each problem's ``free_body_diagrams``) and the
+course's four steps, for every registered problem: the picture and the equations are one source,
+the balance laws hold at the solver's own numbers, and the drawing is legible (no label on another,
+none outside the picture). Each problem's own file tests its directions by its physics."""
+from __future__ import annotations
+
+import math
+
+import pytest
+import sympy as sp
+from hypothesis import HealthCheck, given, settings, strategies as st
+
+from solvers import registry
+from solvers.diagram import Load, balance, balance_steps, fbd_steps, residuals, resultant
+from solvers.solution import PARTS
+from tests.strategies import valid
+from viz import diagram as fbd
+
+IDS = registry.PROBLEM_IDS
+VALID = {pid: valid(pid) for pid in IDS}
+SETTINGS = dict(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+def _solutions(pid, params):
+    solver = registry.solver(pid)
+    try:
+        return [solver.solve(**params)]
+    except ValueError:
+        return []
+
+
+def test_every_problem_declares_its_diagrams():
+    for pid in IDS:
+        solution = registry.solver(pid).solve()
+        diagrams = registry.solver(pid).free_body_diagrams(solution.params)
+        assert diagrams, pid
+        for d in diagrams:
+            assert d.law in ("force", "impulse"), (pid, d.phase)
+            names = {b.name for b in d.bodies}
+            for load in d.loads:
+                assert load.kind in ("force", "impulse", "couple"), (pid, load)
+                assert load.on in names, (pid, load.symbol, load.on)
+                if load.kind != "couple":
+                    assert load.at in d.body(load.on).points, (pid, load.symbol, load.at)
+                    assert (load.direction is None) == bool(load.components) or load.direction is not None, load
+                assert load.name and load.by and load.symbol, (pid, load)
+                if load.pair:  # an interaction pair: drawn on both bodies, opposite
+                    partner = next(l for l in d.loads if l.symbol == load.pair)
+                    assert partner.on != load.on and partner.pair == load.symbol, (pid, load.symbol)
+            for body in d.bodies:
+                assert body.centre in body.points and body.about in body.points, (pid, body.name)
+
+
+def _parts(solution):
+    return [s.part for s in solution.steps]
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(**SETTINGS)
+@given(data=st.data())
+def test_the_derivation_is_in_the_courses_four_steps_and_written_from_the_diagram(pid, data):
+    """Every step in one of the four, in order, all four there; Step 2 is the declared diagrams'
+    and Step 3 holds their balance laws, so the diagram and the equations cannot disagree."""
+    for solution in _solutions(pid, data.draw(VALID[pid])):
+        parts = _parts(solution)
+        assert parts == sorted(parts) and set(parts) == set(PARTS), (pid, parts)
+        diagrams = registry.solver(pid).free_body_diagrams(solution.params)
+        steps = list(solution.steps)
+        expected_fbd = [s for d in diagrams for s in fbd_steps(d)]
+        assert [s for s in steps if s.part == 2] == expected_fbd, pid
+        part3 = [s for s in steps if s.part == 3]
+        for d in diagrams:
+            for s in balance_steps(d):
+                assert s in part3, (pid, d.phase, s.title)
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(**SETTINGS)
+@given(data=st.data())
+def test_the_balance_laws_hold_at_the_solvers_numbers(pid, data):
+    """ΣF = m a_G and ΣM = Ḣ (or their impulse forms), summed from the declared loads, hold at the
+    numbers the solver's own physics gives for the instant drawn."""
+    for solution in _solutions(pid, data.draw(VALID[pid])):
+        for d in registry.solver(pid).free_body_diagrams(solution.params):
+            for law, left, right in residuals(d, solution):
+                scale = max(abs(left), abs(right), 1e-12 * (1 + max(abs(v) for v in d.values(solution).values())))
+                assert math.isclose(left, right, rel_tol=1e-7, abs_tol=1e-9 * scale + 1e-12), (pid, d.phase, law, left, right)
+
+
+def test_a_load_left_out_of_the_diagram_breaks_the_balance():
+    """Positive control: the balance check fails when a declared load is dropped."""
+    from dataclasses import replace
+
+    for pid in IDS:
+        solution = registry.solver(pid).solve()
+        for d in registry.solver(pid).free_body_diagrams(solution.params):
+            values = d.values(solution)
+            for load in d.loads:
+                if load.kind == "couple":
+                    size = abs(float(sp.sympify(load.size).subs(values)))
+                else:
+                    size = max(abs(float(sp.sympify(c).subs(values))) for c in load.vector)
+                if size < 1e-6:
+                    continue  # (a reaction that vanishes here, Euler's friction: nothing to miss)
+                less = replace(d, loads=tuple(l for l in d.loads if l is not load))
+                assert any(not math.isclose(a, b, rel_tol=1e-6, abs_tol=1e-9) for _, a, b in residuals(less, solution)), \
+                    (pid, d.phase, load.symbol)
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(**SETTINGS)
+@given(data=st.data())
+def test_the_drawing_is_legible(pid, data):
+    """No label on another, every label and shape inside the picture's box, each load drawn and
+    said in words (the text alternative names each load and its point)."""
+    solver = registry.solver(pid)
+    for solution in _solutions(pid, data.draw(VALID[pid])):
+        for d, drawing in zip(solver.free_body_diagrams(solution.params), fbd.drawings(solver, solution)):
+            boxes = [label.box for label in drawing.labels]
+            for i, a in enumerate(boxes):
+                assert a.inside(drawing.box), (pid, d.phase, drawing.labels[i].tex)
+                for j in range(i):
+                    assert not a.overlaps(boxes[j]), (pid, d.phase, drawing.labels[i].tex, drawing.labels[j].tex)
+            drawn = {a.load for a in drawing.arrows} | {c.load for c in drawing.curls}
+            for load in d.loads:
+                assert load.symbol in drawn, (pid, d.phase, load.symbol)
+                assert load.name in drawing.text, (pid, load.name)
+            svg = fbd.svg(drawing)
+            assert svg.startswith("<svg") and 'role="img"' in svg and "aria-label=" in svg
+
+
+def test_an_unknown_reaction_is_drawn_as_its_two_components_and_an_impulse_with_an_open_head():
+    from solvers import disk_wall
+
+    solution = disk_wall.solve()
+    drawing = fbd.drawings(disk_wall, solution)[0]
+    loads = [a for a in drawing.arrows if a.kind != "basis"]
+    assert sorted(a.label.tex for a in loads) == sorted(sp.latex(c) for c in disk_wall.IMPACT.loads[0].components)
+    assert all(a.kind == "impulse" for a in loads)
+    assert 'fill="#ffffff" stroke="#b3261e"' in fbd.svg(drawing)  # the open head
+
+
+def test_labels_are_written_as_subscripts():
+    assert fbd.runs("N_A") == [("N", ""), ("A", "sub")]
+    assert fbd.runs(r"m_{s} g") == [("m", ""), ("s", "sub"), ("g", "")]
+    assert fbd.runs(r"\mu N_{f}") == [("μN", ""), ("f", "sub")]
+    assert fbd.plain_label(r"O_{x}") == "O_x"
+
+
+def test_practice_withholds_the_diagram():
+    """The exercise's method says to draw the diagram and shows neither it nor the balance laws."""
+    from ui.practice import DRAW_IT, exercise_steps
+
+    for pid in IDS:
+        solver = registry.solver(pid)
+        solution = solver.solve()
+        shown = exercise_steps(solution.steps[: solution.symbolic_steps], solver.derivation_of(solution))
+        assert [t for part, t, _ in shown if part == 2] == [DRAW_IT], pid
+        assert all(tex == "" for part, _, tex in shown if part == 3), pid
+        loads = {l.name for d in solver.free_body_diagrams(solution.params) for l in d.loads}
+        text = " ".join(t + tex for _, t, tex in shown)
+        assert not any(name in text for name in loads), pid

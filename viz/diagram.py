@@ -1,0 +1,549 @@
+"""A free-body diagram drawn from a problem's declarations (solvers/diagram.py), for the page's
+numbers: laid out once as plain shapes (``layout``), then written as SVG (the page, print, the
+handouts), TikZ (the .tex) or drawn by matplotlib (the notebook), so every picture is the same.
+
+How a professor draws it on the board: the body isolated and outlined, its named points, the basis
+in a corner, each force as an arrow at its point with its label; a push (a normal force, a contact
+reaction) has its head at the point and its tail outside the body, a pull or a body force (the
+weight) its tail at the point; a reaction of unknown direction as its two components in the
+positive basis directions (the solution's signs say which way they really act); an impulse with an
+open head, distinct from a force's filled one; a couple as a curved arrow in its sense. Arrows have
+one length (a diagram shows which forces and where, not their sizes; the stage's Forces overlay
+draws them to size). Labels are placed where they overlap no other label, arrow or point, and the
+picture's box holds them all.
+"""
+from __future__ import annotations
+
+import html
+import math
+import re
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from solvers.diagram import Circle, Diagram, Load, Outline, Rod
+
+BODY_SIZE = 180.0  # the largest body's extent, in the drawing's units (an SVG viewBox's)
+ARROW = 62.0  # a load's length
+FONT = 17.0  # a label's size
+POINT_FONT = 15.0
+GAP = 90.0  # between two bodies of one diagram (an interaction pair drawn apart)
+MARGIN = 8.0
+COUPLE_RADIUS = 24.0
+LOAD_COLOR = "#b3261e"
+BODY_FILL = "#e8eaed"
+BODY_STROKE = "#3c4043"
+BASIS_COLOR = "#3c4043"
+
+
+@dataclass
+class Box:
+    x0: float
+    y0: float
+    x1: float
+    y1: float
+
+    def overlaps(self, other: "Box", pad: float = 0.0) -> bool:
+        return not (self.x1 + pad <= other.x0 or other.x1 + pad <= self.x0 or
+                    self.y1 + pad <= other.y0 or other.y1 + pad <= self.y0)
+
+    def inside(self, other: "Box") -> bool:
+        return self.x0 >= other.x0 - 1e-9 and self.y0 >= other.y0 - 1e-9 and self.x1 <= other.x1 + 1e-9 and self.y1 <= other.y1 + 1e-9
+
+
+@dataclass
+class Label:
+    """A label's text (LaTeX as declared), its box's centre and size, in the drawing's units (y up)."""
+
+    tex: str
+    x: float
+    y: float
+    size: float = FONT
+
+    @property
+    def box(self) -> Box:
+        w, h = label_width(self.tex, self.size), self.size * 1.15
+        return Box(self.x - w / 2, self.y - h / 2, self.x + w / 2, self.y + h / 2)
+
+
+@dataclass
+class Arrow:
+    tail: tuple[float, float]
+    head: tuple[float, float]
+    kind: str  # "force", "impulse" or "basis"
+    label: Label | None = None
+    load: str = ""  # the declared load's symbol this arrow draws (a component's for a reaction)
+
+
+@dataclass
+class Curl:
+    centre: tuple[float, float]
+    radius: float
+    ccw: bool
+    label: Label | None = None
+    load: str = ""
+
+
+@dataclass
+class Drawing:
+    """A diagram laid out: shapes in the drawing's units, y up; ``box`` holds everything."""
+
+    title: str
+    circles: list[tuple[float, float, float]] = field(default_factory=list)
+    rods: list[tuple[float, float, float, float]] = field(default_factory=list)
+    polygons: list[list[tuple[float, float]]] = field(default_factory=list)
+    points: list[tuple[float, float, Label]] = field(default_factory=list)
+    arrows: list[Arrow] = field(default_factory=list)
+    curls: list[Curl] = field(default_factory=list)
+    box: Box = field(default_factory=lambda: Box(0, 0, 1, 1))
+    text: str = ""  # the text alternative
+
+    @property
+    def labels(self) -> list[Label]:
+        return ([p[2] for p in self.points] + [a.label for a in self.arrows if a.label]
+                + [c.label for c in self.curls if c.label])
+
+
+# ------------------------------------------------------------------------------------------------
+# Labels: the declared LaTeX as runs of text, subscripts and superscripts
+
+_GREEK = {r"\theta": "θ", r"\omega": "ω", r"\mu": "μ", r"\tau": "τ", r"\alpha": "α", r"\phi": "φ", r"\psi": "ψ",
+          r"\Delta": "Δ", r"\sigma": "σ", r"\lambda": "λ", r"\rho": "ρ", r"\beta": "β", r"\ell": "ℓ",
+          r"\hat": "", r"\mathbf": "", r"\mathrm": "", r"\mathit": "", r"\,": " ", r"\;": " ", r"\!": "", r"\cdot": "·"}
+_LATEX_TOKEN = re.compile(r"\\[a-zA-Z]+|\\.|[{}_^]|[^\\{}_^\s]|\s+")
+
+
+def runs(tex: str) -> list[tuple[str, str]]:
+    """A label's LaTeX as (text, "" | "sub" | "sup") runs: enough for the symbols the solvers
+    declare (N_A, m_s g, O_x, \\mu N_f, M_{k})."""
+    tokens = _LATEX_TOKEN.findall(tex)
+    out: list[tuple[str, str]] = []
+    i, mode, depth_mode = 0, "", []
+
+    def add(text: str, where: str):
+        if out and out[-1][1] == where:
+            out[-1] = (out[-1][0] + text, where)
+        else:
+            out.append((text, where))
+
+    while i < len(tokens):
+        t = tokens[i]
+        if t in ("_", "^"):
+            where = "sub" if t == "_" else "sup"
+            i += 1
+            if i < len(tokens) and tokens[i] == "{":
+                depth, j, inner = 1, i + 1, []
+                while j < len(tokens) and depth:
+                    depth += {"{": 1, "}": -1}.get(tokens[j], 0)
+                    if depth:
+                        inner.append(tokens[j])
+                    j += 1
+                add("".join(_GREEK.get(x, x) for x in inner if x not in "{}" and not x.isspace()), where)
+                i = j
+            elif i < len(tokens):
+                add(_GREEK.get(tokens[i], tokens[i]), where)
+                i += 1
+            continue
+        if t in ("{", "}") or t.isspace():
+            i += 1
+            continue
+        add(_GREEK.get(t, t.lstrip("\\") if t.startswith("\\") and len(t) > 2 else t), "")
+        i += 1
+    return [(text, where) for text, where in out if text]
+
+
+def plain_label(tex: str) -> str:
+    """A label as plain text (N_A -> N_A, m_{s} g -> m_s g): for the text alternative."""
+    return "".join((f"_{t}" if w == "sub" else f"^{t}" if w == "sup" else t) for t, w in runs(tex))
+
+
+def label_width(tex: str, size: float = FONT) -> float:
+    return sum(len(text) * size * (0.62 if where == "" else 0.45) for text, where in runs(tex)) + 2
+
+
+# ------------------------------------------------------------------------------------------------
+# Layout
+
+def _num(expr, values) -> float:
+    return float(sp.sympify(expr).subs(values)) if not isinstance(expr, (int, float)) else float(expr)
+
+
+def _unit(x: float, y: float) -> tuple[float, float]:
+    n = math.hypot(x, y)
+    return (x / n, y / n) if n > 0 else (0.0, 0.0)
+
+
+def _segment_hits_box(a, b, box: Box) -> bool:
+    """Whether segment ab passes through the box (sampled: boxes are small against arrows)."""
+    for k in range(41):
+        t = k / 40
+        x, y = a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t
+        if box.x0 < x < box.x1 and box.y0 < y < box.y1:
+            return True
+    return False
+
+
+def layout(diagram: Diagram, values) -> Drawing:
+    """The diagram for these values (``diagram.values(solution)``), laid out."""
+    values = {k: float(v) for k, v in values.items()}
+    bodies = []
+    for body in diagram.bodies:
+        pts = {name: (_num(x, values), _num(y, values)) for name, (x, y) in body.points.items()}
+        xs = [p[0] for p in pts.values()]
+        ys = [p[1] for p in pts.values()]
+        for shape in body.outline:
+            if isinstance(shape, Circle):
+                r = _num(shape.radius, values)
+                cx, cy = pts[shape.centre]
+                xs += [cx - r, cx + r]
+                ys += [cy - r, cy + r]
+        bodies.append((body, pts, min(xs), max(xs), min(ys), max(ys)))
+    extent = max(max(b[3] - b[2], b[5] - b[4]) for b in bodies) or 1.0
+    scale = BODY_SIZE / extent
+    drawing = Drawing(diagram.title)
+    obstacles: list[Box] = []
+    left = 0.0
+    placed: dict[tuple[str, str], tuple[float, float]] = {}
+    centres: dict[str, tuple[float, float]] = {}
+    for body, pts, x0, x1, y0, y1 in bodies:
+        dx = left - x0 * scale
+        to = lambda p: (p[0] * scale + dx, p[1] * scale - (y0 + y1) / 2 * scale)
+        for name, p in pts.items():
+            placed[(body.name, name)] = to(p)
+        centres[body.name] = to(pts[body.centre])
+        for shape in body.outline:
+            if isinstance(shape, Circle):
+                cx, cy = to(pts[shape.centre])
+                drawing.circles.append((cx, cy, max(_num(shape.radius, values) * scale, 4.0)))
+            elif isinstance(shape, Rod):
+                (ax, ay), (bx, by) = to(pts[shape.ends[0]]), to(pts[shape.ends[1]])
+                drawing.rods.append((ax, ay, bx, by))
+            elif isinstance(shape, Outline):
+                drawing.polygons.append([to(pts[c]) for c in shape.corners])
+        left += (x1 - x0) * scale + GAP
+    # Named points: a dot and its letter (placed after the loads, where room is left).
+    used_points = {(b.name, n) for b in diagram.bodies for n in b.points}
+    # Loads
+    pending: list[tuple[Arrow | Curl, tuple[float, float], tuple[float, float]]] = []
+    for load in diagram.loads:
+        at = placed[(load.on, load.at)] if load.at else centres[load.on]
+        inward_ref = centres[load.on]
+        if load.kind == "couple":
+            value = _num(load.size, values)
+            curl = Curl(at, COUPLE_RADIUS, value >= 0, Label(load.symbol, 0, 0), load.symbol)
+            drawing.curls.append(curl)
+            pending.append((curl, (at[0] + COUPLE_RADIUS * 0.7, at[1] + COUPLE_RADIUS * 0.7), (1.0, 1.0)))
+            continue
+        if load.direction is None:
+            parts = [((1.0, 0.0), load.components[0]), ((0.0, 1.0), load.components[1])]
+        else:
+            size = _num(load.size, values)
+            d = _unit(_num(load.direction[0], values), _num(load.direction[1], values))
+            if size < 0:
+                d = (-d[0], -d[1])
+            parts = [(d, load.symbol)]
+        for d, symbol in parts:
+            out = (at[0] - inward_ref[0], at[1] - inward_ref[1])
+            pushes = d[0] * out[0] + d[1] * out[1] < -1e-9
+            if pushes:  # head at the point, tail outside
+                head, tail = at, (at[0] - d[0] * ARROW, at[1] - d[1] * ARROW)
+            else:  # tail at the point
+                tail, head = at, (at[0] + d[0] * ARROW, at[1] + d[1] * ARROW)
+            arrow = Arrow(tail, head, load.kind, Label(symbol if isinstance(symbol, str) else sp.latex(symbol), 0, 0),
+                          load.symbol)
+            drawing.arrows.append(arrow)
+            free = tail if pushes else head
+            pending.append((arrow, free, d))
+    for arrow in drawing.arrows:
+        obstacles.append(_arrow_box(arrow))
+    for x, y in {placed[k] for k in used_points}:
+        obstacles.append(Box(x - 3, y - 3, x + 3, y + 3))
+    labels: list[Box] = []
+    for item, free, d in pending:
+        label = item.label
+        label.x, label.y = _place(label, free, d, labels, obstacles, item, drawing=drawing)
+        labels.append(label.box)
+    for (bname, name), (x, y) in placed.items():
+        label = Label(name, 0, 0, POINT_FONT)
+        centre = centres[bname]
+        away = _unit(x - centre[0], y - centre[1]) if (x, y) != centre else (-0.7, -0.7)
+        label.x, label.y = _place(label, (x, y), away, labels, obstacles, None, near=10.0, drawing=drawing)
+        labels.append(label.box)
+        drawing.points.append((x, y, label))
+    _basis(drawing, diagram, labels, obstacles)
+    boxes = labels + obstacles + [_shape_box(drawing)]
+    drawing.box = Box(min(b.x0 for b in boxes) - MARGIN, min(b.y0 for b in boxes) - MARGIN,
+                      max(b.x1 for b in boxes) + MARGIN, max(b.y1 for b in boxes) + MARGIN)
+    drawing.text = text_alternative(diagram, values)
+    return drawing
+
+
+def _arrow_box(arrow: Arrow) -> Box:
+    (x0, y0), (x1, y1) = arrow.tail, arrow.head
+    return Box(min(x0, x1) - 2, min(y0, y1) - 2, max(x0, x1) + 2, max(y0, y1) + 2)
+
+
+def _shape_box(d: Drawing) -> Box:
+    xs, ys = [], []
+    for cx, cy, r in d.circles:
+        xs += [cx - r, cx + r]
+        ys += [cy - r, cy + r]
+    for ax, ay, bx, by in d.rods:
+        xs += [ax, bx]
+        ys += [ay, by]
+    for poly in d.polygons:
+        xs += [p[0] for p in poly]
+        ys += [p[1] for p in poly]
+    for c in d.curls:
+        xs += [c.centre[0] - c.radius - 6, c.centre[0] + c.radius + 6]
+        ys += [c.centre[1] - c.radius - 6, c.centre[1] + c.radius + 6]
+    return Box(min(xs, default=0), min(ys, default=0), max(xs, default=0), max(ys, default=0))
+
+
+def crosses_outline(drawing: "Drawing", box: Box, pad: float = 2.0) -> bool:
+    """Whether the box crosses a body's outline (a circle's rim, a rod, a polygon's edge)."""
+    for cx, cy, r in drawing.circles:
+        nx, ny = min(max(cx, box.x0), box.x1), min(max(cy, box.y0), box.y1)
+        near = math.hypot(nx - cx, ny - cy)
+        far = max(math.hypot(x - cx, y - cy) for x in (box.x0, box.x1) for y in (box.y0, box.y1))
+        if near < r + pad and far > r - pad:
+            return True
+    grown = Box(box.x0 - 4, box.y0 - 4, box.x1 + 4, box.y1 + 4)
+    edges = [((ax, ay), (bx, by)) for ax, ay, bx, by in drawing.rods]
+    for poly in drawing.polygons:
+        edges += list(zip(poly, poly[1:] + poly[:1]))
+    return any(_segment_hits_box(a, b, grown) for a, b in edges)
+
+
+def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item, near: float = 14.0,
+           drawing: "Drawing | None" = None):
+    """The first spot around ``free`` (beyond the arrow's free end first, then around it) where the
+    label overlaps no placed label and crosses no arrow; the nearest free one otherwise."""
+    w, h = label_width(label.tex, label.size), label.size * 1.15
+    perp = (-d[1], d[0])
+    reach = near + max(w, h) / 2
+    candidates = [(free[0] + d[0] * reach, free[1] + d[1] * reach)]
+    for k in range(16):
+        a = 2 * math.pi * k / 16
+        for r in (reach, reach * 1.6, reach * 2.3):
+            candidates.append((free[0] + math.cos(a) * r, free[1] + math.sin(a) * r))
+    candidates.insert(1, (free[0] + perp[0] * (w / 2 + 6), free[1] + perp[1] * (h / 2 + 6)))
+    own = _arrow_box(item) if isinstance(item, Arrow) else None
+    for x, y in candidates:
+        box = Box(x - w / 2, y - h / 2, x + w / 2, y + h / 2)
+        if any(box.overlaps(b, 2) for b in labels):
+            continue
+        if any(box.overlaps(o) for o in obstacles if o is not own and not _is_arrow_of(o, item)):
+            continue
+        if drawing is not None and crosses_outline(drawing, box):
+            continue
+        return x, y
+    return candidates[0]
+
+
+def _is_arrow_of(box: Box, item) -> bool:
+    return isinstance(item, Arrow) and box == _arrow_box(item)
+
+
+def _basis(drawing: Drawing, diagram: Diagram, labels: list[Box], obstacles: list[Box]) -> None:
+    """The basis's two unit vectors in the lower-left corner, clear of everything drawn."""
+    everything = labels + obstacles + [_shape_box(drawing)]
+    x0 = min(b.x0 for b in everything) - 60
+    y0 = min(b.y0 for b in everything) - 10
+    length = 40.0
+    for (dx, dy), tex in (((1, 0), diagram.basis[0]), ((0, 1), diagram.basis[1])):
+        head = (x0 + dx * length, y0 + dy * length)
+        where = (head[0] + dx * 14 + dy * 2, head[1] + dy * 12 + dx * 0)
+        arrow = Arrow((x0, y0), head, "basis", Label(tex, *where, POINT_FONT))
+        drawing.arrows.append(arrow)
+        labels.append(arrow.label.box)
+        obstacles.append(_arrow_box(arrow))
+
+
+def text_alternative(diagram: Diagram, values) -> str:
+    """The diagram in words: each body, and each load, where it acts and which way."""
+    sentences = []
+    for body in diagram.bodies:
+        loads = diagram.loads_on(body.name)
+        parts = []
+        for load in loads:
+            where = f" at {load.at}" if load.at else ""
+            if load.kind == "couple":
+                value = _num(load.size, values)
+                way = "counter-clockwise" if value >= 0 else "clockwise"
+                parts.append(f"{load.name} {plain_label(load.symbol)}{where}, {way}")
+            elif load.direction is None:
+                c = [plain_label(sp.latex(x)) for x in load.components]
+                parts.append(f"{load.name}{where}, direction unknown, drawn as its components {c[0]} along x "
+                             f"and {c[1]} along y")
+            else:
+                size = _num(load.size, values)
+                d = _unit(_num(load.direction[0], values), _num(load.direction[1], values))
+                if size < 0:
+                    d = (-d[0], -d[1])
+                parts.append(f"{load.name} {plain_label(load.symbol)}{where}, {_way(d)}")
+        kind = "impulses" if diagram.law == "impulse" else "forces"
+        sentences.append(f"Free-body diagram, {diagram.title.lower()}: {body.name}, with the {kind} on it: "
+                         + "; ".join(parts) + ".")
+    return " ".join(sentences)
+
+
+def _way(d) -> str:
+    angle = math.degrees(math.atan2(d[1], d[0]))
+    named = {0: "along +x", 90: "up", 180: "along −x", -180: "along −x", -90: "down"}
+    for a, word in named.items():
+        if abs(angle - a) < 0.5:
+            return word
+    return f"at {angle:.0f}° from +x"
+
+
+# ------------------------------------------------------------------------------------------------
+# SVG
+
+def _svg_text(label: Label, flip, color: str, extra: str = "") -> str:
+    x, y = flip(label.x, label.y)
+    spans = []
+    for text, where in runs(label.tex):
+        t = html.escape(text)
+        if where == "sub":
+            spans.append(f'<tspan baseline-shift="sub" font-size="70%">{t}</tspan>')
+        elif where == "sup":
+            spans.append(f'<tspan baseline-shift="super" font-size="70%">{t}</tspan>')
+        else:
+            spans.append(t)
+    return (f'<text x="{x:.1f}" y="{y + label.size * 0.35:.1f}" font-size="{label.size:.0f}" fill="{color}" '
+            f'text-anchor="middle"{extra}>{"".join(spans)}</text>')
+
+
+def _head(tail, head, size=11.0, width=0.42):
+    d = _unit(head[0] - tail[0], head[1] - tail[1])
+    n = (-d[1], d[0])
+    base = (head[0] - d[0] * size, head[1] - d[1] * size)
+    return [head, (base[0] + n[0] * size * width, base[1] + n[1] * size * width),
+            (base[0] - n[0] * size * width, base[1] - n[1] * size * width)]
+
+
+def svg(drawing: Drawing, css_class: str = "dl-fbd") -> str:
+    """The drawing as an SVG element: scales to its container, a text alternative for screen readers."""
+    b = drawing.box
+    width, height = b.x1 - b.x0, b.y1 - b.y0
+    flip = lambda x, y: (x - b.x0, b.y1 - y)
+    out = [f'<svg class="{css_class}" viewBox="0 0 {width:.1f} {height:.1f}" role="img" '
+           f'aria-label="{html.escape(drawing.text)}" xmlns="http://www.w3.org/2000/svg" '
+           f'style="max-width:{width * 1.25:.0f}px" font-family="\'Times New Roman\', serif" font-style="italic">',
+           f'<rect width="{width:.1f}" height="{height:.1f}" fill="#ffffff"/>']
+    for poly in drawing.polygons:
+        pts = " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in poly))
+        out.append(f'<polygon points="{pts}" fill="{BODY_FILL}" stroke="{BODY_STROKE}" stroke-width="2"/>')
+    for cx, cy, r in drawing.circles:
+        x, y = flip(cx, cy)
+        out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{r:.1f}" fill="{BODY_FILL}" stroke="{BODY_STROKE}" stroke-width="2"/>')
+    for ax, ay, bx, by in drawing.rods:
+        (x0, y0), (x1, y1) = flip(ax, ay), flip(bx, by)
+        out.append(f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="{BODY_STROKE}" '
+                   f'stroke-width="9" stroke-linecap="round"/>'
+                   f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="{BODY_FILL}" '
+                   f'stroke-width="5" stroke-linecap="round"/>')
+    for x, y, label in drawing.points:
+        px, py = flip(x, y)
+        out.append(f'<circle cx="{px:.1f}" cy="{py:.1f}" r="3" fill="{BODY_STROKE}"/>')
+        out.append(_svg_text(label, flip, BODY_STROKE, ' font-style="normal" class="dl-fbd-point"'))
+    for arrow in drawing.arrows:
+        color = BASIS_COLOR if arrow.kind == "basis" else LOAD_COLOR
+        head = _head(arrow.tail, arrow.head, 12 if arrow.kind != "basis" else 9)
+        d = _unit(arrow.head[0] - arrow.tail[0], arrow.head[1] - arrow.tail[1])
+        stop = (arrow.head[0] - d[0] * 8, arrow.head[1] - d[1] * 8)
+        (x0, y0), (x1, y1) = flip(*arrow.tail), flip(*stop)
+        widths = {"force": 3, "impulse": 3, "basis": 1.6}
+        out.append(f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="{color}" '
+                   f'stroke-width="{widths[arrow.kind]}"/>')
+        pts = " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in head))
+        fill = "#ffffff" if arrow.kind == "impulse" else color
+        out.append(f'<polygon points="{pts}" fill="{fill}" stroke="{color}" stroke-width="2"/>')
+        if arrow.label:
+            cls = ' class="dl-fbd-label"' if arrow.kind != "basis" else ' class="dl-fbd-basis" font-style="normal" font-weight="bold"'
+            out.append(_svg_text(arrow.label, flip, color, cls))
+    for curl in drawing.curls:
+        out.append(_svg_curl(curl, flip))
+        out.append(_svg_text(curl.label, flip, LOAD_COLOR, ' class="dl-fbd-label"'))
+    out.append("</svg>")
+    return "".join(out)
+
+
+def _curl_points(curl: Curl, n: int = 24):
+    start, end = (-0.6 * math.pi, 0.9 * math.pi)
+    pts = [(curl.centre[0] + curl.radius * math.cos(a), curl.centre[1] + curl.radius * math.sin(a))
+           for a in (start + (end - start) * k / n for k in range(n + 1))]
+    return pts if curl.ccw else pts[::-1]
+
+
+def _svg_curl(curl: Curl, flip) -> str:
+    pts = _curl_points(curl)
+    path = " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in pts[:-2]))
+    head = " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in _head(pts[-6], pts[-1], 11)))
+    return (f'<polyline points="{path}" fill="none" stroke="{LOAD_COLOR}" stroke-width="3"/>'
+            f'<polygon points="{head}" fill="{LOAD_COLOR}" stroke="{LOAD_COLOR}" stroke-width="2"/>')
+
+
+# ------------------------------------------------------------------------------------------------
+# TikZ (the .tex): the same shapes, in cm
+
+def tikz(drawing: Drawing, width_cm: float = 7.0) -> str:
+    b = drawing.box
+    k = width_cm / (b.x1 - b.x0)
+    p = lambda x, y: f"({(x - b.x0) * k:.2f},{(y - b.y0) * k:.2f})"
+    out = [r"\begin{tikzpicture}[line cap=round, >=latex]"]
+    for poly in drawing.polygons:
+        out.append(r"\draw[fill=black!8, thick] " + " -- ".join(p(*q) for q in poly) + " -- cycle;")
+    for cx, cy, r in drawing.circles:
+        out.append(rf"\draw[fill=black!8, thick] {p(cx, cy)} circle ({r * k:.2f});")
+    for ax, ay, bx, by in drawing.rods:
+        out.append(rf"\draw[line width=3pt, black!70] {p(ax, ay)} -- {p(bx, by)};")
+    for x, y, label in drawing.points:
+        out.append(rf"\fill {p(x, y)} circle (1.2pt);")
+        out.append(rf"\node[font=\small] at {p(label.x, label.y)} {{${label.tex}$}};")
+    for arrow in drawing.arrows:
+        style = {"force": "->, very thick, red!70!black", "impulse": "-{Latex[open]}, very thick, red!70!black",
+                 "basis": "->, thin"}[arrow.kind]
+        style = style.replace("-{Latex[open]}", "->, double")  # without the arrows.meta library: a double shaft
+        out.append(rf"\draw[{style}] {p(*arrow.tail)} -- {p(*arrow.head)};")
+        if arrow.label:
+            tex = arrow.label.tex if arrow.kind != "basis" else arrow.label.tex
+            out.append(rf"\node[font=\small] at {p(arrow.label.x, arrow.label.y)} {{${tex}$}};")
+    for curl in drawing.curls:
+        pts = _curl_points(curl)
+        out.append(r"\draw[->, very thick, red!70!black] " + " -- ".join(p(*q) for q in pts) + ";")
+        out.append(rf"\node[font=\small] at {p(curl.label.x, curl.label.y)} {{${curl.label.tex}$}};")
+    out.append(r"\end{tikzpicture}")
+    return "\n".join(out)
+
+
+# ------------------------------------------------------------------------------------------------
+# Plain data (the notebook draws it with matplotlib from this)
+
+def as_data(drawing: Drawing) -> dict:
+    """The drawing as JSON-able data: what the notebook's matplotlib cell draws."""
+    lab = lambda l: [l.tex, round(l.x, 1), round(l.y, 1)] if l else None
+    return {
+        "title": drawing.title, "box": [drawing.box.x0, drawing.box.y0, drawing.box.x1, drawing.box.y1],
+        "circles": [[round(v, 1) for v in c] for c in drawing.circles],
+        "rods": [[round(v, 1) for v in r] for r in drawing.rods],
+        "polygons": [[[round(x, 1), round(y, 1)] for x, y in poly] for poly in drawing.polygons],
+        "points": [[round(x, 1), round(y, 1), lab(l)] for x, y, l in drawing.points],
+        "arrows": [[[round(v, 1) for v in a.tail], [round(v, 1) for v in a.head], a.kind, lab(a.label)]
+                   for a in drawing.arrows],
+        "curls": [[[round(v, 1) for v in _xy] for _xy in _curl_points(c)] + [lab(c.label)] for c in drawing.curls],
+        "text": drawing.text,
+    }
+
+
+# ------------------------------------------------------------------------------------------------
+# A solution's diagrams
+
+def drawings(solver, solution) -> list[Drawing]:
+    """The free-body diagrams of ``solution`` (its problem's ``free_body_diagrams``), laid out for its
+    numbers; none for a solution without answers (the method shown past a physical limit)."""
+    declare = getattr(solver, "free_body_diagrams", None)
+    if declare is None or not solution.answers:
+        return []
+    return [layout(d, d.values(solution)) for d in declare(solution.params)]
