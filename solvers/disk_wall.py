@@ -104,6 +104,13 @@ def _impact_values(solution) -> dict:
             P_n: a["impulse_n"], v1x: a["v1x"], v1y: a["v1y"], omega1: a["omega1"]}
 
 
+def _impact_frames(solution, motion) -> dict:
+    """The impact's symbols at each frame of ``motion``: its values at the impact's frame (the centre
+    at the origin there, as in the diagram), NaN in every other (the impulse acts at that instant only)."""
+    at = np.arange(len(motion["t"])) == motion["impact_index"]
+    return {sym: np.where(at, value, np.nan) for sym, value in _impact_values(solution).items()}
+
+
 # Step 2: the disk at the impact. The wall's impulse at B is the only one: gravity and the table's
 # support are finite (and act out of the plane), negligible against it over the impact's instant.
 IMPACT = Diagram(
@@ -116,6 +123,7 @@ IMPACT = Diagram(
     loads=(Load("P", "the wall's impulse", "the wall", "the disk", at="B", kind="impulse",
                 components=(P_t, P_n)),),
     values=_impact_values,
+    frames=_impact_frames,
     note="Gravity and the table's support are finite and act out of the plane: negligible against the impulse.",
 )
 

@@ -160,3 +160,45 @@ def test_practice_withholds_the_diagram():
         loads = {l.name for d in solver.free_body_diagrams(solution.params) for l in d.loads}
         text = " ".join(t + tex for _, t, tex in shown)
         assert not any(name in text for name in loads), pid
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(**SETTINGS)
+@given(data=st.data())
+def test_the_stages_forces_are_the_diagrams_at_each_frame(pid, data):
+    """The Forces overlay draws each declared load at its point, along its vector, in the frames of
+    its phase and no other; at the instant the diagram is drawn for, the same numbers as the diagram."""
+    import numpy as np
+
+    solver = registry.solver(pid)
+    for solution in _solutions(pid, data.draw(VALID[pid])):
+        diagrams = [d for d in solver.free_body_diagrams(solution.params) if d.frames is not None]
+        if not diagrams:
+            continue
+        motion = solver.motion(solution)
+        frames = len(motion["t"])
+        traces = fbd.overlay(solver, solution, motion, width=1.0)
+        arrows = {t.style["meta"]: t for t in traces if t.style.get("mode") == "lines"}
+        assert arrows, pid
+        for d in diagrams:
+            per_frame = d.frames(solution, motion)
+            assert all(np.shape(v) == (frames,) for v in per_frame.values()), (pid, d.phase)
+            at = d.values(solution)
+            # the frame the diagram is drawn for, where it is one: every symbol agrees there
+            hits = [i for i in range(frames) if all(
+                math.isclose(float(per_frame[s][i]), float(v), rel_tol=1e-6, abs_tol=1e-9)
+                for s, v in at.items() if s in per_frame and np.isfinite(per_frame[s][i]))
+                and all(np.isfinite(per_frame[s][i]) for s in at if s in per_frame)]
+            for load in d.loads:
+                if load.kind == "couple":
+                    continue
+                trace = arrows[load.symbol]
+                xs, ys = trace.per_frame["x"], trace.per_frame["y"]
+                for i in hits[:1]:
+                    vx, vy = (float(sp.sympify(c).subs({s: per_frame[s][i] for s in per_frame})) for c in load.vector)
+                    if math.hypot(vx, vy) < 1e-9:
+                        continue
+                    shaft = (xs[i][1] - xs[i][0], ys[i][1] - ys[i][0])
+                    # drawn along the load's vector
+                    assert shaft[0] * vx + shaft[1] * vy > 0, (pid, d.phase, load.symbol)
+                    assert abs(shaft[0] * vy - shaft[1] * vx) <= 1e-3 * math.hypot(*shaft) * math.hypot(vx, vy) + 1e-9

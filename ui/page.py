@@ -19,7 +19,8 @@ from ui.practice import method as practice_method
 from ui.catalog import BY_ID, Problem
 from ui.figure import show as show_figure
 from ui.stylesheet import Stylesheet
-from viz import on_request
+from solvers import units
+from viz import diagram, on_request
 from edge import widget_values
 from ui.params import (MAX_URL_VALUE, check_in_range, fixed_parameters, lesson_parameters, mirror_to_url,
                        more_parameters, parameter_panel, refused_values_notice, unknown_in_link)
@@ -41,6 +42,8 @@ LECTURE_CSS = """
   .st-key-dl_stage_controls [data-testid='stSliderTickBar'] div {
     font-size: 18px !important; line-height: 1.35; }
   .st-key-dl_stage_controls [data-testid='stSlider'] [data-testid='stWidgetLabel'] { margin-bottom: 1.1rem; }  /* the value above the thumb clears it */
+  /* the free-body diagram's labels in projector type too (the SVG scales with its width) */
+  .dl-text figure.dl-fbd-figure { width: min(100%, 44rem); }
 </style>
 """
 
@@ -138,7 +141,7 @@ PRINT_CSS = """
     .stMainBlockContainer .katex-display { overflow: visible !important; }
     .dl-print-only { display: block; }
     .dl-print-link { font-size: 0.85rem; overflow-wrap: anywhere; }
-    .dl-math, .katex-display, table, tr, li, [data-testid='stAlert'] { break-inside: avoid; }
+    .dl-math, .katex-display, table, tr, li, [data-testid='stAlert'], figure { break-inside: avoid; }
     h1, h2, h3, h4, .dl-text .dl-caption, .dl-text p:has(+ .dl-math) { break-after: avoid; }
     /* a step's title may carry inline math taller than its line (½ m R²): room above it at a page's top */
     .dl-text p:has(+ .dl-math) { padding-top: 6px; }
@@ -166,9 +169,38 @@ VARIANT_HELP = ("A variant link (?seed=N) or an assignment link opens in Practic
 LINK_FLAGS = frozenset(("units", "lecture", "practice", "instructor", "lti", *LINK_KEYS, "embed", "embed_options"))
 
 
+FORCES_FLAG = "forces"  # ?forces=1: the stage's Forces switch on
+FORCES_LABEL = "Forces"
+FORCES_HELP = ("Lay the free-body diagram's forces on the motion: each arrow at its point, drawn to its size in "
+               "that frame (an impulse at the impact). While a control is dragged they wait, dimmed, for the release.")
+
+
+def _has_forces_overlay(problem: Problem) -> bool:
+    """Whether the stage can lay the diagram's forces on the motion (the diagrams declare their frames)."""
+    return _overlaid(problem.id)
+
+
+@functools.cache
+def _overlaid(problem_id: str) -> bool:
+    solver = BY_ID[problem_id].solver
+    declare = getattr(solver, "free_body_diagrams", None)
+    return declare is not None and any(d.frames is not None for d in declare(solver.solve().params))
+
+
+def _forces_switch(problem: Problem, stage) -> bool:
+    """The stage's Forces switch (``FORCES_FLAG`` in the link), where the problem's stage can show them."""
+    if not _has_forces_overlay(problem):
+        return False
+    key = f"{problem.id}__forces"
+    if key not in st.session_state:
+        st.session_state[key] = st.query_params.get(FORCES_FLAG) == "1"
+    return stage.toggle(FORCES_LABEL, key=key, help=FORCES_HELP)
+
+
 def _unknown_in_link(problem: Problem) -> str | None:
     """What the page says of a link's names it does not know and of its flags' values it does not take."""
-    switches = ("lecture", "practice", *filter(None, [_on_request_flag_name(problem)]))
+    switches = ("lecture", "practice", *filter(None, [_on_request_flag_name(problem)]),
+                *([FORCES_FLAG] if _has_forces_overlay(problem) else []))
     said = [unknown_in_link(problem, st.query_params.keys(), LINK_FLAGS | set(switches))]
     units_asked = st.query_params.get("units", "si")
     if not problem.us_units and units_asked != "si":  # (?units=us on an SI-only page)
@@ -206,20 +238,28 @@ def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str
 
 @functools.lru_cache(maxsize=256)
 @within_model_range  # the drawing too: scales like b / (m g) overflow where the answers did not
-def _computed(problem_id: str, key: tuple, system: str):
+def _computed(problem_id: str, key: tuple, system: str, forces: bool = False):
     """Solution and figures for one state, shared by every session of this process: in a lecture
-    many students ask for the same numbers. Refusals (ValueError) are not cached."""
-    solution = BY_ID[problem_id].solver.solve(**dict(key))
+    many students ask for the same numbers. Refusals (ValueError) are not cached. ``forces``: the
+    stage figure with the free-body diagram's forces on the motion (viz.diagram.overlay)."""
+    solver = BY_ID[problem_id].solver
+    solution = solver.solve(**dict(key))
     figures = tuple(importlib.import_module(f"viz.{problem_id}").figures(solution, system))
+    if forces:
+        stage = figures[0]
+        x_range = stage.spec["layout"]["xaxis"]["range"]
+        traces = diagram.overlay(solver, solution, solver.motion(solution), float(x_range[1] - x_range[0]),
+                                 units.to_display(1.0, "length", system))
+        figures = (diagram.with_overlay(stage, traces), *figures[1:])
     for figure in figures:
         figure.json_bytes()  # serialise once, here
     return solution, figures
 
 
-def _solve_and_draw(problem: Problem, params: dict, system: str):
+def _solve_and_draw(problem: Problem, params: dict, system: str, forces: bool = False):
     if any(isinstance(v, float) and math.isnan(v) for v in params.values()):
         return problem.solver.solve(**params), ()  # refused with the solver's message
-    return _computed(problem.id, tuple(sorted(params.items())), system)
+    return _computed(problem.id, tuple(sorted(params.items())), system, forces)
 
 
 def _on_request_label(problem: Problem) -> str:
@@ -273,13 +313,13 @@ def _figures(figures) -> None:
 
 
 def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=None, practice: bool = False,
-                       lecture: bool = False):
+                       lecture: bool = False, forces: bool = False):
     """(solution, figures) for ``params``; or None, once the refusal is said (in ``refused_in``, the
     stage's motion column, if given, with the figures a physical limit keeps, where the motion would
     be) with the method a physical limit keeps below it."""
     try:
         check_in_range(problem, params, system)
-        return _solve_and_draw(problem, params, system)
+        return _solve_and_draw(problem, params, system, forces)
     except ValueError as error:
         limit = isinstance(error, PhysicalLimitError)
         with refused_in or contextlib.nullcontext():
@@ -389,8 +429,10 @@ def problem_page(problem_id: str) -> None:
         instructor_export(problem)
 
 
-def _mirror(problem: Problem, params: dict, system: str, lecture: bool, practice: bool, seed, base: dict) -> None:
+def _mirror(problem: Problem, params: dict, system: str, lecture: bool, practice: bool, seed, base: dict,
+            forces: bool = False) -> None:
     mirror_to_url(problem, params, system, {"units": "us" if system == "us" else "",
+                                            **({FORCES_FLAG: "1" if forces else ""} if _has_forces_overlay(problem) else {}),
                                             "lecture": "1" if lecture else "", "practice": "1" if practice else "",
                                             "seed": str(seed) if seed is not None else "",
                                             **_on_request_flag(problem)}, base)
@@ -407,9 +449,11 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
         refused_values_notice()
     stage = st.container(key="dl_stage", horizontal=True, wrap=False, gap="medium")  # a row (STAGE_CSS), not columns: two elements fewer a run
     motion_column = stage.container(key="dl_motion")
-    params = lesson_parameters(problem, system, None, stage.container(key="dl_stage_controls"))
-    _mirror(problem, params, system, lecture, False, None, {})
-    solved = _solved_or_refused(problem, params, system, motion_column, lecture=lecture)
+    controls = stage.container(key="dl_stage_controls")
+    params = lesson_parameters(problem, system, None, controls)
+    forces = _forces_switch(problem, controls)
+    _mirror(problem, params, system, lecture, False, None, {}, forces)
+    solved = _solved_or_refused(problem, params, system, motion_column, lecture=lecture, forces=forces)
     if solved is None:
         takehome.lesson_links(problem, downloads=False)
         return

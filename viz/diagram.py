@@ -547,3 +547,108 @@ def drawings(solver, solution) -> list[Drawing]:
     if declare is None or not solution.answers:
         return []
     return [layout(d, d.values(solution)) for d in declare(solution.params)]
+
+
+# ------------------------------------------------------------------------------------------------
+# The stage's Forces overlay: the same loads on the motion, each frame's to its size
+
+OVERLAY_NAME = "forces (free-body diagram)"
+OVERLAY_COLOR = "#b3261e"
+_OVERLAY_LENGTH = 0.2  # the largest force (or impulse) drawn this fraction of the stage's width
+
+
+def _html_label(tex: str) -> str:
+    return "".join(f"<sub>{html.escape(t)}</sub>" if w == "sub" else f"<sup>{html.escape(t)}</sup>" if w == "sup"
+                   else html.escape(t) for t, w in runs(tex))
+
+
+def _per_frame(expr, values: dict, frames: int):
+    import numpy as np
+
+    expr = sp.sympify(expr)
+    free = sorted(expr.free_symbols, key=lambda s: s.name)
+    if not free:
+        return np.full(frames, float(expr))
+    fn = sp.lambdify(free, expr, modules="numpy")
+    with np.errstate(all="ignore"):
+        return np.broadcast_to(np.asarray(fn(*(np.asarray(values[s], dtype=float) for s in free)), dtype=float),
+                               (frames,)).copy()
+
+
+def overlay(solver, solution, motion: dict, width: float, length_scale: float = 1.0) -> list:
+    """The loads of every phase's diagram on the stage's motion (``Diagram.frames``): one moving arrow
+    per load (a reaction of unknown direction as its resultant) and its label, drawn in the frames of
+    its phase, to one scale for the forces and one for the impulses (the largest of each
+    ``_OVERLAY_LENGTH`` of the stage's ``width``); couples are left to the diagram. ``length_scale``:
+    the page's length unit per metre. Empty where the problem declares no frames (a 3-D stage)."""
+    import numpy as np
+
+    from viz.common import arrows, line, moving, r
+
+    declare = getattr(solver, "free_body_diagrams", None)
+    if declare is None:
+        return []
+    frames = len(motion["t"])
+    tracks: dict[tuple[str, str], dict] = {}  # (kind, symbol) -> per-frame tail and vector
+    for d in declare(solution.params):
+        if d.frames is None:
+            continue
+        values = {k: np.asarray(v, dtype=float) for k, v in d.frames(solution, motion).items()}
+        for load in d.loads:
+            if load.kind == "couple":
+                continue
+            body = d.body(load.on)
+            px, py = (_per_frame(c, values, frames) for c in body.points[load.at])
+            vx, vy = (_per_frame(c, values, frames) for c in load.vector)
+            cx, cy = (_per_frame(c, values, frames) for c in body.points[body.centre])
+            pushes = (vx * (px - cx) + vy * (py - cy) < 0).astype(float)
+            track = tracks.setdefault((load.kind, load.symbol), {
+                "x": np.full(frames, np.nan), "y": np.full(frames, np.nan), "push": np.zeros(frames),
+                "vx": np.full(frames, np.nan), "vy": np.full(frames, np.nan), "name": load.name})
+            here = np.isfinite(px) & np.isfinite(py) & np.isfinite(vx) & np.isfinite(vy)
+            for key, new in (("x", px), ("y", py), ("vx", vx), ("vy", vy), ("push", pushes)):
+                track[key][here] = new[here]
+    traces = []
+    for kind in ("force", "impulse"):
+        mine = {s: t for (k, s), t in tracks.items() if k == kind}
+        biggest = max((np.nanmax(np.hypot(t["vx"], t["vy"]), initial=0.0) for t in mine.values()), default=0.0)
+        if not biggest > 0:
+            continue
+        scale = _OVERLAY_LENGTH * width / biggest
+        for symbol, t in mine.items():
+            x0, y0 = t["x"] * length_scale, t["y"] * length_scale
+            dx, dy = t["vx"] * scale, t["vy"] * scale
+            # a push drawn with its head at the point (a contact), a body force from it (the weight)
+            tail_x, tail_y = x0 - t["push"] * dx, y0 - t["push"] * dy
+            xs, ys = arrows(tail_x, tail_y, dx, dy)
+            style = line(None, None, f"{kind}: {plain_label(symbol)}", OVERLAY_COLOR, width=3 if kind == "force" else 5,
+                         show_legend=not traces)
+            style |= {"legendgroup": "forces", "name": OVERLAY_NAME if not traces else f"{kind}: {plain_label(symbol)}",
+                      "meta": symbol}  # (which load: the tests read it)
+            traces.append(moving(style, xs, ys))
+            free_x = np.where(t["push"] > 0, tail_x - dx * 0.18, tail_x + dx * 1.18)
+            free_y = np.where(t["push"] > 0, tail_y - dy * 0.18, tail_y + dy * 1.18)
+            tip_x, tip_y = r(free_x), r(free_y)
+            label = {"type": "scatter", "mode": "text", "x": None, "y": None, "text": [_html_label(symbol)],
+                     "textfont": {"color": OVERLAY_COLOR, "size": 15}, "hoverinfo": "skip", "showlegend": False,
+                     "legendgroup": "forces", "name": f"label {plain_label(symbol)}", "cliponaxis": False}
+            traces.append(moving(label, tip_x[:, None], tip_y[:, None]))
+    return traces
+
+
+def with_overlay(figure, traces: list):
+    """The stage figure with the overlay's traces added to its animation (a new Figure)."""
+    from dataclasses import replace as _replace
+
+    if not traces:
+        return figure
+    spec = dict(figure.spec)
+    anim = dict(spec["animation"])
+    data = list(spec["data"])
+    start = len(data)
+    data += [t.first() for t in traces]
+    anim["traces"] = list(anim["traces"]) + list(range(start, start + len(traces)))
+    anim["coords"] = list(anim["coords"]) + [t.per_frame for t in traces]
+    spec["data"], spec["animation"] = data, anim
+    words = " Red arrows: the forces of the free-body diagram, each drawn to its size in that frame."
+    return _replace(figure, spec=spec, description=figure.description + words)
