@@ -211,7 +211,8 @@ def fbd_steps(diagram: Diagram) -> tuple[Step, ...]:
     steps = []
     for b in diagram.bodies:
         loads = diagram.loads_on(b.name)
-        title = (f"{diagram.title}: {b.name} isolated. " + "; ".join(describe(l) for l in loads) + "."
+        said = "; ".join(describe(l) for l in loads)
+        title = (f"{diagram.title}: {b.name} isolated. " + said[:1].upper() + said[1:] + "."
                  + (f" {diagram.note}" if diagram.note else ""))
         terms = [f"{_bold(l.symbol) if l.kind != 'couple' else l.symbol} = {_load_vector_latex(l, diagram.basis)}"
                  for l in loads]

@@ -428,7 +428,7 @@ def svg(drawing: Drawing, css_class: str = "dl-fbd") -> str:
     b = drawing.box
     width, height = b.x1 - b.x0, b.y1 - b.y0
     flip = lambda x, y: (x - b.x0, b.y1 - y)
-    out = [f'<svg class="{css_class}" viewBox="0 0 {width:.1f} {height:.1f}" role="img" '
+    out = [f'<svg class="{css_class}" viewBox="0 0 {width:.1f} {height:.1f}" width="{width:.0f}" height="{height:.0f}" role="img" '
            f'aria-label="{html.escape(drawing.text)}" xmlns="http://www.w3.org/2000/svg" '
            f'style="max-width:{width * 1.25:.0f}px" font-family="\'Times New Roman\', serif" font-style="italic">',
            f'<rect width="{width:.1f}" height="{height:.1f}" fill="#ffffff"/>']
