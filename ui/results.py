@@ -98,9 +98,19 @@ def parts(steps) -> list[list]:
 
 def diagrams(solution: Solution) -> list[list[str]]:
     """[SVG, its text alternative] for each free-body diagram of the solution (Step 2)."""
-    if solution.problem not in registry.PROBLEM_IDS:
+    if solution.problem not in registry.PROBLEM_IDS or not solution.answers:
         return []
-    return [[diagram.svg(d), d.text] for d in diagram.drawings(registry.solver(solution.problem), solution)]
+    key = (solution.problem, tuple(sorted(solution.params.items())))
+    drawn = _DRAWN.get(key)
+    if drawn is None:  # drawn once per state, as the solution and its figures are (ui.page._computed)
+        drawn = [[diagram.svg(d), d.text] for d in diagram.drawings(registry.solver(solution.problem), solution)]
+        if len(_DRAWN) >= 256:
+            _DRAWN.pop(next(iter(_DRAWN)), None)
+        _DRAWN[key] = drawn
+    return drawn
+
+
+_DRAWN: dict[tuple, list[list[str]]] = {}  # (problem, parameters) -> the diagrams drawn, oldest first
 
 
 def derivation_data(solution: Solution, caption: str = "", slips: tuple[str, ...] = ()) -> bytes:
