@@ -193,11 +193,6 @@ def _load_vector_latex(load: Load, basis: tuple[str, str]) -> str:
     return text or "0"
 
 
-def _bold(symbol: str) -> str:
-    head, _, sub = symbol.partition("_")
-    return rf"\mathbf{{{head}}}" + (f"_{sub}" if sub else "")
-
-
 def describe(load: Load) -> str:
     """The load in words, for a step's title and a drawing's text alternative."""
     kind = {"force": "a force", "impulse": "an impulse", "couple": "a couple"}[load.kind]
@@ -207,15 +202,15 @@ def describe(load: Load) -> str:
 
 
 def fbd_steps(diagram: Diagram) -> tuple[Step, ...]:
-    """Step 2 in words and vectors: each body isolated and every load on it (drawn beside)."""
+    """Step 2 in words and vectors: each body isolated and every load on it (drawn beside), each
+    load's vector at its point."""
     steps = []
     for b in diagram.bodies:
         loads = diagram.loads_on(b.name)
         said = "; ".join(describe(l) for l in loads)
         title = (f"{diagram.title}: {b.name} isolated. " + said[:1].upper() + said[1:] + "."
                  + (f" {diagram.note}" if diagram.note else ""))
-        terms = [f"{_bold(l.symbol) if l.kind != 'couple' else l.symbol} = {_load_vector_latex(l, diagram.basis)}"
-                 for l in loads]
+        terms = [(rf"\text{{at }}{l.at}:\; " if l.at else "") + _load_vector_latex(l, diagram.basis) for l in loads]
         steps.append(Step(title, r",\quad ".join(terms), part=2))
     return tuple(steps)
 

@@ -39,6 +39,7 @@ from .core import (
     within_model_range,
 )
 from . import units
+from .diagram import Body, Diagram, Load, Rod, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
@@ -99,6 +100,91 @@ TIME_INTEGRALS = {"tau_1": tau_1, "tau_2": tau_2, "tau_held": tau_held}
 SYMBOLS = {"m": m, "L": L, "theta0": theta0, "g": g}
 DIMENSIONS = {p.name: p.dimension for p in PARAMS} | {name: "dimensionless" for name in TIME_INTEGRALS}
 
+# ---------------------------------------------------------------------------------------------
+# Step 2: the ladder's free-body diagrams, before and after the top leaves the wall, in the stage's
+# coordinates (the corner at the origin, x along the floor away from the wall, y up). θ is the angle
+# from the floor, so the ladder's anticlockwise angular acceleration is −θ̈.
+
+x_G, xdd_G, ydd_G = sp.symbols(r"x_G \ddot{x}_G \ddot{y}_G", real=True)
+N_A, N_B = sp.symbols("N_A N_B", real=True)
+I_G = m * L**2 / 12
+
+
+def _ladder(name_points: dict) -> Body:
+    return Body("the ladder", points=name_points, centre="G", about="G",
+                kinetic=(m * xdd_G, m * ydd_G, -I_G * thetaddot),
+                kinetic_latex=(r"m\ddot{x}_G", r"m\ddot{y}_G", r"-I_G\,\ddot{\theta}"),
+                outline=(Rod(("A", "B")),))
+
+
+_POINTS = {"G": (x_G, L / 2 * sp.sin(theta)), "A": (x_G - L / 2 * sp.cos(theta), L * sp.sin(theta)),
+           "B": (x_G + L / 2 * sp.cos(theta), 0)}
+_WEIGHT = Load("m g", "the weight", "gravity", "the ladder", at="G", direction=(0, -1), size=m * g)
+_FLOOR = Load("N_B", "the floor's normal force", "the floor", "the ladder", at="B", direction=(0, 1), size=N_B)
+_WALL = Load("N_A", "the wall's normal force", "the wall", "the ladder", at="A", direction=(1, 0), size=N_A)
+
+
+def _release_values(solution) -> dict:
+    """Just after release (θ = θ₀, θ̇ = 0): the reactions are the solver's answers; θ̈ is the textbook's
+    −(3g/2L) cos θ (PROBLEMS.md), G's acceleration its kinematics on the circle."""
+    p, a = solution.params, solution.answers
+    th, angular = p["theta0"], -1.5 * p["g"] / p["L"] * math.cos(p["theta0"])
+    return {m: p["m"], g: p["g"], L: p["L"], theta: th, thetaddot: angular, x_G: p["L"] / 2 * math.cos(th),
+            xdd_G: -p["L"] / 2 * math.sin(th) * angular, ydd_G: p["L"] / 2 * math.cos(th) * angular,
+            N_A: a["N_wall0"], N_B: a["N_floor0"]}
+
+
+def _newton_euler_at(p, states, wall: bool) -> dict:
+    """The symbols at integrated states (units m = g = L = 1, one per row), scaled to SI: the second
+    method's accelerations and reactions (the integration's own linear solve)."""
+    states = np.atleast_2d(np.asarray(states, dtype=float))
+    solved = reactions_and_accelerations(states, wall) if len(states) else np.empty((0, 5 if wall else 4))
+    mg, rate = p["m"] * p["g"], p["g"] / p["L"]
+    out = {m: p["m"], g: p["g"], L: p["L"], theta: states[:, 2], x_G: states[:, 0] * p["L"],
+           xdd_G: solved[:, 0] * p["g"], ydd_G: solved[:, 1] * p["g"], thetaddot: solved[:, 2] * rate,
+           N_B: solved[:, 3] * mg}
+    if wall:
+        out[N_A] = solved[:, 4] * mg
+    return out
+
+
+def _leaving_values(solution) -> dict:
+    """Just after the top leaves the wall, from the Newton–Euler integration's state there."""
+    run = integrated(solution.params["theta0"])
+    return {k: (float(v[0]) if isinstance(v, np.ndarray) else v)
+            for k, v in _newton_euler_at(solution.params, [run["leave"]], wall=False).items()}
+
+
+def _frames(wall: bool):
+    def per_frame(solution, motion) -> dict:
+        """Each frame's symbols while this phase lasts (NaN in the other's frames)."""
+        frames, states, _, _, _, t1 = _sampled(solution.params["theta0"])
+        mine = frames <= t1 if wall else frames > t1
+        here = _newton_euler_at(solution.params, states[mine], wall)
+        out = {}
+        for sym, value in here.items():
+            column = np.full(len(frames), np.nan)
+            column[mine] = value
+            out[sym] = column
+        return out
+    return per_frame
+
+
+BOTH_CONTACTS = Diagram(
+    "both_contacts", "Against the wall", "force", bodies=(_ladder(_POINTS),), loads=(_WEIGHT, _WALL, _FLOOR),
+    values=_release_values, frames=_frames(True),
+    note="The wall and the floor are smooth: each pushes along its normal only.")
+FLOOR_ONLY = Diagram(
+    "floor_only", "After the top leaves the wall", "force", bodies=(_ladder(_POINTS),), loads=(_WEIGHT, _FLOOR),
+    values=_leaving_values, frames=_frames(False),
+    note="No horizontal force is left: ẋ_G keeps its value.")
+
+
+def free_body_diagrams(params) -> tuple[Diagram, ...]:
+    """Both phases' diagrams (the same for every parameter set)."""
+    return (BOTH_CONTACTS, FLOOR_ONLY)
+
+
 # Released nearer the floor or the wall than this, the motion is too small or its start too slow
 # (an unstable equilibrium) for the arithmetic; the refusal says so. (1e-6 rad = 5.7e-5°)
 CLOSEST_TO_REST = 1e-6
@@ -149,8 +235,12 @@ def derivation() -> tuple[Derivation, dict]:
     time_1 = sp.Integral(1 / sp.sqrt(rate_sq.subs({g: 1, L: 1})), (theta, th_l, theta0))
     time_2 = sp.Integral(1 / sp.Function(r"\hat{\omega}_2")(theta), (theta, 0, th_l))
     steps = [
-        Step("Both contacts hold: G moves on a circle of radius L/2 about the corner",
-             r"x_G = " + sp.latex(x_G.subs(q, theta)) + r",\quad y_G = " + sp.latex(y_G.subs(q, theta))),
+        Step(r"Origin at the corner O where the wall meets the floor; $\mathbf{E}_x$ along the floor away from the "
+             r"wall, $\mathbf{E}_y$ up; θ the ladder's angle from the floor (its anticlockwise rotation is $-\dot\theta$). "
+             "Both contacts hold: G moves on a circle of radius L/2 about the corner",
+             r"x_G = " + sp.latex(x_G.subs(q, theta)) + r",\quad y_G = " + sp.latex(y_G.subs(q, theta)), part=1),
+        *fbd_steps(BOTH_CONTACTS), *fbd_steps(FLOOR_ONLY),
+        *balance_steps(BOTH_CONTACTS), *balance_steps(FLOOR_ONLY),
         Step(r"Kinetic energy: G's motion plus the turning about G ($I_G = mL^2/12$); the ladder turns about "
              "its instantaneous centre C, L/2 from G",
              r"T = \tfrac12 m v_G^2 + \tfrac12 I_G \dot\theta^2 = " + sp.latex(T1)

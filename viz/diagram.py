@@ -252,10 +252,8 @@ def layout(diagram: Diagram, values) -> Drawing:
             arrow = Arrow(tail, head, load.kind, Label(symbol if isinstance(symbol, str) else sp.latex(symbol), 0, 0),
                           load.symbol)
             drawing.arrows.append(arrow)
-            free = tail if pushes else head
-            pending.append((arrow, free, d))
-    for arrow in drawing.arrows:
-        obstacles.append(_arrow_box(arrow))
+            free, outward = (tail, (-d[0], -d[1])) if pushes else (head, d)
+            pending.append((arrow, free, outward))
     for x, y in {placed[k] for k in used_points}:
         obstacles.append(Box(x - 3, y - 3, x + 3, y + 3))
     labels: list[Box] = []
@@ -271,7 +269,7 @@ def layout(diagram: Diagram, values) -> Drawing:
         labels.append(label.box)
         drawing.points.append((x, y, label))
     _basis(drawing, diagram, labels, obstacles)
-    boxes = labels + obstacles + [_shape_box(drawing)]
+    boxes = labels + obstacles + [_arrow_box(a) for a in drawing.arrows] + [_shape_box(drawing)]
     drawing.box = Box(min(b.x0 for b in boxes) - MARGIN, min(b.y0 for b in boxes) - MARGIN,
                       max(b.x1 for b in boxes) + MARGIN, max(b.y1 for b in boxes) + MARGIN)
     drawing.text = text_alternative(diagram, values)
@@ -317,8 +315,9 @@ def crosses_outline(drawing: "Drawing", box: Box, pad: float = 2.0) -> bool:
 
 def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item, near: float = 14.0,
            drawing: "Drawing | None" = None):
-    """The first spot around ``free`` (beyond the arrow's free end first, then around it) where the
-    label overlaps no placed label and crosses no arrow; the nearest free one otherwise."""
+    """The first spot around ``free`` (beyond the arrow's free end along ``d`` first, then around it)
+    where the label overlaps no placed label or point, crosses no arrow (its own included) and no
+    body's outline; the first candidate otherwise."""
     w, h = label_width(label.tex, label.size), label.size * 1.15
     perp = (-d[1], d[0])
     reach = near + max(w, h) / 2
@@ -328,26 +327,21 @@ def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item,
         for r in (reach, reach * 1.6, reach * 2.3):
             candidates.append((free[0] + math.cos(a) * r, free[1] + math.sin(a) * r))
     candidates.insert(1, (free[0] + perp[0] * (w / 2 + 6), free[1] + perp[1] * (h / 2 + 6)))
-    own = _arrow_box(item) if isinstance(item, Arrow) else None
     for x, y in candidates:
         box = Box(x - w / 2, y - h / 2, x + w / 2, y + h / 2)
-        if any(box.overlaps(b, 2) for b in labels):
+        if any(box.overlaps(b, 2) for b in labels) or any(box.overlaps(o) for o in obstacles):
             continue
-        if any(box.overlaps(o) for o in obstacles if o is not own and not _is_arrow_of(o, item)):
-            continue
-        if drawing is not None and crosses_outline(drawing, box):
+        grown = Box(box.x0 - 2, box.y0 - 2, box.x1 + 2, box.y1 + 2)
+        if drawing is not None and (crosses_outline(drawing, box) or any(
+                _segment_hits_box(a.tail, a.head, grown) for a in drawing.arrows)):
             continue
         return x, y
     return candidates[0]
 
 
-def _is_arrow_of(box: Box, item) -> bool:
-    return isinstance(item, Arrow) and box == _arrow_box(item)
-
-
 def _basis(drawing: Drawing, diagram: Diagram, labels: list[Box], obstacles: list[Box]) -> None:
     """The basis's two unit vectors in the lower-left corner, clear of everything drawn."""
-    everything = labels + obstacles + [_shape_box(drawing)]
+    everything = labels + obstacles + [_arrow_box(a) for a in drawing.arrows] + [_shape_box(drawing)]
     x0 = min(b.x0 for b in everything) - 60
     y0 = min(b.y0 for b in everything) - 10
     length = 40.0
