@@ -103,7 +103,8 @@ class Body:
     for forces m a_Gx, m a_Gy and the rate of change of the angular momentum about ``about``; for
     an impulse m Δv_Gx, m Δv_Gy and the change of the angular momentum about ``about``.
     ``kinetic_latex`` writes each as the derivation does (``m\\ddot{x}_G``). A body at rest along a
-    direction has 0 there."""
+    direction has 0 there. A point whose name starts with "_" only shapes the outline (a corner): it
+    is neither marked nor named in the drawing."""
 
     name: str
     points: Mapping[str, Vector]

@@ -33,6 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
+from .diagram import Body, Circle, Diagram, Load, Outline, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .sweeps import swept
 from .protocol import About, Mistake, Variants
@@ -106,21 +107,88 @@ SYMMETRY = {N[0]: N_rear, N[3]: N_rear, N[1]: N_front, N[2]: N_front,
             Nz[0]: 0, Nz[1]: 0, Nz[2]: 0, Nz[3]: 0}
 
 
+# Step 2: the cart from the side (front to the right), in the stage's coordinates: the ground at y = 0,
+# the cart's centre at x_C. Each axle's two wheels drawn as one, carrying 2N (the loads symmetric left
+# to right, the lateral forces zero: the worked solution's assumption); the driven axles push forward
+# with traction at the friction limit; the free wheels (massless) carry none.
+x_C = sp.Symbol("x_C", real=True)
+_WHEEL = sp.Min(sp.Rational(3, 10) * b, sp.Rational(3, 5) * a)  # as the stage draws them (viz.driven_cart)
+_TOP = sp.Max(2 * a, sp.Rational(11, 5) * _WHEEL)
+_BOTTOM = sp.Rational(9, 10) * _WHEEL
+_CART_POINTS = {"G": (x_C, a), "F": (x_C + b, 0), "R": (x_C - b, 0),
+                "_front_hub": (x_C + b, _WHEEL), "_rear_hub": (x_C - b, _WHEEL),
+                "_1": (x_C - b - _WHEEL, _BOTTOM), "_2": (x_C + b + _WHEEL, _BOTTOM),
+                "_3": (x_C + b + _WHEEL, _TOP), "_4": (x_C - b - _WHEEL, _TOP)}
+
+
+def _cart_values(solution) -> dict:
+    """Every symbol at the start (the forces are the same at every instant), from the second method:
+    the worked solution's six wheel-by-wheel equations solved numerically (``_wheel_by_wheel``), not
+    from the side view's balance laws that the derivation solves."""
+    p = solution.params
+    wheels = _wheel_by_wheel(p)
+    return {m: p["m"], a: p["a"], b: p["b"], mu: p["mu"], g: p["g"], x_C: 0.0, xdd: wheels[8],
+            N_front: wheels[1], N_rear: wheels[0]}
+
+
+def _cart_frames(solution, motion) -> dict:
+    """The same at every frame, the cart at the motion's x."""
+    values = _cart_values(solution)
+    frames = len(motion["t"])
+    return {sym: (np.asarray(motion["x"], dtype=float) if sym is x_C else np.full(frames, value))
+            for sym, value in values.items()}
+
+
+@functools.cache
+def side_view(drive: str) -> Diagram:
+    """The cart's free-body diagram for this drive."""
+    axles = (("front", "F", N_front), ("rear", "R", N_rear))
+    driven = {"front": ("front",), "rear": ("rear",), "all": ("front", "rear")}[drive]
+    loads = [Load("m g", "the weight", "gravity", "the cart", at="G", direction=(0, -1), size=m * g)]
+    for axle, point, load in axles:
+        loads.append(Load(f"2N_{{\\mathrm{{{axle}}}}}".replace("\\\\", "\\"),
+                          f"the ground's normal force on the {axle} wheels", "the ground", "the cart", at=point,
+                          direction=(0, 1), size=2 * load))
+    for axle, point, load in axles:
+        if axle in driven:
+            loads.append(Load(f"2\\mu N_{{\\mathrm{{{axle}}}}}".replace("\\\\", "\\"),
+                              f"the ground's traction on the driven {axle} wheels", "the ground", "the cart",
+                              at=point, direction=(1, 0), size=2 * mu * load))
+    cart = Body("the cart", points=_CART_POINTS, centre="G", about="G", kinetic=(m * xdd, 0, 0),
+                kinetic_latex=(r"m\ddot{x}_C", "0", "0"),
+                outline=(Outline(("_1", "_2", "_3", "_4")), Circle("_front_hub", _WHEEL), Circle("_rear_hub", _WHEEL)))
+    return Diagram(drive, "Accelerating", "force", bodies=(cart,), loads=tuple(loads), values=_cart_values,
+                   frames=_cart_frames, note=("Seen from the side: each axle's two wheels as one (the loads "
+                   "symmetric left to right, no lateral forces); the free wheels are massless and carry no "
+                   "traction; the cart translates, so the moments about G balance."))
+
+
+def free_body_diagrams(params) -> tuple[Diagram, ...]:
+    """The side view for this drive."""
+    return (side_view(params["drive"]),)
+
+
 @functools.cache
 def derivation(drive: str) -> Derivation:
     equations = balance_equations(drive)
     reduced = [sp.simplify(eq.subs(SYMMETRY)) for eq in equations]
     independent = [eq for eq in reduced if eq is not sp.true]
-    solved = sp.solve(independent, [xdd, N_front, N_rear], dict=True)[0]
+    # solved from the side view's balance laws (Step 3); the wheel-by-wheel route (the worked solution's,
+    # below) reduces to the same three equations
+    solved = sp.solve(list(balance(side_view(drive), "the cart")), [xdd, N_front, N_rear], dict=True)[0]
     solved = {k: sp.factor(v) for k, v in solved.items()}
     traction = sum((mu * N[i] for i in DRIVEN[drive]), sp.Integer(0)).subs(SYMMETRY)
 
     names = ("x", "y", "z")
     steps = [
-        Step("Wheel contact points relative to the CM (1 rear-left, 2 front-left, 3 front-right, "
+        Step(r"Origin at the centre of mass C (G in the diagram); $\mathbf{E}_x$ forward, $\mathbf{E}_y$ up, "
+             r"$\mathbf{E}_z$ across to the left; the cart translates: $\ddot{\mathbf{r}}_C = \ddot{x}_C\mathbf{E}_x$, "
+             r"no rotation. Wheel contact points relative to the CM (1 rear-left, 2 front-left, 3 front-right, "
              r"4 rear-right); driven wheels push with $F_i = \mu N_i$",
-             r",\;".join(rf"\mathbf{{r}}_{i + 1} = {sp.latex(sp.Matrix(w).T)}" for i, w in enumerate(WHEELS))),
-        Step(r"Balance of linear momentum, $\sum\mathbf{F} = m\ddot{x}_C\mathbf{E}_x$ (three components)",
+             r",\;".join(rf"\mathbf{{r}}_{i + 1} = {sp.latex(sp.Matrix(w).T)}" for i, w in enumerate(WHEELS)), part=1),
+        *fbd_steps(side_view(drive)),
+        *balance_steps(side_view(drive)),
+        Step(r"Wheel by wheel in three dimensions (the worked solution's route). Balance of linear momentum, $\sum\mathbf{F} = m\ddot{x}_C\mathbf{E}_x$ (three components)",
              r"\\ ".join(sp.latex(eq) for eq in equations[:3])),
         Step(r"Balance of angular momentum about the CM, $\sum\mathbf{M}_C = 0$ (the cart translates)",
              r"\\ ".join(rf"{names[i]}:\; " + sp.latex(eq) for i, eq in enumerate(equations[3:]))),
@@ -182,13 +250,19 @@ def solve(**params) -> Solution:
     return Solution("driven_cart", p, answers, tuple(steps), _checks(p, answers), p["drive"], notes)
 
 
-def _checks(p, ans) -> tuple[Check, ...]:
-    """Second method: the six balance equations as a numeric linear system, with the symmetry
-    assumptions as extra rows, solved by least squares (numpy), independent of sympy's solve."""
+def _wheel_by_wheel(p) -> np.ndarray:
+    """[N_1..N_4, N_1z..N_4z, ẍ_C]: the six balance equations as a numeric linear system, with the
+    symmetry assumptions as extra rows, solved by least squares (numpy), independent of sympy's solve."""
     matrix, rhs = _numeric_system(p["drive"])
     args = [p[k] for k in SYMBOLS]
     sol, *_ = np.linalg.lstsq(np.array(matrix(*args), dtype=float),
                               np.array(rhs(*args), dtype=float).ravel(), rcond=None)
+    return sol
+
+
+def _checks(p, ans) -> tuple[Check, ...]:
+    """Second method: the six balance equations solved numerically (``_wheel_by_wheel``)."""
+    sol = _wheel_by_wheel(p)
     weight = p["m"] * p["g"]
     return (
         Check(r"$\ddot{x}_C$ from the linear solve of all six equations", ans["accel"], sol[8],

@@ -222,7 +222,7 @@ def layout(diagram: Diagram, values) -> Drawing:
                 drawing.polygons.append([to(pts[c]) for c in shape.corners])
         left += (x1 - x0) * scale + GAP
     # Named points: a dot and its letter (placed after the loads, where room is left).
-    used_points = {(b.name, n) for b in diagram.bodies for n in b.points}
+    used_points = {(b.name, n) for b in diagram.bodies for n in b.points if not n.startswith("_")}
     # Loads
     pending: list[tuple[Arrow | Curl, tuple[float, float], tuple[float, float]]] = []
     for load in diagram.loads:
@@ -262,6 +262,8 @@ def layout(diagram: Diagram, values) -> Drawing:
         label.x, label.y = _place(label, free, d, labels, obstacles, item, drawing=drawing)
         labels.append(label.box)
     for (bname, name), (x, y) in placed.items():
+        if name.startswith("_"):  # an outline's corner, not a named point
+            continue
         label = Label(name, 0, 0, POINT_FONT)
         centre = centres[bname]
         away = _unit(x - centre[0], y - centre[1]) if (x, y) != centre else (-0.7, -0.7)
