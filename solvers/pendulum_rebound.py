@@ -35,6 +35,7 @@ from .core import (
     require,
     validate_params,
 )
+from .diagram import Body, Circle, Diagram, Load, Rod, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg
@@ -103,6 +104,129 @@ SYMBOLS = {"m_s": m_s, "m_r": m_r, "L": L, "r": r, "d": d, "e": e, "g": g, "thet
 DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
 
 
+# ---------------------------------------------------------------------------------------------
+# Step 2: the pendulum isolated from the pin and the surface, in the stage's coordinates (O at the
+# origin, x horizontal toward the sphere's side at θ = 0, y up). The pin's reaction has no direction the
+# physics fixes: drawn as its components. During the swing the weights act; at the impact the
+# surface's impulse and the pin's, against which gravity's is negligible.
+
+thetaddot = sp.Symbol(r"\ddot{\theta}", real=True)
+O_x, O_y, P_surface, Ohat_x, Ohat_y = sp.symbols(r"O_x O_y \hat{P} \hat{O}_x \hat{O}_y", real=True)
+_ARM = m_r * L / 2 + m_s * (L + r)  # Σ m_i ρ_i: the mass times G's distance from O
+
+
+def _pendulum_points(surface: str) -> dict:
+    centre = ((L + r) * sp.cos(theta), (L + r) * sp.sin(theta))
+    touch = (centre[0], centre[1] - r) if surface == "floor" else (centre[0] - r, centre[1])
+    return {"O": (0, 0), "G_r": (L / 2 * sp.cos(theta), L / 2 * sp.sin(theta)), "S": centre,
+            "A": (L * sp.cos(theta), L * sp.sin(theta)), "C": touch}
+
+
+def _outline() -> tuple:
+    return (Rod(("O", "A")), Circle("S", r))
+
+
+def _swing_values_at(p, theta_, omega_) -> dict:
+    """The swing's symbols at θ, θ̇ (numbers or arrays): θ̈ from the solver's equation of motion
+    (``_acceleration``: I_O θ̈ = −Q cos θ, as integrated), the pin's components from the two force laws
+    (the solver has no formula for them: the moment law is the independent check)."""
+    inertia = derivation(p["sphere"], p["surface"]).evaluate(p, upto="I_O")["I_O"]
+    alpha = -moment_coefficient(p) * np.cos(theta_) / inertia  # as _acceleration, for arrays too
+    arm = moment_coefficient(p) / p["g"]
+    ax = arm * (-np.sin(theta_) * alpha - np.cos(theta_) * omega_**2)
+    ay = arm * (np.cos(theta_) * alpha - np.sin(theta_) * omega_**2)
+    return {m_s: p["m_s"], m_r: p["m_r"], L: p["L"], r: p["r"], g: p["g"], I_O: inertia, theta: theta_,
+            thetadot: omega_, thetaddot: alpha, O_x: ax, O_y: ay + (p["m_r"] + p["m_s"]) * p["g"]}
+
+
+def _swing_values(solution) -> dict:
+    """Halfway down the first swing (θ midway between θ₀ and θ_I), θ̇ there from the energy integral
+    (θ̇² = 2Q(sin θ₀ − sin θ)/I_O, falling): a pose with the rod neither upright nor hanging, and a speed."""
+    p, a = solution.params, solution.answers
+    angle = (p["theta0"] + a["theta_impact"]) / 2
+    speed = -math.sqrt(max(2 * moment_coefficient(p) * (math.sin(p["theta0"]) - math.sin(angle)) / a["I_O"], 0.0))
+    return _swing_values_at(p, angle, speed)
+
+
+def _impact_values_at(p, before) -> dict:
+    """The impact's symbols for a speed ``before`` (θ̇⁻): θ̇⁺ = −e θ̇⁻ by restitution; the surface's
+    impulse from the contact's normal speed and the body's effective mass there, P̂ = −(1 + e) v_n⁻ I_O / d²
+    (d the normal's arm about O, v_n⁻ = θ̇⁻ d); the pin's from the two linear impulse laws."""
+    values = derivation(p["sphere"], p["surface"]).evaluate(p, upto="theta_impact")
+    inertia, angle = values["I_O"], values["theta_impact"]
+    arm_vector = (_contact_arm(p, angle))
+    after = -p["e"] * before
+    impulse = -(1 + p["e"]) * before * arm_vector * inertia / arm_vector**2
+    arm = moment_coefficient(p) / p["g"]
+    jump = after - before
+    normal = (0.0, 1.0) if p["surface"] == "floor" else (1.0, 0.0)
+    return {m_s: p["m_s"], m_r: p["m_r"], L: p["L"], r: p["r"], g: p["g"], I_O: inertia, theta: angle,
+            w_minus: before, w_plus: after, P_surface: impulse,
+            Ohat_x: -arm * np.sin(angle) * jump - impulse * normal[0],
+            Ohat_y: arm * np.cos(angle) * jump - impulse * normal[1]}
+
+
+def _contact_arm(p, angle: float) -> float:
+    """The moment arm about O of the surface's normal through the contact point, (r_C × n)·E_z."""
+    x, y = (p["L"] + p["r"]) * math.cos(angle), (p["L"] + p["r"]) * math.sin(angle)
+    return x if p["surface"] == "floor" else -(y)
+
+
+def _swing_frames(solution, motion) -> dict:
+    return _swing_values_at(solution.params, np.asarray(motion["theta"]), np.asarray(motion["omega"]))
+
+
+def _impact_frames(solution, motion) -> dict:
+    """The impact's symbols at each impact's frame (its own θ̇⁻), NaN elsewhere."""
+    times = np.asarray(motion["t"])
+    at = np.zeros(len(times), dtype=bool)
+    for t_hit in motion["impact_times"]:
+        at[int(np.argmin(np.abs(times - t_hit)))] = True
+    before = np.where(at, np.asarray(motion["omega"]), np.nan)
+    values = _impact_values_at(solution.params, before)
+    return {k: (np.where(at, v, np.nan) if np.ndim(v) else np.where(at, float(v), np.nan)) for k, v in values.items()}
+
+
+@functools.cache
+def diagrams(surface: str) -> tuple[Diagram, Diagram]:
+    """The swing's and the impact's diagrams for this surface."""
+    points = _pendulum_points(surface)
+    rho = lambda name: points[name]  # noqa: E731
+    swing = Body("the pendulum", points=points, centre="G_r", about="O",
+                 kinetic=(_ARM * (-sp.sin(theta) * thetaddot - sp.cos(theta) * thetadot**2),
+                          _ARM * (sp.cos(theta) * thetaddot - sp.sin(theta) * thetadot**2), I_O * thetaddot),
+                 kinetic_latex=(r"(m_r + m_s)\,\ddot{x}_G", r"(m_r + m_s)\,\ddot{y}_G", r"I_O\ddot{\theta}"),
+                 outline=_outline())
+    weights = (Load("m_r g", "the rod's weight", "gravity", "the pendulum", at="G_r", direction=(0, -1), size=m_r * g),
+               Load("m_s g", "the sphere's weight", "gravity", "the pendulum", at="S", direction=(0, -1), size=m_s * g),
+               Load("O", "the pin's reaction", "the pin", "the pendulum", at="O", components=(O_x, O_y)))
+    jump = w_plus - w_minus
+    hit = Body("the pendulum", points=points, centre="G_r", about="O",
+               kinetic=(-_ARM * sp.sin(theta) * jump, _ARM * sp.cos(theta) * jump, I_O * jump),
+               kinetic_latex=(r"(m_r + m_s)\,\Delta v_{Gx}", r"(m_r + m_s)\,\Delta v_{Gy}",
+                              r"I_O\left(\dot\theta_I^+ - \dot\theta_I^-\right)"),
+               outline=_outline())
+    normal = (0, 1) if surface == "floor" else (1, 0)
+    blows = (Load(r"\hat{P}", f"the {surface}'s impulse", f"the {surface}", "the pendulum", at="C", kind="impulse",
+                  direction=normal, size=P_surface),
+             Load(r"\hat{O}", "the pin's impulse", "the pin", "the pendulum", at="O", kind="impulse",
+                  components=(Ohat_x, Ohat_y)))
+    smooth = f"The {surface} is smooth: its impulse is along its normal, out of the {surface}."
+    return (Diagram("swing", "During the swing", "force", (swing,), weights, _swing_values, frames=_swing_frames,
+                    note="G is the rod-and-sphere's centre of mass; the rod's centre G_r and the sphere's S carry the weights."),
+            Diagram("impact", "At the impact", "impulse", (hit,), blows, _impact_values, frames=_impact_frames,
+                    note=smooth + " Gravity's impulse over the instant is negligible."))
+
+
+def _impact_values(solution) -> dict:
+    return _impact_values_at(solution.params, solution.answers["omega_impact"])
+
+
+def free_body_diagrams(params) -> tuple[Diagram, ...]:
+    """The swing's and the impact's diagrams for this surface."""
+    return diagrams(params["surface"])
+
+
 @functools.cache
 def derivation(sphere: str, surface: str) -> Derivation:
     k = SPHERE_INERTIA[sphere]
@@ -135,13 +259,22 @@ def derivation(sphere: str, surface: str) -> Derivation:
     sin_rebound = sin_rebound.subs(w_plus, -e * w_minus).subs(w_minus, falling.subs(theta, theta_I))
     sin_rebound = presentable(sin_rebound, sp.sin(theta_I) + e**2 * (sp.sin(theta0) - sp.sin(theta_I)))
 
+    swing_diagram, impact_diagram = diagrams(surface)
     steps = [
+        Step(r"Origin at the pivot O; $\mathbf{E}_x$ horizontal, $\mathbf{E}_y$ up; θ the rod's angle from the "
+             r"horizontal, up + (counter-clockwise). The body turns about O: a point at distance ρ from O moves at "
+             r"ρθ̇ and the centres lie on the rod",
+             r"\mathbf{r}_{G_r} = \tfrac{L}{2}\left(\cos\theta, \sin\theta\right),\quad "
+             r"\mathbf{r}_S = (L + r)\left(\cos\theta, \sin\theta\right)", part=1),
+        *fbd_steps(swing_diagram), *fbd_steps(impact_diagram),
+        *balance_steps(swing_diagram), *balance_steps(impact_diagram),
         Step("Moment of inertia about the pivot O (parallel-axis theorem for rod and "
              f"{'sphere' if sphere != 'disk' else 'ball, with the worked solution’s disk value'})",
              latex_eq(I_O, inertia)),
         Step("Moment of the weights about O per unit cos θ: the potential energy is V = Q sin θ",
              latex_eq(Q, weight_moment)),
-        Step("Work–energy from rest at θ₀ (gravity is the only force that works; O does none)",
+        Step("Work–energy from rest at θ₀: the moment law ΣM_O = I_O θ̈ = −Q cos θ, integrated once (gravity is the "
+             "only force that works; the pin at O does none)",
              sp.latex(energy)),
         Step("The sphere touches the " + ("floor: the lowest point of the sphere is a depth d below O"
                                            if surface == "floor" else

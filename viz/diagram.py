@@ -128,6 +128,11 @@ def runs(tex: str) -> list[tuple[str, str]]:
 
     while i < len(tokens):
         t = tokens[i]
+        if t == r"\hat" and i + 1 < len(tokens):  # \hat{P}: P with a circumflex
+            j = i + 2 if tokens[i + 1] == "{" else i + 1
+            add(_GREEK.get(tokens[j], tokens[j]) + "\u0302", mode)
+            i = j + 2 if tokens[i + 1] == "{" else j + 1
+            continue
         if t in ("_", "^"):
             where = "sub" if t == "_" else "sup"
             i += 1
@@ -154,7 +159,13 @@ def runs(tex: str) -> list[tuple[str, str]]:
 
 def plain_label(tex: str) -> str:
     """A label as plain text (N_A -> N_A, m_{s} g -> m_s g): for the text alternative."""
-    return "".join((f"_{t}" if w == "sub" else f"^{t}" if w == "sup" else t) for t, w in runs(tex))
+    out = ""
+    for t, w in runs(tex):
+        if w == "":
+            out += (" " if out and "_" in out.rsplit(" ", 1)[-1] else "") + t
+        else:
+            out += f"_{t}" if w == "sub" else f"^{t}"
+    return out
 
 
 def label_width(tex: str, size: float = FONT) -> float:
@@ -222,7 +233,10 @@ def layout(diagram: Diagram, values) -> Drawing:
                 drawing.polygons.append([to(pts[c]) for c in shape.corners])
         left += (x1 - x0) * scale + GAP
     # Named points: a dot and its letter (placed after the loads, where room is left).
-    used_points = {(b.name, n) for b in diagram.bodies for n in b.points if not n.startswith("_")}
+    # the points a reader needs named: where a load acts, the mass centre, the moment point
+    named = {(b.name, n) for b in diagram.bodies for n in (b.centre, b.about)} | {
+        (load.on, load.at) for load in diagram.loads if load.at}
+    used_points = {(b.name, n) for b in diagram.bodies for n in b.points if (b.name, n) in named}
     # Loads
     pending: list[tuple[Arrow | Curl, tuple[float, float], tuple[float, float]]] = []
     for load in diagram.loads:
@@ -262,7 +276,7 @@ def layout(diagram: Diagram, values) -> Drawing:
         label.x, label.y = _place(label, free, d, labels, obstacles, item, drawing=drawing)
         labels.append(label.box)
     for (bname, name), (x, y) in placed.items():
-        if name.startswith("_"):  # an outline's corner, not a named point
+        if (bname, name) not in used_points:  # an outline's corner or end, not a named point
             continue
         label = Label(name, 0, 0, POINT_FONT)
         centre = centres[bname]
