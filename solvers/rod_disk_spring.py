@@ -33,6 +33,7 @@ from .core import (
     require,
     validate_params,
 )
+from .diagram import Body, Circle, Diagram, Load, Rod, balance_steps, fbd_steps
 from .live import Case, Live, Stops
 from .protocol import About, Mistake, Variants
 from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
@@ -106,6 +107,64 @@ class SpringStopsRodError(PhysicalLimitError):
 LIMIT_LABELS = {"theta_max": ("largest angle the rod reaches", "angle")}
 
 
+# ---------------------------------------------------------------------------------------------
+# Step 2: the rod and disk isolated from the pin and the spring, in the stage's coordinates (O at the
+# origin, y up, θ from the upward vertical toward +x: clockwise, so the anticlockwise angular
+# acceleration is −θ̈). The spring's couple on the rod opposes its twist: −kθ in θ's sense, +kθ about E_z.
+
+thetaddot = sp.Symbol(r"\ddot{\theta}", real=True)
+O_x, O_y = sp.symbols("O_x O_y", real=True)
+_ARM = m1 * L / 2 + m2 * (L + R)  # Σ m_i ρ_i
+
+
+def _swing_values_at(p, inertia: float, theta_, omega_) -> dict:
+    """The symbols at θ, θ̇ (numbers or arrays): θ̈ from the solver's equation of motion (``simulate``'s,
+    I_O θ̈ = Q sin θ − kθ with Q = ``weight_moment``), the pin's components from the two force laws
+    (the solver has no formula for them: the moment law is the independent check)."""
+    alpha = (weight_moment(p) * np.sin(theta_) - p["k"] * theta_) / inertia
+    arm = weight_moment(p) / p["g"]
+    ax = arm * (np.cos(theta_) * alpha - np.sin(theta_) * omega_**2)
+    ay = arm * (-np.sin(theta_) * alpha - np.cos(theta_) * omega_**2)
+    return {m1: p["m1"], m2: p["m2"], k: p["k"], L: p["L"], R: p["R"], g: p["g"], I_O: inertia, theta: theta_,
+            thetadot: omega_, thetaddot: alpha, O_x: ax, O_y: ay + (p["m1"] + p["m2"]) * p["g"]}
+
+
+def _swing_values(solution) -> dict:
+    """Passing θ₂, where the speed is asked for (falling: θ̇ = +|θ̇₂|)."""
+    p, a = solution.params, solution.answers
+    return _swing_values_at(p, a["I_O"], p["theta2"], a["omega2"])
+
+
+def _swing_frames(solution, motion) -> dict:
+    return _swing_values_at(solution.params, solution.answers["I_O"], np.asarray(motion["theta"]),
+                            np.asarray(motion["omega"]))
+
+
+@functools.cache
+def swing_diagram(disk: str) -> Diagram:
+    """The rod and disk during the fall (the disk welded, or pinned and not turning)."""
+    points = {"O": (0, 0), "G_1": (L / 2 * sp.sin(theta), L / 2 * sp.cos(theta)),
+              "G_2": ((L + R) * sp.sin(theta), (L + R) * sp.cos(theta)), "A": (L * sp.sin(theta), L * sp.cos(theta))}
+    body = Body("the rod and disk", points=points, centre="G_1", about="O",
+                kinetic=(_ARM * (sp.cos(theta) * thetaddot - sp.sin(theta) * thetadot**2),
+                         _ARM * (-sp.sin(theta) * thetaddot - sp.cos(theta) * thetadot**2), -I_O * thetaddot),
+                kinetic_latex=(r"(m_1 + m_2)\,\ddot{x}_G", r"(m_1 + m_2)\,\ddot{y}_G", r"-I_O\ddot{\theta}"),
+                outline=(Rod(("O", "A")), Circle("G_2", R)))
+    loads = (Load("m_1 g", "the rod's weight", "gravity", "the rod and disk", at="G_1", direction=(0, -1), size=m1 * g),
+             Load("m_2 g", "the disk's weight", "gravity", "the rod and disk", at="G_2", direction=(0, -1), size=m2 * g),
+             Load(r"k\theta", "the spring's couple", "the torsional spring", "the rod and disk", at="O", kind="couple",
+                  size=k * theta),
+             Load("O", "the pin's reaction", "the pin", "the rod and disk", at="O", components=(O_x, O_y)))
+    note = ("The disk, pinned at its centre, does not turn: it adds its mass at G_2 but no spin to I_O."
+            if disk == "pinned" else "The disk is welded to the rod: one rigid body.")
+    return Diagram("swing", "During the fall", "force", (body,), loads, _swing_values, frames=_swing_frames, note=note)
+
+
+def free_body_diagrams(params) -> tuple[Diagram, ...]:
+    """The fall's diagram for this disk."""
+    return (swing_diagram(params["disk"]),)
+
+
 @functools.cache
 def derivation(disk: str) -> Derivation:
     up = lambda q, arm: arm * sp.Matrix([sp.sin(q), sp.cos(q)])  # noqa: E731  position from O
@@ -126,8 +185,11 @@ def derivation(disk: str) -> Derivation:
     speed = [s_ for s_ in speed if s_.subs({I_O: 1, T2: 1}).is_positive][0]
 
     steps = [
-        Step("Centres of mass from O (θ from the upward vertical), rod at L/2 and disk at L + R",
-             r"\mathbf{x}_1 = " + sp.latex(x1.T) + r",\quad \mathbf{x}_2 = " + sp.latex(x2.T)),
+        Step(r"Origin at the pin O; $\mathbf{E}_x$ horizontal, $\mathbf{E}_y$ up; θ from the upward vertical, "
+             "growing clockwise as the assembly falls. Centres of mass from O, rod at L/2 and disk at L + R",
+             r"\mathbf{x}_1 = " + sp.latex(x1.T) + r",\quad \mathbf{x}_2 = " + sp.latex(x2.T), part=1),
+        *fbd_steps(swing_diagram(disk)),
+        *balance_steps(swing_diagram(disk)),
         Step("Kinetic energy: translation of each centre plus rotation about it"
              + (" (the disk turns with the rod)" if disk == "welded" else
                 r" (the pinned disk does not rotate: no $\tfrac12 I_G\dot\theta^2$ for it)"),
@@ -135,7 +197,7 @@ def derivation(disk: str) -> Derivation:
         Step("Hence the moment of inertia about O", latex_eq(I_O, inertia)),
         Step("Work of gravity from θ₁ to θ₂: ∫ F·dx for each weight",
              latex_eq(U_g, work_gravity)),
-        Step("Work of the torsional spring (moment −kθ)",
+        Step("Work of the torsional spring: its couple (kθ about E_z, −kθ in θ's sense) times dθ, integrated",
              latex_eq(U_s, sp.Integral(-k * theta, (theta, theta1, theta2))) + " = " + sp.latex(work_spring)),
         Step(r"Work–energy from rest: $T_2 - 0 = U_g + U_s$", latex_eq(T2, U_g + U_s)
              + r"\;\Rightarrow\;" + latex_eq(w2, speed)),
