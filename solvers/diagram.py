@@ -67,8 +67,8 @@ class Load:
     in the solver's symbols: a normal force is ``N`` along the surface's normal into the body,
     gravity ``m g`` along −E_y); a reaction whose direction the physics leaves open has
     ``direction=None`` and ``components`` (its x and y symbols), and is drawn as the two. A couple's
-    ``size`` is its E_z component (counter-clockwise +). ``pair``: the symbol of the opposite load on
-    the other body of an interaction pair."""
+    ``size`` is its E_z component (counter-clockwise +). ``pair``: the name of the opposite load on
+    the other body of an interaction pair (both labelled by their magnitude, drawn opposite)."""
 
     symbol: str
     name: str

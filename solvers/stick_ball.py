@@ -34,6 +34,7 @@ from .core import (
     require,
     validate_params,
 )
+from .diagram import Body, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
@@ -100,9 +101,81 @@ SYMBOLS = {"m_ball": m_b, "m_stick": m_s, "l": l, "v": v, "s": s, "e": e}
 DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
 
 
+# ---------------------------------------------------------------------------------------------
+# Step 2: the ball and the stick isolated at the impact's instant, in the stage's top view (the stick
+# along y with its midpoint M at the origin, the ball arriving along +x and striking at Q = (0, s)). The
+# contact is smooth: the impulse J on the stick is along the ball's approach (+x), and the stick's on the
+# ball is −J (an interaction pair). The table's support and gravity act out of the plane.
+
+u_b, u_M, omega_z = sp.symbols(r"u_b u_M omega_z", real=True)  # after: ball's and midpoint's x-velocity, E_z spin
+I_STICK = m_s * l**2 / 12
+RHO = sp.Rational(6, 100) * l  # the ball's drawn radius (BALL_RADIUS): the model's ball is a point at its front
+
+
+def _after(p, a) -> tuple[float, float, float]:
+    """The ball's and the stick's midpoint's x-velocities after, and the stick's E_z spin (clockwise:
+    negative), from the solver's answers."""
+    if p["mode"] == "stick":  # one rigid body: a point at arm y from the midpoint moves at v_cm + ω (y − d_cm)
+        return (a["v_cm"] + a["omega"] * (p["s"] - a["d_cm"]), a["v_cm"] - a["omega"] * a["d_cm"], -a["omega"])
+    return a["v_ball"], a["v_stick"], -a["omega"]
+
+
+def _contact_impulse(p) -> float:
+    """J from the effective mass at the contact (never from the velocities after): the normal relative
+    speed v is stopped and reversed e-fold, J = (1 + e) v / (1/m_b + 1/m_s + s²/I_s), with e = 0 when the
+    ball attaches."""
+    e_ = p["e"] if p["mode"] == "bounce" else 0.0
+    inverse = 1 / p["m_ball"] + 1 / p["m_stick"] + p["s"] ** 2 / (p["m_stick"] * p["l"] ** 2 / 12)
+    return (1 + e_) * p["v"] / inverse
+
+
+def _impact_values(solution) -> dict:
+    p, a = solution.params, solution.answers
+    ball, mid, spin = _after(p, a)
+    return {m_b: p["m_ball"], m_s: p["m_stick"], l: p["l"], v: p["v"], s: p["s"], J: _contact_impulse(p),
+            u_b: ball, u_M: mid, omega_z: spin}
+
+
+def _impact_frames(solution, motion) -> dict:
+    """The impact's symbols at its frame (the bodies there as the diagram has them), NaN elsewhere."""
+    at = np.arange(len(motion["t"])) == motion["impact_index"]
+    return {sym: np.where(at, value, np.nan) for sym, value in _impact_values(solution).items()}
+
+
+IMPACT = Diagram(
+    "impact", "At the impact", "impulse",
+    bodies=(Body("the ball", points={"B": (-RHO, s), "Q": (0, s)}, centre="B", about="B",
+                 kinetic=(m_b * (u_b - v), 0, 0), kinetic_latex=(r"m_b\left(u_b - v\right)", "0", "0"),
+                 outline=(Circle("B", RHO),)),
+            Body("the stick", points={"M": (0, 0), "Q": (0, s), "_top": (0, l / 2), "_bottom": (0, -l / 2)},
+                 centre="M", about="M", kinetic=(m_s * u_M, 0, I_STICK * omega_z),
+                 kinetic_latex=(r"m_s u_M", "0", r"I_M\,\omega_z"), outline=(Rod(("_top", "_bottom")),))),
+    loads=(Load("J", "the stick's impulse on the ball", "the stick", "the ball", at="Q", kind="impulse",
+                direction=(-1, 0), size=J, pair="the ball's impulse on the stick"),
+           Load("J", "the ball's impulse on the stick", "the ball", "the stick", at="Q", kind="impulse",
+                direction=(1, 0), size=J, pair="the stick's impulse on the ball")),
+    values=_impact_values, frames=_impact_frames,
+    note=("The contact is smooth: the impulse is along the ball's approach. The table's support and gravity "
+          "act out of the plane. The ball is a point (drawn with a size); u_b, u_M: the ball's and the "
+          "stick's midpoint's velocities after, ω_z the stick's spin (clockwise: negative)."))
+
+
+def free_body_diagrams(params) -> tuple[Diagram, ...]:
+    """The impact's instant (the same diagram whether the ball attaches or bounces)."""
+    return (IMPACT,)
+
+
 @functools.cache
 def derivation(mode: str) -> Derivation:
     I_stick = m_s * l**2 / 12
+    origin = Step(r"Top view. Origin at the stick's midpoint M at the instant of impact; $\mathbf{E}_x$ along the "
+                  r"ball's approach, $\mathbf{E}_y$ along the stick, $\mathbf{E}_z$ out of the table "
+                  r"(counter-clockwise +). The ball strikes at Q, a distance s from M; before, it moves at "
+                  r"$v\,\mathbf{E}_x$ and the stick is at rest", r"\mathbf{r}_Q = s\,\mathbf{E}_y,\quad "
+                  r"\mathbf{v}_{ball}^- = v\,\mathbf{E}_x", part=1)
+    laws = [origin, *fbd_steps(IMPACT), *balance_steps(IMPACT),
+            Step("Added, the pair ±J cancels: no external impulse in the plane, so the system's momentum and "
+                 "angular momentum are conserved", r"m_b\left(u_b - v\right) + m_s u_M = 0")]
     T_before = m_b * v**2 / 2
     if mode == "stick":
         cm = sp.Eq(d_cm, (m_s * 0 + m_b * s) / (m_s + m_b))
@@ -114,6 +187,7 @@ def derivation(mode: str) -> Derivation:
         solved_w = sp.solve(angular, w)[0]
         T_after = (m_b + m_s) * v_cm**2 / 2 + I_cm * w**2 / 2
         steps = [
+            *laws,
             Step("Centre of mass of stick + ball, measured from the stick's midpoint", sp.latex(cm)),
             Step("No horizontal external impulse: linear momentum is conserved", sp.latex(momentum)
                  + r"\;\Rightarrow\;" + latex_eq(v_cm, solved_v)),
@@ -136,17 +210,18 @@ def derivation(mode: str) -> Derivation:
             Result("distance_per_rev", x_rev, v_cm * 2 * sp.pi / w, "length"),
         ]
     else:
-        ball = sp.Eq(m_b * (v_b1 - v), -J)
-        stick_lin = sp.Eq(m_s * v_s1, J)
-        stick_ang = sp.Eq(I_stick * w, J * s)
+        # the two bodies' balance laws (Step 3), with the velocities after named as the derivation names them
+        after = {u_b: v_b1, u_M: v_s1, omega_z: -w}
+        ball = balance(IMPACT, "the ball")[0].subs(after)
+        stick_lin, _, stick_ang = (eq.subs(after) for eq in balance(IMPACT, "the stick"))
         restitution = sp.Eq(v_s1 + w * s - v_b1, e * v)
         solved = sp.solve([ball, stick_lin, stick_ang, restitution], [v_b1, v_s1, w, J], dict=True)[0]
         solved = {k: sp.factor(val) for k, val in solved.items()}
         T_after = m_b * v_b1**2 / 2 + m_s * v_s1**2 / 2 + I_stick * w**2 / 2
         steps = [
-            Step("Impulse J on the stick at the contact, −J on the ball", sp.latex(ball) + r",\quad "
-                 + sp.latex(stick_lin)),
-            Step("Angular impulse on the stick about its midpoint", sp.latex(stick_ang)),
+            *laws,
+            Step(r"With $u_b = v_b'$, $u_M = v_s'$ and the stick turning clockwise at ω ($\omega_z = -\omega$)",
+                 sp.latex(ball) + r",\quad " + sp.latex(stick_lin) + r",\quad " + sp.latex(stick_ang)),
             Step("Newton's restitution on the normal velocities at the contact point", sp.latex(restitution)),
             Step("Solve the four linear equations",
                  r",\quad ".join(latex_eq(k, solved[k]) for k in (J, v_b1, v_s1, w))),

@@ -46,8 +46,12 @@ def test_every_problem_declares_its_diagrams():
                     assert (load.direction is None) == bool(load.components) or load.direction is not None, load
                 assert load.name and load.by and load.symbol, (pid, load)
                 if load.pair:  # an interaction pair: drawn on both bodies, opposite
-                    partner = next(l for l in d.loads if l.symbol == load.pair)
-                    assert partner.on != load.on and partner.pair == load.symbol, (pid, load.symbol)
+                    partner = next(l for l in d.loads if l.name == load.pair)
+                    assert partner.on != load.on and partner.pair == load.name, (pid, load.name)
+                    values = d.values(solution)
+                    for a, b in zip(load.vector, partner.vector):
+                        assert math.isclose(float(sp.sympify(a).subs(values)), -float(sp.sympify(b).subs(values)),
+                                            rel_tol=1e-12, abs_tol=1e-12), (pid, load.name)
             for body in d.bodies:
                 assert body.centre in body.points and body.about in body.points, (pid, body.name)
 
@@ -186,7 +190,7 @@ def test_the_stages_forces_are_the_diagrams_at_each_frame(pid, data):
         motion = solver.motion(solution)
         frames = len(motion["t"])
         traces = fbd.overlay(solver, solution, motion, width=1.0)
-        arrows = {t.style["meta"]: t for t in traces if t.style.get("mode") == "lines"}
+        arrows = {tuple(t.style["meta"]): t for t in traces if t.style.get("mode") == "lines"}
         assert arrows, pid
         for d in diagrams:
             per_frame = d.frames(solution, motion)
@@ -201,7 +205,7 @@ def test_the_stages_forces_are_the_diagrams_at_each_frame(pid, data):
             for load in d.loads:
                 if load.kind == "couple":
                     continue
-                trace = arrows[load.symbol]
+                trace = arrows[(load.on, load.symbol)]
                 xs, ys = trace.per_frame["x"], trace.per_frame["y"]
                 for i in hits[:1]:
                     vx, vy = (float(sp.sympify(c).subs({s: per_frame[s][i] for s in per_frame})) for c in load.vector)

@@ -218,7 +218,7 @@ def layout(diagram: Diagram, values) -> Drawing:
     centres: dict[str, tuple[float, float]] = {}
     for body, pts, x0, x1, y0, y1 in bodies:
         dx = left - x0 * scale
-        to = lambda p: (p[0] * scale + dx, p[1] * scale - (y0 + y1) / 2 * scale)
+        to = lambda p: (p[0] * scale + dx, p[1] * scale)  # (heights as they are: an interaction pair's point level)
         for name, p in pts.items():
             placed[(body.name, name)] = to(p)
         centres[body.name] = to(pts[body.centre])
@@ -231,7 +231,7 @@ def layout(diagram: Diagram, values) -> Drawing:
                 drawing.rods.append((ax, ay, bx, by))
             elif isinstance(shape, Outline):
                 drawing.polygons.append([to(pts[c]) for c in shape.corners])
-        left += (x1 - x0) * scale + GAP
+        left += (x1 - x0) * scale + GAP + ARROW  # room for a load pushing on the next body from this side
     # Named points: a dot and its letter (placed after the loads, where room is left).
     # the points a reader needs named: where a load acts, the mass centre, the moment point
     named = {(b.name, n) for b in diagram.bodies for n in (b.centre, b.about)} | {
@@ -612,7 +612,7 @@ def overlay(solver, solution, motion: dict, width: float, length_scale: float = 
             vx, vy = (_per_frame(c, values, frames) for c in load.vector)
             cx, cy = (_per_frame(c, values, frames) for c in body.points[body.centre])
             pushes = (vx * (px - cx) + vy * (py - cy) < 0).astype(float)
-            track = tracks.setdefault((load.kind, load.symbol), {
+            track = tracks.setdefault((load.kind, load.on, load.symbol), {
                 "x": np.full(frames, np.nan), "y": np.full(frames, np.nan), "push": np.zeros(frames),
                 "vx": np.full(frames, np.nan), "vy": np.full(frames, np.nan), "name": load.name})
             here = np.isfinite(px) & np.isfinite(py) & np.isfinite(vx) & np.isfinite(vy)
@@ -620,12 +620,12 @@ def overlay(solver, solution, motion: dict, width: float, length_scale: float = 
                 track[key][here] = new[here]
     traces = []
     for kind in ("force", "impulse"):
-        mine = {s: t for (k, s), t in tracks.items() if k == kind}
+        mine = {(on, s): t for (k, on, s), t in tracks.items() if k == kind}
         biggest = max((np.nanmax(np.hypot(t["vx"], t["vy"]), initial=0.0) for t in mine.values()), default=0.0)
         if not biggest > 0:
             continue
         scale = _OVERLAY_LENGTH * width / biggest
-        for symbol, t in mine.items():
+        for (on, symbol), t in mine.items():
             x0, y0 = t["x"] * length_scale, t["y"] * length_scale
             dx, dy = t["vx"] * scale, t["vy"] * scale
             # a push drawn with its head at the point (a contact), a body force from it (the weight)
@@ -634,7 +634,7 @@ def overlay(solver, solution, motion: dict, width: float, length_scale: float = 
             style = line(None, None, f"{kind}: {plain_label(symbol)}", OVERLAY_COLOR, width=3 if kind == "force" else 5,
                          show_legend=not traces)
             style |= {"legendgroup": "forces", "name": OVERLAY_NAME if not traces else f"{kind}: {plain_label(symbol)}",
-                      "meta": symbol}  # (which load: the tests read it)
+                      "meta": [on, symbol]}  # (which load: the tests read it)
             traces.append(moving(style, xs, ys))
             free_x = np.where(t["push"] > 0, tail_x - dx * 0.18, tail_x + dx * 1.18)
             free_y = np.where(t["push"] > 0, tail_y - dy * 0.18, tail_y + dy * 1.18)
