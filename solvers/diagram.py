@@ -169,8 +169,12 @@ def balance(diagram: Diagram, body: str) -> tuple[sp.Eq, sp.Eq, sp.Eq]:
     return tuple(sp.Eq(s, k, evaluate=False) for s, k in zip(resultant(diagram, body), b.kinetic))
 
 
-_SUM = {"force": (r"\sum F_x", r"\sum F_y", r"\sum M_{{{p}}}"),
-        "impulse": (r"\sum \hat{{P}}_x", r"\sum \hat{{P}}_y", r"\sum \hat{{M}}_{{{p}}}")}  # str.format: {{ is {
+def _sum_labels(diagram: Diagram, about: str) -> tuple[str, str, str]:
+    """The three sums as the balance laws write them, along the diagram's basis (an impulse's with a hat)."""
+    ex, ey = diagram.basis
+    if diagram.law == "impulse":
+        return (rf"\sum \hat{{\mathbf{{P}}}}\cdot{ex}", rf"\sum \hat{{\mathbf{{P}}}}\cdot{ey}", rf"\sum \hat{{M}}_{{{about}}}")
+    return (rf"\sum \mathbf{{F}}\cdot{ex}", rf"\sum \mathbf{{F}}\cdot{ey}", rf"\sum M_{{{about}}}")
 
 
 def _load_vector_latex(load: Load, basis: tuple[str, str]) -> str:
@@ -221,11 +225,8 @@ def balance_steps(diagram: Diagram) -> tuple[Step, ...]:
     steps = []
     law = {"force": "Newton–Euler", "impulse": "Impulse–momentum"}[diagram.law]
     for b in diagram.bodies:
-        sums = _SUM[diagram.law]
-        rows = []
-        for i, (eq, kin) in enumerate(zip(resultant(diagram, b.name), b.kinetic_latex)):
-            label = sums[i].format(p=b.about)
-            rows.append(f"{label}: {sp.latex(eq)} = {kin}")
+        rows = [f"{label}: {sp.latex(total)} = {kin}"
+                for label, total, kin in zip(_sum_labels(diagram, b.about), resultant(diagram, b.name), b.kinetic_latex)]
         about = f", moments about {b.about}"
         steps.append(Step(f"{law} for {b.name}, from its diagram{about}", r",\quad ".join(rows), part=3))
     return tuple(steps)

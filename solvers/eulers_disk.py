@@ -32,6 +32,7 @@ from .core import (
     root_with_sign,
     validate_params,
 )
+from .diagram import Body, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .sweeps import swept
 from .protocol import About, Mistake, Variants
@@ -86,6 +87,57 @@ def _vec_latex(v: sp.Matrix) -> str:
     return " + ".join(terms) if terms else "0"
 
 
+F_ = sp.Symbol("F", real=True)  # the table's friction on the disk at A, along e_y
+
+
+@functools.cache
+def _kinematics() -> dict:
+    """The precessing frame's vectors and the angular momentum, derived once."""
+    n = sp.Matrix([0, sp.sin(theta), sp.cos(theta)])
+    r_AG = r * sp.Matrix([0, sp.cos(theta), -sp.sin(theta)])
+    Ez = sp.Matrix([0, 0, 1])
+    precession = -w_p * Ez
+    omega = psidot * n + precession
+    rolling = omega.cross(r_AG)  # v_A = v_G + ω × r_A/G with v_G = 0
+    spin = sp.solve(rolling[0], psidot)[0]
+    I_axis, I_diam = m * r**2 / 2, m * r**2 / 4
+    H = I_axis * omega.dot(n) * n + I_diam * (omega - omega.dot(n) * n)
+    H_rolled = sp.simplify(H.subs(psidot, spin))
+    dHdt = precession.cross(H_rolled)  # components fixed in the precessing frame
+    return {"n": n, "r_AG": r_AG, "Ez": Ez, "precession": precession, "omega": omega, "rolling": rolling,
+            "spin": spin, "H_rolled": H_rolled, "dHdt": dHdt}
+
+
+def _steady_values(solution) -> dict:
+    """The steady state: ω_p the solver's answer; with G at rest (a_G = 0, the model's assumption) the table
+    pushes with N = mg and no friction, so the moment law about G is the check."""
+    p, a = solution.params, solution.answers
+    return {m: p["m"], r: p["r"], theta: p["theta"], g: p["g"], w_p: a["omega_p"], N_: p["m"] * p["g"], F_: 0.0}
+
+
+@functools.cache
+def steady() -> Diagram:
+    """The disk in the vertical plane through its axis and the contact point A (e_y horizontal, toward A;
+    E_z up): the weight at G, the table's force at A as its components (friction F, normal N). The
+    moment about G is along e_x, out of the drawn plane."""
+    k = _kinematics()
+    disk = Body("the disk", points={"G": (0, r * sp.sin(theta)), "A": (r * sp.cos(theta), 0),
+                                    "_rim": (-r * sp.cos(theta), 2 * r * sp.sin(theta))},
+                centre="G", about="G", kinetic=(0, 0, sp.factor(sp.expand_trig(sp.simplify(k["dHdt"][0])))),
+                kinetic_latex=("0", "0", r"\dot{\mathbf{H}}_G\cdot\mathbf{e}_x"), outline=(Rod(("A", "_rim")),))
+    loads = (Load("m g", "the weight", "gravity", "the disk", at="G", direction=(0, -1), size=m * g),
+             Load("A", "the table's force", "the table", "the disk", at="A", components=(F_, N_)))
+    return Diagram("steady", "In steady precession", "force", (disk,), loads, _steady_values,
+                   basis=(r"\mathbf{e}_y", r"\mathbf{E}_z"),
+                   note=("Drawn in the vertical plane through the disk's axis and A: the disk seen edge-on. G is at "
+                         "rest, so the forces balance; their moment about G turns H_G with the precession."))
+
+
+def free_body_diagrams(params) -> tuple[Diagram, ...]:
+    """The steady precession's diagram (the same for every parameter set; the stage is 3-D: no frames)."""
+    return (steady(),)
+
+
 @functools.cache
 def derivation() -> Derivation:
     n = sp.Matrix([0, sp.sin(theta), sp.cos(theta)])
@@ -103,7 +155,10 @@ def derivation() -> Derivation:
     H_rolled = sp.simplify(H.subs(psidot, spin))
     dHdt = precession.cross(H_rolled)  # components fixed in the precessing frame
     torque = r_AG.cross(N_ * Ez)
-    moment_eq = sp.Eq(sp.simplify(torque[0].subs(N_, m * g)), sp.factor(sp.expand_trig(sp.simplify(dHdt[0]))))
+    # Step 3's moment law about G (e_x), from the diagram; its force laws give F = 0 and N = mg (a_G = 0)
+    balance_x, balance_y, balance_m = balance(steady(), "the disk")
+    forces = sp.solve([balance_x, balance_y], [F_, N_], dict=True)[0]
+    moment_eq = sp.Eq(sp.simplify(balance_m.lhs.subs(forces)), balance_m.rhs)
     w_p_solved = root_with_sign(sp.solve(moment_eq, w_p), +1)
     w_p_shown = presentable(w_p_solved, sp.Pow(4 * g / (r * sp.sin(theta)), sp.S.Half, evaluate=False))
     magnitude = presentable(sp.sqrt(sp.simplify(omega_rolled.dot(omega_rolled))), w_p * sp.sin(theta))
@@ -112,13 +167,17 @@ def derivation() -> Derivation:
     energy_closed = presentable(energy.subs(w_p, w_p_shown), sp.Rational(3, 2) * m * g * r * sp.sin(theta))
 
     steps = [
-        Step(r"Angular velocity: spin $\dot\psi$ about the normal $\mathbf{n}$ plus the precession $-\omega_p\mathbf{E}_z$",
-             rf"\boldsymbol\omega = \dot\psi\,\mathbf{{n}} - \omega_p \mathbf{{E}}_z = {_vec_latex(omega)}"),
+        Step(r"Origin at the centre G, at rest; the frame $\{\mathbf{e}_x, \mathbf{e}_y, \mathbf{e}_z = \mathbf{E}_z\}$ "
+             r"precesses with the contact point A ($\mathbf{e}_y$ horizontal toward A, $\mathbf{E}_z$ up). Angular "
+             r"velocity: spin $\dot\psi$ about the normal $\mathbf{n}$ plus the precession $-\omega_p\mathbf{E}_z$",
+             rf"\boldsymbol\omega = \dot\psi\,\mathbf{{n}} - \omega_p \mathbf{{E}}_z = {_vec_latex(omega)}", part=1),
         Step("Rolling without slip with G at rest: the contact point A has zero velocity",
              rf"\mathbf{{v}}_A = \boldsymbol\omega \times \mathbf{{r}}_{{A/G}} = {_vec_latex(rolling)} = 0"
-             rf"\;\Rightarrow\; {latex_eq(psidot, spin)} = \omega_s"),
+             rf"\;\Rightarrow\; {latex_eq(psidot, spin)} = \omega_s", part=1),
         Step("So ω points along the diameter through A (the instantaneous axis passes through A and G)",
-             rf"\boldsymbol\omega = {_vec_latex(omega_rolled)},\quad {latex_eq(w_tot, magnitude)}"),
+             rf"\boldsymbol\omega = {_vec_latex(omega_rolled)},\quad {latex_eq(w_tot, magnitude)}", part=1),
+        *fbd_steps(steady()),
+        *balance_steps(steady()),
         Step("Angular momentum about G: ½ m r² along n, ¼ m r² across it",
              rf"\mathbf{{H}}_G = {_vec_latex(H_rolled)}"),
         Step(r"$\theta$, $\omega_s$, $\omega_p$ constant: $\mathbf{H}_G$ is fixed in the precessing frame, so "

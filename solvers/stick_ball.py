@@ -174,7 +174,7 @@ def derivation(mode: str) -> Derivation:
                   r"$v\,\mathbf{E}_x$ and the stick is at rest", r"\mathbf{r}_Q = s\,\mathbf{E}_y,\quad "
                   r"\mathbf{v}_{ball}^- = v\,\mathbf{E}_x", part=1)
     laws = [origin, *fbd_steps(IMPACT), *balance_steps(IMPACT),
-            Step("Added, the pair ±J cancels: no external impulse in the plane, so the system's momentum and "
+            Step("Added, the pair (J on the stick, −J on the ball) cancels: no external impulse in the plane, so the system's momentum and "
                  "angular momentum are conserved", r"m_b\left(u_b - v\right) + m_s u_M = 0")]
     T_before = m_b * v**2 / 2
     if mode == "stick":

@@ -222,7 +222,16 @@ def test_a_slip_in_the_notebook_is_caught():
 def test_the_notebook_imports_nothing_of_the_app():
     problem, solution, _ = solved("sliding_ladder", {})
     imports = re.findall(r"^\s*(?:import|from)\s+(\w+)", notebook.script(problem, solution), re.M)
-    assert set(imports) == {"sympy"}
+    assert set(imports) == {"sympy", "matplotlib"}  # matplotlib only for the diagram, and optional (below)
+
+
+def test_the_notebooks_diagram_cell_says_the_diagram_without_matplotlib():
+    """Without matplotlib the diagram's cell prints the diagram in words and the notebook runs on."""
+    problem, solution, _ = solved("sliding_ladder", {})
+    source = notebook.script(problem, solution).replace("import matplotlib.pyplot as plt", "raise ImportError")
+    printed = run_script(source)
+    assert "Free-body diagram, against the wall: the ladder" in printed
+    assert printed_answers(printed)
 
 
 @pytest.fixture(scope="module")

@@ -25,44 +25,47 @@ from viz import diagram as fbd
 
 # The notebook's cell that draws the free-body diagrams (viz.diagram.as_data) with matplotlib; a
 # label's LaTeX is matplotlib's mathtext.
-DRAW_DIAGRAMS = """diagrams = {data}
-try:
-    import matplotlib.pyplot as plt
-    from matplotlib.patches import Circle, FancyArrowPatch, Polygon
-except ImportError:
-    plt = None
-for d in diagrams:
-    print(d["text"])
-    if plt is None:
-        continue
-    fig, ax = plt.subplots(figsize=(4.5, 4.5 * (d["box"][3] - d["box"][1]) / (d["box"][2] - d["box"][0])))
-    for poly in d["polygons"]:
-        ax.add_patch(Polygon(poly, closed=True, facecolor="#e8eaed", edgecolor="#3c4043", lw=1.5))
-    for x, y, r in d["circles"]:
-        ax.add_patch(Circle((x, y), r, facecolor="#e8eaed", edgecolor="#3c4043", lw=1.5))
-    for x0, y0, x1, y1 in d["rods"]:
-        ax.plot([x0, x1], [y0, y1], color="#3c4043", lw=6, solid_capstyle="round")
-    for x, y, (tex, lx, ly) in d["points"]:
-        ax.plot([x], [y], "o", color="#3c4043", ms=3)
-        ax.text(lx, ly, tex, ha="center", va="center", fontsize=10)
-    for tail, head, kind, label in d["arrows"]:
-        color = "#3c4043" if kind == "basis" else "#b3261e"
-        style = "-|>" if kind != "impulse" else "-|>,head_width=0.5,head_length=0.9"
-        ax.add_patch(FancyArrowPatch(tail, head, arrowstyle=style, mutation_scale=14, color=color,
-                                     lw=1 if kind == "basis" else 2, fill=kind != "impulse"))
-        if label:
-            ax.text(label[1], label[2], "$" + label[0] + "$", color=color, ha="center", va="center", fontsize=11)
-    for *path, label in d["curls"]:
-        xs, ys = zip(*path)
-        ax.plot(xs[:-1], ys[:-1], color="#b3261e", lw=2)
-        ax.add_patch(FancyArrowPatch(path[-3], path[-1], arrowstyle="-|>", mutation_scale=14, color="#b3261e"))
-        ax.text(label[1], label[2], "$" + label[0] + "$", color="#b3261e", ha="center", va="center", fontsize=11)
-    ax.set_xlim(d["box"][0], d["box"][2])
-    ax.set_ylim(d["box"][1], d["box"][3])
-    ax.set_aspect("equal")
-    ax.axis("off")
-    ax.set_title(d["title"])
-    plt.show()"""
+DRAW_DIAGRAMS = """def draw_free_body_diagrams(diagrams):
+    # (a function: its names stay its own, clear of the givens' symbols)
+    try:
+        import matplotlib.pyplot as plt
+        from matplotlib.patches import Circle, FancyArrowPatch, Polygon
+    except ImportError:
+        plt = None
+    for d in diagrams:
+        print(d["text"])
+        if plt is None:
+            continue
+        fig, ax = plt.subplots(figsize=(4.5, 4.5 * (d["box"][3] - d["box"][1]) / (d["box"][2] - d["box"][0])))
+        for poly in d["polygons"]:
+            ax.add_patch(Polygon(poly, closed=True, facecolor="#e8eaed", edgecolor="#3c4043", lw=1.5))
+        for x, y, radius in d["circles"]:
+            ax.add_patch(Circle((x, y), radius, facecolor="#e8eaed", edgecolor="#3c4043", lw=1.5))
+        for x0, y0, x1, y1 in d["rods"]:
+            ax.plot([x0, x1], [y0, y1], color="#3c4043", lw=6, solid_capstyle="round")
+        for x, y, (tex, lx, ly) in d["points"]:
+            ax.plot([x], [y], "o", color="#3c4043", ms=3)
+            ax.text(lx, ly, tex, ha="center", va="center", fontsize=10)
+        for tail, head, kind, label in d["arrows"]:
+            color = "#3c4043" if kind == "basis" else "#b3261e"
+            ax.add_patch(FancyArrowPatch(tail, head, arrowstyle="-|>", mutation_scale=14, color=color,
+                                         lw=1 if kind == "basis" else 2, fill=kind != "impulse"))
+            if label:
+                ax.text(label[1], label[2], "$" + label[0] + "$", color=color, ha="center", va="center", fontsize=11)
+        for *path, label in d["curls"]:
+            xs, ys = zip(*path)
+            ax.plot(xs[:-1], ys[:-1], color="#b3261e", lw=2)
+            ax.add_patch(FancyArrowPatch(path[-3], path[-1], arrowstyle="-|>", mutation_scale=14, color="#b3261e"))
+            ax.text(label[1], label[2], "$" + label[0] + "$", color="#b3261e", ha="center", va="center", fontsize=11)
+        ax.set_xlim(d["box"][0], d["box"][2])
+        ax.set_ylim(d["box"][1], d["box"][3])
+        ax.set_aspect("equal")
+        ax.axis("off")
+        ax.set_title(d["title"])
+        plt.show()
+
+
+draw_free_body_diagrams({data})"""
 
 NBFORMAT = 4
 NBFORMAT_MINOR = 5
