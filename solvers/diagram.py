@@ -201,7 +201,7 @@ def _load_vector_latex(load: Load, basis: tuple[str, str]) -> str:
 def describe(load: Load) -> str:
     """The load in words, for a step's title and a drawing's text alternative."""
     kind = {"force": "a force", "impulse": "an impulse", "couple": "a couple"}[load.kind]
-    where = f" at {load.at}" if load.at else ""
+    where = (f" at ${load.at}$" if "_" in load.at else f" at {load.at}") if load.at else ""
     how = ", direction unknown: drawn as its two components" if load.unknown_direction else ""
     return f"{load.name} (${load.symbol}$, {kind} by {load.by}){where}{how}"
 

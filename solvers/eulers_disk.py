@@ -130,7 +130,7 @@ def steady() -> Diagram:
     return Diagram("steady", "In steady precession", "force", (disk,), loads, _steady_values,
                    basis=(r"\mathbf{e}_y", r"\mathbf{E}_z"),
                    note=("Drawn in the vertical plane through the disk's axis and A: the disk seen edge-on. G is at "
-                         "rest, so the forces balance; their moment about G turns H_G with the precession."))
+                         "rest, so the forces balance; their moment about G turns $\\mathbf{H}_G$ with the precession."))
 
 
 def free_body_diagrams(params) -> tuple[Diagram, ...]:

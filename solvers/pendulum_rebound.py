@@ -213,7 +213,7 @@ def diagrams(surface: str) -> tuple[Diagram, Diagram]:
                   components=(Ohat_x, Ohat_y)))
     smooth = f"The {surface} is smooth: its impulse is along its normal, out of the {surface}."
     return (Diagram("swing", "During the swing", "force", (swing,), weights, _swing_values, frames=_swing_frames,
-                    note="G is the rod-and-sphere's centre of mass; the rod's centre G_r and the sphere's S carry the weights."),
+                    note="G is the rod-and-sphere's centre of mass; the rod's centre $G_r$ and the sphere's $S$ carry the weights."),
             Diagram("impact", "At the impact", "impulse", (hit,), blows, _impact_values, frames=_impact_frames,
                     note=smooth + " Gravity's impulse over the instant is negligible."))
 
@@ -273,7 +273,7 @@ def derivation(sphere: str, surface: str) -> Derivation:
              latex_eq(I_O, inertia)),
         Step("Moment of the weights about O per unit cos θ: the potential energy is V = Q sin θ",
              latex_eq(Q, weight_moment)),
-        Step("Work–energy from rest at θ₀: the moment law ΣM_O = I_O θ̈ = −Q cos θ, integrated once (gravity is the "
+        Step("Work–energy from rest at θ₀: the moment law $\\sum M_O = I_O\\ddot\\theta = -Q\\cos\\theta$, integrated once (gravity is the "
              "only force that works; the pin at O does none)",
              sp.latex(energy)),
         Step("The sphere touches the " + ("floor: the lowest point of the sphere is a depth d below O"

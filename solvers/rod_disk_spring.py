@@ -155,7 +155,7 @@ def swing_diagram(disk: str) -> Diagram:
              Load(r"k\theta", "the spring's couple", "the torsional spring", "the rod and disk", at="O", kind="couple",
                   size=k * theta),
              Load("O", "the pin's reaction", "the pin", "the rod and disk", at="O", components=(O_x, O_y)))
-    note = ("The disk, pinned at its centre, does not turn: it adds its mass at G_2 but no spin to I_O."
+    note = ("The disk, pinned at its centre, does not turn: it adds its mass at $G_2$ but no spin to $I_O$."
             if disk == "pinned" else "The disk is welded to the rod: one rigid body.")
     return Diagram("swing", "During the fall", "force", (body,), loads, _swing_values, frames=_swing_frames, note=note)
 
@@ -197,7 +197,7 @@ def derivation(disk: str) -> Derivation:
         Step("Hence the moment of inertia about O", latex_eq(I_O, inertia)),
         Step("Work of gravity from θ₁ to θ₂: ∫ F·dx for each weight",
              latex_eq(U_g, work_gravity)),
-        Step("Work of the torsional spring: its couple (kθ about E_z, −kθ in θ's sense) times dθ, integrated",
+        Step("Work of the torsional spring: its couple ($k\\theta$ about $\\mathbf{E}_z$, $-k\\theta$ in θ's sense) times dθ, integrated",
              latex_eq(U_s, sp.Integral(-k * theta, (theta, theta1, theta2))) + " = " + sp.latex(work_spring)),
         Step(r"Work–energy from rest: $T_2 - 0 = U_g + U_s$", latex_eq(T2, U_g + U_s)
              + r"\;\Rightarrow\;" + latex_eq(w2, speed)),

@@ -177,7 +177,7 @@ BOTH_CONTACTS = Diagram(
 FLOOR_ONLY = Diagram(
     "floor_only", "After the top leaves the wall", "force", bodies=(_ladder(_POINTS),), loads=(_WEIGHT, _FLOOR),
     values=_leaving_values, frames=_frames(False),
-    note="No horizontal force is left: ẋ_G keeps its value.")
+    note="No horizontal force is left: $\\dot x_G$ keeps its value.")
 
 
 def free_body_diagrams(params) -> tuple[Diagram, ...]:

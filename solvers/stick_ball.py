@@ -156,8 +156,8 @@ IMPACT = Diagram(
                 direction=(1, 0), size=J, pair="the stick's impulse on the ball")),
     values=_impact_values, frames=_impact_frames,
     note=("The contact is smooth: the impulse is along the ball's approach. The table's support and gravity "
-          "act out of the plane. The ball is a point (drawn with a size); u_b, u_M: the ball's and the "
-          "stick's midpoint's velocities after, ω_z the stick's spin (clockwise: negative)."))
+          "act out of the plane. The ball is a point (drawn with a size); $u_b$, $u_M$: the ball's and the "
+          "stick's midpoint's velocities after, $\\omega_z$ the stick's spin (clockwise: negative)."))
 
 
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
