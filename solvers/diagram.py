@@ -23,7 +23,7 @@ Plane problems only: vectors are (x, y) in the basis, moments their E_z componen
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable, Mapping
 
 import sympy as sp

@@ -140,20 +140,10 @@ def free_body_diagrams(params) -> tuple[Diagram, ...]:
 
 @functools.cache
 def derivation() -> Derivation:
-    n = sp.Matrix([0, sp.sin(theta), sp.cos(theta)])
-    r_AG = r * sp.Matrix([0, sp.cos(theta), -sp.sin(theta)])
-    Ez = sp.Matrix([0, 0, 1])
-    precession = -w_p * Ez
-    omega = psidot * n + precession
-
-    rolling = omega.cross(r_AG)  # v_A = v_G + ω × r_A/G with v_G = 0
-    spin = sp.solve(rolling[0], psidot)[0]
+    k = _kinematics()
+    r_AG, Ez, omega, rolling, spin = k["r_AG"], k["Ez"], k["omega"], k["rolling"], k["spin"]
+    H_rolled, dHdt = k["H_rolled"], k["dHdt"]
     omega_rolled = sp.simplify(omega.subs(psidot, spin))
-
-    I_axis, I_diam = m * r**2 / 2, m * r**2 / 4
-    H = I_axis * omega.dot(n) * n + I_diam * (omega - omega.dot(n) * n)
-    H_rolled = sp.simplify(H.subs(psidot, spin))
-    dHdt = precession.cross(H_rolled)  # components fixed in the precessing frame
     torque = r_AG.cross(N_ * Ez)
     # Step 3's moment law about G (e_x), from the diagram; its force laws give F = 0 and N = mg (a_G = 0)
     balance_x, balance_y, balance_m = balance(steady(), "the disk")

@@ -191,7 +191,6 @@ def _impact_frames(solution, motion) -> dict:
 def diagrams(surface: str) -> tuple[Diagram, Diagram]:
     """The swing's and the impact's diagrams for this surface."""
     points = _pendulum_points(surface)
-    rho = lambda name: points[name]  # noqa: E731
     swing = Body("the pendulum", points=points, centre="G_r", about="O",
                  kinetic=(_ARM * (-sp.sin(theta) * thetaddot - sp.cos(theta) * thetadot**2),
                           _ARM * (sp.cos(theta) * thetaddot - sp.sin(theta) * thetadot**2), I_O * thetaddot),

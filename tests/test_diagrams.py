@@ -11,7 +11,7 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 from solvers import registry
-from solvers.diagram import Load, balance, balance_steps, fbd_steps, residuals, resultant
+from solvers.diagram import balance, balance_steps, fbd_steps, residuals
 from solvers.solution import PARTS
 from tests.strategies import valid
 from viz import diagram as fbd

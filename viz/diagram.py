@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from solvers.diagram import Circle, Diagram, Load, Outline, Rod
+from solvers.diagram import Circle, Diagram, Outline, Rod
 
 BODY_SIZE = 180.0  # the largest body's extent, in the drawing's units (an SVG viewBox's)
 ARROW = 62.0  # a load's length
@@ -118,7 +118,7 @@ def runs(tex: str) -> list[tuple[str, str]]:
     declare (N_A, m_s g, O_x, \\mu N_f, M_{k})."""
     tokens = _LATEX_TOKEN.findall(tex)
     out: list[tuple[str, str]] = []
-    i, mode, depth_mode = 0, "", []
+    i, mode = 0, ""
 
     def add(text: str, where: str):
         if out and out[-1][1] == where:
