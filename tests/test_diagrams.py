@@ -221,3 +221,55 @@ def test_the_stages_forces_are_the_diagrams_at_each_frame(pid, data):
                     # (to the figure's rounding, viz.common.DIGITS decimals at each end)
                     slack = 2 * 10.0 ** -DIGITS / math.hypot(*shaft) + 1e-3
                     assert abs(shaft[0] * vy - shaft[1] * vx) <= slack * math.hypot(*shaft) * math.hypot(vx, vy)
+
+
+# --- on the page (AppTest) -----------------------------------------------------------------------
+
+def _page(pid: str, query: dict | None = None):
+    from tests.test_pages import run_page
+
+    return run_page(pid, query)
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_the_page_draws_step_two_and_heads_the_four_steps(pid):
+    """The derivation's element gets the four headings and, under Step 2, each diagram's SVG with its
+    text alternative; the lesson's Forces switch is there where the stage can show the forces."""
+    from tests.test_pages import derivation_shown
+
+    at = _page(pid)
+    d = derivation_shown(at)
+    assert [title for _, title in d["parts"]] == list(PARTS.values())
+    solver = registry.solver(pid)
+    declared = solver.free_body_diagrams(solver.solve().params)
+    assert len(d["diagrams"]) == len(declared)
+    for (svg, text), diagram in zip(d["diagrams"], declared):
+        assert svg.startswith("<svg") and text.startswith("Free-body diagram")
+        for load in diagram.loads:
+            assert load.name in text
+    switch = [t for t in at.toggle if t.label == "Forces"]
+    assert len(switch) == (1 if any(x.frames is not None for x in declared) else 0), pid
+
+
+@pytest.mark.parametrize("pid", [p for p in IDS if p != "eulers_disk"])
+def test_the_forces_switch_lays_the_loads_on_the_stage_and_keeps_its_link(pid):
+    """?forces=1 switches it on and the stage figure carries the overlay's arrows; off, none; the link
+    says so as it changes."""
+    import orjson
+
+    from tests.test_pages import shown
+    from ui.figure import NAME
+
+    def stage_names(at):
+        spec = shown(at, NAME)[0]["spec"]
+        spec = orjson.loads(spec) if isinstance(spec, (str, bytes)) else spec
+        return [t.get("name", "") for t in spec["data"]]
+
+    on = _page(pid, {"forces": "1"})
+    assert [t.value for t in on.toggle if t.label == "Forces"] == [True]
+    assert fbd.OVERLAY_NAME in stage_names(on)
+    on.toggle(key=f"{pid}__forces").set_value(False).run()
+    assert fbd.OVERLAY_NAME not in stage_names(on)
+    assert "forces" not in on.query_params
+    off = _page(pid)
+    assert fbd.OVERLAY_NAME not in stage_names(off)
