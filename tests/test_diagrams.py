@@ -273,3 +273,100 @@ def test_the_forces_switch_lays_the_loads_on_the_stage_and_keeps_its_link(pid):
     assert "forces" not in on.query_params
     off = _page(pid)
     assert fbd.OVERLAY_NAME not in stage_names(off)
+
+
+# --- directions by the physics, each problem's own ------------------------------------------------
+
+def _load_vector(d, symbol: str, values, on: str | None = None) -> tuple[float, float]:
+    load = next(l for l in d.loads if l.symbol == symbol and (on is None or l.on == on))
+    return tuple(float(sp.sympify(c).subs(values)) for c in load.vector)
+
+
+def _couple(d, symbol: str, values) -> float:
+    return float(sp.sympify(next(l for l in d.loads if l.symbol == symbol).size).subs(values))
+
+
+def _gravity_down(d, values) -> None:
+    for load in d.loads:
+        if load.by == "gravity":
+            x, y = _load_vector(d, load.symbol, values, load.on)
+            assert x == 0 and y < 0, (d.phase, load.symbol)
+
+
+TOL = 1e-9
+
+
+def _disk_wall(solution, d, v):
+    p = solution.params
+    x, y = _load_vector(d, "P", v)
+    assert y <= 0  # the wall pushes the disk back, out of the wall (E_y points into it)
+    slip = p["V"] * math.sin(p["theta"]) - p["R"] * p["omega"]  # B's slip velocity before, along E_x
+    assert x * slip <= TOL * abs(y)  # friction opposes the slip it resists
+
+
+def _sliding_ladder(solution, d, v):
+    _gravity_down(d, v)
+    assert _load_vector(d, "N_B", v)[1] >= -TOL * solution.params["m"] * solution.params["g"]  # the floor pushes up
+    if d.phase == "both_contacts":
+        assert _load_vector(d, "N_A", v)[0] >= 0  # the wall pushes away from itself, never pulls
+
+
+def _driven_cart(solution, d, v):
+    _gravity_down(d, v)
+    weight = solution.params["m"] * solution.params["g"]
+    for load in d.loads:
+        x, y = _load_vector(d, load.symbol, v)
+        if "normal" in load.name:
+            assert x == 0 and y >= -TOL * weight  # the ground pushes up
+        elif "traction" in load.name:
+            assert y == 0 and x * v[next(iter(s for s in v if s.name == r"\ddot{x}_C"))] >= 0  # forward, with ẍ
+
+
+def _pendulum_rebound(solution, d, v):
+    if d.phase == "swing":
+        _gravity_down(d, v)
+        return
+    x, y = _load_vector(d, r"\hat{P}", v)
+    normal = (0, 1) if solution.params["surface"] == "floor" else (1, 0)  # out of the surface, into the sphere
+    assert x * normal[0] + y * normal[1] >= 0 and x * normal[1] - y * normal[0] == 0
+
+
+def _rod_disk_spring(solution, d, v):
+    _gravity_down(d, v)
+    twist = float(v[next(s for s in v if s.name == "theta")])  # clockwise +
+    assert _couple(d, r"k\theta", v) * twist >= 0  # E_z +: anticlockwise, against the clockwise twist
+
+
+def _stick_ball(solution, d, v):
+    on_stick = _load_vector(d, "J", v, "the stick")
+    on_ball = _load_vector(d, "J", v, "the ball")
+    assert on_stick[0] > 0 and on_stick[1] == 0  # along the ball's approach: it pushes the stick forward
+    assert on_ball == (-on_stick[0], -on_stick[1])
+
+
+def _eulers_disk(solution, d, v):
+    _gravity_down(d, v)
+    friction, normal = _load_vector(d, "A", v)
+    assert normal > 0 and friction == 0
+
+
+DIRECTIONS = {"disk_wall": _disk_wall, "sliding_ladder": _sliding_ladder, "driven_cart": _driven_cart,
+              "pendulum_rebound": _pendulum_rebound, "rod_disk_spring": _rod_disk_spring,
+              "stick_ball": _stick_ball, "eulers_disk": _eulers_disk}
+
+
+def test_every_problem_has_its_directions_tested():
+    assert set(DIRECTIONS) == set(IDS)
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(**SETTINGS)
+@given(data=st.data())
+def test_directions_are_right_by_the_physics(pid, data):
+    """A contact pushes out of its surface into the body and never pulls, friction opposes the slip,
+    gravity points down, a spring's couple opposes its twist, an interaction pair is opposite: at the
+    numbers the diagram is drawn for."""
+    solver = registry.solver(pid)
+    for solution in _solutions(pid, data.draw(VALID[pid])):
+        for d in solver.free_body_diagrams(solution.params):
+            DIRECTIONS[pid](solution, d, d.values(solution))
