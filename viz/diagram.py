@@ -175,8 +175,44 @@ def label_width(tex: str, size: float = FONT) -> float:
 # ------------------------------------------------------------------------------------------------
 # Layout
 
+class _Numbers(dict):
+    """Every expression of a diagram evaluated at once (``numbers``): expression -> float."""
+
+
 def _num(expr, values) -> float:
-    return float(sp.sympify(expr).subs(values)) if not isinstance(expr, (int, float)) else float(expr)
+    if isinstance(expr, (int, float)):
+        return float(expr)
+    if isinstance(values, _Numbers):
+        return values[sp.sympify(expr)]
+    return float(sp.sympify(expr).subs(values))
+
+
+_COMPILED: dict[int, tuple] = {}  # id(diagram) -> (the diagram, its expressions, their function)
+
+
+def _expressions(diagram: Diagram) -> list:
+    out = []
+    for body in diagram.bodies:
+        out += [c for point in body.points.values() for c in point]
+        out += [shape.radius for shape in body.outline if isinstance(shape, Circle)]
+    for load in diagram.loads:
+        out += [load.size, *(load.direction or ()), *load.components]
+    return [sp.sympify(e) for e in out]
+
+
+def numbers(diagram: Diagram, values) -> _Numbers:
+    """Every expression the drawing reads, at ``values``, by one function compiled once per diagram
+    (sympy's ``subs`` on each cost a new state some 10 ms)."""
+    compiled = _COMPILED.get(id(diagram))
+    if compiled is None or compiled[0] is not diagram:
+        exprs = list(dict.fromkeys(_expressions(diagram)))
+        free = sorted(set().union(*(e.free_symbols for e in exprs)), key=lambda s: s.name)
+        compiled = (diagram, exprs, free, sp.lambdify(free, exprs, modules="math"))
+        if len(_COMPILED) > 512:
+            _COMPILED.clear()
+        _COMPILED[id(diagram)] = compiled
+    _, exprs, free, fn = compiled
+    return _Numbers(zip(exprs, (float(x) for x in fn(*(float(values[s]) for s in free)))))
 
 
 def _unit(x: float, y: float) -> tuple[float, float]:
@@ -196,7 +232,7 @@ def _segment_hits_box(a, b, box: Box) -> bool:
 
 def layout(diagram: Diagram, values) -> Drawing:
     """The diagram for these values (``diagram.values(solution)``), laid out."""
-    values = {k: float(v) for k, v in values.items()}
+    values = numbers(diagram, {k: float(v) for k, v in values.items()})
     bodies = []
     for body in diagram.bodies:
         pts = {name: (_num(x, values), _num(y, values)) for name, (x, y) in body.points.items()}
