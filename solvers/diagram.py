@@ -169,12 +169,17 @@ def balance(diagram: Diagram, body: str) -> tuple[sp.Eq, sp.Eq, sp.Eq]:
     return tuple(sp.Eq(s, k, evaluate=False) for s, k in zip(resultant(diagram, body), b.kinetic))
 
 
+def _axis(unit_vector: str) -> str:
+    """A basis vector's subscript (\\mathbf{E}_x -> x), naming a component."""
+    return unit_vector.rsplit("_", 1)[-1].strip("{}")
+
+
 def _sum_labels(diagram: Diagram, about: str) -> tuple[str, str, str]:
     """The three sums as the balance laws write them, along the diagram's basis (an impulse's with a hat)."""
-    ex, ey = diagram.basis
+    x, y = (_axis(e) for e in diagram.basis)
     if diagram.law == "impulse":
-        return (rf"\sum \hat{{\mathbf{{P}}}}\cdot{ex}", rf"\sum \hat{{\mathbf{{P}}}}\cdot{ey}", rf"\sum \hat{{M}}_{{{about}}}")
-    return (rf"\sum \mathbf{{F}}\cdot{ex}", rf"\sum \mathbf{{F}}\cdot{ey}", rf"\sum M_{{{about}}}")
+        return (rf"\sum \hat{{P}}_{x}", rf"\sum \hat{{P}}_{y}", rf"\sum \hat{{M}}_{{{about}}}")
+    return (rf"\sum F_{x}", rf"\sum F_{y}", rf"\sum M_{{{about}}}")
 
 
 def _load_vector_latex(load: Load, basis: tuple[str, str]) -> str:
@@ -225,7 +230,7 @@ def balance_steps(diagram: Diagram) -> tuple[Step, ...]:
     steps = []
     law = {"force": "Newton–Euler", "impulse": "Impulse–momentum"}[diagram.law]
     for b in diagram.bodies:
-        rows = [f"{label}: {sp.latex(total)} = {kin}"
+        rows = [f"{label} = {sp.latex(total)} = {kin}"
                 for label, total, kin in zip(_sum_labels(diagram, b.about), resultant(diagram, b.name), b.kinetic_latex)]
         about = f", moments about {b.about}"
         steps.append(Step(f"{law} for {b.name}, from its diagram{about}", r",\quad ".join(rows), part=3))

@@ -225,6 +225,9 @@ def test_the_stages_forces_are_the_diagrams_at_each_frame(pid, data):
 
 # --- on the page (AppTest) -----------------------------------------------------------------------
 
+from ui.page import FORCES_LABEL  # noqa: E402
+
+
 def _page(pid: str, query: dict | None = None):
     from tests.test_pages import run_page
 
@@ -247,7 +250,7 @@ def test_the_page_draws_step_two_and_heads_the_four_steps(pid):
         assert svg.startswith("<svg") and text.startswith("Free-body diagram")
         for load in diagram.loads:
             assert load.name in text
-    switch = [t for t in at.toggle if t.label == "Forces"]
+    switch = [t for t in at.toggle if t.label == FORCES_LABEL]
     assert len(switch) == (1 if any(x.frames is not None for x in declared) else 0), pid
 
 
@@ -266,7 +269,7 @@ def test_the_forces_switch_lays_the_loads_on_the_stage_and_keeps_its_link(pid):
         return [t.get("name", "") for t in spec["data"]]
 
     on = _page(pid, {"forces": "1"})
-    assert [t.value for t in on.toggle if t.label == "Forces"] == [True]
+    assert [t.value for t in on.toggle if t.label == FORCES_LABEL] == [True]
     assert fbd.OVERLAY_NAME in stage_names(on)
     on.toggle(key=f"{pid}__forces").set_value(False).run()
     assert fbd.OVERLAY_NAME not in stage_names(on)

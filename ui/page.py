@@ -170,8 +170,8 @@ LINK_FLAGS = frozenset(("units", "lecture", "practice", "instructor", "lti", *LI
 
 
 FORCES_FLAG = "forces"  # ?forces=1: the stage's Forces switch on
-FORCES_LABEL = "Forces"
-FORCES_HELP = ("Lay the free-body diagram's forces on the motion: each arrow at its point, drawn to its size in "
+FORCES_LABEL = "Forces on the motion"
+FORCES_HELP = ("Lay the free-body diagram's forces on the animation: each arrow at its point, drawn to its size in "
                "that frame (an impulse at the impact). While a control is dragged they wait, dimmed, for the release.")
 
 
@@ -397,10 +397,11 @@ def problem_page(problem_id: str) -> None:
         _assignment(problem, link, system)
         return
     if seed is None and not practice:  # the lesson page: the stage and all that follows it in a fragment
+        forces = _forces_switch(problem, st.sidebar)  # (a setting for the stage, beside the view's)
         st.sidebar.markdown("### Parameters")
         warnings = more_parameters(problem, system, None, st.sidebar)
         _heading(problem, heading, (seed_warning, unknown, *warnings), print_link=False)  # (the fragment's)
-        _lesson(problem.id, system, lecture)
+        _lesson(problem.id, system, lecture, forces)
         return
     head = st.container()  # the title, filled once the state is known
     if seed is None:  # Practice: the controls in the sidebar
@@ -439,7 +440,7 @@ def _mirror(problem: Problem, params: dict, system: str, lecture: bool, practice
 
 
 @st.fragment
-def _lesson(problem_id: str, system: str, lecture: bool) -> None:
+def _lesson(problem_id: str, system: str, lecture: bool, forces: bool = False) -> None:
     """The lesson (Study and Lecture): the stage, the motion with the lesson's controls beside it
     (below it on a phone), then the answers, the companion figures, the derivation and the downloads.
     A fragment: moving a lesson control reruns this alone, not the page's navigation, view, units
@@ -449,9 +450,7 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
         refused_values_notice()
     stage = st.container(key="dl_stage", horizontal=True, wrap=False, gap="medium")  # a row (STAGE_CSS), not columns: two elements fewer a run
     motion_column = stage.container(key="dl_motion")
-    controls = stage.container(key="dl_stage_controls")
-    params = lesson_parameters(problem, system, None, controls)
-    forces = _forces_switch(problem, controls)
+    params = lesson_parameters(problem, system, None, stage.container(key="dl_stage_controls"))
     _mirror(problem, params, system, lecture, False, None, {}, forces)
     solved = _solved_or_refused(problem, params, system, motion_column, lecture=lecture, forces=forces)
     if solved is None:
