@@ -147,6 +147,9 @@ PRINT_CSS = """
     .dl-text p:has(+ .dl-math) { padding-top: 6px; }
     /* and so may a list item's (the slips' −kπ²/8) */
     .dl-text li { padding-top: 4px; }
+    /* a display equation in Markdown (the Practice method's) may open a page: room above its tallest row
+       there (a margin is dropped at a page's top, padding is not) */
+    [data-testid='stMarkdownContainer'] .katex-display { padding-top: 6px; }
   }
 </style>
 """
