@@ -294,7 +294,8 @@ def layout(diagram: Diagram, values) -> Drawing:
             parts = [(d, load.symbol)]
         for d, symbol in parts:
             out = (at[0] - inward_ref[0], at[1] - inward_ref[1])
-            pushes = d[0] * out[0] + d[1] * out[1] < -1e-9
+            # a contact's push has its head at the point; a body force (the weight) starts there
+            pushes = load.by != "gravity" and d[0] * out[0] + d[1] * out[1] < -1e-9
             if pushes:  # head at the point, tail outside
                 head, tail = at, (at[0] - d[0] * ARROW, at[1] - d[1] * ARROW)
             else:  # tail at the point
@@ -647,7 +648,7 @@ def overlay(solver, solution, motion: dict, width: float, length_scale: float = 
             px, py = (_per_frame(c, values, frames) for c in body.points[load.at])
             vx, vy = (_per_frame(c, values, frames) for c in load.vector)
             cx, cy = (_per_frame(c, values, frames) for c in body.points[body.centre])
-            pushes = (vx * (px - cx) + vy * (py - cy) < 0).astype(float)
+            pushes = ((vx * (px - cx) + vy * (py - cy) < 0) & (load.by != "gravity")).astype(float)
             track = tracks.setdefault((load.kind, load.on, load.symbol), {
                 "x": np.full(frames, np.nan), "y": np.full(frames, np.nan), "push": np.zeros(frames),
                 "vx": np.full(frames, np.nan), "vy": np.full(frames, np.nan), "name": load.name})
@@ -690,6 +691,10 @@ def with_overlay(figure, traces: list):
         return figure
     spec = dict(figure.spec)
     anim = dict(spec["animation"])
+    frames = len(anim["times"])
+    for trace in traces:  # one row per frame of the figure's own, or the arrows run out of step
+        if any(len(rows) != frames for rows in trace.per_frame.values()):
+            raise ValueError(f"the forces have {[len(r) for r in trace.per_frame.values()]} frames, the figure {frames}")
     data = list(spec["data"])
     start = len(data)
     data += [t.first() for t in traces]
