@@ -147,8 +147,21 @@ def _cross(r: Vector, f: Vector) -> sp.Expr:
     return r[0] * f[1] - r[1] * f[0]
 
 
+_RESULTANTS: dict[tuple[int, str], tuple] = {}  # (id(diagram), body) -> (the diagram, its sums): simplified once
+
+
 def resultant(diagram: Diagram, body: str) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     """The sums of the declared loads on ``body``: (ΣF_x, ΣF_y, ΣM about the body's ``about``)."""
+    kept = _RESULTANTS.get((id(diagram), body))
+    if kept is None or kept[0] is not diagram:
+        kept = (diagram, _summed(diagram, body))
+        if len(_RESULTANTS) > 256:
+            _RESULTANTS.clear()
+        _RESULTANTS[(id(diagram), body)] = kept
+    return kept[1]
+
+
+def _summed(diagram: Diagram, body: str) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     b = diagram.body(body)
     ref = b.points[b.about]
     fx = fy = moment = sp.Integer(0)
