@@ -107,24 +107,30 @@ SYMMETRY = {N[0]: N_rear, N[3]: N_rear, N[1]: N_front, N[2]: N_front,
             Nz[0]: 0, Nz[1]: 0, Nz[2]: 0, Nz[3]: 0}
 
 
-# Step 2: the cart from the side (front to the right), in the stage's coordinates: the ground at y = 0,
-# the cart's centre at x_C. Each axle's two wheels drawn as one, carrying 2N (the loads symmetric left
-# to right, the lateral forces zero: the worked solution's assumption); the driven axles push forward
-# with traction at the friction limit; the free wheels (massless) carry none.
+# Step 2: the cart from the side (front to the right), in the stage's coordinates (viz.driven_cart and
+# ``motion``): the origin O on the ground below the centre of mass C at the start, x forward, y up; C at
+# (x_C, a). Each axle's two wheels drawn as one, carrying 2N (the loads symmetric left to right, the
+# lateral forces zero: the worked solution's assumption); the driven axles push forward with traction at
+# the friction limit, 2μN; the free wheels (massless) carry none, and none is drawn.
 x_C = sp.Symbol("x_C", real=True)
 _WHEEL = sp.Min(sp.Rational(3, 10) * b, sp.Rational(3, 5) * a)  # as the stage draws them (viz.driven_cart)
 _TOP = sp.Max(2 * a, sp.Rational(11, 5) * _WHEEL)
 _BOTTOM = sp.Rational(9, 10) * _WHEEL
-_CART_POINTS = {"G": (x_C, a), "F": (x_C + b, 0), "R": (x_C - b, 0),
+#: C the centre of mass, F and R the front (wheels 2, 3) and rear (1, 4) contact points; "_" points only
+#: shape the outline (the body's corners, the wheels' hubs).
+_CART_POINTS = {"C": (x_C, a), "F": (x_C + b, 0), "R": (x_C - b, 0),
                 "_front_hub": (x_C + b, _WHEEL), "_rear_hub": (x_C - b, _WHEEL),
                 "_1": (x_C - b - _WHEEL, _BOTTOM), "_2": (x_C + b + _WHEEL, _BOTTOM),
                 "_3": (x_C + b + _WHEEL, _TOP), "_4": (x_C - b - _WHEEL, _TOP)}
+AXLES = (("front", "F", N_front), ("rear", "R", N_rear))
+DRIVEN_AXLES = {"front": ("front",), "rear": ("rear",), "all": ("front", "rear")}
 
 
 def _cart_values(solution) -> dict:
-    """Every symbol at the start (the forces are the same at every instant), from the second method:
-    the worked solution's six wheel-by-wheel equations solved numerically (``_wheel_by_wheel``), not
-    from the side view's balance laws that the derivation solves."""
+    """Every symbol at the start, x_C = 0 (the instant drawn: the forces are the same at every instant,
+    the acceleration being constant). The numbers come from the second method, the worked solution's six
+    wheel-by-wheel equations solved numerically (``_wheel_by_wheel``), not from the side view's balance
+    laws that the derivation solves."""
     p = solution.params
     wheels = _wheel_by_wheel(p)
     return {m: p["m"], a: p["a"], b: p["b"], mu: p["mu"], g: p["g"], x_C: 0.0, xdd: wheels[8],
@@ -132,7 +138,7 @@ def _cart_values(solution) -> dict:
 
 
 def _cart_frames(solution, motion) -> dict:
-    """The same at every frame, the cart at the motion's x."""
+    """The same at every frame of ``motion``, the cart at the motion's x (x_C = 0 at the first frame)."""
     values = _cart_values(solution)
     frames = len(motion["t"])
     return {sym: (np.asarray(motion["x"], dtype=float) if sym is x_C else np.full(frames, value))
@@ -141,63 +147,83 @@ def _cart_frames(solution, motion) -> dict:
 
 @functools.cache
 def side_view(drive: str) -> Diagram:
-    """The cart's free-body diagram for this drive."""
-    axles = (("front", "F", N_front), ("rear", "R", N_rear))
-    driven = {"front": ("front",), "rear": ("rear",), "all": ("front", "rear")}[drive]
-    loads = [Load("m g", "the weight", "gravity", "the cart", at="G", direction=(0, -1), size=m * g)]
-    for axle, point, load in axles:
-        loads.append(Load(f"2N_{{\\mathrm{{{axle}}}}}".replace("\\\\", "\\"),
-                          f"the ground's normal force on the {axle} wheels", "the ground", "the cart", at=point,
-                          direction=(0, 1), size=2 * load))
-    for axle, point, load in axles:
-        if axle in driven:
-            loads.append(Load(f"2\\mu N_{{\\mathrm{{{axle}}}}}".replace("\\\\", "\\"),
-                              f"the ground's traction on the driven {axle} wheels", "the ground", "the cart",
-                              at=point, direction=(1, 0), size=2 * mu * load))
-    cart = Body("the cart", points=_CART_POINTS, centre="G", about="G", kinetic=(m * xdd, 0, 0),
+    """The cart's free-body diagram for this drive: the weight at C, each axle's normal force 2N at its
+    contact point, the driven axles' traction 2μN there, forward."""
+    loads = [Load("m g", "the weight", "gravity", "the cart", at="C", direction=(0, -1), size=m * g)]
+    for axle, point, load in AXLES:
+        loads.append(Load(rf"2N_{{\mathrm{{{axle}}}}}", f"the ground's normal force on the {axle} wheels",
+                          "the ground", "the cart", at=point, direction=(0, 1), size=2 * load))
+    for axle, point, load in AXLES:
+        if axle in DRIVEN_AXLES[drive]:
+            loads.append(Load(rf"2\mu N_{{\mathrm{{{axle}}}}}", f"the ground's traction on the driven {axle} wheels",
+                              "the ground", "the cart", at=point, direction=(1, 0), size=2 * mu * load))
+    cart = Body("the cart", points=_CART_POINTS, centre="C", about="C", kinetic=(m * xdd, 0, 0),
                 kinetic_latex=(r"m\ddot{x}_C", "0", "0"),
                 outline=(Outline(("_1", "_2", "_3", "_4")), Circle("_front_hub", _WHEEL), Circle("_rear_hub", _WHEEL)))
+    free = [axle for axle, _, _ in AXLES if axle not in DRIVEN_AXLES[drive]]
+    wheels = (f"the {free[0]} wheels are free: massless, they carry no traction; " if free else "")
     return Diagram(drive, "Accelerating", "force", bodies=(cart,), loads=tuple(loads), values=_cart_values,
                    frames=_cart_frames, note=("Seen from the side: each axle's two wheels as one (the loads "
-                   "symmetric left to right, no lateral forces); the free wheels are massless and carry no "
-                   "traction; the cart translates, so the moments about G balance."))
+                   f"symmetric left to right, no lateral forces); {wheels}the cart translates, so the moments "
+                   "about C balance."))
 
 
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
-    """The side view for this drive."""
+    """The side view for this drive (one diagram: the forces are the same throughout)."""
     return (side_view(params["drive"]),)
+
+
+def _same_equations(these, those) -> bool:
+    """Whether two lists of equations are the same up to each one's sign (sides swapped)."""
+    left = [sp.expand(e.lhs - e.rhs) for e in these]
+    right = [sp.expand(e.lhs - e.rhs) for e in those]
+    return len(left) == len(right) and all(any(sp.expand(x - y) == 0 or sp.expand(x + y) == 0 for y in right)
+                                           for x in left)
 
 
 @functools.cache
 def derivation(drive: str) -> Derivation:
-    equations = balance_equations(drive)
-    reduced = [sp.simplify(eq.subs(SYMMETRY)) for eq in equations]
-    independent = [eq for eq in reduced if eq is not sp.true]
-    # solved from the side view's balance laws (Step 3); the wheel-by-wheel route (the worked solution's,
-    # below) reduces to the same three equations
-    solved = sp.solve(list(balance(side_view(drive), "the cart")), [xdd, N_front, N_rear], dict=True)[0]
+    diagram = side_view(drive)
+    laws = list(balance(diagram, "the cart"))  # written from the diagram (Step 3)
+    solved = sp.solve(laws, [xdd, N_front, N_rear], dict=True)[0]
     solved = {k: sp.factor(v) for k, v in solved.items()}
     traction = sum((mu * N[i] for i in DRIVEN[drive]), sp.Integer(0)).subs(SYMMETRY)
 
+    # The worked solution's route, wheel by wheel in three dimensions: with its assumptions it leaves
+    # exactly the side view's three balance laws (checked here, once).
+    equations = balance_equations(drive)
+    reduced = [sp.simplify(eq.subs(SYMMETRY)) for eq in equations]
+    independent = [eq for eq in reduced if eq is not sp.true]
+    if not _same_equations(independent, laws):  # pragma: no cover - a derivation error
+        raise AssertionError(f"the wheel-by-wheel equations do not reduce to the side view's: {independent}")
+
     names = ("x", "y", "z")
     steps = [
-        Step(r"Origin at the centre of mass C (G in the diagram); $\mathbf{E}_x$ forward, $\mathbf{E}_y$ up, "
-             r"$\mathbf{E}_z$ across to the left; the cart translates: $\ddot{\mathbf{r}}_C = \ddot{x}_C\mathbf{E}_x$, "
-             r"no rotation. Wheel contact points relative to the CM (1 rear-left, 2 front-left, 3 front-right, "
-             r"4 rear-right); driven wheels push with $F_i = \mu N_i$",
-             r",\;".join(rf"\mathbf{{r}}_{i + 1} = {sp.latex(sp.Matrix(w).T)}" for i, w in enumerate(WHEELS)), part=1),
-        *fbd_steps(side_view(drive)),
-        *balance_steps(side_view(drive)),
-        Step(r"Wheel by wheel in three dimensions (the worked solution's route). Balance of linear momentum, $\sum\mathbf{F} = m\ddot{x}_C\mathbf{E}_x$ (three components)",
+        Step(r"Origin O on the ground below the centre of mass C at the start, in the cart's mid-plane; "
+             r"$\mathbf{E}_x$ forward, $\mathbf{E}_y$ up, $\mathbf{E}_z$ across to the left (seen from the side, "
+             "the front to the right). All four wheels stay on the ground: C keeps its height a and the cart "
+             "translates, without rotating",
+             r"\mathbf{r}_C = x_C\,\mathbf{E}_x + a\,\mathbf{E}_y,\quad \ddot{\mathbf{r}}_C = \ddot{x}_C\,\mathbf{E}_x,"
+             r"\quad \boldsymbol{\omega} = \mathbf{0}", part=1),
+        Step(r"The wheels' contact points relative to C (1 rear-left, 2 front-left, 3 front-right, 4 rear-right); "
+             "from the side, F is the front axle's (wheels 2, 3) and R the rear's (wheels 1, 4)",
+             r",\;".join(rf"\mathbf{{r}}_{i + 1} = {sp.latex(sp.Matrix(w).T)}" for i, w in enumerate(WHEELS))
+             + r",\quad \mathbf{r}_{F/C} = b\,\mathbf{E}_x - a\,\mathbf{E}_y,\;"
+               r"\mathbf{r}_{R/C} = -b\,\mathbf{E}_x - a\,\mathbf{E}_y", part=1),
+        *fbd_steps(diagram),
+        *balance_steps(diagram),
+        Step(r"Solve Step 3's three balance laws for $\ddot{x}_C$, $N_\mathrm{front}$ and $N_\mathrm{rear}$",
+             r",\quad ".join(latex_eq(k, solved[k]) for k in (xdd, N_front, N_rear))),
+        Step(r"The worked solution's route, wheel by wheel in three dimensions, driven wheels pushing with "
+             r"$F_i = \mu N_i$. Balance of linear momentum, $\sum\mathbf{F} = m\ddot{x}_C\mathbf{E}_x$ (three components)",
              r"\\ ".join(sp.latex(eq) for eq in equations[:3])),
-        Step(r"Balance of angular momentum about the CM, $\sum\mathbf{M}_C = 0$ (the cart translates)",
+        Step(r"Balance of angular momentum about C, $\sum\mathbf{M}_C = \mathbf{0}$ (the cart translates)",
              r"\\ ".join(rf"{names[i]}:\; " + sp.latex(eq) for i, eq in enumerate(equations[3:]))),
         Step("Nine unknowns, six equations: take the lateral forces as zero and the loads symmetric "
              "left to right (the worked solution's assumption)",
              r",\;".join([r"N_{iz} = 0", r"N_1 = N_4 = N_{rear}", r"N_2 = N_3 = N_{front}"])),
-        Step("What remains (the others hold identically)",
+        Step("What remains is Step 3's three balance laws (the others hold identically)",
              r"\\ ".join(sp.latex(eq) for eq in independent)),
-        Step("Solve", r",\quad ".join(latex_eq(k, solved[k]) for k in (xdd, N_front, N_rear))),
     ]
     if drive != "front":
         steps.append(Step(r"The front wheels stay down only while $N_\mathrm{front} > 0$",

@@ -35,7 +35,7 @@ from .core import (
     require,
     validate_params,
 )
-from .diagram import Body, Circle, Diagram, Load, Rod, balance_steps, fbd_steps
+from .diagram import Body, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg
@@ -105,34 +105,67 @@ DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
 
 
 # ---------------------------------------------------------------------------------------------
-# Step 2: the pendulum isolated from the pin and the surface, in the stage's coordinates (O at the
-# origin, x horizontal toward the sphere's side at θ = 0, y up). The pin's reaction has no direction the
-# physics fixes: drawn as its components. During the swing the weights act; at the impact the
-# surface's impulse and the pin's, against which gravity's is negligible.
+# Step 2: the pendulum (rod and sphere: one rigid body) isolated from the pin and the surface, in the
+# stage's coordinates (viz/pendulum_rebound.py and ``motion``: O at the origin, x horizontal toward the
+# sphere's side at θ = 0, y up; the floor is the line y = −d, the wall the line x = −r, against which
+# the sphere hangs at θ = −90°). The pin's reaction has no direction the physics fixes: drawn as its
+# components. During the swing the two weights act; at the impact the surface's impulse and the pin's,
+# against which gravity's is negligible.
 
 thetaddot = sp.Symbol(r"\ddot{\theta}", real=True)
 O_x, O_y, P_surface, Ohat_x, Ohat_y = sp.symbols(r"O_x O_y \hat{P} \hat{O}_x \hat{O}_y", real=True)
+_MASS = m_r + m_s
 _ARM = m_r * L / 2 + m_s * (L + r)  # Σ m_i ρ_i: the mass times G's distance from O
+# The surface's unit normal, out of the surface into the sphere (the floor below it, the wall on its −x side).
+SURFACE_NORMAL = {"floor": (0, 1), "wall": (1, 0)}
 
 
 def _pendulum_points(surface: str) -> dict:
-    centre = ((L + r) * sp.cos(theta), (L + r) * sp.sin(theta))
-    touch = (centre[0], centre[1] - r) if surface == "floor" else (centre[0] - r, centre[1])
-    return {"O": (0, 0), "G_r": (L / 2 * sp.cos(theta), L / 2 * sp.sin(theta)), "S": centre,
-            "A": (L * sp.cos(theta), L * sp.sin(theta)), "C": touch}
+    """O, the rod's centre G_r, the mass centre G, the rod's end A, the sphere's centre S and its point C
+    nearest the surface (where it touches at the impact), at θ."""
+    along = lambda rho: (rho * sp.cos(theta), rho * sp.sin(theta))  # noqa: E731  a point of the rod's line
+    nx, ny = SURFACE_NORMAL[surface]
+    centre = along(L + r)
+    return {"O": (0, 0), "G_r": along(L / 2), "G": along(_ARM / _MASS), "A": along(L), "S": centre,
+            "C": (centre[0] - r * nx, centre[1] - r * ny)}
 
 
 def _outline() -> tuple:
     return (Rod(("O", "A")), Circle("S", r))
 
 
-def _swing_values_at(p, theta_, omega_) -> dict:
-    """The swing's symbols at θ, θ̇ (numbers or arrays): θ̈ from the solver's equation of motion
-    (``_acceleration``: I_O θ̈ = −Q cos θ, as integrated), the pin's components from the two force laws
-    (the solver has no formula for them: the moment law is the independent check)."""
-    inertia = derivation(p["sphere"], p["surface"]).evaluate(p, upto="I_O")["I_O"]
-    alpha = -moment_coefficient(p) * np.cos(theta_) / inertia  # as _acceleration, for arrays too
-    arm = moment_coefficient(p) / p["g"]
+def _frame_at(motion, t: float) -> int:
+    return int(np.argmin(np.abs(np.asarray(motion["t"]) - t)))
+
+
+def _states(solution, motion) -> tuple[np.ndarray, np.ndarray]:
+    """θ and θ̇ at each frame of ``motion``; at the first impact's frame, the closed form's θ_I and θ̇⁻ (as
+    the stage draws its key pose there: the integration agrees with them to its tolerance)."""
+    angles, rates = np.array(motion["theta"], dtype=float), np.array(motion["omega"], dtype=float)
+    if len(motion["impact_times"]):
+        i = _frame_at(motion, motion["impact_times"][0])
+        angles[i], rates[i] = solution.answers["theta_impact"], solution.answers["omega_impact"]
+    return angles, rates
+
+
+def _swing_frame(solution, motion) -> int:
+    """The frame the swing's diagram is drawn at: of the first fall's (release to the first impact), the
+    one whose θ is nearest halfway between θ₀ and θ_I (a pose with the rod neither upright nor hanging,
+    and a speed)."""
+    angles, _ = _states(solution, motion)
+    last = _frame_at(motion, motion["impact_times"][0]) if len(motion["impact_times"]) else len(angles) - 1
+    halfway = (solution.params["theta0"] + solution.answers["theta_impact"]) / 2
+    return int(np.argmin(np.abs(angles[: last + 1] - halfway)))
+
+
+def _swing_values_at(p, inertia: float, theta_, omega_) -> dict:
+    """The swing's symbols at θ, θ̇ (numbers, or arrays of a frame each): θ̈ from the solver's equation of
+    motion, I_O θ̈ = −Q cos θ (``_acceleration``, as integrated), the pin's components from the two force
+    laws, (m_r + m_s) a_G less the weights (the solver has no formula for them: the moment law about O,
+    against the solver's θ̈, is the independent check)."""
+    Q_ = moment_coefficient(p)
+    alpha = -Q_ * np.cos(theta_) / inertia
+    arm = Q_ / p["g"]  # Σ m_i ρ_i = (m_r + m_s) × G's distance from O
     ax = arm * (-np.sin(theta_) * alpha - np.cos(theta_) * omega_**2)
     ay = arm * (np.cos(theta_) * alpha - np.sin(theta_) * omega_**2)
     return {m_s: p["m_s"], m_r: p["m_r"], L: p["L"], r: p["r"], g: p["g"], I_O: inertia, theta: theta_,
@@ -140,58 +173,72 @@ def _swing_values_at(p, theta_, omega_) -> dict:
 
 
 def _swing_values(solution) -> dict:
-    """Halfway down the first swing (θ midway between θ₀ and θ_I), θ̇ there from the energy integral
-    (θ̇² = 2Q(sin θ₀ − sin θ)/I_O, falling): a pose with the rod neither upright nor hanging, and a speed."""
-    p, a = solution.params, solution.answers
-    angle = (p["theta0"] + a["theta_impact"]) / 2
-    speed = -math.sqrt(max(2 * moment_coefficient(p) * (math.sin(p["theta0"]) - math.sin(angle)) / a["I_O"], 0.0))
-    return _swing_values_at(p, angle, speed)
-
-
-def _impact_values_at(p, before) -> dict:
-    """The impact's symbols for a speed ``before`` (θ̇⁻): θ̇⁺ = −e θ̇⁻ by restitution; the surface's
-    impulse from the contact's normal speed and the body's effective mass there, P̂ = −(1 + e) v_n⁻ I_O / d²
-    (d the normal's arm about O, v_n⁻ = θ̇⁻ d); the pin's from the two linear impulse laws."""
-    values = derivation(p["sphere"], p["surface"]).evaluate(p, upto="theta_impact")
-    inertia, angle = values["I_O"], values["theta_impact"]
-    arm_vector = (_contact_arm(p, angle))
-    after = -p["e"] * before
-    impulse = -(1 + p["e"]) * before * arm_vector * inertia / arm_vector**2
-    arm = moment_coefficient(p) / p["g"]
-    jump = after - before
-    normal = (0.0, 1.0) if p["surface"] == "floor" else (1.0, 0.0)
-    return {m_s: p["m_s"], m_r: p["m_r"], L: p["L"], r: p["r"], g: p["g"], I_O: inertia, theta: angle,
-            w_minus: before, w_plus: after, P_surface: impulse,
-            Ohat_x: -arm * np.sin(angle) * jump - impulse * normal[0],
-            Ohat_y: arm * np.cos(angle) * jump - impulse * normal[1]}
-
-
-def _contact_arm(p, angle: float) -> float:
-    """The moment arm about O of the surface's normal through the contact point, (r_C × n)·E_z."""
-    x, y = (p["L"] + p["r"]) * math.cos(angle), (p["L"] + p["r"]) * math.sin(angle)
-    return x if p["surface"] == "floor" else -(y)
+    """At the frame of the stage's animation ``_swing_frame`` picks, halfway down the first fall: θ and θ̇
+    there as the solver's integration of its equation of motion gives them."""
+    m = motion(solution)
+    i = _swing_frame(solution, m)
+    angles, rates = _states(solution, m)
+    return _swing_values_at(solution.params, solution.answers["I_O"], float(angles[i]), float(rates[i]))
 
 
 def _swing_frames(solution, motion) -> dict:
-    return _swing_values_at(solution.params, np.asarray(motion["theta"]), np.asarray(motion["omega"]))
+    """The swing's symbols at every frame (the impacts' frames: just before)."""
+    angles, rates = _states(solution, motion)
+    values = _swing_values_at(solution.params, solution.answers["I_O"], angles, rates)
+    return {k: np.broadcast_to(np.asarray(v, dtype=float), angles.shape).copy() for k, v in values.items()}
+
+
+def _contact_arm(p, angle):
+    """∂r_C/∂θ · n, the contact's normal velocity per unit θ̇ (C turns about O: v_C = θ̇ E_z × r_C), at θ.
+    (As a moment, (r_C × n)·E_z: the arm about O of the surface's normal through C.)"""
+    rho = p["L"] + p["r"]
+    return rho * np.cos(angle) if p["surface"] == "floor" else -rho * np.sin(angle)
+
+
+def _impact_values_at(p, inertia: float, angle: float, before, after) -> dict:
+    """The impact's symbols for θ̇⁻ = ``before`` and θ̇⁺ = ``after`` (numbers or arrays): the surface's
+    impulse is the change of the contact's normal velocity, v_n = θ̇ ∂r_C/∂θ·n, times the body's effective
+    mass there, m_C = I_O / (∂r_C/∂θ·n)²; the pin's from the two linear impulse laws, (m_r + m_s) Δv_G less
+    the surface's. (The solver has no formula for either: the angular impulse law about O then checks
+    the contact's arm as the diagram's points and normal give it against the solver's kinematics.)"""
+    per_rate = _contact_arm(p, angle)
+    impulse = inertia / per_rate**2 * (after - before) * per_rate
+    arm = moment_coefficient(p) / p["g"]
+    jump = after - before
+    nx, ny = SURFACE_NORMAL[p["surface"]]
+    return {m_s: p["m_s"], m_r: p["m_r"], L: p["L"], r: p["r"], g: p["g"], I_O: inertia, theta: angle,
+            w_minus: before, w_plus: after, P_surface: impulse,
+            Ohat_x: -arm * np.sin(angle) * jump - impulse * nx,
+            Ohat_y: arm * np.cos(angle) * jump - impulse * ny}
+
+
+def _impact_values(solution) -> dict:
+    """At the first impact: θ_I, θ̇⁻ and θ̇⁺ are the solver's answers."""
+    a = solution.answers
+    return _impact_values_at(solution.params, a["I_O"], a["theta_impact"], a["omega_impact"], a["omega_after"])
 
 
 def _impact_frames(solution, motion) -> dict:
-    """The impact's symbols at each impact's frame (its own θ̇⁻), NaN elsewhere."""
-    times = np.asarray(motion["t"])
-    at = np.zeros(len(times), dtype=bool)
+    """The impact's symbols at each impact's frame (θ̇⁻ its speed before, θ̇⁺ = −e θ̇⁻ as the motion
+    rebounds; the first impact's the answers), NaN in every other frame."""
+    p, a = solution.params, solution.answers
+    angles, rates = _states(solution, motion)
+    at = np.zeros(len(angles), dtype=bool)
     for t_hit in motion["impact_times"]:
-        at[int(np.argmin(np.abs(times - t_hit)))] = True
-    before = np.where(at, np.asarray(motion["omega"]), np.nan)
-    values = _impact_values_at(solution.params, before)
-    return {k: (np.where(at, v, np.nan) if np.ndim(v) else np.where(at, float(v), np.nan)) for k, v in values.items()}
+        at[_frame_at(motion, t_hit)] = True
+    before = np.where(at, rates, np.nan)
+    after = -p["e"] * before
+    if len(motion["impact_times"]):
+        after[_frame_at(motion, motion["impact_times"][0])] = a["omega_after"]
+    values = _impact_values_at(p, a["I_O"], np.where(at, a["theta_impact"], np.nan), before, after)
+    return {k: np.where(at, np.broadcast_to(np.asarray(v, dtype=float), at.shape), np.nan) for k, v in values.items()}
 
 
 @functools.cache
 def diagrams(surface: str) -> tuple[Diagram, Diagram]:
     """The swing's and the impact's diagrams for this surface."""
     points = _pendulum_points(surface)
-    swing = Body("the pendulum", points=points, centre="G_r", about="O",
+    swing = Body("the pendulum", points=points, centre="G", about="O",
                  kinetic=(_ARM * (-sp.sin(theta) * thetaddot - sp.cos(theta) * thetadot**2),
                           _ARM * (sp.cos(theta) * thetaddot - sp.sin(theta) * thetadot**2), I_O * thetaddot),
                  kinetic_latex=(r"(m_r + m_s)\,\ddot{x}_G", r"(m_r + m_s)\,\ddot{y}_G", r"I_O\ddot{\theta}"),
@@ -200,29 +247,27 @@ def diagrams(surface: str) -> tuple[Diagram, Diagram]:
                Load("m_s g", "the sphere's weight", "gravity", "the pendulum", at="S", direction=(0, -1), size=m_s * g),
                Load("O", "the pin's reaction", "the pin", "the pendulum", at="O", components=(O_x, O_y)))
     jump = w_plus - w_minus
-    hit = Body("the pendulum", points=points, centre="G_r", about="O",
+    hit = Body("the pendulum", points=points, centre="G", about="O",
                kinetic=(-_ARM * sp.sin(theta) * jump, _ARM * sp.cos(theta) * jump, I_O * jump),
                kinetic_latex=(r"(m_r + m_s)\,\Delta v_{Gx}", r"(m_r + m_s)\,\Delta v_{Gy}",
                               r"I_O\left(\dot\theta_I^+ - \dot\theta_I^-\right)"),
                outline=_outline())
-    normal = (0, 1) if surface == "floor" else (1, 0)
     blows = (Load(r"\hat{P}", f"the {surface}'s impulse", f"the {surface}", "the pendulum", at="C", kind="impulse",
-                  direction=normal, size=P_surface),
+                  direction=SURFACE_NORMAL[surface], size=P_surface),
              Load(r"\hat{O}", "the pin's impulse", "the pin", "the pendulum", at="O", kind="impulse",
                   components=(Ohat_x, Ohat_y)))
-    smooth = f"The {surface} is smooth: its impulse is along its normal, out of the {surface}."
     return (Diagram("swing", "During the swing", "force", (swing,), weights, _swing_values, frames=_swing_frames,
-                    note="G is the rod-and-sphere's centre of mass; the rod's centre $G_r$ and the sphere's $S$ carry the weights."),
+                    note="The rod and sphere turn together about O, one rigid body; its mass centre $G$ lies on the "
+                         "rod, between the rod's centre $G_r$ and the sphere's $S$, where the weights act."),
             Diagram("impact", "At the impact", "impulse", (hit,), blows, _impact_values, frames=_impact_frames,
-                    note=smooth + " Gravity's impulse over the instant is negligible."))
-
-
-def _impact_values(solution) -> dict:
-    return _impact_values_at(solution.params, solution.answers["omega_impact"])
+                    note=f"The {surface} is smooth: its impulse is along its normal, out of the {surface} into the "
+                         "sphere at its contact point C. The weights are finite: their impulse over the instant "
+                         "is negligible."))
 
 
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
-    """The swing's and the impact's diagrams for this surface."""
+    """The swing's (drawn halfway down the first fall) and the impact's (the first impact) diagrams for
+    this surface."""
     return diagrams(params["surface"])
 
 
@@ -230,21 +275,26 @@ def free_body_diagrams(params) -> tuple[Diagram, ...]:
 def derivation(sphere: str, surface: str) -> Derivation:
     k = SPHERE_INERTIA[sphere]
     inertia = sp.Rational(1, 3) * m_r * L**2 + k * m_s * r**2 + m_s * (L + r) ** 2
-    weight_moment = (m_r * L / 2 + m_s * (L + r)) * g
+    swing_diagram, impact_diagram = diagrams(surface)
+    points = swing_diagram.body("the pendulum").points
+    # Step 3's moment law about O, summed from the swing's diagram: Σ M_O = −Q cos θ = I_O θ̈. Q is read
+    # off it, and the energy equation is its integral (θ̈ dθ = θ̇ dθ̇), so the diagram is the one source.
+    moment_law = balance(swing_diagram, "the pendulum")[2]
+    weight_moment = presentable(sp.simplify(-moment_law.lhs / sp.cos(theta)), (m_r * L / 2 + m_s * (L + r)) * g)
     drop = lambda upper, lower: Q * (sp.sin(upper) - sp.sin(lower))  # noqa: E731  V(upper) − V(lower)
+    swept = sp.Dummy("alpha")
+    work = sp.integrate(moment_law.lhs.subs(theta, swept), (swept, theta0, theta))  # ∫ Σ M_O dθ from θ₀
+    presentable(work, drop(theta0, theta).subs(Q, weight_moment))  # (checks that the integral is the drop in V)
     energy = sp.Eq(sp.Rational(1, 2) * I_O * thetadot**2, drop(theta0, theta))
 
-    contact = sp.Matrix([(L + r) * sp.cos(theta), (L + r) * sp.sin(theta)])
+    contact = sp.Matrix(points["C"])  # the sphere's point nearest the surface, as the diagram places it
+    normal = sp.Matrix(SURFACE_NORMAL[surface])
     if surface == "floor":
-        contact = contact - sp.Matrix([0, r])
         touch = sp.Eq(contact[1], -d)
         impact_angle = sp.asin(sp.solve(touch.subs(sp.sin(theta), sp.Symbol("s")), sp.Symbol("s"))[0])
-        normal = sp.Matrix([0, 1])
     else:
-        contact = contact - sp.Matrix([r, 0])
         touch = sp.Eq(theta, -sp.pi / 2)
         impact_angle = -sp.pi / 2
-        normal = sp.Matrix([1, 0])
     v_contact = sp.diff(contact, theta) * thetadot
     v_n = sp.simplify(v_contact.dot(normal))
 
@@ -257,23 +307,34 @@ def derivation(sphere: str, surface: str) -> Derivation:
     sin_rebound = sp.solve(rebound.subs(sp.sin(theta_f), s_f), s_f)[0]
     sin_rebound = sin_rebound.subs(w_plus, -e * w_minus).subs(w_minus, falling.subs(theta, theta_I))
     sin_rebound = presentable(sin_rebound, sp.sin(theta_I) + e**2 * (sp.sin(theta0) - sp.sin(theta_I)))
+    # The surface's impulse, from Step 3's angular impulse law about O (the pin's impulse has no moment
+    # about O) with the rebound θ̇⁺ = −e θ̇⁻.
+    angular_impulse = balance(impact_diagram, "the pendulum")[2]
+    at_impact = angular_impulse.subs({w_plus: -e * w_minus, theta: theta_I if surface == "floor" else impact_angle})
+    impulse = sp.factor(sp.solve(at_impact, P_surface)[0])
 
-    swing_diagram, impact_diagram = diagrams(surface)
     steps = [
-        Step(r"Origin at the pivot O; $\mathbf{E}_x$ horizontal, $\mathbf{E}_y$ up; θ the rod's angle from the "
-             r"horizontal, up + (counter-clockwise). The body turns about O: a point at distance ρ from O moves at "
-             r"ρθ̇ and the centres lie on the rod",
+        Step(r"Origin at the pivot O; θ the rod's angle from the horizontal, up + (counter-clockwise); basis "
+             r"$\mathbf{E}_x$ horizontal, $\mathbf{E}_y$ up, $\mathbf{E}_z$ out of the page. The body turns about O: "
+             r"the rod's centre $G_r$, the sphere's centre $S$ and the mass centre $G$ lie on the rod",
              r"\mathbf{r}_{G_r} = \tfrac{L}{2}\left(\cos\theta, \sin\theta\right),\quad "
-             r"\mathbf{r}_S = (L + r)\left(\cos\theta, \sin\theta\right)", part=1),
-        *fbd_steps(swing_diagram), *fbd_steps(impact_diagram),
-        *balance_steps(swing_diagram), *balance_steps(impact_diagram),
+             r"\mathbf{r}_S = (L + r)\left(\cos\theta, \sin\theta\right),\quad "
+             r"\mathbf{r}_G = \rho_G\left(\cos\theta, \sin\theta\right),\quad "
+             r"\rho_G = \frac{m_r L/2 + m_s (L + r)}{m_r + m_s}", part=1),
         Step("Moment of inertia about the pivot O (parallel-axis theorem for rod and "
              f"{'sphere' if sphere != 'disk' else 'ball, with the worked solution’s disk value'})",
-             latex_eq(I_O, inertia)),
-        Step("Moment of the weights about O per unit cos θ: the potential energy is V = Q sin θ",
+             latex_eq(I_O, inertia), part=1),
+        Step(f"The sphere's point C nearest the {surface} turns about O with the body, "
+             r"$\mathbf{v}_C = \dot\theta\,\mathbf{E}_z \times \mathbf{r}_C$: its velocity along the "
+             f"{surface}'s normal is proportional to θ̇",
+             r"\mathbf{r}_C = \left(" + sp.latex(contact[0]) + ", " + sp.latex(contact[1]) + r"\right),\quad "
+             + latex_eq(sp.Symbol("v_n"), v_n), part=1),
+        *fbd_steps(swing_diagram), *fbd_steps(impact_diagram),
+        *balance_steps(swing_diagram), *balance_steps(impact_diagram),
+        Step("Moment of the weights about O per unit cos θ, from the moment law: the potential energy is V = Q sin θ",
              latex_eq(Q, weight_moment)),
-        Step("Work–energy from rest at θ₀: the moment law $\\sum M_O = I_O\\ddot\\theta = -Q\\cos\\theta$, integrated once (gravity is the "
-             "only force that works; the pin at O does none)",
+        Step("Work–energy from rest at θ₀: the moment law $\\sum M_O = I_O\\ddot\\theta = -Q\\cos\\theta$, integrated once "
+             r"($\ddot\theta\,d\theta = \dot\theta\,d\dot\theta$; gravity is the only force that works, the pin at O does none)",
              sp.latex(energy)),
         Step("The sphere touches the " + ("floor: the lowest point of the sphere is a depth d below O"
                                            if surface == "floor" else
@@ -282,9 +343,10 @@ def derivation(sphere: str, surface: str) -> Derivation:
                                  if surface == "floor" else "")),
         Step("Falling (θ decreasing), the root is negative",
              latex_eq(w_minus, falling.subs(theta, theta_I))),
-        Step("Normal velocity of the contact point is proportional to θ̇; restitution reverses it",
-             latex_eq(sp.Symbol("v_n"), v_n) + r"\quad\Rightarrow\quad "
-             + latex_eq(w_plus, -e * w_minus)),
+        Step("Restitution reverses the normal velocity of the contact point, $v_n^+ = -e\\,v_n^-$; it is proportional to θ̇",
+             latex_eq(w_plus, -e * w_minus)),
+        Step(f"The {surface}'s impulse, from the angular impulse law about O (the pin's impulse has no moment about O)",
+             latex_eq(P_surface, impulse)),
         Step(r"Energy after the bounce up to the highest angle $\theta_f$ ($\dot\theta = 0$ there)",
              sp.latex(rebound)),
         Step("Hence, whatever the masses",

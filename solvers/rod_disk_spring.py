@@ -29,11 +29,12 @@ from .core import (
     Solution,
     Step,
     latex_eq,
+    presentable,
     relative_tolerance,
     require,
     validate_params,
 )
-from .diagram import Body, Circle, Diagram, Load, Rod, balance_steps, fbd_steps
+from .diagram import Body, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live, Stops
 from .protocol import About, Mistake, Variants
 from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
@@ -108,21 +109,30 @@ LIMIT_LABELS = {"theta_max": ("largest angle the rod reaches", "angle")}
 
 
 # ---------------------------------------------------------------------------------------------
-# Step 2: the rod and disk isolated from the pin and the spring, in the stage's coordinates (O at the
-# origin, y up, θ from the upward vertical toward +x: clockwise, so the anticlockwise angular
-# acceleration is −θ̈). The spring's couple on the rod opposes its twist: −kθ in θ's sense, +kθ about E_z.
+# Step 2: the rod and disk isolated together from the pin O and the spring, in the stage's coordinates
+# (viz/rod_disk_spring.py and ``motion``: O at the origin, x horizontal, y up; θ from the upward vertical
+# toward +x, so θ grows clockwise and the anticlockwise (E_z) angular acceleration is −θ̈). The spring's
+# couple on the rod opposes its twist: −kθ in θ's sense, +kθ about E_z.
 
 thetaddot = sp.Symbol(r"\ddot{\theta}", real=True)
 O_x, O_y = sp.symbols("O_x O_y", real=True)
-_ARM = m1 * L / 2 + m2 * (L + R)  # Σ m_i ρ_i
+_MASS = m1 + m2
+_ARM = m1 * L / 2 + m2 * (L + R)  # Σ m_i ρ_i: the mass times G's distance from O
+
+
+def _points() -> dict:
+    """O, the rod's centre G_1, the mass centre G, the rod's end A and the disk's centre G_2, at θ."""
+    along = lambda rho: (rho * sp.sin(theta), rho * sp.cos(theta))  # noqa: E731  a point of the rod's line
+    return {"O": (0, 0), "G_1": along(L / 2), "G": along(_ARM / _MASS), "A": along(L), "G_2": along(L + R)}
 
 
 def _swing_values_at(p, inertia: float, theta_, omega_) -> dict:
-    """The symbols at θ, θ̇ (numbers or arrays): θ̈ from the solver's equation of motion (``simulate``'s,
-    I_O θ̈ = Q sin θ − kθ with Q = ``weight_moment``), the pin's components from the two force laws
-    (the solver has no formula for them: the moment law is the independent check)."""
+    """The symbols at θ, θ̇ (numbers, or arrays of a frame each): θ̈ from the solver's equation of motion
+    (``equation_of_motion``, as ``simulate`` integrates it: I_O θ̈ = Q sin θ − kθ with Q = ``weight_moment``),
+    the pin's components from the two force laws, (m₁ + m₂) a_G less the weights (the solver has no
+    formula for them: the moment law about O, against the solver's θ̈, is the independent check)."""
     alpha = (weight_moment(p) * np.sin(theta_) - p["k"] * theta_) / inertia
-    arm = weight_moment(p) / p["g"]
+    arm = weight_moment(p) / p["g"]  # Σ m_i ρ_i = (m₁ + m₂) × G's distance from O
     ax = arm * (np.cos(theta_) * alpha - np.sin(theta_) * omega_**2)
     ay = arm * (-np.sin(theta_) * alpha - np.cos(theta_) * omega_**2)
     return {m1: p["m1"], m2: p["m2"], k: p["k"], L: p["L"], R: p["R"], g: p["g"], I_O: inertia, theta: theta_,
@@ -130,22 +140,22 @@ def _swing_values_at(p, inertia: float, theta_, omega_) -> dict:
 
 
 def _swing_values(solution) -> dict:
-    """Passing θ₂, where the speed is asked for (falling: θ̇ = +|θ̇₂|)."""
+    """Passing θ₂ on the fall, where the speed is asked for: θ̇ = +|θ̇₂|, the answer (``motion`` has a frame
+    there, at the same numbers)."""
     p, a = solution.params, solution.answers
     return _swing_values_at(p, a["I_O"], p["theta2"], a["omega2"])
 
 
 def _swing_frames(solution, motion) -> dict:
-    return _swing_values_at(solution.params, solution.answers["I_O"], np.asarray(motion["theta"]),
-                            np.asarray(motion["omega"]))
+    angles, rates = np.asarray(motion["theta"], dtype=float), np.asarray(motion["omega"], dtype=float)
+    values = _swing_values_at(solution.params, solution.answers["I_O"], angles, rates)
+    return {s: np.broadcast_to(np.asarray(v, dtype=float), angles.shape).copy() for s, v in values.items()}
 
 
 @functools.cache
 def swing_diagram(disk: str) -> Diagram:
     """The rod and disk during the fall (the disk welded, or pinned and not turning)."""
-    points = {"O": (0, 0), "G_1": (L / 2 * sp.sin(theta), L / 2 * sp.cos(theta)),
-              "G_2": ((L + R) * sp.sin(theta), (L + R) * sp.cos(theta)), "A": (L * sp.sin(theta), L * sp.cos(theta))}
-    body = Body("the rod and disk", points=points, centre="G_1", about="O",
+    body = Body("the rod and disk", points=_points(), centre="G", about="O",
                 kinetic=(_ARM * (sp.cos(theta) * thetaddot - sp.sin(theta) * thetadot**2),
                          _ARM * (-sp.sin(theta) * thetaddot - sp.cos(theta) * thetadot**2), -I_O * thetaddot),
                 kinetic_latex=(r"(m_1 + m_2)\,\ddot{x}_G", r"(m_1 + m_2)\,\ddot{y}_G", r"-I_O\ddot{\theta}"),
@@ -155,20 +165,25 @@ def swing_diagram(disk: str) -> Diagram:
              Load(r"k\theta", "the spring's couple", "the torsional spring", "the rod and disk", at="O", kind="couple",
                   size=k * theta),
              Load("O", "the pin's reaction", "the pin", "the rod and disk", at="O", components=(O_x, O_y)))
-    note = ("The disk, pinned at its centre, does not turn: it adds its mass at $G_2$ but no spin to $I_O$."
-            if disk == "pinned" else "The disk is welded to the rod: one rigid body.")
+    if disk == "pinned":
+        note = ("Rod and disk are isolated together: the frictionless pin at $G_2$ between them is internal and "
+                "exerts no moment about $G_2$, so the disk's spin does not change (it does not turn): it counts "
+                "as its mass at $G_2$ alone, its own $I_G$ drops out of $I_O$.")
+    else:
+        note = "The disk is welded to the rod: one rigid body, turning about O at θ̇."
     return Diagram("swing", "During the fall", "force", (body,), loads, _swing_values, frames=_swing_frames, note=note)
 
 
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
-    """The fall's diagram for this disk."""
+    """The fall's diagram for this disk (drawn passing θ₂)."""
     return (swing_diagram(params["disk"]),)
 
 
 @functools.cache
 def derivation(disk: str) -> Derivation:
-    up = lambda q, arm: arm * sp.Matrix([sp.sin(q), sp.cos(q)])  # noqa: E731  position from O
-    x1, x2 = up(theta, L / 2), up(theta, L + R)
+    diagram = swing_diagram(disk)
+    points = diagram.body("the rod and disk").points
+    x1, x2 = sp.Matrix(points["G_1"]), sp.Matrix(points["G_2"])  # the centres of mass, as the diagram places them
     v1, v2 = sp.diff(x1, theta) * thetadot, sp.diff(x2, theta) * thetadot
     I_G1, I_G2 = m1 * L**2 / 12, m2 * R**2 / 2
     spin_disk = 1 if disk == "welded" else 0
@@ -176,30 +191,44 @@ def derivation(disk: str) -> Derivation:
          + m2 * v2.dot(v2) / 2 + spin_disk * I_G2 * thetadot**2 / 2)
     T = sp.simplify(T)
     inertia = sp.factor_terms(sp.expand(sp.simplify(2 * T / thetadot**2)))
-    weight = sp.Matrix([0, -g])
+    # The works from the diagram's loads: each weight's force dotted with its point's displacement per
+    # dθ, and the spring's couple in θ's sense (θ turns about E_z with the sign of r × ∂r/∂θ).
+    rate = lambda name: sp.Matrix(points[name]).diff(theta)  # noqa: E731  ∂r/∂θ
+    weights = [l for l in diagram.loads if l.by == "gravity"]
     work_gravity = sp.simplify(sp.integrate(
-        (m1 * weight.dot(sp.diff(x1, theta)) + m2 * weight.dot(sp.diff(x2, theta))), (theta, theta1, theta2)))
+        sum(sp.Matrix(l.vector).dot(rate(l.at)) for l in weights), (theta, theta1, theta2)))
     work_gravity = sp.factor(work_gravity)
-    work_spring = sp.factor(sp.integrate(-k * theta, (theta, theta1, theta2)))
+    tip = sp.Matrix(points["A"])
+    sense = sp.sign(sp.simplify(tip[0] * rate("A")[1] - tip[1] * rate("A")[0]))  # −1: θ grows clockwise
+    spring_moment = sense * next(l for l in diagram.loads if l.kind == "couple").size  # −kθ in θ's sense
+    work_spring = sp.factor(sp.integrate(spring_moment, (theta, theta1, theta2)))
     speed = sp.solve(sp.Eq(I_O * thetadot**2 / 2, T2), thetadot)
     speed = [s_ for s_ in speed if s_.subs({I_O: 1, T2: 1}).is_positive][0]
+    # Step 3's moment law about O, −Σ M_O = I_O θ̈ in θ's sense, integrated from θ₁ (θ̈ dθ = θ̇ dθ̇) is the
+    # work–energy equation: the same works.
+    moment_law = balance(diagram, "the rod and disk")[2]
+    presentable(sp.integrate(sense * moment_law.lhs, (theta, theta1, theta2)), work_gravity + work_spring)
 
     steps = [
-        Step(r"Origin at the pin O; $\mathbf{E}_x$ horizontal, $\mathbf{E}_y$ up; θ from the upward vertical, "
-             "growing clockwise as the assembly falls. Centres of mass from O, rod at L/2 and disk at L + R",
+        Step(r"Origin at the pin O; θ from the upward vertical, growing clockwise as the assembly falls; basis "
+             r"$\mathbf{E}_x$ horizontal, $\mathbf{E}_y$ up, $\mathbf{E}_z$ out of the page. Centres of mass from O: "
+             r"the rod's $G_1$ at L/2 and the disk's $G_2$ at L + R",
              r"\mathbf{x}_1 = " + sp.latex(x1.T) + r",\quad \mathbf{x}_2 = " + sp.latex(x2.T), part=1),
-        *fbd_steps(swing_diagram(disk)),
-        *balance_steps(swing_diagram(disk)),
+        Step("Their velocities, turning about O at θ̇", r"\dot{\mathbf{x}}_1 = " + sp.latex(v1.T)
+             + r",\quad \dot{\mathbf{x}}_2 = " + sp.latex(v2.T), part=1),
         Step("Kinetic energy: translation of each centre plus rotation about it"
              + (" (the disk turns with the rod)" if disk == "welded" else
                 r" (the pinned disk does not rotate: no $\tfrac12 I_G\dot\theta^2$ for it)"),
-             latex_eq(sp.Symbol("T"), T) + r" = \tfrac12 I_O \dot\theta^2"),
-        Step("Hence the moment of inertia about O", latex_eq(I_O, inertia)),
+             latex_eq(sp.Symbol("T"), T) + r" = \tfrac12 I_O \dot\theta^2", part=1),
+        Step("Hence the moment of inertia about O", latex_eq(I_O, inertia), part=1),
+        *fbd_steps(diagram),
+        *balance_steps(diagram),
         Step("Work of gravity from θ₁ to θ₂: ∫ F·dx for each weight",
              latex_eq(U_g, work_gravity)),
         Step("Work of the torsional spring: its couple ($k\\theta$ about $\\mathbf{E}_z$, $-k\\theta$ in θ's sense) times dθ, integrated",
-             latex_eq(U_s, sp.Integral(-k * theta, (theta, theta1, theta2))) + " = " + sp.latex(work_spring)),
-        Step(r"Work–energy from rest: $T_2 - 0 = U_g + U_s$", latex_eq(T2, U_g + U_s)
+             latex_eq(U_s, sp.Integral(spring_moment, (theta, theta1, theta2))) + " = " + sp.latex(work_spring)),
+        Step(r"Work–energy from rest, $T_2 - 0 = U_g + U_s$: the moment law about O integrated over θ "
+             r"($\ddot\theta\,d\theta = \dot\theta\,d\dot\theta$)", latex_eq(T2, U_g + U_s)
              + r"\;\Rightarrow\;" + latex_eq(w2, speed)),
     ]
     chain = [
@@ -400,9 +429,15 @@ def motion(solution: Solution) -> dict:
 
     A release at upright creeps for seconds on its 1e-6 rad/s nudge; the frames start where the
     rod has moved VISIBLE from rest (``start``) and end where it is back within VISIBLE of rest,
-    evenly in time, and close enough that the rod turns at most MAX_FRAME_TURN between frames."""
+    evenly in time, and close enough that the rod turns at most MAX_FRAME_TURN between frames.
+
+    One frame is at θ₂ itself, on the fall, at the closed form's numbers (θ₂, |θ̇₂|; the integration agrees
+    with them to its tolerance): the key instant, where the speed is asked for and the free-body diagram
+    is drawn (the stage's Forces overlay draws its loads on these frames)."""
     p, a = solution.params, solution.answers
     half = simulate(p, a)
+    reach, _ = _legs(tuple(sorted(p.items())) + (("I_O", a["I_O"]),))
+    t_2 = reach.end[0] if reach.ended_by_event else None  # when the fall passes θ₂
     Q = weight_moment(p)
     # With no spring, T(θ) = Q (1 − cos θ) from upright vanishes again only at 360°, upright: the
     # swing ends where it began, at an equilibrium, and the nudge carries it over the top.
@@ -421,10 +456,15 @@ def motion(solution: Solution) -> dict:
     even = np.linspace(t_start, t_end, frames)
     if t_turn is not None and t_start < t_turn < t_end:  # and the turn itself, the rod's largest angle
         even = np.union1d(even, [t_turn])
+    if t_2 is not None:
+        even = np.union1d(even, [t_2])
     theta, omega = np.interp(even, t, theta), np.interp(even, t, omega)
+    if t_2 is not None:
+        at_2 = int(np.searchsorted(even, t_2))
+        theta[at_2], omega[at_2] = p["theta2"], a["omega2"]
     return {"t": even, "theta": theta, "omega": omega, "kinetic": 0.5 * a["I_O"] * omega**2,
             "gravity": Q * (1 + np.cos(theta)), "spring": 0.5 * p["k"] * theta**2,
-            "start": float(t_start), "over_the_top": bool(over_the_top)}
+            "start": float(even[0]), "over_the_top": bool(over_the_top)}
 
 
 def method(params) -> tuple[Step, ...]:

@@ -3,9 +3,11 @@ import math
 
 import numpy as np
 import pytest
+import sympy as sp
 from hypothesis import given, settings, strategies as st
 
 from solvers import driven_cart
+from solvers.diagram import Circle, balance, balance_steps, fbd_steps, residuals
 from tests.strategies import pos
 from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures
 
@@ -172,3 +174,142 @@ def test_a_cart_past_the_lift_off_is_marked_across_the_plot_not_at_zero_accelera
     assert mark.get("mode") == "lines" and np.allclose(np.asarray(mark["x"], dtype=float), p["mu"], rtol=1e-3)
     ys = np.asarray(mark["y"], dtype=float)
     assert ys.min() == 0 and ys.max() >= highest
+
+
+# ----------------------------------------------------------------------------------------------
+# The free-body diagram (Step 2) and the balance laws written from it (Step 3)
+
+
+def _diagram(solution):
+    (d,) = driven_cart.free_body_diagrams(solution.params)
+    return d
+
+
+def _vector(load, values):
+    return tuple(float(sp.sympify(c).subs(values)) for c in load.vector)
+
+
+@settings(max_examples=25, deadline=None)
+@given(VALID)
+def test_the_side_view_s_balance_laws_hold_at_the_wheel_by_wheel_numbers(p):
+    """ΣF_x = m ẍ_C, ΣF_y = 0 and ΣM_C = 0, summed from the declared loads, hold at the numbers of the
+    worked solution's six equations solved numerically (the diagram's values), for every drive."""
+    s = driven_cart.solve(**p)
+    d = _diagram(s)
+    values = d.values(s)
+    # every term is at most the weight (a force) or the weight times b + μa (a moment about C)
+    scale = p["m"] * p["g"] * max(1.0, p["b"] + p["mu"] * p["a"])
+    for law, left, right in residuals(d, s):
+        assert abs(left - right) <= 1e-9 * scale, (law, left, right, scale)
+    # and the values are the answers (per wheel: the diagram's axle carries two)
+    assert float(values[driven_cart.N_front]) == pytest.approx(s.answers["N_front"], rel=1e-9)
+    assert float(values[driven_cart.N_rear]) == pytest.approx(s.answers["N_rear"], rel=1e-9)
+    assert float(values[driven_cart.xdd]) == pytest.approx(s.answers["accel"], rel=1e-9, abs=1e-12 * p["g"])
+
+
+@settings(max_examples=40, deadline=None)
+@given(VALID)
+def test_the_diagram_s_forces_point_as_the_physics_says(p):
+    """Gravity down at C; the ground pushes each axle up with two wheels' load, 2N; the traction pushes
+    forward (along ẍ) at the driven axles only and adds up to F_drive; the free wheels carry none."""
+    s = driven_cart.solve(**p)
+    d = _diagram(s)
+    values = d.values(s)
+    points = d.body("the cart").points
+    assert float(sp.sympify(points["F"][0] - points["C"][0]).subs(values)) == pytest.approx(p["b"])  # ahead
+    assert float(sp.sympify(points["R"][0] - points["C"][0]).subs(values)) == pytest.approx(-p["b"])  # behind
+    weight = p["m"] * p["g"]
+    by_name = {load.name: load for load in d.loads}
+    gx, gy = _vector(by_name["the weight"], values)
+    assert by_name["the weight"].at == "C" and gx == 0 and gy == pytest.approx(-weight, rel=1e-12)
+    driven = {"front": {"front"}, "rear": {"rear"}, "all": {"front", "rear"}}[p["drive"]]
+    traction_total = 0.0
+    for axle, point in (("front", "F"), ("rear", "R")):
+        normal = by_name[f"the ground's normal force on the {axle} wheels"]
+        assert normal.at == point and points[point][1] == 0  # at the contact, on the ground
+        nx, ny = _vector(normal, values)
+        assert nx == 0 and ny > 0  # out of the ground, into the cart
+        assert ny == pytest.approx(2 * s.answers[f"N_{axle}"], rel=1e-9)  # the axle's two wheels
+        traction = by_name.get(f"the ground's traction on the driven {axle} wheels")
+        assert (traction is not None) == (axle in driven)  # no zero force drawn at the free wheels
+        if traction is not None:
+            tx, ty = _vector(traction, values)
+            assert traction.at == point and ty == 0 and tx >= 0
+            assert tx * s.answers["accel"] >= 0  # forward, the way the cart accelerates
+            assert tx == pytest.approx(p["mu"] * ny, rel=1e-12, abs=1e-12 * weight)  # at the friction limit
+            traction_total += tx
+    assert traction_total == pytest.approx(s.answers["F_drive"], rel=1e-9, abs=1e-9 * weight)
+    assert len(d.loads) == 3 + len(driven)
+
+
+@settings(max_examples=15, deadline=None)
+@given(VALID)
+def test_the_diagram_is_drawn_where_the_stage_draws_the_cart_at_every_frame(p):
+    """Diagram.frames: one value per frame of the motion, the forces constant, the cart at the motion's
+    x; the first frame is the instant the diagram is drawn for. Its points in the stage's coordinates:
+    C where the stage marks the centre of mass, the wheels' outlines on the stage's wheels."""
+    s, figs = figures("driven_cart", **p)
+    d = _diagram(s)
+    motion = driven_cart.motion(s)
+    frames = d.frames(s, motion)
+    n = len(motion["t"])
+    values = d.values(s)
+    assert set(frames) == set(values)
+    for sym, column in frames.items():
+        column = np.asarray(column, dtype=float)
+        assert column.shape == (n,) and np.all(np.isfinite(column)), sym
+        assert column[0] == pytest.approx(float(values[sym]), rel=1e-12, abs=1e-12), sym
+        if sym is driven_cart.x_C:
+            assert np.array_equal(column, motion["x"])
+        else:
+            assert np.all(column == column[0]), sym  # the forces are the same at every instant
+    body = d.body("the cart")
+    symbols = sorted(frames, key=lambda sym: sym.name)
+    columns = [np.asarray(frames[sym], dtype=float) for sym in symbols]
+    at = lambda expr: np.broadcast_to(sp.lambdify(symbols, sp.sympify(expr), "numpy")(*columns), (n,))  # noqa: E731
+    cx, cy = (at(c) for c in body.points["C"])
+    for i, (xs, ys) in enumerate(drawn(figs[0], "centre of mass")):
+        assert (cx[i], cy[i]) == (pytest.approx(xs[0], abs=DRAWN), pytest.approx(ys[0], abs=DRAWN))
+    hubs = {shape.centre: (*(at(c) for c in body.points[shape.centre]), at(shape.radius))
+            for shape in body.outline if isinstance(shape, Circle)}
+    for i, (xs, ys) in enumerate(drawn(figs[0], "wheels")):
+        for hub, half in (("_rear_hub", slice(0, len(xs) // 2)), ("_front_hub", slice(len(xs) // 2, None))):
+            wx, wy, radius = circle(xs[half], ys[half])
+            hx, hy, hr = (column[i] for column in hubs[hub])
+            assert (hx, hy) == (pytest.approx(wx, abs=10 * DRAWN), pytest.approx(wy, abs=10 * DRAWN))
+            assert hr == pytest.approx(radius, rel=0.01)
+
+
+@pytest.mark.parametrize("drive", ["front", "rear", "all"])
+def test_the_derivation_is_in_the_four_steps_and_solves_the_diagram_s_laws(drive):
+    """Step 1 (origin, coordinates, basis, kinematics), Step 2 the declared diagram, Step 3 its balance
+    laws, then the analysis, in that order; the answers solve Step 3's laws, and the worked solution's
+    wheel-by-wheel route is shown reducing to them."""
+    s = driven_cart.solve(drive=drive, mu=0.5)
+    d = _diagram(s)
+    parts = [step.part for step in s.steps]
+    assert parts == sorted(parts) and set(parts) == {1, 2, 3, 4}
+    assert s.steps[0].part == 1 and "Origin" in s.steps[0].title and r"\mathbf{E}_x" in s.steps[0].title
+    assert [step for step in s.steps if step.part == 2] == list(fbd_steps(d))
+    assert [step for step in s.steps if step.part == 3] == list(balance_steps(d))
+    at = {driven_cart.m: s.params["m"], driven_cart.a: s.params["a"], driven_cart.b: s.params["b"],
+          driven_cart.mu: s.params["mu"], driven_cart.g: s.params["g"], driven_cart.xdd: s.answers["accel"],
+          driven_cart.N_front: s.answers["N_front"], driven_cart.N_rear: s.answers["N_rear"]}
+    for law in balance(d, "the cart"):
+        assert float((law.lhs - law.rhs).subs(at)) == pytest.approx(0, abs=1e-9 * s.params["m"] * s.params["g"])
+    remains = next(step for step in s.steps if step.title.startswith("What remains"))
+    assert "Step 3" in remains.title and remains.part == 4
+
+
+@pytest.mark.parametrize("drive", ["rear", "all"])
+def test_the_method_shown_past_the_wheelie_follows_the_four_steps_too(drive):
+    """Beside the refusal, the method: the four parts in order, the diagram and its laws among them, and
+    last the condition μa < b that the cart fails."""
+    params = {"drive": drive, "mu": 3.0}
+    with pytest.raises(driven_cart.FrontWheelsLiftError):
+        driven_cart.solve(**params)
+    steps = driven_cart.method(params)
+    parts = [step.part for step in steps]
+    assert parts == sorted(parts) and set(parts) == {1, 2, 3, 4}
+    assert [step for step in steps if step.part == 2] == list(fbd_steps(driven_cart.side_view(drive)))
+    assert r"\mu a < b" in steps[-1].latex and not any(step.numeric for step in steps)

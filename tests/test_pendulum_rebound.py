@@ -5,10 +5,12 @@ import re
 
 import numpy as np
 import pytest
+import sympy as sp
 from hypothesis import assume, given, settings, strategies as st
 from scipy.integrate import solve_ivp
 
 from solvers import pendulum_rebound
+from solvers.diagram import balance, balance_steps, fbd_steps, residuals
 from tests.strategies import pos
 from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures, static
 from tests.test_pages import run_page
@@ -268,3 +270,211 @@ def test_in_feet_the_figure_is_the_metric_one_scaled():
                 assert np.allclose(y, x * ft, rtol=1e-3, atol=2e-4, equal_nan=True), (si["data"][t]["name"], k)
                 compared += 1
     assert compared > 100
+
+
+# ----------------------------------------------------------------------------------------------
+# The free-body diagrams (Step 2), the balance laws written from them (Step 3), and the stage's frames
+
+
+def _number(expr, values) -> float:
+    return float(sp.sympify(expr).subs(values))
+
+
+def _vector(load, values) -> tuple[float, float]:
+    return tuple(_number(c, values) for c in load.vector)
+
+
+def _declared_symbols(d) -> set:
+    """Every symbol the diagram's points, loads and kinetic sides use."""
+    exprs = []
+    for body in d.bodies:
+        exprs += [c for xy in body.points.values() for c in xy] + list(body.kinetic)
+    for load in d.loads:
+        exprs += [load.size, *(load.direction or ()), *load.components]
+    return set().union(*(sp.sympify(x).free_symbols for x in exprs))
+
+
+def _balance_holds(d, solution, rel=1e-9) -> None:
+    """Each body's three balance laws at the numbers the diagram is drawn for, each to ``rel`` of the
+    largest term in the body's laws (a law whose terms cancel: the x law at θ = −90°)."""
+    values = d.values(solution)
+    rows = residuals(d, solution)
+    for n, body in enumerate(d.bodies):
+        laws = balance(d, body.name)
+        terms = [t for eq in laws for side in (eq.lhs, eq.rhs) for t in sp.Add.make_args(sp.expand(side))]
+        scale = max(abs(_number(t, values)) for t in terms)
+        for law, left, right in rows[3 * n: 3 * n + 3]:
+            assert abs(left - right) <= rel * scale, (d.phase, law, left, right, scale)
+
+
+def _agreeing_frames(per_frame, values) -> list[int]:
+    """The frames at which every symbol of ``per_frame`` has its number in ``values`` (to rounding)."""
+    scale = max(abs(float(v)) for v in values.values())
+    same = np.ones(len(next(iter(per_frame.values()))), dtype=bool)
+    for s, v in values.items():
+        same &= np.isclose(per_frame[s], float(v), rtol=1e-9, atol=1e-12 * scale)
+    return [int(i) for i in np.nonzero(same)[0]]
+
+
+OPTIONS = [(sphere, surface) for sphere in SPHERE_K for surface in ("floor", "wall")]
+
+
+@pytest.mark.parametrize("sphere, surface", OPTIONS)
+@settings(max_examples=8, deadline=None)
+@given(VALID)
+def test_each_diagram_s_balance_laws_hold_at_the_solvers_numbers(sphere, surface, p):
+    """ΣF = m a_G, ΣM_O = I_O θ̈ (the swing) and their impulse forms (the impact), summed from the declared
+    loads, hold at the numbers the solver's own physics gives for the instant drawn: θ̈ from its equation
+    of motion, θ̇⁻ and θ̇⁺ its answers."""
+    p = {**p, "sphere": sphere, "surface": surface}
+    if surface == "floor" and not p["theta0"] > math.asin((p["r"] - p["d"]) / (p["L"] + p["r"])) + 0.01:
+        p["theta0"] = math.radians(60)  # (drawn for the wall, below the floor's impact angle)
+    solution = pendulum_rebound.solve(**p)
+    diagrams = pendulum_rebound.free_body_diagrams(solution.params)
+    assert [(d.phase, d.law) for d in diagrams] == [("swing", "force"), ("impact", "impulse")]
+    for d in diagrams:
+        values = d.values(solution)
+        assert _declared_symbols(d) <= set(values), (d.phase, _declared_symbols(d) - set(values))
+        _balance_holds(d, solution)
+    swing = diagrams[0].values(solution)
+    assert swing[pendulum_rebound.I_O] == solution.answers["I_O"]  # the inertia the derivation uses
+    impact = diagrams[1].values(solution)
+    assert (impact[pendulum_rebound.w_minus], impact[pendulum_rebound.w_plus]) == (
+        solution.answers["omega_impact"], solution.answers["omega_after"])
+
+
+def test_a_load_turned_round_breaks_the_balance():
+    """Positive control: the surface's impulse into the surface, or a weight pointing up, and the laws fail."""
+    from dataclasses import replace
+
+    for surface in ("floor", "wall"):
+        solution = pendulum_rebound.solve(surface=surface)
+        for d in pendulum_rebound.free_body_diagrams(solution.params):
+            for load in d.loads:
+                if load.direction is None:
+                    continue
+                flipped = replace(load, direction=tuple(-c for c in load.direction))
+                wrong = replace(d, loads=tuple(flipped if l is load else l for l in d.loads))
+                assert any(not math.isclose(a, b, rel_tol=1e-6) for _, a, b in residuals(wrong, solution)), load.symbol
+
+
+@settings(max_examples=40, deadline=None)
+@given(VALID)
+def test_the_loads_point_as_the_physics_says(p):
+    """Gravity down (−y on the stage) at the rod's and the sphere's centres; at the impact no weight, and
+    the smooth surface's impulse acts at the sphere's point on the surface, along the surface's normal
+    out of it, into the sphere, through the sphere's centre. The surface from the problem's geometry
+    (PROBLEMS.md): the floor is y = −d, the wall (touching the hanging sphere, on the side it swings
+    toward) x = −r."""
+    solution = pendulum_rebound.solve(**p)
+    swing, impact = pendulum_rebound.free_body_diagrams(solution.params)
+    v = swing.values(solution)
+    weights = [l for l in swing.loads if l.by == "gravity"]
+    assert sorted(l.at for l in weights) == ["G_r", "S"]
+    for load in weights:
+        x, y = _vector(load, v)
+        assert x == 0 and y < 0, load.symbol
+    assert -sum(_vector(l, v)[1] for l in weights) == pytest.approx((p["m_r"] + p["m_s"]) * p["g"], rel=1e-12)
+    pendulum = swing.body("the pendulum")
+    for name, rho in (("G_r", p["L"] / 2), ("S", p["L"] + p["r"])):  # on the rod, at θ from the horizontal
+        x, y = (_number(c, v) for c in pendulum.points[name])
+        angle = float(v[pendulum_rebound.theta])
+        assert (x, y) == pytest.approx((rho * math.cos(angle), rho * math.sin(angle)), rel=1e-12, abs=1e-12)
+
+    w = impact.values(solution)
+    assert not [l for l in impact.loads if l.by == "gravity"] and "negligible" in impact.note
+    (push,) = [l for l in impact.loads if l.by == f"the {p['surface']}"]
+    assert push.kind == "impulse" and push.at == "C"
+    points = impact.body(push.on).points
+    cx, cy = (_number(c, w) for c in points["C"])
+    sx, sy = (_number(c, w) for c in points["S"])
+    reach = p["L"] + 2 * p["r"]
+    if p["surface"] == "floor":
+        outward, gap = (0.0, 1.0), cy + p["d"]
+    else:
+        outward, gap = (1.0, 0.0), cx + p["r"]
+    assert abs(gap) <= 1e-9 * reach  # the contact point lies on the surface
+    assert math.hypot(cx - sx, cy - sy) == pytest.approx(p["r"], rel=1e-9)  # and on the sphere
+    x, y = _vector(push, w)
+    assert x * outward[0] + y * outward[1] >= 0  # pushes out of the surface, never pulls
+    assert abs(x * outward[1] - y * outward[0]) <= 1e-12 * math.hypot(x, y)  # along the normal: smooth
+    assert abs((sx - cx) * y - (sy - cy) * x) <= 1e-9 * p["r"] * math.hypot(x, y)  # through the centre
+    assert x * outward[0] + y * outward[1] > 0  # (θ̇⁻ ≠ 0 at the impact: it does push, for any e)
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_stage_s_frames_carry_each_diagram_at_each_frame(p):
+    """``frames`` gives every symbol an array of the motion's length: the swing at every frame, the impact
+    at each impact's frame only (NaN elsewhere, θ̇⁺ = −e θ̇⁻ there); at the frame each diagram is drawn
+    for, the same numbers as ``values``. And they are the stage's coordinates: the figure draws the
+    sphere where the diagram puts S, and at the impact touching the surface at C."""
+    solution, (figure,) = figures("pendulum_rebound", **p)
+    m = pendulum_rebound.motion(solution)
+    n = len(m["t"])
+    assert len(figure.spec["animation"]["times"]) == n  # the overlay's frames are the figure's
+    swing, impact = pendulum_rebound.free_body_diagrams(solution.params)
+    hits = [int(np.argmin(np.abs(m["t"] - t))) for t in m["impact_times"]]
+    first = hits[0]
+    for d in (swing, impact):
+        per_frame = d.frames(solution, m)
+        assert set(per_frame) >= _declared_symbols(d)
+        assert all(np.shape(v) == (n,) for v in per_frame.values()), d.phase
+        agree = _agreeing_frames(per_frame, d.values(solution))
+        assert agree, d.phase  # the instant drawn is a frame of the stage
+        if d is swing:
+            assert all(np.isfinite(v).all() for v in per_frame.values())
+            assert agree[0] <= first  # on the first fall
+            i = agree[0]
+        else:
+            finite = np.isfinite(per_frame[pendulum_rebound.P_surface])
+            assert list(np.nonzero(finite)[0]) == sorted(set(hits))
+            assert first in agree and set(agree) <= set(hits)  # (e = 1: every impact's the same)
+            before, after = per_frame[pendulum_rebound.w_minus], per_frame[pendulum_rebound.w_plus]
+            assert np.allclose(after[hits[1:]], -p["e"] * before[hits[1:]], rtol=1e-12, atol=0)
+            assert np.allclose(per_frame[pendulum_rebound.theta][hits], solution.answers["theta_impact"], rtol=0, atol=1e-6)
+            i = first
+        at = {s: per_frame[s][i] for s in per_frame}
+        xs, ys = drawn(figure, "sphere")[i]
+        centre = circle(xs, ys)[:2]
+        sx, sy = (_number(c, at) for c in d.body("the pendulum").points["S"])
+        assert centre == pytest.approx((sx, sy), abs=2 * DRAWN), d.phase
+    surface_x, surface_y = static(figure, p["surface"])
+    cx, cy = (_number(c, {s: v[first] for s, v in impact.frames(solution, m).items()})
+              for c in impact.body("the pendulum").points["C"])
+    if p["surface"] == "floor":
+        assert cy == pytest.approx(surface_y[0], abs=2 * DRAWN)
+    else:
+        assert cx == pytest.approx(surface_x[0], abs=2 * DRAWN)
+
+
+def test_the_derivation_is_in_the_four_steps_with_the_diagrams_in_steps_two_and_three():
+    """Origin, coordinates and basis first (part 1), then each diagram's Step 2, then its balance laws,
+    then the analysis; the work–energy step is the moment law integrated, the surface's impulse the
+    angular impulse law solved; no title states a result."""
+    for sphere, surface in OPTIONS:
+        solution = pendulum_rebound.solve(sphere=sphere, surface=surface, theta0=0.3)
+        steps = solution.steps
+        parts = [s.part for s in steps]
+        assert parts == sorted(parts) and set(parts) == {1, 2, 3, 4}
+        assert steps[0].title.startswith("Origin at the pivot O") and "basis" in steps[0].title
+        swing, impact = pendulum_rebound.free_body_diagrams(solution.params)
+        assert [s for s in steps if s.part == 2] == [*fbd_steps(swing), *fbd_steps(impact)]
+        assert [s for s in steps if s.part == 3] == [*balance_steps(swing), *balance_steps(impact)]
+        assert any("moment law" in s.title and "integrated" in s.title for s in steps if s.part == 4)
+        assert any("angular impulse law about O" in s.title for s in steps if s.part == 4)
+        _no_title_states_an_answer(solution)
+
+
+def _no_title_states_an_answer(solution) -> None:
+    """No step's title gives an answer away (practice's method shows the titles): neither its symbol set
+    equal to something nor its number."""
+    from solvers.core import plain_number
+
+    for step in solution.steps:
+        flat = step.title.replace(" ", "")
+        for answer in pendulum_rebound.ANSWERS:
+            assert answer.symbol.replace(" ", "") + "=" not in flat, (step.title, answer.name)
+            value = solution.answers[answer.name]
+            if abs(value) > 1e-9:
+                assert plain_number(abs(value), 3) not in step.title, (step.title, answer.name)

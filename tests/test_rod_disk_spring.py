@@ -1,12 +1,15 @@
 """rod_disk_spring against the seed's numbers and an independent integration of the motion."""
 import math
+import re
 
 import numpy as np
 import pytest
+import sympy as sp
 from hypothesis import assume, given, settings, strategies as st
 from scipy.integrate import solve_ivp
 
 from solvers import rod_disk_spring
+from solvers.diagram import balance, balance_steps, fbd_steps, residuals
 from tests.strategies import pos
 from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures, static
 
@@ -233,3 +236,155 @@ def test_with_no_spring_the_caption_says_it_goes_over_the_top():
     assert "keeps turning" in figure.description and "comes to rest at about 360" not in figure.description
     _, (pendulum,) = figures("rod_disk_spring", k=0.0, theta1=0.3)
     assert "returns" in pendulum.description  # released off upright, it swings back like a pendulum
+
+
+# ----------------------------------------------------------------------------------------------
+# The free-body diagram (Step 2), the balance laws written from it (Step 3), and the stage's frames
+
+
+def _number(expr, values) -> float:
+    return float(sp.sympify(expr).subs(values))
+
+
+def _declared_symbols(d) -> set:
+    """Every symbol the diagram's points, loads and kinetic sides use."""
+    exprs = []
+    for body in d.bodies:
+        exprs += [c for xy in body.points.values() for c in xy] + list(body.kinetic)
+    for load in d.loads:
+        exprs += [load.size, *(load.direction or ()), *load.components]
+    return set().union(*(sp.sympify(x).free_symbols for x in exprs))
+
+
+@pytest.mark.parametrize("disk", ["welded", "pinned"])
+@settings(max_examples=10, deadline=None)
+@given(VALID)
+def test_the_balance_laws_hold_at_the_solvers_numbers(disk, p):
+    """ΣF = m a_G and ΣM_O = −I_O θ̈ (θ grows clockwise), summed from the declared loads, hold passing θ₂
+    at the solver's numbers: |θ̇₂| its answer, θ̈ from its equation of motion, I_O the derivation's (no
+    spin of a pinned disk: it does not turn)."""
+    p = {**p, "disk": disk}  # (whether it reaches θ₂ does not depend on the disk's spin)
+    solution = rod_disk_spring.solve(**p)
+    (d,) = rod_disk_spring.free_body_diagrams(solution.params)
+    values = d.values(solution)
+    assert _declared_symbols(d) <= set(values), _declared_symbols(d) - set(values)
+    assert values[rod_disk_spring.theta] == p["theta2"] and values[rod_disk_spring.thetadot] == solution.answers["omega2"]
+    I = p["m1"] * p["L"] ** 2 / 3 + p["m2"] * (p["L"] + p["R"]) ** 2 + (p["m2"] * p["R"] ** 2 / 2 if disk == "welded" else 0)
+    assert values[rod_disk_spring.I_O] == pytest.approx(I, rel=1e-12)
+    laws = balance(d, "the rod and disk")
+    terms = [t for eq in laws for side in (eq.lhs, eq.rhs) for t in sp.Add.make_args(sp.expand(side))]
+    scale = max(abs(_number(t, values)) for t in terms)
+    for law, left, right in residuals(d, solution):
+        assert abs(left - right) <= 1e-9 * scale, (law, left, right, scale)
+
+
+def test_a_spring_couple_turned_round_or_a_weight_pointing_up_breaks_the_balance():
+    """Positive control: the moment law catches a couple with the twist, and the force laws a weight up."""
+    from dataclasses import replace
+
+    solution = rod_disk_spring.solve(theta1=0.4, theta2=2.0)
+    (d,) = rod_disk_spring.free_body_diagrams(solution.params)
+    for load in d.loads:
+        if load.kind == "couple":
+            wrong = replace(load, size=-load.size)
+        elif load.direction is not None:
+            wrong = replace(load, direction=tuple(-c for c in load.direction))
+        else:
+            continue
+        broken = replace(d, loads=tuple(wrong if l is load else l for l in d.loads))
+        assert any(not math.isclose(a, b, rel_tol=1e-6) for _, a, b in residuals(broken, solution)), load.symbol
+
+
+@settings(max_examples=40, deadline=None)
+@given(VALID)
+def test_the_loads_point_as_the_physics_says(p):
+    """Gravity down (−y on the stage) at the rod's and the disk's centres; the spring's couple opposes its
+    twist (untwisted at θ = 0): its component along θ's own sense of rotation, which the declared points
+    give (the sign of r × ∂r/∂θ), has the sign opposite to θ. The points where the stage puts them: θ
+    from the upward vertical toward +x."""
+    solution = rod_disk_spring.solve(**p)
+    (d,) = rod_disk_spring.free_body_diagrams(solution.params)
+    v = d.values(solution)
+    body = d.body("the rod and disk")
+    weights = [l for l in d.loads if l.by == "gravity"]
+    assert sorted(l.at for l in weights) == ["G_1", "G_2"]
+    for load in weights:
+        x, y = (_number(c, v) for c in load.vector)
+        assert x == 0 and y < 0, load.symbol
+    angle = float(v[rod_disk_spring.theta])
+    for name, rho in (("G_1", p["L"] / 2), ("G_2", p["L"] + p["R"]), ("A", p["L"])):
+        x, y = (_number(c, v) for c in body.points[name])
+        assert (x, y) == pytest.approx((rho * math.sin(angle), rho * math.cos(angle)), rel=1e-12, abs=1e-12)
+    tip = [sp.sympify(c) for c in body.points["A"]]
+    turning = _number(tip[0] * sp.diff(tip[1], rod_disk_spring.theta) - tip[1] * sp.diff(tip[0], rod_disk_spring.theta), v)
+    assert turning < 0  # θ grows clockwise, as the stage turns the rod
+    (couple,) = [l for l in d.loads if l.kind == "couple"]
+    assert couple.by == "the torsional spring" and couple.at == "O"
+    along_theta = math.copysign(1.0, turning) * _number(couple.size, v)
+    assert along_theta * angle <= 0  # against the twist
+    assert abs(along_theta) == pytest.approx(p["k"] * abs(angle), rel=1e-12, abs=1e-300)
+
+
+@EXAMPLES
+@given(VALID)
+def test_the_stage_s_frames_carry_the_diagram_at_each_frame(p):
+    """``frames`` gives every symbol an array of the motion's length, one per frame of the stage's figure
+    (the overlay's frames are the animation's); the motion has a frame at θ₂, where the diagram is drawn,
+    with the same numbers as ``values``; and the figure draws the disk where the diagram puts G_2."""
+    solution, (figure,) = figures("rod_disk_spring", **p)
+    m = rod_disk_spring.motion(solution)
+    n = len(m["t"])
+    assert len(figure.spec["animation"]["times"]) == n
+    (d,) = rod_disk_spring.free_body_diagrams(solution.params)
+    per_frame = d.frames(solution, m)
+    assert set(per_frame) >= _declared_symbols(d)
+    assert all(np.shape(v) == (n,) and np.isfinite(v).all() for v in per_frame.values())
+    values = d.values(solution)
+    scale = max(abs(float(v)) for v in values.values())
+    same = np.ones(n, dtype=bool)
+    for s, v in values.items():
+        same &= np.isclose(per_frame[s], float(v), rtol=1e-9, atol=1e-12 * scale)
+    agree = list(np.nonzero(same)[0])
+    assert agree and agree[0] == figure.key_frame  # the key instant: passing θ₂ on the fall
+    i = agree[0]
+    xs, ys = drawn(figure, "disk")[i]
+    at = {s: per_frame[s][i] for s in per_frame}
+    centre = [_number(c, at) for c in d.body("the rod and disk").points["G_2"]]
+    assert circle(xs, ys)[:2] == pytest.approx(centre, abs=2 * DRAWN)
+    for j in (0, n // 2, n - 1):  # and at any frame
+        xs, ys = drawn(figure, "disk")[j]
+        at = {s: per_frame[s][j] for s in per_frame}
+        assert circle(xs, ys)[:2] == pytest.approx([_number(c, at) for c in d.body("the rod and disk").points["G_2"]],
+                                                   abs=2 * DRAWN)
+
+
+def test_the_derivation_is_in_the_four_steps_with_the_diagram_in_steps_two_and_three():
+    """Origin, coordinates and basis, the kinematics and I_O first (part 1), then Step 2 and Step 3 from the
+    diagram, then the works and the work–energy equation, the moment law integrated; the spring's work
+    is its couple's from the diagram. No title states a result."""
+    for disk in ("welded", "pinned"):
+        solution = rod_disk_spring.solve(disk=disk)
+        steps = solution.steps
+        parts = [s.part for s in steps]
+        assert parts == sorted(parts) and set(parts) == {1, 2, 3, 4}
+        assert steps[0].title.startswith("Origin at the pin O") and "basis" in steps[0].title
+        (d,) = rod_disk_spring.free_body_diagrams(solution.params)
+        assert [s for s in steps if s.part == 2] == list(fbd_steps(d))
+        assert [s for s in steps if s.part == 3] == list(balance_steps(d))
+        assert any("moment law" in s.title and "integrated" in s.title for s in steps if s.part == 4)
+        assert ("pinned" in disk) == ("does not change" in d.note)
+        _no_title_states_an_answer(solution)
+
+
+def _no_title_states_an_answer(solution) -> None:
+    """No step's title gives an answer away (practice's method shows the titles): neither its symbol set
+    equal to something nor its number."""
+    from solvers.core import plain_number
+
+    for step in solution.steps:
+        flat = step.title.replace(" ", "")
+        for answer in rod_disk_spring.ANSWERS:
+            assert answer.symbol.replace(" ", "") + "=" not in flat, (step.title, answer.name)
+            value = solution.answers[answer.name]
+            if abs(value) > 1e-9:
+                assert plain_number(abs(value), 3) not in step.title, (step.title, answer.name)
