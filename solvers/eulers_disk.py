@@ -109,28 +109,43 @@ def _kinematics() -> dict:
 
 
 def _steady_values(solution) -> dict:
-    """The steady state: ω_p the solver's answer; with G at rest (a_G = 0, the model's assumption) the table
-    pushes with N = mg and no friction, so the moment law about G is the check."""
+    """The steady state drawn, from the solver's answers: ω_p, and the table's force from the motion the
+    answers give G. Rolling (A's material point at rest) with the answers' ω = ω_s n − ω_p E_z moves G at
+    v_G = ω × r_G/A = r (ω_s − ω_p cos θ) e_x (its other components cancel identically); steady, that is fixed
+    in the precessing frame, so a_G = −ω_p E_z × v_G = −ω_p r (ω_s − ω_p cos θ) e_y. The table supplies m a_G
+    less the weight: F = m a_G·e_y, N = m g + m a_G·E_z (with ω_s = ω_p cos θ, G at rest: F = 0, N = m g).
+    Never from the diagram's own balance laws."""
     p, a = solution.params, solution.answers
-    return {m: p["m"], r: p["r"], theta: p["theta"], g: p["g"], w_p: a["omega_p"], N_: p["m"] * p["g"], F_: 0.0}
+    v_G = p["r"] * (a["omega_s"] - a["omega_p"] * math.cos(p["theta"]))  # along e_x
+    a_G = (-a["omega_p"] * v_G, 0.0)  # (e_y, E_z)
+    return {m: p["m"], r: p["r"], theta: p["theta"], g: p["g"], w_p: a["omega_p"],
+            F_: p["m"] * a_G[0] + 0.0, N_: p["m"] * p["g"] + p["m"] * a_G[1]}  # (+ 0.0: a zero is never −0)
 
 
 @functools.cache
 def steady() -> Diagram:
-    """The disk in the vertical plane through its axis and the contact point A (e_y horizontal, toward A;
-    E_z up): the weight at G, the table's force at A as its components (friction F, normal N). The
-    moment about G is along e_x, out of the drawn plane."""
+    """The disk edge-on in the vertical plane through its axis and the contact point A, at any instant of the
+    steady precession (the picture is the same in the precessing frame): drawn x = e_y, horizontal from G
+    toward A; drawn y = E_z, up; origin at G, as the derivation's. The weight at G, the table's force at A as
+    its components (friction F along e_y, normal N along E_z). Moments are along e_x = e_y × E_z, out of the
+    drawing (counter-clockwise +), and the kinetic side is the e_x component of dH_G/dt, the gyroscopic
+    term the derivation computes in its kinematics."""
     k = _kinematics()
-    disk = Body("the disk", points={"G": (0, r * sp.sin(theta)), "A": (r * sp.cos(theta), 0),
-                                    "_rim": (-r * sp.cos(theta), 2 * r * sp.sin(theta))},
-                centre="G", about="G", kinetic=(0, 0, sp.factor(sp.expand_trig(sp.simplify(k["dHdt"][0])))),
-                kinetic_latex=("0", "0", r"\dot{\mathbf{H}}_G\cdot\mathbf{e}_x"), outline=(Rod(("A", "_rim")),))
+    r_AG = k["r_AG"]
+    A = (r_AG[1], r_AG[2])  # (e_y, E_z) components of r_A/G
+    turning = sp.factor(sp.expand_trig(sp.simplify(k["dHdt"][0])))
+    disk = Body("the disk", points={"G": (sp.Integer(0), sp.Integer(0)), "A": A, "_rim": (-A[0], -A[1])},
+                centre="G", about="G", kinetic=(sp.Integer(0), sp.Integer(0), turning),
+                kinetic_latex=(r"m\,\mathbf{a}_G\cdot\mathbf{e}_y = 0", r"m\,\mathbf{a}_G\cdot\mathbf{E}_z = 0",
+                               r"\dot{\mathbf{H}}_G\cdot\mathbf{e}_x = " + sp.latex(turning)),
+                outline=(Rod(("A", "_rim")),))
     loads = (Load("m g", "the weight", "gravity", "the disk", at="G", direction=(0, -1), size=m * g),
              Load("A", "the table's force", "the table", "the disk", at="A", components=(F_, N_)))
     return Diagram("steady", "In steady precession", "force", (disk,), loads, _steady_values,
                    basis=(r"\mathbf{e}_y", r"\mathbf{E}_z"),
-                   note=("Drawn in the vertical plane through the disk's axis and A: the disk seen edge-on. G is at "
-                         "rest, so the forces balance; their moment about G turns $\\mathbf{H}_G$ with the precession."))
+                   note=(r"Drawn edge-on in the vertical plane through the disk's axis and A ($\mathbf{e}_y$ toward A, "
+                         r"$\mathbf{E}_z$ up, origin at G; moments along $\mathbf{e}_x$, out of the page): G is at rest, "
+                         r"so the forces balance, and their moment about G turns $\mathbf{H}_G$ with the precession."))
 
 
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
@@ -141,11 +156,11 @@ def free_body_diagrams(params) -> tuple[Diagram, ...]:
 @functools.cache
 def derivation() -> Derivation:
     k = _kinematics()
-    r_AG, Ez, omega, rolling, spin = k["r_AG"], k["Ez"], k["omega"], k["rolling"], k["spin"]
+    omega, rolling, spin = k["omega"], k["rolling"], k["spin"]
     H_rolled, dHdt = k["H_rolled"], k["dHdt"]
     omega_rolled = sp.simplify(omega.subs(psidot, spin))
-    torque = r_AG.cross(N_ * Ez)
-    # Step 3's moment law about G (e_x), from the diagram; its force laws give F = 0 and N = mg (a_G = 0)
+    # Step 3's laws from the diagram: the force laws give F = 0 and N = mg (a_G = 0), the moment law about G
+    # (along e_x) then gives ω_p
     balance_x, balance_y, balance_m = balance(steady(), "the disk")
     forces = sp.solve([balance_x, balance_y], [F_, N_], dict=True)[0]
     moment_eq = sp.Eq(sp.simplify(balance_m.lhs.subs(forces)), balance_m.rhs)
@@ -166,15 +181,16 @@ def derivation() -> Derivation:
              rf"\;\Rightarrow\; {latex_eq(psidot, spin)} = \omega_s", part=1),
         Step("So ω points along the diameter through A (the instantaneous axis passes through A and G)",
              rf"\boldsymbol\omega = {_vec_latex(omega_rolled)},\quad {latex_eq(w_tot, magnitude)}", part=1),
+        Step("Angular momentum about G: ½ m r² along n, ¼ m r² across it",
+             rf"\mathbf{{H}}_G = {_vec_latex(H_rolled)}", part=1),
+        Step(r"$\theta$, $\omega_s$, $\omega_p$ constant: $\mathbf{H}_G$ is fixed in the precessing frame, so "
+             r"$d\mathbf{H}_G/dt = -\omega_p\mathbf{E}_z \times \mathbf{H}_G$, along $\mathbf{e}_x$; G is at rest, "
+             r"$\mathbf{a}_G = 0$", rf"\dot{{\mathbf{{H}}}}_G = {_vec_latex(dHdt)},\quad \mathbf{{a}}_G = 0", part=1),
         *fbd_steps(steady()),
         *balance_steps(steady()),
-        Step("Angular momentum about G: ½ m r² along n, ¼ m r² across it",
-             rf"\mathbf{{H}}_G = {_vec_latex(H_rolled)}"),
-        Step(r"$\theta$, $\omega_s$, $\omega_p$ constant: $\mathbf{H}_G$ is fixed in the precessing frame, so "
-             r"$d\mathbf{H}_G/dt = -\omega_p\mathbf{E}_z \times \mathbf{H}_G$; $\mathbf{a}_G = 0$ gives $N = mg$ and no friction",
-             rf"\dot{{\mathbf{{H}}}}_G = {_vec_latex(dHdt)},\quad \mathbf{{M}}_G = \mathbf{{r}}_{{A/G}}\times mg\mathbf{{E}}_z = "
-             + _vec_latex(torque.subs(N_, m * g))),
-        Step(r"Balance of angular momentum about G, $\mathbf{e}_x$ component", sp.latex(moment_eq)
+        Step("The force laws: no friction, and the table carries the weight",
+             latex_eq(F_, forces[F_]) + r",\quad " + latex_eq(N_, forces[N_])),
+        Step(r"The moment law about G, $\mathbf{e}_x$ component, with $F = 0$ and $N = mg$", sp.latex(moment_eq)
              + rf"\;\Rightarrow\; {latex_eq(w_p, w_p_shown)}"),
         Step(r"Energy: potential $m g r\sin\theta$ plus kinetic $\tfrac12\boldsymbol\omega\cdot\mathbf{H}_G$ (G at rest)",
              latex_eq(E, energy) + " = " + sp.latex(energy_closed)),

@@ -155,8 +155,9 @@ IMPACT = Diagram(
            Load("J", "the ball's impulse on the stick", "the ball", "the stick", at="Q", kind="impulse",
                 direction=(1, 0), size=J, pair="the stick's impulse on the ball")),
     values=_impact_values, frames=_impact_frames,
-    note=("The contact is smooth: the impulse is along the ball's approach. The table's support and gravity "
-          "act out of the plane. The ball is a point (drawn with a size); $u_b$, $u_M$: the ball's and the "
+    note=("The contact is smooth, so the impulse is perpendicular to the stick, along the ball's approach, whether "
+          "the ball attaches or bounces; the table's support and gravity act out of the plane (finite, they give "
+          "no impulse over the instant). The ball is a point (drawn with a size); $u_b$, $u_M$: the ball's and the "
           "stick's midpoint's velocities after, $\\omega_z$ the stick's spin (clockwise: negative)."))
 
 
@@ -165,36 +166,84 @@ def free_body_diagrams(params) -> tuple[Diagram, ...]:
     return (IMPACT,)
 
 
+def _sides(eq: sp.Eq) -> tuple[sp.Expr, sp.Expr]:
+    return eq.lhs, eq.rhs
+
+
+def _moment_law_about(body: str, point: tuple) -> tuple[sp.Expr, sp.Expr]:
+    """``body``'s moment law moved from its centre (where the diagram writes it) to the fixed ``point``, as
+    (impulses' moment, change of angular momentum): ΣM_P = ΣM_G + r_G/P × ΣP̂ and ΔH_P = ΔH_G + r_G/P × m Δv_G,
+    so each side adds r_G/P × its own side of the two linear laws (the balance laws' generated sides, nothing
+    written anew)."""
+    b = IMPACT.body(body)
+    assert b.about == b.centre  # the moment law about the mass centre, so ΔH moves with m Δv_G
+    (fx, kx), (fy, ky), (fm, km) = (_sides(eq) for eq in balance(IMPACT, body))
+    dx, dy = (c - q for c, q in zip(b.points[b.centre], point))
+    return fm + dx * fy - dy * fx, km + dx * ky - dy * kx
+
+
 @functools.cache
 def derivation(mode: str) -> Derivation:
     I_stick = m_s * l**2 / 12
     origin = Step(r"Top view. Origin at the stick's midpoint M at the instant of impact; $\mathbf{E}_x$ along the "
                   r"ball's approach, $\mathbf{E}_y$ along the stick, $\mathbf{E}_z$ out of the table "
                   r"(counter-clockwise +). The ball strikes at Q, a distance s from M; before, it moves at "
-                  r"$v\,\mathbf{E}_x$ and the stick is at rest", r"\mathbf{r}_Q = s\,\mathbf{E}_y,\quad "
-                  r"\mathbf{v}_{ball}^- = v\,\mathbf{E}_x", part=1)
-    laws = [origin, *fbd_steps(IMPACT), *balance_steps(IMPACT),
-            Step("Added, the pair (J on the stick, −J on the ball) cancels: no external impulse in the plane, so the system's momentum and "
-                 "angular momentum are conserved", r"m_b\left(u_b - v\right) + m_s u_M = 0")]
+                  r"$v\,\mathbf{E}_x$ and the stick is at rest. After: the ball at $u_b\,\mathbf{E}_x$, the stick's "
+                  r"midpoint at $u_M\,\mathbf{E}_x$, the stick turning at $\omega_z\,\mathbf{E}_z$",
+                  r"\mathbf{r}_Q = s\,\mathbf{E}_y,\quad \mathbf{v}_{ball}^- = v\,\mathbf{E}_x", part=1)
+    # Step 3 (generated from the diagram), then the two bodies' laws added: the pair J, −J cancels
+    (ball_x, _, _), (stick_x, _, _) = balance(IMPACT, "the ball"), balance(IMPACT, "the stick")
+    impulses = sp.expand(ball_x.lhs + stick_x.lhs)
+    assert impulses == 0  # the interaction pair cancels
+    momentum_sum = sp.Eq(impulses, ball_x.rhs + stick_x.rhs, evaluate=False)
+    diagrams = [*fbd_steps(IMPACT), *balance_steps(IMPACT)]
     T_before = m_b * v**2 / 2
     if mode == "stick":
         cm = sp.Eq(d_cm, (m_s * 0 + m_b * s) / (m_s + m_b))
-        momentum = sp.Eq(m_b * v, (m_b + m_s) * v_cm)
+        # attached: one rigid body turning clockwise at ω about the combined centre C = d_cm E_y, moving at v_cm E_x;
+        # a point at arm y along the stick moves at (v_cm + ω (y − d_cm)) E_x
+        attached = {u_b: v_cm + w * (s - d_cm), u_M: v_cm - w * d_cm, omega_z: -w}
         inertia = sp.Eq(I_cm, I_stick + m_s * d_cm**2 + m_b * (s - d_cm) ** 2)
-        # The ball is at distance s − d_cm from the combined CM, moving perpendicular to the stick.
-        angular = sp.Eq(m_b * v * (s - d_cm), I_cm * w)
+        # linear momentum: the two x laws added, with the attached velocities; the ω term is the combined CM's
+        # definition (m_b (s − d_cm) = m_s d_cm), zero
+        linear = sp.expand(momentum_sum.rhs.subs(attached))
+        assert sp.simplify(linear.coeff(w).subs(d_cm, cm.rhs)) == 0
+        momentum = sp.Eq(-linear.coeff(w, 0).coeff(v_cm, 0), linear.coeff(v_cm) * v_cm)
+        # angular momentum about the fixed point where C is at the impact: each body's moment law moved there
+        C = (sp.Integer(0), d_cm)
+        (ball_m, ball_k), (stick_m, stick_k) = _moment_law_about("the ball", C), _moment_law_about("the stick", C)
+        moments = sp.expand(ball_m + stick_m)
+        assert moments == 0  # the pair acts at one point, Q: its moments cancel about any point
+        turning = sp.expand((ball_k + stick_k).subs(attached))
+        assert sp.simplify(turning.coeff(v_cm).subs(d_cm, cm.rhs)) == 0  # C is the combined CM
+        assert sp.simplify(turning.coeff(w) + inertia.rhs) == 0  # the ω term is −I_cm ω
+        before = sp.factor(turning.coeff(w, 0).coeff(v_cm, 0))  # 0 = this − I_cm ω
+        assert sp.simplify(before - m_b * v * (s - d_cm)) == 0  # only the ball carries it before, arm s − d_cm
+        angular = sp.Eq(before, I_cm * w)
         solved_v = sp.solve(momentum, v_cm)[0]
         solved_w = sp.solve(angular, w)[0]
         T_after = (m_b + m_s) * v_cm**2 / 2 + I_cm * w**2 / 2
         steps = [
-            *laws,
-            Step("Centre of mass of stick + ball, measured from the stick's midpoint", sp.latex(cm)),
-            Step("No horizontal external impulse: linear momentum is conserved", sp.latex(momentum)
-                 + r"\;\Rightarrow\;" + latex_eq(v_cm, solved_v)),
+            origin,
+            Step("Centre of mass C of stick + ball, measured from the stick's midpoint", sp.latex(cm), part=1),
+            Step(r"The ball attaches: after, the two move as one rigid body, C at $v_{cm}\,\mathbf{E}_x$, turning "
+                 r"clockwise at ω ($\omega_z = -\omega$); a point at arm y along the stick moves at "
+                 r"$v_{cm} + \omega\,(y - d_{cm})$",
+                 r",\quad ".join(latex_eq(k_, attached[k_]) for k_ in (u_b, u_M, omega_z)), part=1),
+            *diagrams,
+            Step("The two bodies' x laws added: the pair (−J on the ball, J on the stick) cancels, so the "
+                 "system's linear momentum is conserved; with the attached velocities (the ω terms cancel: "
+                 r"$m_b(s - d_{cm}) = m_s d_{cm}$, C being the combined centre)",
+                 sp.latex(momentum_sum) + r"\;\Rightarrow\;" + sp.latex(momentum) + r"\;\Rightarrow\;"
+                 + latex_eq(v_cm, solved_v)),
             Step("Moment of inertia about the combined CM (parallel-axis theorem for the stick, "
                  "point mass for the ball)", sp.latex(inertia)),
-            Step("Angular momentum about the combined CM is conserved; before impact only the ball "
-                 r"carries it (arm $s - d_{cm}$)", sp.latex(angular) + r"\;\Rightarrow\;" + latex_eq(w, solved_w)),
+            Step("Each body's moment law moved to C (its moment law about its own centre plus "
+                 r"$\mathbf{r}_{G/C}\times$ its linear laws) and added: the pair acts at Q, so its moments cancel and "
+                 "the angular momentum about C is conserved; before impact only the ball carries it "
+                 r"(arm $s - d_{cm}$)",
+                 sp.latex(sp.Eq(moments, ball_k + stick_k, evaluate=False)) + r"\;\Rightarrow\;" + sp.latex(angular)
+                 + r"\;\Rightarrow\;" + latex_eq(w, solved_w)),
             Step("Kinetic energy before and after (the impact is perfectly plastic, e = 0)",
                  latex_eq(T_i, T_before) + r",\quad " + latex_eq(T_f, T_after)),
             Step("Distance the CM travels while the body turns once", latex_eq(x_rev, v_cm * 2 * sp.pi / w)),
@@ -219,8 +268,15 @@ def derivation(mode: str) -> Derivation:
         solved = {k: sp.factor(val) for k, val in solved.items()}
         T_after = m_b * v_b1**2 / 2 + m_s * v_s1**2 / 2 + I_stick * w**2 / 2
         steps = [
-            *laws,
-            Step(r"With $u_b = v_b'$, $u_M = v_s'$ and the stick turning clockwise at ω ($\omega_z = -\omega$)",
+            origin,
+            Step(r"The ball bounces off: after, it moves at $v_b'\,\mathbf{E}_x$ (a point: no spin), the stick's "
+                 r"midpoint at $v_s'\,\mathbf{E}_x$, the stick turning clockwise at ω; its point Q then moves at "
+                 r"$v_s' + \omega s$",
+                 r",\quad ".join(latex_eq(k_, after[k_]) for k_ in (u_b, u_M, omega_z)), part=1),
+            *diagrams,
+            Step("The two bodies' x laws added: the pair (−J on the ball, J on the stick) cancels, so the "
+                 "system's linear momentum is conserved", sp.latex(momentum_sum)),
+            Step(r"The balance laws with these velocities ($u_b = v_b'$, $u_M = v_s'$, $\omega_z = -\omega$)",
                  sp.latex(ball) + r",\quad " + sp.latex(stick_lin) + r",\quad " + sp.latex(stick_ang)),
             Step("Newton's restitution on the normal velocities at the contact point", sp.latex(restitution)),
             Step("Solve the four linear equations",

@@ -322,7 +322,7 @@ def _driven_cart(solution, d, v):
         if "normal" in load.name:
             assert x == 0 and y >= -TOL * weight  # the ground pushes up
         elif "traction" in load.name:
-            assert y == 0 and x * v[next(iter(s for s in v if s.name == r"\ddot{x}_C"))] >= 0  # forward, with ẍ
+            assert y == 0 and x >= 0  # forward: the driven wheels push the cart ahead
 
 
 def _pendulum_rebound(solution, d, v):
@@ -350,7 +350,7 @@ def _stick_ball(solution, d, v):
 def _eulers_disk(solution, d, v):
     _gravity_down(d, v)
     friction, normal = _load_vector(d, "A", v)
-    assert normal > 0 and friction == 0
+    assert normal > 0 and abs(friction) <= 1e-12 * normal
 
 
 DIRECTIONS = {"disk_wall": _disk_wall, "sliding_ladder": _sliding_ladder, "driven_cart": _driven_cart,

@@ -5,10 +5,12 @@ import math
 
 import numpy as np
 import pytest
+import sympy as sp
 from hypothesis import given, settings, strategies as st
 from scipy.spatial.transform import Rotation
 
 from solvers import eulers_disk
+from solvers.diagram import balance, residuals, resultant
 from tests.strategies import pos
 from tests.drawing import DRAWN, EXAMPLES, figures
 from tests.test_pages import assert_clean, run_page
@@ -352,3 +354,90 @@ def test_log_and_run_down_axes_label_their_ticks_in_full():
     assert all(str(v)[0] in "125" for v in log_axis["tickvals"])
     decay = importlib.import_module("viz.eulers_disk").on_request(solution)
     assert not any("overlaying" in v for v in decay.spec["layout"].values() if isinstance(v, dict))
+
+
+# ----------------------------------------------------------------------------------------------
+# The free-body diagram: the disk edge-on in the vertical plane through its axis and A
+
+
+def _steady(solution):
+    (d,) = eulers_disk.free_body_diagrams(solution.params)
+    assert d.phase == "steady" and d.law == "force" and d.frames is None  # a 3-D stage: no overlay
+    return d
+
+
+def _number(expr, values) -> float:
+    return float(sp.sympify(expr).subs(values))
+
+
+@settings(max_examples=25, deadline=None)
+@given(VALID)
+def test_the_edge_on_balance_laws_hold_at_the_solver_s_numbers(p):
+    """ΣF = m a_G (zero: G at rest) and ΣM_G = dH_G/dt·e_x, summed from the declared loads, hold at the
+    solver's ω_p and the table's force its answers give (from the motion of G, never the diagram's laws)."""
+    s = eulers_disk.solve(**p)
+    d = _steady(s)
+    weight = p["m"] * p["g"]
+    for law, left, right in residuals(d, s):
+        scale = weight * (p["r"] if law.endswith("moment") else 1.0)
+        assert abs(left - right) <= 1e-9 * scale, (law, left, right, scale)
+
+
+@settings(max_examples=25, deadline=None)
+@given(VALID)
+def test_the_table_carries_the_weight_without_friction_and_its_moment_turns_h_g(p):
+    """Gravity down at G; the table's force at A up, N = m g ≥ 0, friction zero (G at rest); A below G by
+    r sin θ on the table, r cos θ toward A; and the moment law along e_x is the fixed frame's: the moment of
+    the drawn forces about G and the diagram's kinetic side both equal dH_G/dt·e_x found by finite
+    differences of an independent Euler-angle model (scipy), e_x = e_y × E_z with e_y horizontal toward A."""
+    s = eulers_disk.solve(**p)
+    a = s.answers
+    d = _steady(s)
+    values = d.values(s)
+    m, r, th, g = p["m"], p["r"], p["theta"], p["g"]
+    weight, table = (next(l for l in d.loads if l.by == by) for by in ("gravity", "the table"))
+    assert weight.at == "G" and tuple(_number(c, values) for c in weight.vector) == (0.0, pytest.approx(-m * g, rel=1e-12))
+    assert table.at == "A" and table.direction is None  # its direction is the physics' to find: two components
+    friction, normal = (_number(c, values) for c in table.components)
+    assert normal >= 0 and normal == pytest.approx(m * g, rel=1e-12)  # up (E_z), carrying the weight
+    assert abs(friction) <= 1e-12 * m * g
+    disk = d.body("the disk")
+    G, A = ((_number(x, values), _number(y, values)) for x, y in (disk.points["G"], disk.points["A"]))
+    assert A[0] - G[0] == pytest.approx(r * math.cos(th), rel=1e-12)
+    assert A[1] - G[1] == pytest.approx(-r * math.sin(th), rel=1e-12)
+    # the fixed frame's moment law, along e_x
+    args = (th, -a["omega_p"], a["omega_s"])
+    t = 0.3 / a["omega_p"]
+    r_AG = lowest_rim_point(t, r, *args)
+    e_y = np.array([r_AG[0], r_AG[1], 0.0]) / math.hypot(r_AG[0], r_AG[1])
+    e_x = np.cross(e_y, [0.0, 0.0, 1.0])
+    assert r_AG @ e_y == pytest.approx(A[0] - G[0], rel=1e-9) and r_AG[2] == pytest.approx(A[1] - G[1], rel=1e-9)
+    I_body = np.diag([m * r**2 / 4, m * r**2 / 4, m * r**2 / 2])
+
+    def H(time):
+        R = orientation(time, *args)
+        return R @ I_body @ R.T @ angular_velocity(time, *args)
+
+    h = 1e-4 / a["omega_p"]
+    turning = (H(t + h) - H(t - h)) / (2 * h) @ e_x
+    assert turning > 0  # m g r cos θ: the table's push tips H_G forward as it precesses
+    moment = _number(resultant(d, "the disk")[2], values)
+    assert moment == pytest.approx(m * g * r * math.cos(th), rel=1e-12)
+    assert moment == pytest.approx(turning, rel=1e-4)
+    assert _number(disk.kinetic[2], values) == pytest.approx(turning, rel=1e-4)
+    assert disk.kinetic[:2] == (0, 0)  # a_G = 0
+
+
+def test_the_derivation_is_in_the_four_steps_and_gets_omega_p_from_the_diagram_s_moment_law():
+    """Kinematics first (ω, rolling, H_G and its rate), then the diagram, its laws, the analysis; the ω_p
+    step's equation is the diagram's moment law with F = 0 and N = m g put in."""
+    s = eulers_disk.solve()
+    parts = [step.part for step in s.steps]
+    assert parts == sorted(parts) and set(parts) == {1, 2, 3, 4}
+    assert "Origin" in s.steps[0].title
+    assert any(r"\dot{\mathbf{H}}_G" in step.latex for step in s.steps if step.part == 1)
+    d = _steady(s)
+    law = balance(d, "the disk")[2]
+    with_forces = sp.Eq(law.lhs.subs({eulers_disk.F_: 0, eulers_disk.N_: eulers_disk.m * eulers_disk.g}), law.rhs)
+    omega_p_step = next(step for step in s.steps if "moment law" in step.title and step.part == 4)
+    assert omega_p_step.latex.startswith(sp.latex(sp.Eq(sp.simplify(with_forces.lhs), with_forces.rhs)))

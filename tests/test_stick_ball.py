@@ -4,9 +4,11 @@ import math
 
 import numpy as np
 import pytest
+import sympy as sp
 from hypothesis import assume, given, settings, strategies as st
 
 from solvers import stick_ball
+from solvers.diagram import balance, residuals, resultant
 from tests.strategies import pos
 from tests.drawing import DRAWN, EXAMPLES, circle, distance_to_segment, drawn, figures
 
@@ -155,3 +157,121 @@ def test_the_stick_s_energy_check_is_a_second_computation():
     assert energy.closed_form != pytest.approx(solution.answers["T_before"])
     # the worked solution's numbers: equal masses hit at the end lose 1/5 of ½ m v²
     assert energy.second_method == pytest.approx(0.1, rel=1e-12)
+
+
+# ----------------------------------------------------------------------------------------------
+# The free-body diagram of the impact (solvers/diagram.py): the ball and the stick isolated, the pair J
+
+
+MODES = st.sampled_from(["stick", "bounce"])
+
+
+def _impact(solution):
+    (d,) = stick_ball.free_body_diagrams(solution.params)
+    assert d.phase == "impact" and d.law == "impulse"
+    return d
+
+
+def _number(expr, values) -> float:
+    return float(sp.sympify(expr).subs(values))
+
+
+def _load(d, on: str):
+    (load,) = d.loads_on(on)
+    return load
+
+
+@settings(max_examples=60, deadline=None)
+@given(VALID, MODES)
+def test_each_body_s_impulse_momentum_laws_hold_at_the_solver_s_numbers(p, mode):
+    """Σ P̂ = m Δv_G and Σ M̂ = ΔH about each body's own centre, summed from the declared loads, hold at
+    the velocities after that the solver's answers give (J from the effective mass at the contact, a
+    formula that never uses them), whether the ball attaches or bounces."""
+    p = {**p, "mode": mode}
+    s = stick_ball.solve(**p)
+    d = _impact(s)
+    impulse = p["m_ball"] * p["v"]  # J ≤ (1 + e) m* v ≤ 2 m_b v; every term is at most a few times this
+    rows = residuals(d, s)
+    assert len(rows) == 6
+    for law, left, right in rows:
+        scale = impulse * (p["l"] if law.endswith("moment") else 1.0)
+        assert abs(left - right) <= 1e-9 * scale, (law, left, right, scale)
+
+
+@settings(max_examples=60, deadline=None)
+@given(VALID, MODES)
+def test_the_pair_is_equal_and_opposite_and_pushes_the_stick_forward(p, mode):
+    """The ball's impulse on the stick is along the ball's approach (+E_x, perpendicular to the stick: a
+    smooth contact) and the stick's on the ball its opposite, at one point Q on the stick's line; the stick's
+    midpoint then moves forward, the ball slows, and the stick (hit at +s) turns clockwise. Nothing by
+    gravity in the plane: the table and gravity act out of it, as the note says."""
+    p = {**p, "mode": mode}
+    s = stick_ball.solve(**p)
+    d = _impact(s)
+    values = d.values(s)
+    on_stick, on_ball = _load(d, "the stick"), _load(d, "the ball")
+    assert on_stick.kind == on_ball.kind == "impulse"
+    assert on_stick.pair == on_ball.name and on_ball.pair == on_stick.name
+    assert on_stick.by == "the ball" and on_ball.by == "the stick"
+    stick_vector = tuple(_number(c, values) for c in on_stick.vector)
+    ball_vector = tuple(_number(c, values) for c in on_ball.vector)
+    assert stick_vector[0] > 0 and stick_vector[1] == 0  # along the approach, +E_x
+    assert ball_vector == (-stick_vector[0], -stick_vector[1])
+    # both act at Q, the same place: on the stick's line (x = 0) at s from its midpoint
+    q_stick = tuple(_number(c, values) for c in d.body("the stick").points[on_stick.at])
+    q_ball = tuple(_number(c, values) for c in d.body("the ball").points[on_ball.at])
+    assert q_stick == q_ball == (0.0, pytest.approx(p["s"], rel=1e-12))
+    # the approach line passes through the ball's centre: no moment about it (no spin given to the ball)
+    assert _number(resultant(d, "the ball")[2], values) == pytest.approx(0.0, abs=1e-12 * p["m_ball"] * p["v"] * p["l"])
+    v_mid, v_ball, w = velocities_after(p, s.answers)
+    assert v_mid > 0 and v_ball < p["v"] and w > 0  # (velocities_after's ω: clockwise +)
+    assert _number(stick_ball.omega_z, values) == pytest.approx(-w, rel=1e-12)
+    assert not any(load.by == "gravity" for load in d.loads)
+    assert "out of the plane" in d.note
+
+
+@settings(max_examples=40, deadline=None)
+@given(VALID, MODES)
+def test_the_diagram_is_drawn_where_the_stage_draws_the_impact(p, mode):
+    """``frames`` gives every symbol at each frame of the motion, NaN but at the impact's, where it is
+    ``values``; there the diagram's points are where the stage draws the ball and the stick."""
+    p = {**p, "mode": mode}
+    s = stick_ball.solve(**p)
+    d = _impact(s)
+    motion = stick_ball.motion(s)
+    count, impact = len(motion["t"]), motion["impact_index"]
+    assert motion["t"][impact] == 0.0
+    values = d.values(s)
+    per_frame = d.frames(s, motion)
+    assert set(per_frame) == set(values)
+    for symbol, track in per_frame.items():
+        track = np.asarray(track, dtype=float)
+        assert track.shape == (count,), symbol
+        assert track[impact] == pytest.approx(float(values[symbol]), rel=1e-12, abs=0.0), symbol
+        assert np.isnan(np.delete(track, impact)).all(), symbol
+    used = set().union(*(sp.sympify(c).free_symbols for b in d.bodies for pt in b.points.values() for c in pt),
+                       *(sp.sympify(c).free_symbols for l in d.loads for c in l.vector),
+                       *(sp.sympify(k).free_symbols for b in d.bodies for k in b.kinetic))
+    assert used <= set(values)
+    at = {k: float(v) for k, v in values.items()}
+    where = {("the ball", "B"): motion["ball"], ("the stick", "M"): motion["mid"], ("the stick", "_top"): motion["top"],
+             ("the stick", "_bottom"): motion["bottom"]}
+    for (body, name), (xs, ys) in where.items():
+        x, y = (_number(c, at) for c in d.body(body).points[name])
+        assert (x, y) == (pytest.approx(float(xs[impact]), abs=1e-12 * p["l"]),
+                          pytest.approx(float(ys[impact]), abs=1e-12 * p["l"])), name
+
+
+def test_the_system_s_conservation_laws_are_the_two_bodies_laws_added():
+    """The pair cancels when the bodies' generated laws are added (x, and the moments moved to any fixed
+    point), which leaves the worked solution's conservation laws: the derivation writes them so."""
+    (ball_x, _, _), (stick_x, _, _) = (balance(stick_ball.IMPACT, b) for b in ("the ball", "the stick"))
+    assert stick_ball.J not in sp.expand(ball_x.lhs + stick_x.lhs).free_symbols
+    point = (sp.Symbol("x_P", real=True), sp.Symbol("y_P", real=True))
+    moments = [stick_ball._moment_law_about(b, point) for b in ("the ball", "the stick")]
+    assert sp.expand(sum(m for m, _ in moments)) == 0
+    stuck = stick_ball.solve()
+    steps = [step for step in stuck.steps if step.part == 4 and "added" in step.title]
+    assert len(steps) == 2 and all(r"\Rightarrow" in step.latex for step in steps)
+    assert [step.part for step in stuck.steps] == sorted(step.part for step in stuck.steps)
+    assert "Origin" in stuck.steps[0].title and stuck.steps[0].part == 1
