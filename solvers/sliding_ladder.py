@@ -39,7 +39,7 @@ from .core import (
     within_model_range,
 )
 from . import units
-from .diagram import Body, Diagram, Load, Rod, balance, balance_steps, fbd_steps
+from .diagram import Body, Diagram, Load, Rod, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
@@ -125,9 +125,8 @@ _WALL = Load("N_A", "the wall's normal force", "the wall", "the ladder", at="A",
 
 
 def _release_values(solution) -> dict:
-    """Just after release (θ = θ₀, θ̇ = 0: the motion's first frame): the reactions are the solver's
-    answers; θ̈ is the textbook's −(3g/2L) cos θ (PROBLEMS.md), G's acceleration its kinematics on the
-    circle."""
+    """Just after release (θ = θ₀, θ̇ = 0): the reactions are the solver's answers; θ̈ is the textbook's
+    −(3g/2L) cos θ (PROBLEMS.md), G's acceleration its kinematics on the circle."""
     p, a = solution.params, solution.answers
     th, angular = p["theta0"], -1.5 * p["g"] / p["L"] * math.cos(p["theta0"])
     return {m: p["m"], g: p["g"], L: p["L"], theta: th, thetaddot: angular, x_G: p["L"] / 2 * math.cos(th),
@@ -149,21 +148,11 @@ def _newton_euler_at(p, states, wall: bool) -> dict:
     return out
 
 
-def floor_only_frame(theta_0: float) -> int:
-    """The frame of ``motion`` the diagram after leaving is drawn at: halfway, by frame, from the first
-    frame after the top leaves the wall to the last (flat on the floor)."""
-    frames, *_, t1 = _sampled(theta_0)
-    first = int(np.searchsorted(frames, t1, side="right"))
-    return (first + len(frames) - 1) // 2
-
-
-def _floor_only_values(solution) -> dict:
-    """Midway between leaving and landing (the frame ``floor_only_frame``), from the Newton–Euler
-    integration's state there and its own linear solve for the accelerations and N_B."""
-    _, states, *_ = _sampled(solution.params["theta0"])
-    k = floor_only_frame(solution.params["theta0"])
-    return {key: (float(v[0]) if isinstance(v, np.ndarray) else v)
-            for key, v in _newton_euler_at(solution.params, states[k:k + 1], wall=False).items()}
+def _leaving_values(solution) -> dict:
+    """Just after the top leaves the wall, from the Newton–Euler integration's state there."""
+    run = integrated(solution.params["theta0"])
+    return {k: (float(v[0]) if isinstance(v, np.ndarray) else v)
+            for k, v in _newton_euler_at(solution.params, [run["leave"]], wall=False).items()}
 
 
 def _frames(wall: bool):
@@ -187,7 +176,7 @@ BOTH_CONTACTS = Diagram(
     note="The wall and the floor are smooth: each pushes along its normal only.")
 FLOOR_ONLY = Diagram(
     "floor_only", "After the top leaves the wall", "force", bodies=(_ladder(_POINTS),), loads=(_WEIGHT, _FLOOR),
-    values=_floor_only_values, frames=_frames(False),
+    values=_leaving_values, frames=_frames(False),
     note="No horizontal force is left: $\\dot x_G$ keeps its value.")
 
 
@@ -203,52 +192,37 @@ CLOSEST_TO_REST = 1e-6
 
 @functools.cache
 def derivation() -> tuple[Derivation, dict]:
-    """Both phases, derived once: the balance laws of the diagram against the wall (Step 3) with G's
-    acceleration on its circle give θ̈ and the reactions, energy gives θ̇², the wall's reaction vanishes
-    where the top leaves; then the diagram with the floor alone keeps ẋ_G, and energy with the floor
-    constraint carries θ to 0. Also θ̇²(θ) of each phase as plain functions in units g = L = 1, for
-    the time quadratures."""
+    """Both phases, derived once: energy, the reactions from Newton's law for G, the instant the
+    wall's reaction vanishes, then energy with the floor constraint alone. Also θ̇²(θ) of each phase
+    as plain functions in units g = L = 1, for the time quadratures."""
     t = sp.Symbol("t")
     q = sp.Function(r"theta")(t)
-    x_on_circle, y_on_circle = L / 2 * sp.cos(q), L / 2 * sp.sin(q)
+    x_G, y_G = L / 2 * sp.cos(q), L / 2 * sp.sin(q)
+    I_G = m * L**2 / 12
     as_symbols = lambda e: e.subs({q.diff(t, 2): thetaddot, q.diff(t): thetadot}).subs(q, theta)  # noqa: E731
-    x_acc, y_acc = as_symbols(x_on_circle.diff(t, 2)), as_symbols(y_on_circle.diff(t, 2))
 
-    # Phase 1: both contacts. Step 3's balance laws (written from the diagram) with G's acceleration on
-    # its circle (Step 1): three linear equations in θ̈, N_A and N_B.
-    laws_1 = balance(BOTH_CONTACTS, "the ladder")
-    kinematics_1 = {xdd_G: x_acc, ydd_G: y_acc}
-    (newton_euler,) = sp.solve([law.subs(kinematics_1) for law in laws_1], [thetaddot, N_A, N_B], dict=True)
-    accel = sp.factor(sp.simplify(newton_euler[thetaddot]))  # θ̇ drops out: −(3g/2L) cos θ
-    wall_rates = sp.factor(sp.simplify(newton_euler[N_A]))
-    floor_rates = sp.factor(sp.simplify(newton_euler[N_B]))
-
-    # Energy: G's motion plus the turning about G; it integrates θ̈ once (checked below).
-    v_sq = sp.simplify(as_symbols(x_on_circle.diff(t) ** 2 + y_on_circle.diff(t) ** 2))
+    # Phase 1: both contacts. Kinetic energy of G's motion plus the turning about G.
+    v_sq = sp.simplify(as_symbols(x_G.diff(t) ** 2 + y_G.diff(t) ** 2))
     T1 = sp.simplify(m * v_sq / 2 + I_G * thetadot**2 / 2)
     I_C = sp.simplify(2 * T1 / thetadot**2)
     energy1 = sp.Eq(T1, m * g * L / 2 * (sp.sin(theta0) - sp.sin(theta)))
     W = sp.Symbol("W", positive=True)  # θ̇², solved for
     rate_sq = sp.solve(energy1.subs(thetadot**2, W), W)[0]
-    if sp.simplify(sp.diff(rate_sq, theta) / 2 - accel) != 0:  # d(θ̇²)/dt = 2 θ̇ θ̈ = (d θ̇²/dθ) θ̇
-        raise AssertionError("the energy integral disagrees with the balance laws' θ̈")  # pragma: no cover
+    accel = sp.simplify(sp.diff(rate_sq, theta) / 2)  # d(θ̇²)/dt = 2 θ̇ θ̈ = (d θ̇²/dθ) θ̇
+    x_acc, y_acc = as_symbols(x_G.diff(t, 2)), as_symbols(y_G.diff(t, 2))
     on_path = {thetaddot: accel, thetadot**2: rate_sq}
-    wall = sp.factor(sp.simplify(wall_rates.subs(on_path)))
-    floor = sp.factor(sp.simplify(floor_rates.subs(on_path)))
+    wall = sp.factor(sp.simplify((m * x_acc).subs(on_path)))
+    floor = sp.factor(sp.simplify((m * (y_acc + g)).subs(on_path)))
     s = sp.Symbol("s", positive=True)
     (leaving_sin,) = sp.solve(sp.factor(wall / sp.cos(theta)).subs(sp.sin(theta), s), s)  # cos θ > 0 here
     leave_angle = sp.asin(leaving_sin)
     wall_0 = presentable(sp.simplify(wall.subs(theta, theta0)), 3 * m * g * sp.sin(theta0) * sp.cos(theta0) / 4)
     floor_0 = sp.factor(sp.simplify(floor.subs(theta, theta0)))
     omega_l = sp.sqrt(rate_sq.subs(theta, th_l))
-    speed_l = sp.simplify(as_symbols(x_on_circle.diff(t)).subs(theta, th_l).subs(thetadot, -w_l))
+    speed_l = sp.simplify(as_symbols(x_G.diff(t)).subs(theta, th_l).subs(thetadot, -w_l))
 
-    # Phase 2: the floor alone. Step 3's horizontal balance, 0 = m ẍ_G: ẋ_G keeps its value;
-    # y_G = (L/2) sin θ still; energy from leaving.
-    horizontal_2 = balance(FLOOR_ONLY, "the ladder")[0]
-    if horizontal_2.lhs != 0:  # pragma: no cover - the diagram would have a horizontal force
-        raise AssertionError("a horizontal force after the top leaves the wall")
-    T2 = m * (v_l**2 + as_symbols(y_on_circle.diff(t)) ** 2) / 2 + I_G * thetadot**2 / 2
+    # Phase 2: the floor alone. ẋ_G keeps its value; y_G = (L/2) sin θ still; energy from leaving.
+    T2 = m * (v_l**2 + as_symbols(y_G.diff(t)) ** 2) / 2 + I_G * thetadot**2 / 2
     T_l = I_C * w_l**2 / 2
     energy2 = sp.Eq(T2, T_l + m * g * L / 2 * (sp.sin(th_l) - sp.sin(theta)))
     rate2_sq = presentable(sp.solve(energy2.subs(thetadot**2, W), W)[0],
@@ -264,28 +238,21 @@ def derivation() -> tuple[Derivation, dict]:
         Step(r"Origin at the corner O where the wall meets the floor; $\mathbf{E}_x$ along the floor away from the "
              r"wall, $\mathbf{E}_y$ up; θ the ladder's angle from the floor (its anticlockwise rotation is $-\dot\theta$). "
              "Both contacts hold: G moves on a circle of radius L/2 about the corner",
-             r"x_G = " + sp.latex(x_on_circle.subs(q, theta)) + r",\quad y_G = " + sp.latex(y_on_circle.subs(q, theta)),
-             part=1),
-        Step("Differentiated twice: G's acceleration while both contacts hold",
-             latex_eq(xdd_G, sp.factor(x_acc)) + r",\quad " + latex_eq(ydd_G, sp.factor(y_acc)), part=1),
-        Step(r"Once the top is off the wall only the foot B stays on the floor: $y_G = (L/2)\sin\theta$ still, "
-             r"$x_G$ is free", r"y_G = " + sp.latex(y_on_circle.subs(q, theta)), part=1),
+             r"x_G = " + sp.latex(x_G.subs(q, theta)) + r",\quad y_G = " + sp.latex(y_G.subs(q, theta)), part=1),
         *fbd_steps(BOTH_CONTACTS), *fbd_steps(FLOOR_ONLY),
         *balance_steps(BOTH_CONTACTS), *balance_steps(FLOOR_ONLY),
-        Step("Against the wall: Step 3's three balance laws, with G's acceleration from Step 1, solved for "
-             r"$\ddot\theta$ and the two reactions",
-             latex_eq(thetaddot, accel) + r",\quad " + latex_eq(N_A, wall_rates) + r",\quad "
-             + latex_eq(N_B, floor_rates)),
         Step(r"Kinetic energy: G's motion plus the turning about G ($I_G = mL^2/12$); the ladder turns about "
              "its instantaneous centre C, L/2 from G",
              r"T = \tfrac12 m v_G^2 + \tfrac12 I_G \dot\theta^2 = " + sp.latex(T1)
              + r" = \tfrac12 I_C \dot\theta^2,\quad I_C = " + sp.latex(I_C)),
-        Step(r"Energy from rest (the smooth wall and floor do no work); its rate of change, "
-             r"$2\dot\theta\ddot\theta$, gives the $\ddot\theta$ above",
+        Step("Energy from rest (the smooth wall and floor do no work)",
              sp.latex(energy1, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate_sq, order="rev-lex")),
-        Step(r"The wall's push along the way, with $\dot\theta^2$ from the energy",
-             latex_eq(N_A, wall)),
-        Step(r"The floor's push along the way", latex_eq(N_B, floor)),
+        Step("Its rate of change, d(θ̇²)/dt = 2θ̇θ̈, gives the angular acceleration",
+             latex_eq(thetaddot, accel)),
+        Step(r"The wall's push is the only horizontal force: $N_A = m\ddot x_G$",
+             r"N_A = m\,\ddot x_G = " + sp.latex(sp.factor(m * x_acc)) + " = " + sp.latex(wall)),
+        Step(r"The floor carries the weight and G's vertical acceleration: $N_B = m(\ddot y_G + g)$",
+             r"N_B = " + sp.latex(floor)),
         Step("Just after release (θ = θ₀, θ̇ = 0)",
              latex_eq(N_A0, wall_0) + r",\quad " + latex_eq(N_B0, floor_0)),
         Step("The wall cannot pull: the top leaves the wall where $N_A$ reaches zero", r"N_A = 0 \;\Rightarrow\; \sin\theta_\ell = " + sp.latex(leaving_sin)
@@ -294,8 +261,8 @@ def derivation() -> tuple[Derivation, dict]:
              latex_eq(v_l, speed_l)),
         Step("Time to leave: dt = dθ / |θ̇|, in units of √(L/g) (an elliptic integral, by quadrature)",
              latex_eq(tau_1, time_1, order="rev-lex") + r",\quad t_\ell = \tau_1 \sqrt{L/g}"),
-        Step(r"After leaving only the floor pushes: Step 3's horizontal balance, $0 = m\ddot x_G$, keeps $\dot x_G$ "
-             r"at its value; with $y_G = (L/2)\sin\theta$ still, energy from the moment of leaving",
+        Step(r"After leaving no horizontal force acts: $\dot x_G$ stays at its value; the foot stays on the floor, "
+             r"so $y_G = (L/2)\sin\theta$ still; energy from the moment of leaving",
              sp.latex(energy2, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate2_sq, order="rev-lex")),
         Step("Flat on the floor, θ = 0", latex_eq(w_f, omega_f)),
         Step("Time from leaving to the floor, in units of √(L/g) with ω̂₂ = |θ̇| √(L/g) from the energy "

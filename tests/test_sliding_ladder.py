@@ -7,14 +7,12 @@ import math
 
 import numpy as np
 import pytest
-import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from practice.judge import Judge
 from solvers import sliding_ladder as ladder
-from solvers.diagram import balance, balance_steps, fbd_steps, residuals
 from viz import sliding_ladder as ladder_viz
 
 CONTRACT = {  # PROBLEMS.md §7, typed independently of the solver module
@@ -386,131 +384,3 @@ def test_the_method_shown_before_the_solution_does_not_state_where_the_top_leave
     solution = ladder.solve()
     shown = " ".join(step.title for step in solution.steps[: solution.symbolic_steps]).lower()
     assert not any(words in shown for words in ("two-thirds", "2/3", "⅔", "two thirds"))
-
-
-# ----------------------------------------------------------------------------------------------
-# The free-body diagrams (Step 2), against the wall and after the top leaves it, and the balance
-# laws written from them (Step 3)
-
-
-def _vector(d, symbol, values):
-    load = next(l for l in d.loads if l.symbol == symbol)
-    return tuple(float(sp.sympify(c).subs(values)) for c in load.vector)
-
-
-def _point(d, name, values):
-    return tuple(float(sp.sympify(c).subs(values)) for c in d.body("the ladder").points[name])
-
-
-@settings(max_examples=15, deadline=None)
-@given(VALID)
-def test_both_diagrams_balance_at_the_solvers_numbers(p):
-    """ΣF = m a_G and ΣM_G = −I_G θ̈ (θ from the floor: the anticlockwise rate is −θ̇), summed from the
-    declared loads, hold at release (the answers, the textbook's θ̈) and midway from leaving to landing
-    (the Newton–Euler integration's state and linear solve)."""
-    s = ladder.solve(**p)
-    scale = p["m"] * p["g"] * max(1.0, p["L"])  # forces ~ m g, moments about G ~ m g L
-    for d in ladder.free_body_diagrams(s.params):
-        for law, left, right in residuals(d, s):
-            assert abs(left - right) <= 1e-9 * scale, (d.phase, law, left, right)
-
-
-@settings(max_examples=20, deadline=None)
-@given(VALID)
-def test_the_diagrams_forces_point_as_the_physics_says(p):
-    """Gravity down at G; the wall pushes A away from itself (+x) and never pulls; the floor pushes B up;
-    after leaving, the wall's force is gone (the top is off the wall) and the floor still pushes. At the
-    instants drawn and at every frame of each phase."""
-    s = ladder.solve(**p)
-    both, floor_only = ladder.free_body_diagrams(s.params)
-    weight = p["m"] * p["g"]
-    for d in (both, floor_only):
-        v = d.values(s)
-        assert _vector(d, "m g", v) == (0.0, pytest.approx(-weight, rel=1e-12))
-        fx, fy = _vector(d, "N_B", v)
-        assert fx == 0 and fy > 0  # out of the floor, into the ladder
-        assert _point(d, "B", v)[1] == 0  # at the foot, on the floor
-    v = both.values(s)
-    assert float(v[ladder.theta]) == p["theta0"]  # just after release
-    wx, wy = _vector(both, "N_A", v)
-    assert wx > 0 and wy == 0 and wx == pytest.approx(s.answers["N_wall0"], rel=1e-12)  # away from the wall
-    assert _point(both, "A", v)[0] == pytest.approx(0, abs=1e-12 * p["L"])  # the top on the wall
-    v = floor_only.values(s)
-    assert "N_A" not in {l.symbol for l in floor_only.loads}
-    assert float(v[ladder.theta]) < s.answers["theta_leave"]  # after leaving
-    assert _point(floor_only, "A", v)[0] > 0  # the top off the wall
-    # along the whole motion (the frames the stage draws)
-    motion = ladder.motion(s)
-    one, two = both.frames(s, motion), floor_only.frames(s, motion)
-    on_wall = np.isfinite(one[ladder.N_A])
-    assert np.all(one[ladder.N_A][on_wall] >= -1e-9 * weight) and np.all(one[ladder.N_B][on_wall] > 0)
-    assert np.all(two[ladder.N_B][~on_wall] > 0)
-
-
-@settings(max_examples=15, deadline=None)
-@given(VALID)
-def test_the_diagrams_frames_are_the_stage_s_motion_and_agree_with_the_instants_drawn(p):
-    """Diagram.frames: one value per frame of ``motion``, each phase's in its own frames (NaN in the
-    other's), its points where the stage draws the ladder; at the instants drawn (release: the first
-    frame; after leaving: ``floor_only_frame``) the same numbers as ``values``; the reactions those of
-    the motion's curve at the times both sample (release, leaving, landing)."""
-    s = ladder.solve(**p)
-    motion = ladder.motion(s)
-    n, leave = len(motion["t"]), motion["leave_frame"]
-    weight = p["m"] * p["g"]
-    both, floor_only = ladder.free_body_diagrams(s.params)
-    drawn_at = {"both_contacts": 0, "floor_only": ladder.floor_only_frame(p["theta0"])}
-    assert leave < drawn_at["floor_only"] < n - 1
-    for d, mine in ((both, np.arange(n) <= leave), (floor_only, np.arange(n) > leave)):
-        frames = {k: np.asarray(v, dtype=float) for k, v in d.frames(s, motion).items()}
-        values = d.values(s)
-        assert set(frames) == set(values), d.phase
-        for sym, column in frames.items():
-            assert column.shape == (n,), (d.phase, sym)
-            assert np.all(np.isfinite(column[mine])) and np.all(np.isnan(column[~mine])), (d.phase, sym)
-            assert column[drawn_at[d.phase]] == pytest.approx(float(values[sym]), rel=1e-9, abs=1e-9 * weight)
-        symbols = sorted(frames, key=lambda sym: sym.name)
-        columns = [frames[sym] for sym in symbols]
-        for name in ("G", "A", "B"):
-            xy = [np.broadcast_to(sp.lambdify(symbols, sp.sympify(c), "numpy")(*columns), (n,))
-                  for c in d.body("the ladder").points[name]]
-            assert np.allclose(xy[0][mine], motion[f"x_{name}"][mine], rtol=0, atol=1e-8 * p["L"]), (d.phase, name)
-            assert np.allclose(xy[1][mine], motion[f"y_{name}"][mine], rtol=0, atol=1e-8 * p["L"]), (d.phase, name)
-    one, two = both.frames(s, motion), floor_only.frames(s, motion)
-    curve = {t: i for i, t in enumerate(motion["curve_t"])}
-    for frame, reactions in ((0, one), (leave, one), (n - 1, two)):
-        i = curve[motion["t"][frame]]  # a time both grids hold exactly
-        assert reactions[ladder.N_B][frame] == pytest.approx(motion["N_floor"][i], rel=1e-9, abs=1e-9 * weight)
-        if ladder.N_A in reactions and frame <= leave:
-            assert reactions[ladder.N_A][frame] == pytest.approx(motion["N_wall"][i], abs=1e-9 * weight)
-
-
-def test_the_derivation_is_in_the_four_steps_and_written_from_the_diagrams():
-    """Step 1 the origin, basis and kinematics; Step 2 both diagrams; Step 3 their balance laws; then
-    the analysis, in that order."""
-    s = ladder.solve()
-    parts = [step.part for step in s.steps]
-    assert parts == sorted(parts) and set(parts) == {1, 2, 3, 4}
-    first = s.steps[0]
-    assert "Origin" in first.title and r"\mathbf{E}_x" in first.title and r"\mathbf{E}_y" in first.title
-    assert parts.count(1) >= 2  # the position and its acceleration
-    assert [step for step in s.steps if step.part == 2] == [*fbd_steps(ladder.BOTH_CONTACTS),
-                                                             *fbd_steps(ladder.FLOOR_ONLY)]
-    assert [step for step in s.steps if step.part == 3] == [*balance_steps(ladder.BOTH_CONTACTS),
-                                                             *balance_steps(ladder.FLOOR_ONLY)]
-
-
-def test_the_diagrams_balance_laws_give_the_textbook_s_equations():
-    """Independently of the solver's derivation: the laws written from the diagram against the wall,
-    with G's acceleration on its circle worked here, give θ̈ = −(3g/2L) cos θ and N_A = m ẍ_G,
-    N_B = m (g + ÿ_G) (PROBLEMS.md); after leaving, ΣF_x = 0 = m ẍ_G."""
-    m, L, g, th, w, al = ladder.m, ladder.L, ladder.g, ladder.theta, ladder.thetadot, ladder.thetaddot
-    xdd = -L / 2 * (sp.cos(th) * w**2 + sp.sin(th) * al)  # d²/dt² of (L/2) cos θ
-    ydd = L / 2 * (sp.cos(th) * al - sp.sin(th) * w**2)  # d²/dt² of (L/2) sin θ
-    laws = [law.subs({ladder.xdd_G: xdd, ladder.ydd_G: ydd}) for law in balance(ladder.BOTH_CONTACTS, "the ladder")]
-    (solved,) = sp.solve(laws, [al, ladder.N_A, ladder.N_B], dict=True)
-    assert sp.simplify(solved[al] + 3 * g / (2 * L) * sp.cos(th)) == 0
-    assert sp.simplify(solved[ladder.N_A] - (m * xdd).subs(al, solved[al])) == 0
-    assert sp.simplify(solved[ladder.N_B] - m * (g + ydd.subs(al, solved[al]))) == 0
-    x_law = balance(ladder.FLOOR_ONLY, "the ladder")[0]
-    assert x_law.lhs == 0 and x_law.rhs == m * ladder.xdd_G

@@ -21,6 +21,7 @@ from solvers.core import Choice, Derivation, Solution
 from solvers.solution import PARTS
 from solvers import units
 from ui.catalog import Problem
+from ui.equations import PHONE_WIDTH_EM, broken
 from ui.inline_scripts import TAKE_FOCUS
 from ui.results import literal, plain, plain_with_math
 
@@ -163,8 +164,8 @@ def method(steps, derivation: Derivation) -> str:
             blocks.append(f"#### {PARTS[part]}")
             last = part
         blocks.append(f"**{i}.** {plain_with_math(title)}")
-        if tex:
-            blocks.append(f"$$\n{tex}\n$$")
+        if tex:  # broken over rows where wide (a display equation that scrolls sideways is a region a keyboard cannot reach)
+            blocks.append(f"$$\n{broken(tex, PHONE_WIDTH_EM)}\n$$")
     return "\n\n".join(["### The method", ":gray[The steps to take. Equations that lead to a result appear "
                         "with the solution.]", *blocks])
 
