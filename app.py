@@ -38,7 +38,11 @@ pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True)]
 for group in GROUPS:
     pages[group] = [st.Page(p.page_path, title=p.title, icon=p.icon, url_path=p.id)
                     for p in PROBLEMS if p.group == group]
+# The Assignments page is at /assignments, the address its title names; /gradebook, where it was first,
+# opens it too (links already given out, bookmarks), without a second entry in the navigation.
 pages["For instructors"] = [st.Page("pages/gradebook.py", title="Assignments", icon=":material/assignment:",
-                                   url_path="gradebook"),
+                                   url_path="assignments"),
+                            st.Page("pages/gradebook.py", title="Assignments", icon=":material/assignment:",
+                                    url_path="gradebook", visibility="hidden"),
                             st.Page("pages/handouts.py", title="Handouts", icon=":material/print:", url_path="handouts")]
 st.navigation(pages).run()

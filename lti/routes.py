@@ -73,7 +73,7 @@ def _after_launch(form: dict) -> Response:
         token = lti.handoff({"role": "instructor", "iss": checked.platform.issuer, "aud": checked.platform.client_id,
                              "ctx": context,
                              "title": str(checked.context.get("title", ""))[:120], "a": assignment, "nrps": roster})
-        return RedirectResponse(f"{base}/gradebook?lti={quote(token)}", status_code=303)
+        return RedirectResponse(f"{base}/assignments?lti={quote(token)}", status_code=303)
     if assignment is None:
         raise store.refuse_unplaced(checked)
     identity = store.student(checked, assignment)

@@ -708,3 +708,13 @@ def test_the_points_boxes_come_in_reading_order(course):
     book = instructor()
     edited = [w.label for w in book.number_input if w.label.startswith("Points:") and w.key.startswith(f"assign__parts{aid}_")]
     assert len(edited) == len(disk_wall.ANSWERS) and edited == shown
+
+
+def test_the_students_links_are_made_from_the_apps_address_at_either_of_the_pages_addresses():
+    """The instructor's page is at /assignments and, for older links, /gradebook: a student's link is the
+    app's address and the problem, whichever the instructor opened."""
+    from ui.assignments import app_base
+
+    for path in ("assignments", "gradebook", "assignments/", "gradebook?lti=x"):
+        assert app_base(f"https://dl.example.edu/dynamics/{path}") == "https://dl.example.edu/dynamics", path
+    assert app_base("http://localhost:8501/assignments") == "http://localhost:8501"

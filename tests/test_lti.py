@@ -117,7 +117,7 @@ def test_a_learner_arrives_as_a_student_of_the_assignment_with_their_own_variant
 def test_an_instructor_arrives_as_the_instructor_of_that_course_only(tool, lms):
     aid = assignment(tool.database)
     got = handed(tool, tool.post("/lti/launch", data=form_of(tool, lms, "teacher-1", INSTRUCTOR, custom=custom_for(aid))))
-    assert got["path"] == TOOL + "/gradebook"
+    assert got["path"] == TOOL + "/assignments"
     assert (got["role"], got["iss"], got["ctx"], got["a"]) == ("instructor", ISSUER, "course-1", aid)
     assert store.contexts_assignments(ISSUER, "course-1", tool.database) == [aid]
     assert store.contexts_assignments(ISSUER, "course-2", tool.database) == []

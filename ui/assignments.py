@@ -416,13 +416,21 @@ def your_attempts(link: StudentLink, answers, solution=None, system: str = "si")
 
 # -- the instructor's page
 
-def _app_base() -> str:
-    """The app's address as the instructor's browser reached it, without this page's path."""
-    parts = urllib.parse.urlsplit(st.context.url or "http://localhost:8501/")
+PAGE_PATHS = ("assignments", "gradebook")  # this page's url_path and its older alias (app.py)
+
+
+def app_base(url: str) -> str:
+    """The app's address in ``url`` (this page's, as the instructor's browser reached it), without this page's path."""
+    parts = urllib.parse.urlsplit(url)
     path = parts.path.rstrip("/")
-    if path.endswith("/gradebook") or path == "gradebook":  # this page's url_path (app.py)
-        path = path[: -len("gradebook")].rstrip("/")
+    head, _, last = path.rpartition("/")
+    if last in PAGE_PATHS:
+        path = head
     return urllib.parse.urlunsplit((parts.scheme, parts.netloc, path, "", ""))
+
+
+def _app_base() -> str:
+    return app_base(st.context.url or "http://localhost:8501/")
 
 
 def student_url(base: str, problem: str, identity: StudentIdentity) -> str:
@@ -999,7 +1007,7 @@ def _history(aid: int, s: records.Settings) -> None:
 def instructor_page() -> None:
     from ui.page import _leave_legacy_pages_mode  # (ui.page imports this module)
 
-    _leave_legacy_pages_mode()  # a deep link to /gradebook on a fresh server: see ui/page.py
+    _leave_legacy_pages_mode()  # a deep link to /assignments on a fresh server: see ui/page.py
     st.markdown("# Assignments\n:gray[Signed per-student links, every attempt recorded, the gradebook.]")
     arrival = lti_arrival()
     course = lms_course()
