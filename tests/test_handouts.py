@@ -134,3 +134,42 @@ def test_a_handouts_link_sets_the_problem_the_variants_and_the_key(monkeypatch):
     ignored = handouts({"instructor": KEY, "problem": "nope", "first": "-1", "what": "<x>"})
     assert_clean(ignored)
     assert "*Variant 1*" in sheets_text(ignored) and "## Your work" in sheets_text(ignored)  # the defaults
+
+
+def link_of(at: AppTest) -> dict:
+    """The page's address's query, one value a name."""
+    return {k: (v[-1] if isinstance(v, list) else v) for k, v in at.query_params.items()}
+
+
+def test_every_choice_on_the_handouts_page_is_in_its_link(monkeypatch):
+    """Issue 54: the address kept what=statements after choosing Answer key. Each choice is written into
+    the link as it is made, and that link opens the same choices (a range of variants, and a roster)."""
+    at = range_of_variants(monkeypatch, "stick_ball", 3, 4)
+    assert link_of(at) == {"problem": "stick_ball", "first": "3", "last": "4", "what": "statements"}
+    at.radio(key="handouts__what").set_value("Answer key").run()
+    assert link_of(at) == {"problem": "stick_ball", "first": "3", "last": "4", "what": "key"}
+    again = handouts({"instructor": KEY, **link_of(at)})
+    assert_clean(again)
+    assert again.radio(key="handouts__what").value == "Answer key"
+    assert (again.selectbox(key="handouts__problem").value, again.number_input(key="handouts__first").value,
+            again.number_input(key="handouts__last").value) == ("stick_ball", 3, 4)
+
+
+def test_a_rosters_handout_is_in_its_link_too(course):
+    create(instructor(), roster="label\ns01\ns02\n")
+    create(instructor(), roster="label\ns03\n", title="The second")
+    (first, _), (second, _) = sorted(records.assignments(), key=lambda a: a[0])
+    at = handouts({"instructor": KEY})
+    at.radio(key="handouts__source").set_value("An assignment's roster").run()
+    at.selectbox(key="handouts__assignment").set_value(second).run()
+    at.radio(key="handouts__what").set_value("Answer key").run()
+    assert_clean(at)
+    assert link_of(at) == {"whose": "roster", "assignment": str(second), "what": "key"}
+    again = handouts({"instructor": KEY, **link_of(at)})
+    assert_clean(again)
+    assert again.radio(key="handouts__source").value == "An assignment's roster"
+    assert again.selectbox(key="handouts__assignment").value == second
+    assert again.radio(key="handouts__what").value == "Answer key" and "Student s03" in sheets_text(again)
+    gone = handouts({"instructor": KEY, "whose": "roster", "assignment": "999", "what": "key"})  # no such assignment
+    assert_clean(gone)
+    assert gone.selectbox(key="handouts__assignment").value in (first, second)

@@ -179,3 +179,26 @@ def test_a_handout_prints_each_student_from_a_new_sheet(browser, app_url, what, 
         assert "Your work" in text and "Answers" not in text
     else:
         assert text.count("Derivation, step by step") == 3
+
+
+def test_the_handouts_address_keeps_the_answer_key(browser, app_url):
+    """Issue 54: choosing Answer key left what=statements in the address; the link now reopens the key."""
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    page = context.new_page()
+    page.goto(f"{app_url}/handouts?instructor={KEY}&problem=stick_ball&first=3&last=4")
+    wait_until_idle(page)
+    page.get_by_text("Variant 4", exact=True).first.wait_for(timeout=30_000)
+    assert "what=statements" in page.url and "first=3" in page.url
+    page.get_by_text("Answer key", exact=True).click()
+    page.get_by_text("Derivation, step by step").first.wait_for(timeout=30_000)
+    for _ in range(50):
+        if "what=key" in page.url:
+            break
+        page.wait_for_timeout(100)
+    assert "what=key" in page.url and "problem=stick_ball" in page.url and "last=4" in page.url, page.url
+    again = context.new_page()  # the address as a link, in a new tab (a session of its own: the key asked)
+    again.goto(page.url.replace("?", f"?instructor={KEY}&", 1))
+    wait_until_idle(again)
+    again.get_by_text("Derivation, step by step").first.wait_for(timeout=30_000)
+    assert again.get_by_role("radio", name="Answer key").is_checked()
+    context.close()

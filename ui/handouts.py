@@ -24,6 +24,7 @@ from ui.practice import instructor_key_entry, is_instructor
 MAX_SHEETS = 60  # per handout: a longer class is printed in parts (each sheet is typeset in the page)
 RANGE, ROSTER = "A range of variants", "An assignment's roster"
 STATEMENTS, KEY = "Statements, for the students", "Answer key"
+WHAT = {"statements": STATEMENTS, "key": KEY}  # the link's ?what=
 # On paper each sheet starts a page and a statement's page is left blank below "Your work" (on
 # screen a dashed box stands for it); the page's own heading and choices are not printed.
 SHEET_CSS = """
@@ -74,9 +75,14 @@ def roster_variants(problem: Problem, assignment_id: int) -> list[tuple[str, dic
             for s in records.roster(assignment_id)]
 
 
+def _whole(text: str | None) -> int | None:
+    return int(text) if text and re.fullmatch(r"\d{1,10}", text) else None
+
+
 def _from_link() -> None:
-    """A handout's link (?problem=<id>&first=1&last=30&what=key) sets the choices once; a value
-    that is not one of them is ignored."""
+    """A handout's link sets the choices once: ?problem=<id>&first=1&last=30&what=key (a range of
+    variants) or ?whose=roster&assignment=<id>&part=2&what=key (a roster); a value that is not one of
+    them is ignored (an assignment or part that does not exist: in ``_whose``, where they are known)."""
     if st.session_state.get("handouts__linked"):
         return
     st.session_state["handouts__linked"] = True
@@ -84,15 +90,27 @@ def _from_link() -> None:
     if query.get("problem") in BY_ID:
         st.session_state["handouts__problem"] = query["problem"]
     for name in ("first", "last"):
-        if re.fullmatch(r"\d{1,10}", query.get(name, "")) and int(query[name]) <= MAX_SEED:
-            st.session_state[f"handouts__{name}"] = int(query[name])
-    if query.get("what") == "key":
-        st.session_state["handouts__what"] = KEY
+        if (n := _whole(query.get(name))) is not None and n <= MAX_SEED:
+            st.session_state[f"handouts__{name}"] = n
+    if query.get("whose") == "roster":
+        st.session_state["handouts__source"] = ROSTER
+    for name, key in (("assignment", "handouts__assignment"), ("part", "handouts__part_number")):
+        if (n := _whole(query.get(name))) is not None:
+            st.session_state[key] = n
+    if query.get("what") in WHAT:
+        st.session_state["handouts__what"] = WHAT[query["what"]]
 
 
-def _whose(placed: set[int] | None = None) -> tuple[Problem, list[tuple[str, dict, str]], tuple[str, ...], str] | None:
-    """The problem, the students, the answers that count and a file name's stem, as chosen.
-    ``placed``: an LMS instructor's session, its course's assignments only (no range of variants)."""
+def _to_link(choices: dict[str, str]) -> None:
+    """Every choice on the page into its address (as a problem page's parameters): the link reopens it."""
+    if {k: st.query_params.get(k) for k in st.query_params.keys()} != choices:
+        st.query_params.from_dict(choices)
+
+
+def _whose(placed: set[int] | None, link: dict[str, str]) -> tuple[Problem, list[tuple[str, dict, str]], tuple[str, ...], str] | None:
+    """The problem, the students, the answers that count and a file name's stem, as chosen (each
+    choice also put in ``link``). ``placed``: an LMS instructor's session, its course's assignments
+    only (no range of variants)."""
     source = ROSTER if placed is not None else st.radio("Whose numbers", (RANGE, ROSTER), horizontal=True,
                                                         key="handouts__source")
     if source == RANGE:
@@ -101,6 +119,7 @@ def _whose(placed: set[int] | None = None) -> tuple[Problem, list[tuple[str, dic
         c1, c2 = st.columns(2)
         first = int(c1.number_input("First variant", 0, MAX_SEED, 1, key="handouts__first"))
         last = int(c2.number_input("Last variant", 0, MAX_SEED, 30, key="handouts__last"))
+        link.update(problem=problem.id, first=str(first), last=str(last))
         if not first <= last < first + MAX_SHEETS:
             st.error(f"Choose from 1 to {MAX_SHEETS} variants, the first no later than the last.")
             return None
@@ -115,9 +134,13 @@ def _whose(placed: set[int] | None = None) -> tuple[Problem, list[tuple[str, dic
                     "Your course has no Dynamics Lab assignments yet: add one with your LMS's “add external "
                     "tool” dialog.")
         return None
-    chosen = st.selectbox("Assignment", existing, key="handouts__assignment",
-                          format_func=lambda a: f"{a[1].title} ({BY_ID[a[1].problem].title if a[1].problem in BY_ID else a[1].problem})")
-    assignment_id, settings = chosen
+    link["whose"] = "roster"
+    titles = {aid: f"{s.title} ({BY_ID[s.problem].title if s.problem in BY_ID else s.problem})" for aid, s in existing}
+    if st.session_state.get("handouts__assignment") not in titles:  # a link's assignment that is not (or not yours)
+        st.session_state.pop("handouts__assignment", None)
+    assignment_id = st.selectbox("Assignment", list(titles), key="handouts__assignment", format_func=titles.get)
+    settings = dict(existing)[assignment_id]
+    link["assignment"] = str(assignment_id)
     if settings.problem not in BY_ID:
         st.error("This assignment's problem is no longer in the app.")
         return None
@@ -128,9 +151,12 @@ def _whose(placed: set[int] | None = None) -> tuple[Problem, list[tuple[str, dic
         st.error(str(error))
         return None
     if len(who) > MAX_SHEETS:
-        part = st.number_input(f"Part (of {MAX_SHEETS} students each)", 1, -(-len(who) // MAX_SHEETS), 1,
-                               key="handouts__part_number")
+        parts = -(-len(who) // MAX_SHEETS)
+        if not 1 <= st.session_state.get("handouts__part_number", 1) <= parts:
+            st.session_state.pop("handouts__part_number")
+        part = int(st.number_input(f"Part (of {MAX_SHEETS} students each)", 1, parts, 1, key="handouts__part_number"))
         who = who[(part - 1) * MAX_SHEETS: part * MAX_SHEETS]
+        link["part"] = str(part)
     return problem, who, settings.answers, f"{problem.id}-assignment-{assignment_id}"
 
 
@@ -155,12 +181,15 @@ def handouts_page() -> None:
         placed = None
     st.query_params.pop("instructor", None)  # an instructor link's key leaves the address bar
     _from_link()
-    chosen = _whose(placed)
+    link: dict[str, str] = {}
+    chosen = _whose(placed, link)
     if chosen is None:
+        _to_link(link)
         return
     problem, who, counted, stem = chosen
     part = st.radio("Print", (STATEMENTS, KEY), horizontal=True, key="handouts__what")
     key = part == KEY
+    _to_link({**link, "what": "key" if key else "statements"})
     docs = sheets(problem, who, key, counted)
     name = f"{stem}-{'key' if key else 'statements'}"
     row = st.container(horizontal=True)
