@@ -343,14 +343,19 @@ def test_an_instructor_link_leaves_the_address_bar_on_every_page(browser, course
         context.close()
 
 
-def test_the_assignments_page_is_at_the_address_its_title_names(browser, course_url):
-    """The page is titled Assignments: /assignments opens it (it was "Page not found"), the navigation
-    links there, and /gradebook, where it lived, still opens it for the links already given out."""
-    for path in ("assignments", "gradebook"):
-        context, page, errors = open_page(browser, f"{course_url}/{path}")
+def test_the_assignments_page_is_at_the_address_its_title_names(browser, course_url, fresh_server):
+    """The page is titled Assignments: /assignments opens it (it was "Page not found"), also as a server's
+    very first visit, the navigation links there, and /gradebook, where it lived, still opens it for the
+    links already given out."""
+    for url in (f"{fresh_server.url}/assignments", f"{course_url}/assignments", f"{course_url}/gradebook"):
+        context, page, errors = open_page(browser, url)
         page.locator("[data-testid='stMain'] h1", has_text="Assignments").wait_for(timeout=30_000)
-        assert "Page not found" not in page.locator("body").inner_text(), path
-        page.get_by_label("Instructor key", exact=True).wait_for()
+        wait_until_idle(page)
+        assert "Page not found" not in page.locator("body").inner_text(), url
+        assert page.get_by_role("dialog").count() == 0, url
+        path = url.rsplit("/", 1)[1]
+        if url.startswith(course_url):  # (the fresh server has no instructor key set)
+            page.get_by_label("Instructor key", exact=True).wait_for()
         link = page.locator("[data-testid='stSidebarNav'] a", has_text="Assignments")
         assert link.count() == 1 and link.get_attribute("href").endswith("/assignments"), path
         assert not errors, path
