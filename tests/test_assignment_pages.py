@@ -718,3 +718,25 @@ def test_the_students_links_are_made_from_the_apps_address_at_either_of_the_page
     for path in ("assignments", "gradebook", "assignments/", "gradebook?lti=x"):
         assert app_base(f"https://dl.example.edu/dynamics/{path}") == "https://dl.example.edu/dynamics", path
     assert app_base("http://localhost:8501/assignments") == "http://localhost:8501"
+
+
+def test_named_slips_shows_its_real_state_and_why_while_hints_are_on(course):
+    """Issue 54: "Named slips" was greyed out while Hints was on, showing whatever it was left at (unticked,
+    though hints name every slip) and not saying why. While Hints is on it is ticked, cannot be changed, and
+    says why; with Hints off it is the instructor's again, as they left it."""
+    at = instructor()
+    hints = widget(at, "assign__new", "_hints")
+    assert hints.value  # (on by default)
+    names = widget(at, "assign__new", "_slip_names_shown")
+    assert names.value and names.disabled and "Hints on already name the slip" in (names.help or "")
+    assert any("Hints on already name the slip" in c.value for c in at.caption)
+    hints.uncheck().run()
+    names = widget(at, "assign__new", "_slip_names")
+    assert names.value and not names.disabled
+    names.uncheck().run()
+    widget(at, "assign__new", "_hints").check().run()
+    shown = widget(at, "assign__new", "_slip_names_shown")
+    assert shown.value and shown.disabled  # the real state: the hint names the slip
+    widget(at, "assign__new", "_hints").uncheck().run()
+    assert not widget(at, "assign__new", "_slip_names").value  # as the instructor left it
+    assert not at.exception and not at.warning

@@ -360,3 +360,25 @@ def test_the_assignments_page_is_at_the_address_its_title_names(browser, course_
         assert link.count() == 1 and link.get_attribute("href").endswith("/assignments"), path
         assert not errors, path
         context.close()
+
+
+def test_named_slips_says_why_it_cannot_be_changed_while_hints_are_on(browser, course_url):
+    """Issue 54: the box was greyed out with no reason. It is ticked (the hint names the slip), cannot be
+    changed, and says why, in words on the page; unticking Hints gives it back."""
+    context, page, errors = open_at(browser, f"{course_url}/assignments", "laptop", "UTC")
+    enter_key(page)
+    new = page.locator("[data-testid='stExpander'] summary", has_text="New assignment")
+    if page.get_by_role("checkbox", name=re.compile("^Named slips")).count() == 0:
+        new.click()
+    names = page.get_by_role("checkbox", name=re.compile("^Named slips"))
+    names.wait_for(state="attached", timeout=30_000)
+    assert names.is_checked() and names.is_disabled()
+    reason = page.get_by_text("Hints on already name the slip", exact=False).first
+    reason.scroll_into_view_if_needed()
+    assert reason.is_visible()
+    page.get_by_text("Hints: a known slip is named", exact=False).click()
+    wait_until_idle(page)
+    assert not page.get_by_role("checkbox", name=re.compile("^Named slips")).is_disabled()
+    assert page.get_by_text("Hints on already name the slip", exact=False).count() == 0
+    assert not errors
+    context.close()

@@ -472,17 +472,27 @@ def _late_inputs(prefix: str, policy: str = "none", value: float = 0.0) -> tuple
     return chosen, pct / 100
 
 
+NAMED_BY_HINTS = "Hints on already name the slip: untick Hints to choose."
+
+
 def _feedback_inputs(prefix: str, s: records.Settings | None = None) -> tuple[bool, bool, bool, bool]:
     c1, c2 = st.columns(2)
     hints = c1.checkbox("Hints: a known slip is named with its hint (as in Practice)",
                         s.hints if s else True, key=f"{prefix}hints")
-    names = c1.checkbox("Named slips (with hints off: the slip's name, no hint)",
-                        s.slip_names if s else True, key=f"{prefix}slip_names", disabled=hints)
+    named, kept = "Named slips (with hints off: the slip's name, no hint)", f"{prefix}slip_names"
+    st.session_state.setdefault(kept, s.slip_names if s else True)
+    if hints:  # the slip is named either way: the box shows so, and why it cannot be changed
+        c1.checkbox(named, True, key=f"{prefix}slip_names_shown", disabled=True, help=NAMED_BY_HINTS)
+        c1.caption(NAMED_BY_HINTS)
+        st.session_state[kept] = st.session_state[kept]  # the instructor's own choice, kept for when hints go off
+        names = True
+    else:
+        names = c1.checkbox(named, key=kept)
     after = c2.checkbox("Show the answer after an answer's last attempt",
                         s.answer_after_last if s else False, key=f"{prefix}answer_after_last")
     before = c2.checkbox("Students may open the solution before the due time",
                          s.solution_before_due if s else False, key=f"{prefix}before")
-    return hints, names if not hints else True, after, before
+    return hints, names, after, before
 
 
 def _due_inputs(prefix: str, zone: str, current: dt.datetime | None = None) -> dt.datetime:
