@@ -135,6 +135,10 @@ class Diagram:
     # Every symbol's value at each frame of ``motion(solution)`` (numpy arrays, one value per frame;
     # NaN in the frames outside this phase), for the stage's Forces overlay; None: not drawn there.
     frames: Callable[[object, Mapping], Mapping[sp.Symbol, object]] | None = None
+    # The symbols at the stage figure's key frame (the impact, θ₂…) from the parameters ``p`` and the
+    # answers ``a``: numbers, or solvers.live's symbols, when the browser poses the overlay while a
+    # control is dragged (only answers the problem's live values give). None: no load at that frame.
+    key: Callable[[Mapping, Mapping], Mapping[sp.Symbol, object]] | None = None
 
     def body(self, name: str) -> Body:
         return next(b for b in self.bodies if b.name == name)

@@ -99,7 +99,10 @@ I_C = sp.Rational(1, 2) * m * R**2
 
 def _impact_values(solution) -> dict:
     """Every symbol of the impact's diagram, from the solution (its answers are the solver's)."""
-    p, a = solution.params, solution.answers
+    return _impact_values_of(solution.params, solution.answers)
+
+
+def _impact_values_of(p, a) -> dict:
     return {m: p["m"], R: p["R"], V: p["V"], theta: p["theta"], omega: p["omega"], P_t: a["impulse_t"],
             P_n: a["impulse_n"], v1x: a["v1x"], v1y: a["v1y"], omega1: a["omega1"]}
 
@@ -124,6 +127,7 @@ IMPACT = Diagram(
                 components=(P_t, P_n)),),
     values=_impact_values,
     frames=_impact_frames,
+    key=_impact_values_of,  # the stage's key frame is the impact
     note="Gravity and the table's support are finite and act out of the plane: negligible against the impulse.",
 )
 

@@ -137,6 +137,12 @@ def _cart_values(solution) -> dict:
             N_front: wheels[1], N_rear: wheels[0]}
 
 
+def _cart_key(p, answers) -> dict:
+    """At the stage's key frame, the start: the side view's own answers (a drag's live values)."""
+    return {m: p["m"], a: p["a"], b: p["b"], mu: p["mu"], g: p["g"], x_C: 0, xdd: answers["accel"],
+            N_front: answers["N_front"], N_rear: answers["N_rear"]}
+
+
 def _cart_frames(solution, motion) -> dict:
     """The same at every frame of ``motion``, the cart at the motion's x (x_C = 0 at the first frame)."""
     values = _cart_values(solution)
@@ -163,7 +169,7 @@ def side_view(drive: str) -> Diagram:
     free = [axle for axle, _, _ in AXLES if axle not in DRIVEN_AXLES[drive]]
     wheels = (f"the {free[0]} wheels are free: massless, they carry no traction; " if free else "")
     return Diagram(drive, "Accelerating", "force", bodies=(cart,), loads=tuple(loads), values=_cart_values,
-                   frames=_cart_frames, note=("Seen from the side: each axle's two wheels as one (the loads "
+                   frames=_cart_frames, key=_cart_key, note=("Seen from the side: each axle's two wheels as one (the loads "
                    f"symmetric left to right, no lateral forces); {wheels}the cart translates, so the moments "
                    "about C balance."))
 

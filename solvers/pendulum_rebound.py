@@ -158,16 +158,16 @@ def _swing_frame(solution, motion) -> int:
     return int(np.argmin(np.abs(angles[: last + 1] - halfway)))
 
 
-def _swing_values_at(p, inertia: float, theta_, omega_) -> dict:
+def _swing_values_at(p, inertia: float, theta_, omega_, xp=np) -> dict:
     """The swing's symbols at θ, θ̇ (numbers, or arrays of a frame each): θ̈ from the solver's equation of
     motion, I_O θ̈ = −Q cos θ (``_acceleration``, as integrated), the pin's components from the two force
     laws, (m_r + m_s) a_G less the weights (the solver has no formula for them: the moment law about O,
     against the solver's θ̈, is the independent check)."""
     Q_ = moment_coefficient(p)
-    alpha = -Q_ * np.cos(theta_) / inertia
+    alpha = -Q_ * xp.cos(theta_) / inertia
     arm = Q_ / p["g"]  # Σ m_i ρ_i = (m_r + m_s) × G's distance from O
-    ax = arm * (-np.sin(theta_) * alpha - np.cos(theta_) * omega_**2)
-    ay = arm * (np.cos(theta_) * alpha - np.sin(theta_) * omega_**2)
+    ax = arm * (-xp.sin(theta_) * alpha - xp.cos(theta_) * omega_**2)
+    ay = arm * (xp.cos(theta_) * alpha - xp.sin(theta_) * omega_**2)
     return {m_s: p["m_s"], m_r: p["m_r"], L: p["L"], r: p["r"], g: p["g"], I_O: inertia, theta: theta_,
             thetadot: omega_, thetaddot: alpha, O_x: ax, O_y: ay + (p["m_r"] + p["m_s"]) * p["g"]}
 
@@ -181,6 +181,15 @@ def _swing_values(solution) -> dict:
     return _swing_values_at(solution.params, solution.answers["I_O"], float(angles[i]), float(rates[i]))
 
 
+def _swing_key(p, a) -> dict:
+    """At the stage's key frame, the first impact, just before it (θ_I, θ̇_I⁻)."""
+    return _swing_values_at(p, a["I_O"], a["theta_impact"], a["omega_impact"], xp=sp)
+
+
+def _impact_key(p, a) -> dict:
+    return _impact_values_at(p, a["I_O"], a["theta_impact"], a["omega_impact"], a["omega_after"], xp=sp)
+
+
 def _swing_frames(solution, motion) -> dict:
     """The swing's symbols at every frame (the impacts' frames: just before)."""
     angles, rates = _states(solution, motion)
@@ -188,28 +197,28 @@ def _swing_frames(solution, motion) -> dict:
     return {k: np.broadcast_to(np.asarray(v, dtype=float), angles.shape).copy() for k, v in values.items()}
 
 
-def _contact_arm(p, angle):
+def _contact_arm(p, angle, xp=np):
     """∂r_C/∂θ · n, the contact's normal velocity per unit θ̇ (C turns about O: v_C = θ̇ E_z × r_C), at θ.
     (As a moment, (r_C × n)·E_z: the arm about O of the surface's normal through C.)"""
     rho = p["L"] + p["r"]
-    return rho * np.cos(angle) if p["surface"] == "floor" else -rho * np.sin(angle)
+    return rho * xp.cos(angle) if p["surface"] == "floor" else -rho * xp.sin(angle)
 
 
-def _impact_values_at(p, inertia: float, angle: float, before, after) -> dict:
+def _impact_values_at(p, inertia: float, angle: float, before, after, xp=np) -> dict:
     """The impact's symbols for θ̇⁻ = ``before`` and θ̇⁺ = ``after`` (numbers or arrays): the surface's
     impulse is the change of the contact's normal velocity, v_n = θ̇ ∂r_C/∂θ·n, times the body's effective
     mass there, m_C = I_O / (∂r_C/∂θ·n)²; the pin's from the two linear impulse laws, (m_r + m_s) Δv_G less
     the surface's. (The solver has no formula for either: the angular impulse law about O then checks
     the contact's arm as the diagram's points and normal give it against the solver's kinematics.)"""
-    per_rate = _contact_arm(p, angle)
+    per_rate = _contact_arm(p, angle, xp)
     impulse = inertia / per_rate**2 * (after - before) * per_rate
     arm = moment_coefficient(p) / p["g"]
     jump = after - before
     nx, ny = SURFACE_NORMAL[p["surface"]]
     return {m_s: p["m_s"], m_r: p["m_r"], L: p["L"], r: p["r"], g: p["g"], I_O: inertia, theta: angle,
             w_minus: before, w_plus: after, P_surface: impulse,
-            Ohat_x: -arm * np.sin(angle) * jump - impulse * nx,
-            Ohat_y: arm * np.cos(angle) * jump - impulse * ny}
+            Ohat_x: -arm * xp.sin(angle) * jump - impulse * nx,
+            Ohat_y: arm * xp.cos(angle) * jump - impulse * ny}
 
 
 def _impact_values(solution) -> dict:
@@ -256,10 +265,10 @@ def diagrams(surface: str) -> tuple[Diagram, Diagram]:
                   direction=SURFACE_NORMAL[surface], size=P_surface),
              Load(r"\hat{O}", "the pin's impulse", "the pin", "the pendulum", at="O", kind="impulse",
                   components=(Ohat_x, Ohat_y)))
-    return (Diagram("swing", "During the swing", "force", (swing,), weights, _swing_values, frames=_swing_frames,
+    return (Diagram("swing", "During the swing", "force", (swing,), weights, _swing_values, frames=_swing_frames, key=_swing_key,
                     note="The rod and sphere turn together about O, one rigid body; its mass centre $G$ lies on the "
                          "rod, between the rod's centre $G_r$ and the sphere's $S$, where the weights act."),
-            Diagram("impact", "At the impact", "impulse", (hit,), blows, _impact_values, frames=_impact_frames,
+            Diagram("impact", "At the impact", "impulse", (hit,), blows, _impact_values, frames=_impact_frames, key=_impact_key,
                     note=f"The {surface} is smooth: its impulse is along its normal, out of the {surface} into the "
                          "sphere at its contact point C. The weights are finite: their impulse over the instant "
                          "is negligible."))

@@ -126,15 +126,15 @@ def _points() -> dict:
     return {"O": (0, 0), "G_1": along(L / 2), "G": along(_ARM / _MASS), "A": along(L), "G_2": along(L + R)}
 
 
-def _swing_values_at(p, inertia: float, theta_, omega_) -> dict:
+def _swing_values_at(p, inertia: float, theta_, omega_, xp=np) -> dict:
     """The symbols at θ, θ̇ (numbers, or arrays of a frame each): θ̈ from the solver's equation of motion
     (``equation_of_motion``, as ``simulate`` integrates it: I_O θ̈ = Q sin θ − kθ with Q = ``weight_moment``),
     the pin's components from the two force laws, (m₁ + m₂) a_G less the weights (the solver has no
     formula for them: the moment law about O, against the solver's θ̈, is the independent check)."""
-    alpha = (weight_moment(p) * np.sin(theta_) - p["k"] * theta_) / inertia
+    alpha = (weight_moment(p) * xp.sin(theta_) - p["k"] * theta_) / inertia
     arm = weight_moment(p) / p["g"]  # Σ m_i ρ_i = (m₁ + m₂) × G's distance from O
-    ax = arm * (np.cos(theta_) * alpha - np.sin(theta_) * omega_**2)
-    ay = arm * (-np.sin(theta_) * alpha - np.cos(theta_) * omega_**2)
+    ax = arm * (xp.cos(theta_) * alpha - xp.sin(theta_) * omega_**2)
+    ay = arm * (-xp.sin(theta_) * alpha - xp.cos(theta_) * omega_**2)
     return {m1: p["m1"], m2: p["m2"], k: p["k"], L: p["L"], R: p["R"], g: p["g"], I_O: inertia, theta: theta_,
             thetadot: omega_, thetaddot: alpha, O_x: ax, O_y: ay + (p["m1"] + p["m2"]) * p["g"]}
 
@@ -144,6 +144,11 @@ def _swing_values(solution) -> dict:
     there, at the same numbers)."""
     p, a = solution.params, solution.answers
     return _swing_values_at(p, a["I_O"], p["theta2"], a["omega2"])
+
+
+def _swing_key(p, a) -> dict:
+    """At the stage's key frame, passing θ₂ (as ``_swing_values``)."""
+    return _swing_values_at(p, a["I_O"], p["theta2"], a["omega2"], xp=sp)
 
 
 def _swing_frames(solution, motion) -> dict:
@@ -171,7 +176,8 @@ def swing_diagram(disk: str) -> Diagram:
                 "as its mass at $G_2$ alone, its own $I_G$ drops out of $I_O$.")
     else:
         note = "The disk is welded to the rod: one rigid body, turning about O at θ̇."
-    return Diagram("swing", "During the fall", "force", (body,), loads, _swing_values, frames=_swing_frames, note=note)
+    return Diagram("swing", "During the fall", "force", (body,), loads, _swing_values, frames=_swing_frames,
+                   key=_swing_key, note=note)
 
 
 def free_body_diagrams(params) -> tuple[Diagram, ...]:

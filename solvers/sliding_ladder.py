@@ -170,9 +170,16 @@ def _frames(wall: bool):
     return per_frame
 
 
+def _leaving_key(p, a) -> dict:
+    """At the stage's key frame, the top leaving the wall (still against it there): θ from the live values,
+    G on its circle, the wall's push zero and the floor's mg/4 (viz.sliding_ladder: whatever θ₀)."""
+    th = a["theta_leave"]
+    return {m: p["m"], g: p["g"], L: p["L"], theta: th, x_G: p["L"] / 2 * sp.cos(th), N_A: 0, N_B: p["m"] * p["g"] / 4}
+
+
 BOTH_CONTACTS = Diagram(
     "both_contacts", "Against the wall", "force", bodies=(_ladder(_POINTS),), loads=(_WEIGHT, _WALL, _FLOOR),
-    values=_release_values, frames=_frames(True),
+    values=_release_values, frames=_frames(True), key=_leaving_key,
     note="The wall and the floor are smooth: each pushes along its normal only.")
 FLOOR_ONLY = Diagram(
     "floor_only", "After the top leaves the wall", "force", bodies=(_ladder(_POINTS),), loads=(_WEIGHT, _FLOOR),

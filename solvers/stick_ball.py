@@ -130,7 +130,15 @@ def _contact_impulse(p) -> float:
 
 
 def _impact_values(solution) -> dict:
-    p, a = solution.params, solution.answers
+    return _impact_values_of(solution.params, solution.answers)
+
+
+def _key_values(p, a) -> dict:
+    """At the stage's key frame, the impact: the loads need the parameters only."""
+    return {l: p["l"], s: p["s"], J: _contact_impulse(p)}
+
+
+def _impact_values_of(p, a) -> dict:
     ball, mid, spin = _after(p, a)
     return {m_b: p["m_ball"], m_s: p["m_stick"], l: p["l"], v: p["v"], s: p["s"], J: _contact_impulse(p),
             u_b: ball, u_M: mid, omega_z: spin}
@@ -154,7 +162,7 @@ IMPACT = Diagram(
                 direction=(-1, 0), size=J, pair="the ball's impulse on the stick"),
            Load("J", "the ball's impulse on the stick", "the ball", "the stick", at="Q", kind="impulse",
                 direction=(1, 0), size=J, pair="the stick's impulse on the ball")),
-    values=_impact_values, frames=_impact_frames,
+    values=_impact_values, frames=_impact_frames, key=_key_values,
     note=("The contact is smooth, so the impulse is perpendicular to the stick, along the ball's approach, whether "
           "the ball attaches or bounces; the table's support and gravity act out of the plane (finite, they give "
           "no impulse over the instant). The ball is a point (drawn with a size); $u_b$, $u_M$: the ball's and the "

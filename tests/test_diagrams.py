@@ -190,7 +190,7 @@ def test_the_stages_forces_are_the_diagrams_at_each_frame(pid, data):
             continue
         motion = solver.motion(solution)
         frames = len(motion["t"])
-        traces = fbd.overlay(solver, solution, motion, width=1.0)
+        traces, _ = fbd.overlay(solver, solution, motion, width=1.0)
         arrows = {tuple(t.style["meta"]): t for t in traces if t.style.get("mode") == "lines"}
         assert arrows, pid
         for d in diagrams:
@@ -225,9 +225,6 @@ def test_the_stages_forces_are_the_diagrams_at_each_frame(pid, data):
 
 # --- on the page (AppTest) -----------------------------------------------------------------------
 
-from ui.page import FORCES_LABEL  # noqa: E402
-
-
 def _page(pid: str, query: dict | None = None):
     from tests.test_pages import run_page
 
@@ -237,8 +234,9 @@ def _page(pid: str, query: dict | None = None):
 @pytest.mark.parametrize("pid", IDS)
 def test_the_page_draws_step_two_and_heads_the_four_steps(pid):
     """The derivation's element gets the four headings and, under Step 2, each diagram's SVG with its
-    text alternative; the lesson's Forces switch is there where the stage can show the forces."""
-    from tests.test_pages import derivation_shown
+    text alternative; the stage's Forces switch (off) is there where the stage can show the forces."""
+    from tests.test_pages import derivation_shown, shown
+    from ui.figure import NAME
 
     at = _page(pid)
     d = derivation_shown(at)
@@ -250,8 +248,8 @@ def test_the_page_draws_step_two_and_heads_the_four_steps(pid):
         assert svg.startswith("<svg") and text.startswith("Free-body diagram")
         for load in diagram.loads:
             assert load.name in text
-    switch = [t for t in at.toggle if t.label == FORCES_LABEL]
-    assert len(switch) == (1 if any(x.frames is not None for x in declared) else 0), pid
+    stage = shown(at, NAME)[0]
+    assert stage.get("forces") is (False if any(x.frames is not None for x in declared) else None), pid
 
 
 @pytest.mark.parametrize("pid", [p for p in IDS if p != "eulers_disk"])
@@ -269,9 +267,11 @@ def test_the_forces_switch_lays_the_loads_on_the_stage_and_keeps_its_link(pid):
         return [t.get("name", "") for t in spec["data"]]
 
     on = _page(pid, {"forces": "1"})
-    assert [t.value for t in on.toggle if t.label == FORCES_LABEL] == [True]
+    assert shown(on, NAME)[0]["forces"] is True
     assert fbd.OVERLAY_NAME in stage_names(on)
-    on.toggle(key=f"{pid}__forces").set_value(False).run()
+    on.session_state[f"{pid}__forces"] = False  # (what the switch's press sets: its callback, ui/page._set_forces)
+    on.run()
+    assert shown(on, NAME)[0]["forces"] is False
     assert fbd.OVERLAY_NAME not in stage_names(on)
     assert "forces" not in on.query_params
     off = _page(pid)

@@ -71,3 +71,64 @@ def test_every_page_draws_its_diagrams_legibly(browser, app_url, size):
         assert not errors, errors
     finally:
         context.close()
+
+
+# The stage's overlay as drawn: each Forces trace's points (non-null) and opacity, and the switch.
+OVERLAY = """() => {
+  const g = document.querySelector('.st-key-dl_stage .dl-graph'), b = document.querySelector('.st-key-dl_stage .dl-forces');
+  const full = g._fullData || [];
+  return {pressed: b && !b.hidden ? b.getAttribute('aria-pressed') : null,
+          traces: (g.data || []).map((t, i) => [t.name, t.legendgroup === 'forces', (t.x || []).filter((v) => v !== null).length,
+                                                  full[i] ? full[i].opacity : 1])};
+}"""
+
+
+@pytest.mark.parametrize("pid", ["disk_wall", "sliding_ladder"])
+def test_the_stage_s_forces_switch_is_pressed_by_keyboard_and_its_arrows_follow_a_drag(browser, app_url, pid):
+    """The Forces switch is a button in the motion's own row: pressed from the keyboard it lays the
+    diagram's arrows on the motion and the link keeps it; while a lesson control is dragged the arrows at
+    the key instant follow it (posed, not dimmed), as the bodies do; pressed again, they are gone."""
+    from bench.controls import lesson_control
+    from tests.test_browser import TRACK, hold_drag
+    from scripts.live_app import wait_until_idle
+
+    context, page, errors = open_page(browser, f"{app_url}/{pid}", 1400, 1000)
+    try:
+        switch = page.locator(".st-key-dl_stage .dl-forces")
+        switch.wait_for(timeout=30_000)
+        assert page.evaluate(OVERLAY)["pressed"] == "false"
+        assert not any(forces for _, forces, _, _ in page.evaluate(OVERLAY)["traces"])
+        switch.focus()
+        page.keyboard.press("Enter")
+        page.wait_for_function("() => document.querySelector('.st-key-dl_stage .dl-forces').getAttribute('aria-pressed') === 'true'",
+                               timeout=30_000)
+        wait_until_idle(page)
+        assert "forces=1" in page.url
+        drawn = page.evaluate(OVERLAY)
+        assert sum(forces for _, forces, _, _ in drawn["traces"]) >= 2, drawn
+        # the pose modules: the page's first, then the one with the arrows (after the press)
+        page.wait_for_function("() => performance.getEntriesByType('resource').filter((r) => /\\/pose\\.[0-9a-f]+\\.js/.test(r.name)).length >= 2",
+                               timeout=30_000)
+        page.evaluate("async () => { for (const r of performance.getEntriesByType('resource'))"
+                      " if (/\\/pose\\.[0-9a-f]+\\.js/.test(r.name)) await import(r.name); }")
+        control = page.locator(f".st-key-{lesson_control(pid)[0]}")
+        hold_drag(page, control.locator(TRACK).bounding_box(), 0.45, 0.6)
+        page.wait_for_function("() => document.querySelector('.st-key-dl_stage .dl-graph.dl-live-stale') === null"
+                               " && !!document.querySelector('.dl-live-value')", timeout=10_000)
+        page.wait_for_timeout(300)
+        held = page.evaluate(OVERLAY)["traces"]
+        arrows = [(name, points, opacity) for name, forces, points, opacity in held if forces]
+        assert any(points for _, points, _ in arrows), arrows  # drawn at the key instant
+        assert all(opacity == 1 for _, points, opacity in arrows if points), arrows  # posed, not dimmed
+        page.mouse.up()
+        wait_until_idle(page)
+        switch.focus()
+        page.keyboard.press("Space")
+        page.wait_for_function("() => document.querySelector('.st-key-dl_stage .dl-forces').getAttribute('aria-pressed') === 'false'",
+                               timeout=30_000)
+        wait_until_idle(page)
+        assert not any(forces for _, forces, _, _ in page.evaluate(OVERLAY)["traces"])
+        assert "forces=1" not in page.url
+        assert not errors, errors
+    finally:
+        context.close()

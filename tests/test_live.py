@@ -322,3 +322,60 @@ def test_a_dragged_thumb_writes_its_value_as_the_slider_s_format(tmp_path_factor
                " live.thumbText(w, {decimals: d, figures: 0})])));",
                [[v, w, int(f[2:-1])] for v, w, f in zip(values, on_grid, formats)])
     assert got == [["%.6g" % v, f % w] for v, w, f in zip(values, on_grid, formats)]
+
+
+@pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
+def test_the_forces_overlay_follows_a_drag_as_the_figure_draws_it(pid, tmp_path_factory):
+    """The stage's Forces overlay while a control is dragged: the browser's pose of its arrows and labels
+    (viz.diagram.overlay_pose on symbols: each diagram's ``key`` from the live values, at the run's
+    scales) evaluated by node, against the overlay the server draws for those values at the figure's
+    key frame (from ``Diagram.frames`` on the solver's motion: another path to the same numbers)."""
+    from ui.live import pose_source
+    from ui.page import _computed
+    from viz import diagram
+    from viz.common import DIGITS, unpacked
+
+    if not hasattr(importlib.import_module(f"viz.{pid}"), "key_pose"):
+        return
+    solver = registry.solver(pid)
+    if not any(d.frames is not None for d in solver.free_body_diagrams(solver.solve().params)):
+        return  # (a 3-D stage: no overlay)
+
+    @settings(max_examples=2, deadline=None, suppress_health_check=list(HealthCheck),
+              phases=(Phase.explicit, Phase.reuse, Phase.generate))
+    @given(st.lists(dragged(pid), min_size=4, max_size=4), st.sampled_from(["si", "us"]))
+    def check(samples, system):
+        cases = []
+        for p in samples:
+            kind, solution = outcome(pid, p)
+            if kind != "values":
+                continue
+            _, figures = _computed(pid, tuple(sorted(solution.params.items())), system, True)
+            stage = figures[0]
+            scales = stage.extra["overlay_scales"]
+            params = {**solution.params, **{diagram.SCALE_NAMES[k]: v for k, v in scales.items()}}
+            options = live.options_of(pid, solution.params)
+            cases.append((stage, [live.function_source(pid, options), pose_source(pid, options, system, True),
+                                  as_json(params), DIGITS]))
+        if not cases:
+            return
+        got = node(tmp_path_factory.mktemp("forces"), POSE, [c for _, c in cases])
+        for (stage, _), pose in zip(cases, got):
+            assert pose is not None
+            spec = json.loads(stage.json())
+            anim = spec["animation"]
+            rows_of = {spec["data"][j]["name"]: unpacked(c, len(anim["times"])) for j, c in zip(anim["traces"], anim["coords"])}
+            overlaid = [t["name"] for t in spec["data"] if t.get("legendgroup") == "forces"]
+            assert overlaid and len(set(overlaid)) == len(overlaid), overlaid  # (a pose finds a trace by its name)
+            posed = [name for name in overlaid if name in pose]
+            assert posed, (pid, overlaid, set(pose))
+            width = float(np.ptp(spec["layout"]["xaxis"]["range"]))
+            for name in overlaid:
+                for axis in "xy":
+                    want = np.array(rows_of[name][axis][stage.key_frame], dtype=float)
+                    if name not in pose:  # an arrow no phase draws at the key frame
+                        assert not np.isfinite(want).any(), (name, want)
+                        continue
+                    have = np.array([np.nan if v is None else v for v in pose[name]["xy".index(axis)]], dtype=float)
+                    assert np.allclose(have, want, rtol=0, atol=1e-3 * width, equal_nan=True), (name, axis, have, want)
+    check()

@@ -178,24 +178,35 @@ def declared(name: str = NAME):
 LECTURE = {"min_font": 18, "title_font": 22, "line_scale": 1.8, "marker_scale": 1.6, "legend_right": True}
 
 
-def payload(figure: Figure, bundle: str, style: dict | None, fit_screen: bool = False) -> bytes:
+def payload(figure: Figure, bundle: str, style: dict | None, fit_screen: bool = False,
+            forces: bool | None = None) -> bytes:
     """What a run sends for one figure: one JSON object as bytes, the figure's cached JSON spliced
-    in as it is (no second encoding of it)."""
+    in as it is (no second encoding of it). ``forces``: the stage's Forces switch, on or off (None: the
+    figure has none)."""
     head = orjson.dumps({"height": figure.height, "title": figure.title, "description": figure.description,
                          "bundle": bundle, "style": style, "fit_screen": fit_screen, "key_frame": figure.key_frame,
-                         "key_caption": figure.key_caption})
+                         "key_caption": figure.key_caption, **({} if forces is None else {"forces": forces})})
     return head[:-1] + b',"spec":' + figure.json_bytes() + b"}"
 
 
-def data(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False) -> bytes:
+def data(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False, forces: bool | None = None) -> bytes:
     """What a figure's element is sent; ``page``: every figure of the page, so that all of them share
     one plotly.js bundle."""
-    return payload(figure, url(bundles()[kind_of(figure, page)][0]), LECTURE if lecture else None, fit_screen)
+    return payload(figure, url(bundles()[kind_of(figure, page)][0]), LECTURE if lecture else None, fit_screen, forces)
 
 
-def show(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False) -> None:
-    """The figure in an element of its own (``data``)."""
-    declared()(data=data(figure, page, lecture, fit_screen), key=figure.key)
+def show(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False, forces: bool | None = None,
+         on_forces=None) -> None:
+    """The figure in an element of its own (``data``); with ``forces`` (on or off), its Forces switch,
+    whose press calls ``on_forces(wanted: bool)`` before the rerun it starts."""
+    if on_forces is None:
+        declared()(data=data(figure, page, lecture, fit_screen), key=figure.key)
+        return
+    key = figure.key
+
+    def pressed():
+        on_forces(st.session_state[key]["forces"] is True)
+    declared()(data=data(figure, page, lecture, fit_screen, forces), key=key, on_forces_change=pressed)
 
 
 LINKS = "links"

@@ -172,10 +172,7 @@ VARIANT_HELP = ("A variant link (?seed=N) or an assignment link opens in Practic
 LINK_FLAGS = frozenset(("units", "lecture", "practice", "instructor", "lti", *LINK_KEYS, "embed", "embed_options"))
 
 
-FORCES_FLAG = "forces"  # ?forces=1: the stage's Forces switch on
-FORCES_LABEL = "Forces on the motion"
-FORCES_HELP = ("Lay the free-body diagram's forces on the animation: each arrow at its point, drawn to its size in "
-               "that frame (an impulse at the impact). While a control is dragged they wait, dimmed, for the release.")
+FORCES_FLAG = "forces"  # ?forces=1: the stage's Forces switch (a button in the motion's row, figure.js) on
 
 
 def _has_forces_overlay(problem: Problem) -> bool:
@@ -190,14 +187,19 @@ def _overlaid(problem_id: str) -> bool:
     return declare is not None and any(d.frames is not None for d in declare(solver.solve().params))
 
 
-def _forces_switch(problem: Problem, stage) -> bool:
-    """The stage's Forces switch (``FORCES_FLAG`` in the link), where the problem's stage can show them."""
+def _forces_key(problem: Problem) -> str:
+    return f"{problem.id}__forces"
+
+
+def _forces_on(problem: Problem) -> bool | None:
+    """The stage's Forces switch: on or off (from the link at first, ``FORCES_FLAG``), or None where the
+    problem's stage cannot show them."""
     if not _has_forces_overlay(problem):
-        return False
-    key = f"{problem.id}__forces"
+        return None
+    key = _forces_key(problem)
     if key not in st.session_state:
         st.session_state[key] = st.query_params.get(FORCES_FLAG) == "1"
-    return stage.toggle(FORCES_LABEL, key=key, help=FORCES_HELP)
+    return bool(st.session_state[key])
 
 
 def _unknown_in_link(problem: Problem) -> str | None:
@@ -251,9 +253,9 @@ def _computed(problem_id: str, key: tuple, system: str, forces: bool = False):
     if forces:
         stage = figures[0]
         x_range = stage.spec["layout"]["xaxis"]["range"]
-        traces = diagram.overlay(solver, solution, solver.motion(solution), float(x_range[1] - x_range[0]),
-                                 units.to_display(1.0, "length", system))
-        figures = (diagram.with_overlay(stage, traces), *figures[1:])
+        traces, scales = diagram.overlay(solver, solution, solver.motion(solution), float(x_range[1] - x_range[0]),
+                                         units.to_display(1.0, "length", system))
+        figures = (diagram.with_overlay(stage, traces, scales), *figures[1:])
     for figure in figures:
         figure.json_bytes()  # serialise once, here
     return solution, figures
@@ -400,11 +402,10 @@ def problem_page(problem_id: str) -> None:
         _assignment(problem, link, system)
         return
     if seed is None and not practice:  # the lesson page: the stage and all that follows it in a fragment
-        forces = _forces_switch(problem, st.sidebar)  # (a setting for the stage, beside the view's)
         st.sidebar.markdown("### Parameters")
         warnings = more_parameters(problem, system, None, st.sidebar)
         _heading(problem, heading, (seed_warning, unknown, *warnings), print_link=False)  # (the fragment's)
-        _lesson(problem.id, system, lecture, forces)
+        _lesson(problem.id, system, lecture)
         return
     head = st.container()  # the title, filled once the state is known
     if seed is None:  # Practice: the controls in the sidebar
@@ -443,7 +444,7 @@ def _mirror(problem: Problem, params: dict, system: str, lecture: bool, practice
 
 
 @st.fragment
-def _lesson(problem_id: str, system: str, lecture: bool, forces: bool = False) -> None:
+def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     """The lesson (Study and Lecture): the stage, the motion with the lesson's controls beside it
     (below it on a phone), then the answers, the companion figures, the derivation and the downloads.
     A fragment: moving a lesson control reruns this alone, not the page's navigation, view, units
@@ -451,22 +452,28 @@ def _lesson(problem_id: str, system: str, lecture: bool, forces: bool = False) -
     problem = BY_ID[problem_id]
     if widget_values.take_refusals():
         refused_values_notice()
+    forces = _forces_on(problem)  # (the stage's own switch: its press reruns this fragment)
     stage = st.container(key="dl_stage", horizontal=True, wrap=False, gap="medium")  # a row (STAGE_CSS), not columns: two elements fewer a run
     motion_column = stage.container(key="dl_motion")
     params = lesson_parameters(problem, system, None, stage.container(key="dl_stage_controls"))
-    _mirror(problem, params, system, lecture, False, None, {}, forces)
-    solved = _solved_or_refused(problem, params, system, motion_column, lecture=lecture, forces=forces)
+    _mirror(problem, params, system, lecture, False, None, {}, bool(forces))
+    solved = _solved_or_refused(problem, params, system, motion_column, lecture=lecture, forces=bool(forces))
     if solved is None:
         takehome.lesson_links(problem, downloads=False)
         return
     solution, figures = solved
     answers = problem.answers_of(solution)
     with motion_column:  # the motion on the stage, fitted to the first screen; its companions below
-        show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True)
+        show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True, forces=forces,
+                    on_forces=None if forces is None else functools.partial(_set_forces, problem))
     # the answers follow a dragged control (never in Practice)
     _results(problem, solution, answers, system, figures[1:], figures, lecture,
              live_view=live.payload(problem, solution, answers, system, figures[0]),
              links=takehome.lesson_links_data(problem))
+
+
+def _set_forces(problem: Problem, wanted: bool) -> None:
+    st.session_state[_forces_key(problem)] = wanted
 
 
 def _assignment(problem: Problem, link, system: str) -> None:

@@ -622,69 +622,128 @@ def _per_frame(expr, values: dict, frames: int):
                                (frames,)).copy()
 
 
-def overlay(solver, solution, motion: dict, width: float, length_scale: float = 1.0) -> list:
+def _overlaid(solver, params) -> list:
+    """The diagrams the stage's overlay draws for these parameters' options (those that declare their
+    frames); [] where the problem declares none."""
+    declare = getattr(solver, "free_body_diagrams", None)
+    return [] if declare is None else [d for d in declare(params) if d.frames is not None]
+
+
+def _tracks(diagrams) -> dict:
+    """Every arrow the overlay draws, in order: (kind, body, symbol) -> the loads it draws (one load a
+    phase: the same symbol on the same body in two phases is one arrow), couples left to the diagram."""
+    tracks: dict[tuple[str, str, str], list] = {}
+    for d in diagrams:
+        for load in d.loads:
+            if load.kind != "couple":
+                tracks.setdefault((load.kind, load.on, load.symbol), []).append((d, load))
+    return tracks
+
+
+def _geometry(d, load, at) -> tuple:
+    """(point x, y, vector x, y, centre x, y) of ``load`` with ``at`` (expr -> its value: numbers per
+    frame, or the key frame's expressions)."""
+    body = d.body(load.on)
+    return (*(at(c) for c in body.points[load.at]), *(at(c) for c in load.vector),
+            *(at(c) for c in body.points[body.centre]))
+
+
+def _drawn(kind: str, symbol: str, geometry, scale, length_scale: float, xp) -> tuple:
+    """One arrow and its label's place: (arrow xs, ys, label x, y), each row a frame. A push (a contact)
+    is drawn with its head at the point, a body force (the weight) from it. ``xp``: numpy, or
+    solvers.live's namespace (the key frame's pose as expressions)."""
+    from viz.common import arrows
+
+    px, py, vx, vy, cx, cy, body_force = geometry
+    dx, dy = vx * scale, vy * scale
+    push = xp.where(xp.less(vx * (px - cx) + vy * (py - cy), 0), 1.0, 0.0) * (0.0 if body_force else 1.0)
+    tail_x, tail_y = px * length_scale - push * dx, py * length_scale - push * dy
+    xs, ys = arrows(tail_x, tail_y, dx, dy, xp=xp)
+    beyond = 1.18 - 1.36 * push  # a label past the head, or before the tail of a push
+    return xs, ys, tail_x + dx * beyond, tail_y + dy * beyond
+
+
+def _names(tracks) -> list[tuple[str, str]]:
+    """(arrow's trace name, label's trace name) per track, each its own (a pose finds a trace by its
+    name; a pair's two halves share a symbol): the first arrow carries the legend's entry."""
+    return [(OVERLAY_NAME if n == 0 else f"{kind} on {on}: {plain_label(symbol)}", f"label {plain_label(symbol)} on {on}")
+            for n, (kind, on, symbol) in enumerate(tracks)]
+
+
+def overlay(solver, solution, motion: dict, width: float, length_scale: float = 1.0) -> tuple[list, dict]:
     """The loads of every phase's diagram on the stage's motion (``Diagram.frames``): one moving arrow
     per load (a reaction of unknown direction as its resultant) and its label, drawn in the frames of
     its phase, to one scale for the forces and one for the impulses (the largest of each
     ``_OVERLAY_LENGTH`` of the stage's ``width``); couples are left to the diagram. ``length_scale``:
-    the page's length unit per metre. Empty where the problem declares no frames (a 3-D stage)."""
+    the page's length unit per metre. (traces, scales: kind -> drawn length per unit of load, what a
+    drag's pose keeps, ``overlay_pose``); empty where the problem declares no frames (a 3-D stage)."""
     import numpy as np
 
-    from viz.common import arrows, line, moving, r
+    from viz.common import line, moving, r
 
-    declare = getattr(solver, "free_body_diagrams", None)
-    if declare is None:
-        return []
+    diagrams = _overlaid(solver, solution.params)
+    tracks = _tracks(diagrams)
     frames = len(motion["t"])
-    tracks: dict[tuple[str, str], dict] = {}  # (kind, symbol) -> per-frame tail and vector
-    for d in declare(solution.params):
-        if d.frames is None:
-            continue
-        values = {k: np.asarray(v, dtype=float) for k, v in d.frames(solution, motion).items()}
-        for load in d.loads:
-            if load.kind == "couple":
-                continue
-            body = d.body(load.on)
-            px, py = (_per_frame(c, values, frames) for c in body.points[load.at])
-            vx, vy = (_per_frame(c, values, frames) for c in load.vector)
-            cx, cy = (_per_frame(c, values, frames) for c in body.points[body.centre])
-            pushes = ((vx * (px - cx) + vy * (py - cy) < 0) & (load.by != "gravity")).astype(float)
-            track = tracks.setdefault((load.kind, load.on, load.symbol), {
-                "x": np.full(frames, np.nan), "y": np.full(frames, np.nan), "push": np.zeros(frames),
-                "vx": np.full(frames, np.nan), "vy": np.full(frames, np.nan), "name": load.name})
-            here = np.isfinite(px) & np.isfinite(py) & np.isfinite(vx) & np.isfinite(vy)
-            for key, new in (("x", px), ("y", py), ("vx", vx), ("vy", vy), ("push", pushes)):
-                track[key][here] = new[here]
-    traces = []
+    values = {id(d): {k: np.asarray(v, dtype=float) for k, v in d.frames(solution, motion).items()} for d in diagrams}
+    geometry = {}
+    for key, loads in tracks.items():
+        merged = np.full((6, frames), np.nan)
+        for d, load in loads:  # each phase's frames (NaN outside it)
+            new = np.array(_geometry(d, load, lambda c: _per_frame(c, values[id(d)], frames)))
+            here = np.isfinite(new).all(axis=0)
+            merged[:, here] = new[:, here]
+        geometry[key] = (*merged, loads[0][1].by == "gravity")
+    scales = {}
     for kind in ("force", "impulse"):
-        mine = {(on, s): t for (k, on, s), t in tracks.items() if k == kind}
-        biggest = max((np.nanmax(np.hypot(t["vx"], t["vy"]), initial=0.0) for t in mine.values()), default=0.0)
-        if not biggest > 0:
+        sizes = [np.hypot(g[2], g[3]) for (k, _, _), g in geometry.items() if k == kind]
+        biggest = max((np.nanmax(size, initial=0.0) for size in sizes), default=0.0)
+        if sizes:  # (no arrow at all where every load of the kind is zero: NaN)
+            scales[kind] = float(_OVERLAY_LENGTH * width / biggest) if biggest > 0 else float("nan")
+    traces = []
+    for ((kind, on, symbol), g), (name, label_name) in zip(geometry.items(), _names(tracks)):
+        with np.errstate(invalid="ignore"):
+            xs, ys, label_x, label_y = _drawn(kind, symbol, g, scales[kind], length_scale, np)
+        style = line(None, None, name, OVERLAY_COLOR, width=3 if kind == "force" else 5, show_legend=not traces)
+        style |= {"legendgroup": "forces", "meta": [on, symbol]}  # (which load: the tests read it)
+        traces.append(moving(style, xs, ys))
+        label = {"type": "scatter", "mode": "text", "x": None, "y": None, "text": [_html_label(symbol)],
+                 "textfont": {"color": OVERLAY_COLOR, "size": 15}, "hoverinfo": "skip", "showlegend": False,
+                 "legendgroup": "forces", "name": label_name, "cliponaxis": False}
+        traces.append(moving(label, r(label_x)[:, None], r(label_y)[:, None]))
+    return traces, scales
+
+
+SCALE_NAMES = {"force": "overlay_force_scale", "impulse": "overlay_impulse_scale"}  # (a pose's parameters)
+
+
+def overlay_pose(solver, p, a, length_scale: float, xp) -> dict:
+    """The overlay's arrows and labels at the stage figure's key frame (``Diagram.key``), as
+    ``key_pose`` draws a figure's bodies there: trace name -> (xs, ys), from the parameters ``p`` and
+    the answers ``a`` (numbers; or solvers.live's symbols, the browser's drag, with ``xp`` its
+    namespace), at the scales ``p[SCALE_NAMES[kind]]`` (the server's run's: an arrow keeps its scale
+    while a control is dragged). An arrow no phase draws at that frame is left out."""
+    import numpy as np
+
+    diagrams = _overlaid(solver, p)
+    keyed = {id(d): {sym: sp.sympify(v) for sym, v in d.key(p, a).items()} for d in diagrams if d.key is not None}
+    tracks, drawn = _tracks(diagrams), {}
+    for ((kind, on, symbol), loads), (name, label_name) in zip(tracks.items(), _names(tracks)):
+        d, load = next(((d, load) for d, load in loads if id(d) in keyed), (None, None))
+        if d is None:
             continue
-        scale = _OVERLAY_LENGTH * width / biggest
-        for (on, symbol), t in mine.items():
-            x0, y0 = t["x"] * length_scale, t["y"] * length_scale
-            dx, dy = t["vx"] * scale, t["vy"] * scale
-            # a push drawn with its head at the point (a contact), a body force from it (the weight)
-            tail_x, tail_y = x0 - t["push"] * dx, y0 - t["push"] * dy
-            xs, ys = arrows(tail_x, tail_y, dx, dy)
-            style = line(None, None, f"{kind}: {plain_label(symbol)}", OVERLAY_COLOR, width=3 if kind == "force" else 5,
-                         show_legend=not traces)
-            style |= {"legendgroup": "forces", "name": OVERLAY_NAME if not traces else f"{kind}: {plain_label(symbol)}",
-                      "meta": [on, symbol]}  # (which load: the tests read it)
-            traces.append(moving(style, xs, ys))
-            free_x = np.where(t["push"] > 0, tail_x - dx * 0.18, tail_x + dx * 1.18)
-            free_y = np.where(t["push"] > 0, tail_y - dy * 0.18, tail_y + dy * 1.18)
-            tip_x, tip_y = r(free_x), r(free_y)
-            label = {"type": "scatter", "mode": "text", "x": None, "y": None, "text": [_html_label(symbol)],
-                     "textfont": {"color": OVERLAY_COLOR, "size": 15}, "hoverinfo": "skip", "showlegend": False,
-                     "legendgroup": "forces", "name": f"label {plain_label(symbol)}", "cliponaxis": False}
-            traces.append(moving(label, tip_x[:, None], tip_y[:, None]))
-    return traces
+        at = lambda c: np.array([sp.sympify(c).xreplace(keyed[id(d)])], dtype=object)  # noqa: E731
+        g = (*_geometry(d, load, at), load.by == "gravity")
+        if xp is np:  # numbers (the server's check of the browser's pose)
+            g = (*(np.asarray(v, dtype=float) for v in g[:6]), g[6])
+        xs, ys, label_x, label_y = _drawn(kind, symbol, g, p[SCALE_NAMES[kind]], length_scale, xp)
+        drawn[name] = (xs[0], ys[0])
+        drawn[label_name] = (label_x, label_y)
+    return drawn
 
 
-def with_overlay(figure, traces: list):
-    """The stage figure with the overlay's traces added to its animation (a new Figure)."""
+def with_overlay(figure, traces: list, scales: dict | None = None):
+    """The stage figure with the overlay's traces added to its animation (a new Figure), and their
+    ``scales`` (``overlay``) in its ``extra``: what a drag's pose of them keeps (ui/live.py)."""
     from dataclasses import replace as _replace
 
     if not traces:
@@ -702,4 +761,5 @@ def with_overlay(figure, traces: list):
     anim["coords"] = list(anim["coords"]) + [t.per_frame for t in traces]
     spec["data"], spec["animation"] = data, anim
     words = " Red arrows: the forces of the free-body diagram, each drawn to its size in that frame."
-    return _replace(figure, spec=spec, description=figure.description + words)
+    return _replace(figure, spec=spec, description=figure.description + words,
+                    extra={**figure.extra, "overlay_scales": dict(scales or {})})

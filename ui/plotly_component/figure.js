@@ -14,6 +14,9 @@ const CSS = `
 .dl-figure .dl-controls button { white-space: nowrap; font: inherit; font-size: 14px; padding: 3px 12px; margin: 0;
   border-radius: 6px; cursor: pointer; border: 1px solid rgba(128,128,128,.6); background: transparent; color: inherit; }
 .dl-figure .dl-controls button:focus-visible { outline: 3px solid #E69F00; outline-offset: 1px; }
+.dl-figure .dl-controls button.dl-forces[aria-pressed="true"] { background: #b3261e; border-color: #b3261e; color: #fff; }
+.dl-figure .dl-controls button.dl-forces[aria-busy="true"] { opacity: .6; cursor: progress; }
+.dl-figure .dl-controls button[hidden] { display: none; }
 .dl-figure .dl-hint { font-size: 12px; opacity: .7; }
 .dl-figure .dl-time { display: flex; align-items: center; gap: 8px; flex: 1 1 220px; min-width: 180px; }
 .dl-figure .dl-time input { flex: 1 1 auto; min-width: 120px; margin: 0; accent-color: #0072B2; }
@@ -54,6 +57,8 @@ const HTML = `
   <button class="dl-back" type="button" aria-label="Step back one frame">◀</button>
   <button class="dl-forward" type="button" aria-label="Step forward one frame">▶</button>
   <label class="dl-time"><span class="dl-readout"></span><input class="dl-scrub" type="range" min="0" max="0" step="1" value="0"></label>
+  <button class="dl-forces" type="button" aria-pressed="false" hidden
+    title="Lay the free-body diagram's forces on the motion, each arrow at its point, drawn to its size in that frame">Forces</button>
   <span class="dl-hint">Space: play/pause · ← →: step</span>
 </div>
 <div class="dl-graph" role="img"></div>
@@ -171,6 +176,15 @@ class Figure {
       this.width = width;
       quiet(this.Plotly.Plots.resize(this.graph).then(() => this.fitDrawn()));
     }).observe(this.root);
+    // The stage's Forces switch (ui/figure.show's ``forces``): the server draws the overlay (a rerun), and
+    // the run's figure says whether it is on; until then the button says it is on its way.
+    this.forces = $(".dl-forces");
+    this.trigger = null;  // Streamlit's setTriggerValue, from the latest render
+    this.forces.addEventListener("click", () => {
+      if (!this.trigger || this.forces.getAttribute("aria-busy") === "true") return;
+      this.forces.setAttribute("aria-busy", "true");
+      this.trigger("forces", this.forces.getAttribute("aria-pressed") !== "true");
+    });
     $(".dl-play").addEventListener("click", () => this.play());
     $(".dl-pause").addEventListener("click", () => this.pause());
     $(".dl-back").addEventListener("click", () => { this.pause(); this.goTo(this.frameIndex - 1); });
@@ -178,6 +192,7 @@ class Figure {
     this.scrub.addEventListener("input", () => { this.pause(); this.goTo(Number(this.scrub.value)); });
     this.root.addEventListener("keydown", (e) => {
       if (!this.frameNames.length || e.target === this.scrub && e.key !== " ") return;  // the range input steps itself
+      if (e.key === " " && e.target.tagName === "BUTTON") return;  // a focused button's own press (Forces, a step)
       if (e.key === " ") { e.preventDefault(); this.playing ? this.pause() : this.play(); }
       else if (e.key === "ArrowRight") { e.preventDefault(); this.pause(); this.goTo(this.frameIndex + 1); }
       else if (e.key === "ArrowLeft") { e.preventDefault(); this.pause(); this.goTo(this.frameIndex - 1); }
@@ -520,6 +535,9 @@ class Figure {
 
   async draw(args, theme, seq) {
     this.title.textContent = args.title || "";
+    this.forces.hidden = typeof args.forces !== "boolean";
+    this.forces.setAttribute("aria-pressed", String(args.forces === true));
+    this.forces.removeAttribute("aria-busy");
     // The text a screen reader gets, at once: it does not wait for plotly.js.
     this.graph.setAttribute("aria-label", (args.title ? args.title + ". " : "") + (args.description || ""));
     this.description.textContent = args.description || "";
@@ -686,6 +704,7 @@ class Figure {
 
   update(text, theme) {
     const key = text + "|" + theme.text + "|" + theme.dark;
+    this.forces.removeAttribute("aria-busy");  // (the run answered the Forces switch, changed or not)
     if (key === this.current) return;  // the same figure: leave it (and its animation) alone
     this.current = key;
     const seq = ++this.seq;
@@ -993,8 +1012,9 @@ matchMedia("print").addEventListener("change", (e) => printing(e.matches));
 const figures = new WeakMap();   // Streamlit's element for a mounted figure -> its Figure
 const decoder = new TextDecoder();
 
-export function render({data, parentElement}) {
+export function render({data, parentElement, setTriggerValue}) {
   let figure = figures.get(parentElement);
   if (!figure) figures.set(parentElement, figure = new Figure(parentElement));
+  figure.trigger = setTriggerValue || null;
   figure.update(typeof data === "string" ? data : decoder.decode(data), themeOf(parentElement));
 }
