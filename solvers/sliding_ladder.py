@@ -39,7 +39,7 @@ from .core import (
     within_model_range,
 )
 from . import units
-from .diagram import Body, Diagram, Load, Rod, balance_steps, fbd_steps
+from .diagram import Body, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
@@ -107,6 +107,7 @@ DIMENSIONS = {p.name: p.dimension for p in PARAMS} | {name: "dimensionless" for 
 
 x_G, xdd_G, ydd_G = sp.symbols(r"x_G \ddot{x}_G \ddot{y}_G", real=True)
 N_A, N_B = sp.symbols("N_A N_B", real=True)
+_G_SYMBOLS = (x_G, xdd_G, ydd_G)  # (the derivation names its own x_G: G's position in time)
 I_G = m * L**2 / 12
 
 
@@ -218,8 +219,15 @@ def derivation() -> tuple[Derivation, dict]:
     accel = sp.simplify(sp.diff(rate_sq, theta) / 2)  # d(θ̇²)/dt = 2 θ̇ θ̈ = (d θ̇²/dθ) θ̇
     x_acc, y_acc = as_symbols(x_G.diff(t, 2)), as_symbols(y_G.diff(t, 2))
     on_path = {thetaddot: accel, thetadot**2: rate_sq}
-    wall = sp.factor(sp.simplify((m * x_acc).subs(on_path)))
-    floor = sp.factor(sp.simplify((m * (y_acc + g)).subs(on_path)))
+    # The reactions and θ̈ from the balance laws written from the diagram (Step 3), G on its circle;
+    # θ̈ from them must be the energy method's.
+    at_G, acc_x, acc_y = _G_SYMBOLS
+    laws = [(law.lhs - law.rhs).subs({acc_x: x_acc, acc_y: y_acc, at_G: as_symbols(x_G)})
+            for law in balance(BOTH_CONTACTS, "the ladder")]
+    (newton_euler,) = sp.solve(laws, [N_A, N_B, thetaddot], dict=True)
+    assert sp.simplify(newton_euler[thetaddot].subs(thetadot**2, rate_sq) - accel) == 0, "θ̈: energy ≠ Newton–Euler"
+    wall = sp.factor(sp.simplify(newton_euler[N_A].subs(thetadot**2, rate_sq)))
+    floor = sp.factor(sp.simplify(newton_euler[N_B].subs(thetadot**2, rate_sq)))
     s = sp.Symbol("s", positive=True)
     (leaving_sin,) = sp.solve(sp.factor(wall / sp.cos(theta)).subs(sp.sin(theta), s), s)  # cos θ > 0 here
     leave_angle = sp.asin(leaving_sin)
@@ -256,7 +264,7 @@ def derivation() -> tuple[Derivation, dict]:
              sp.latex(energy1, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate_sq, order="rev-lex")),
         Step("Its rate of change, d(θ̇²)/dt = 2θ̇θ̈, gives the angular acceleration",
              latex_eq(thetaddot, accel)),
-        Step(r"The wall's push is the only horizontal force: $N_A = m\ddot x_G$",
+        Step(r"ΣF_x of Step 3 on the circle: the wall's push is the only horizontal force, $N_A = m\ddot x_G$",
              r"N_A = m\,\ddot x_G = " + sp.latex(sp.factor(m * x_acc)) + " = " + sp.latex(wall)),
         Step(r"The floor carries the weight and G's vertical acceleration: $N_B = m(\ddot y_G + g)$",
              r"N_B = " + sp.latex(floor)),
