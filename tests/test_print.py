@@ -202,3 +202,64 @@ def test_the_handouts_address_keeps_the_answer_key(browser, app_url):
     again.get_by_text("Derivation, step by step").first.wait_for(timeout=30_000)
     assert again.get_by_role("radio", name="Answer key").is_checked()
     context.close()
+
+
+# A heading, and a step's title over its equation, each marked at its end and the element after it marked
+# at its top (absolutely placed, so no line moves): on paper the two marks must fall on one page.
+MARK_HEADINGS = """() => {
+  const heads = [...document.querySelectorAll("[data-testid='stMain'] [data-testid='stMarkdownContainer'] > *")]
+    .filter(el => !el.parentElement.querySelector('.dl-screen-only'))  // (the page's own title: not printed)
+    .filter(el => el.nextElementSibling && (el.matches("[data-testid='stHeadingWithActionElements']")
+                                            || (el.matches('p') && el.nextElementSibling.matches('.katex-display'))));
+  const titles = heads.map(el => el.innerText.trim().slice(0, 60));
+  heads.forEach((el, n) => {
+    const end = document.createElement('span');
+    end.textContent = ` HEADEND${n}X`;
+    end.style.fontSize = '4px';
+    (el.querySelector('h1, h2, h3, h4') || el).append(end);
+    const next = el.nextElementSibling, top = document.createElement('span');
+    top.textContent = `NEXTTOP${n}X`;
+    Object.assign(top.style, {position: 'absolute', top: '0', left: '0', fontSize: '4px'});
+    if (getComputedStyle(next).position === 'static') next.style.position = 'relative';
+    next.prepend(top);
+  });
+  return titles;
+}"""
+
+
+def headings_left_at_a_foot(page, path: Path) -> list[str]:
+    """The headings (and steps' titles) printed at the foot of one page while what follows them is on the next."""
+    heads = page.evaluate(MARK_HEADINGS)
+    assert heads, "no headings to check"
+    page.set_viewport_size({"width": PAPER_TEXT_WIDTH, "height": 1000})
+    page.emulate_media(media="print")
+    wait_until_idle(page)
+    for _ in range(50):  # laid out at the paper's width (not shrunk to fit a wider page: nothing would break)
+        if page.evaluate("() => document.documentElement.scrollWidth <= innerWidth + 1"):
+            break
+        page.wait_for_timeout(100)
+    else:
+        raise AssertionError("the page is wider than the paper")
+    page.pdf(path=str(path), format="A4", prefer_css_page_size=True, print_background=True)
+    text = subprocess.run(["pdftotext", str(path), "-"], capture_output=True, text=True, check=True).stdout
+    on_page = {}
+    for number, sheet in enumerate(text.split("\f")):
+        for kind, n in re.findall(r"(HEADEND|NEXTTOP)(\d+)X", sheet.replace(" ", "")):
+            on_page[kind, int(n)] = number
+    assert len(on_page) == 2 * len(heads), "a mark was not printed"
+    return [f"{title!r} on page {on_page['HEADEND', n] + 1}" for n, title in enumerate(heads)
+            if on_page["HEADEND", n] != on_page["NEXTTOP", n]]
+
+
+@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
+def test_a_handouts_answer_key_keeps_each_heading_with_what_follows(browser, app_url, problem, tmp_path):
+    """Issue 54: the answer key left a step's title at the foot of one page and its equation on the next
+    (and may a heading). On paper each stays with what follows it."""
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    page = context.new_page()
+    page.goto(f"{app_url}/handouts?instructor={KEY}&problem={problem.id}&first=1&last=3&what=key")
+    wait_until_idle(page)
+    page.locator("[data-testid='stMarkdownContainer'] .katex-display").first.wait_for(timeout=30_000)
+    page.wait_for_load_state("networkidle")
+    assert headings_left_at_a_foot(page, tmp_path / "key.pdf") == []
+    context.close()

@@ -143,6 +143,10 @@ PRINT_CSS = """
     .dl-print-link { font-size: 0.85rem; overflow-wrap: anywhere; }
     .dl-math, .katex-display, table, tr, li, [data-testid='stAlert'], figure { break-inside: avoid; }
     h1, h2, h3, h4, .dl-text .dl-caption, .dl-text p:has(+ .dl-math) { break-after: avoid; }
+    /* the same in Markdown (a handout's key, the Practice method): a heading's box and a step's title over its
+       equation; Streamlit's flex box around Markdown a block on paper (Chromium keeps nothing together in a flex item) */
+    [data-testid='stHeadingWithActionElements'], [data-testid='stMarkdownContainer'] p:has(+ .katex-display) { break-after: avoid; }
+    div:has(> [data-testid='stMarkdownContainer']) { display: block !important; }
     /* a step's title may carry inline math taller than its line (½ m R²): room above it at a page's top */
     .dl-text p:has(+ .dl-math) { padding-top: 6px; }
     /* and so may a list item's (the slips' −kπ²/8) */
