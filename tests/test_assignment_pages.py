@@ -518,8 +518,9 @@ def test_the_links_say_that_opening_one_answers_as_its_student(course):
     aid, s, _ = one_assignment()
     book = instructor()
     assert any("answers as that student" in w.value for w in book.info)
-    links = next(t.value for t in book.table if "link" in t.value.columns)
-    assert all(cell.startswith("`http") and cell.endswith("`") for cell in links["link"]), links
+    links = next(h.proto.body for h in book.get("html") if 'class="dl-links"' in h.proto.body)
+    assert links.count("<code>http") == 2 and "<a " not in links, links  # text to copy (each with its Copy button)
+    assert links.count('<button type="button" data-dl-copy=') == 2
 
 
 def test_a_warned_edit_is_dropped_once_its_inputs_change(course):

@@ -382,3 +382,44 @@ def test_named_slips_says_why_it_cannot_be_changed_while_hints_are_on(browser, c
     assert page.get_by_text("Hints on already name the slip", exact=False).count() == 0
     assert not errors
     context.close()
+
+
+def test_each_students_link_has_a_copy_button(browser, course_url, monkeypatch):
+    """Issue 54: the links wrapped over three lines of small monospace with no way to copy one whole (a
+    partial selection made a link refused as changed). Each stays as text and has a Copy button: a real
+    button named for its student, pressed by keyboard, that copies the whole link and says "Copied" on
+    the button and in a status line a screen reader reads; on a laptop and on a phone, under the CSP."""
+    from sqlalchemy import create_engine
+
+    from tests.conftest import _DATA_DIRS, COURSE_SECRET
+    from ui.catalog import BY_ID
+
+    monkeypatch.setenv(signing.SECRET_ENV, COURSE_SECRET)
+    bound = create_engine(f"sqlite:///{Path(_DATA_DIRS[0]) / 'dynamics-lab.sqlite'}")
+    due = dt.datetime.now(dt.timezone.utc) + dt.timedelta(days=2)
+    title = "Links to copy"
+    aid = records.create(records.Settings.of(title, "pendulum_rebound", ("theta_rebound",), 5e-3, due, 3),
+                         ["c01", "c02"], bound).id
+    for size in ("laptop", "phone"):
+        context, page, errors = open_at(browser, f"{course_url}/assignments", size, "UTC")
+        context.grant_permissions(["clipboard-read", "clipboard-write"], origin=course_url)
+        enter_key(page)
+        choose(page, "Assignment", f"{aid}: {title} ({BY_ID['pendulum_rebound'].title})")
+        page.get_by_text("The links (2)").click()
+        wait_until_idle(page)
+        links = page.locator(".dl-links code")
+        assert links.count() == 2
+        link = links.first.inner_text()
+        assert link.startswith(f"{course_url}/pendulum_rebound?"), link
+        button = page.get_by_role("button", name="Copy c01's link", exact=True)
+        button.scroll_into_view_if_needed()
+        assert button.is_visible() and no_sideways_scroll(page), size
+        button.focus()
+        page.keyboard.press("Enter")
+        until(page, "document.querySelector('.dl-links [role=status]').textContent.includes('Copied')")
+        assert page.evaluate("() => navigator.clipboard.readText()") == link
+        assert page.get_by_role("status").filter(has_text="Copied c01's link.").count() == 1
+        assert page.get_by_role("button", name="Copied c01's link", exact=True).is_visible()
+        shoot(page, f"links-to-copy-{size}")
+        assert csp_violations(page) == [] and not errors, size
+        context.close()

@@ -26,7 +26,7 @@ from lti import launch as lti_launch, passback, roster as lti_roster, store as l
 from practice.judge import RELATIVE_TOLERANCE, Verdict
 from solvers import units
 from ui.catalog import BY_ID, PROBLEMS, Problem
-from ui.inline_scripts import SCROLLABLE_TABLES
+from ui.inline_scripts import COPY_LINKS, SCROLLABLE_TABLES
 from ui.practice import Recording, answer_label, instructor_key_entry
 from ui.results import literal, plain
 
@@ -866,6 +866,35 @@ OPENING_A_LINK = ("Opening a student's link answers as that student: every answe
                   "click; to try the assignment yourself, open its problems in Practice.")
 
 
+LINKS_CSS = """<style>
+  .dl-links ul { list-style: none; padding: 0; margin: 0; }
+  .dl-links li { display: grid; grid-template-columns: minmax(3rem, auto) 1fr auto; gap: 0.25rem 0.75rem;
+                 align-items: center; padding: 0.4rem 0; border-bottom: 1px solid rgba(128, 128, 128, 0.25); }
+  .dl-links code { font-size: 0.85rem; overflow-wrap: anywhere; user-select: all; }
+  .dl-links button { font: inherit; font-size: 0.875rem; padding: 0.25rem 0.75rem; min-height: 2.25rem; min-width: 5.5rem;
+                     border: 1px solid rgba(128, 128, 128, 0.6); border-radius: 0.5rem; background: transparent;
+                     color: inherit; cursor: pointer; position: relative; }
+  .dl-links button:hover { border-color: currentColor; }
+  .dl-links button:focus-visible { outline: 2px solid currentColor; outline-offset: 2px; }
+  .dl-links button.dl-copied { border-color: #1c7c3c; color: #1c7c3c; }
+  .dl-links .dl-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }
+  .dl-links [role='status'] { min-height: 1.5rem; margin: 0.5rem 0 0; }
+  @media (max-width: 640px) { .dl-links li { grid-template-columns: 1fr auto; } .dl-links code { grid-column: 1 / -1; grid-row: 2; } }
+</style>"""
+
+
+def link_list(links: list[tuple[str, str]]) -> str:
+    """The students' links as HTML: each label, its link as text (whole, to select or copy) and a Copy
+    button (inline_scripts.COPY_LINKS); a status line says what was copied."""
+    rows = "".join(
+        f'<li><span>{html.escape(label)}</span><code>{html.escape(url)}</code>'
+        f'<button type="button" data-dl-copy="{html.escape(label)}"><span class="dl-copy-word">Copy</span>'
+        f'<span class="dl-sr"> {html.escape(label)}\'s link</span></button></li>'
+        for label, url in links)
+    return (f'{LINKS_CSS}<div class="dl-links"><ul aria-label="Students\' links">{rows}</ul>'
+            '<p role="status"></p></div>')
+
+
 def _gradebook(aid: int, course: dict | None = None) -> None:
     book = records.gradebook(aid)
     s = book.settings
@@ -894,7 +923,8 @@ def _gradebook(aid: int, course: dict | None = None) -> None:
     st.download_button("Download the links (CSV)", _links_csv(base, s.problem, book.students),
                        file_name=f"assignment-{aid}-links.csv", mime="text/csv", key="assign__links_csv")
     with st.expander(f"The links ({len(book.students)})"):  # as text to copy, not to click (OPENING_A_LINK)
-        st.table([{"label": literal(st_.label), "link": f"`{student_url(base, s.problem, st_)}`"} for st_ in book.students])
+        st.html(link_list([(st_.label, student_url(base, s.problem, st_)) for st_ in book.students]))
+        st.html(COPY_LINKS, unsafe_allow_javascript=True)
 
     st.markdown("#### Gradebook")
     short, key = _short_labels(s)

@@ -61,4 +61,43 @@ SCROLLABLE_TABLES = """<script>
 })();
 </script>"""
 
-ALL = (SLIDER_NAMES, TAKE_FOCUS, SCROLLABLE_TABLES)
+# A student's link is copied whole by its Copy button (a partial selection made a link that was refused as
+# changed). The button says "Copied" for a moment and a status line beside the list says it too (read out by a
+# screen reader); where the page may not write the clipboard (plain http), the link is selected and the line
+# says to press Ctrl+C. Beside each list of links (ui.assignments.link_list); one listener per page load.
+COPY_LINKS = """<script>
+(() => {
+  if (window.dlCopyLinks) return;
+  window.dlCopyLinks = true;
+  document.addEventListener("click", async (event) => {
+    const button = event.target.closest("button[data-dl-copy]");
+    if (!button) return;
+    const link = button.closest("li").querySelector("code");
+    const status = button.closest(".dl-links").querySelector("[role='status']");
+    const who = button.dataset.dlCopy;
+    let copied = false;
+    try {
+      await navigator.clipboard.writeText(link.textContent);
+      copied = true;
+    } catch (refused) {
+      const range = document.createRange();
+      range.selectNodeContents(link);
+      getSelection().removeAllRanges();
+      getSelection().addRange(range);
+      try { copied = document.execCommand("copy"); } catch (old) { copied = false; }
+    }
+    if (!copied) {
+      status.textContent = who + "'s link is selected: press Ctrl+C (\u2318C on a Mac) to copy it.";
+      return;
+    }
+    const word = button.querySelector(".dl-copy-word");
+    word.textContent = "Copied";
+    button.classList.add("dl-copied");
+    status.textContent = "Copied " + who + "'s link.";
+    clearTimeout(button.dlCopyTimer);
+    button.dlCopyTimer = setTimeout(() => { word.textContent = "Copy"; button.classList.remove("dl-copied"); }, 3000);
+  });
+})();
+</script>"""
+
+ALL = (SLIDER_NAMES, TAKE_FOCUS, SCROLLABLE_TABLES, COPY_LINKS)
