@@ -176,6 +176,30 @@ def function_source(pid: str, options: tuple[tuple[str, str], ...] = ()) -> str:
     return f"(p) => {{\n{body}\nreturn {{regime: {REFUSED!r}, values: null}};\n}}"
 
 
+@functools.lru_cache(maxsize=256)
+def leads(pid: str, options: tuple[tuple[str, str], ...], regime: str, names: tuple[str, ...]) -> dict[str, int]:
+    """For each followed parameter, the answer the stage's headline shows while its control is dragged:
+    the first of ``names`` (the page's answers, in order) whose link in this regime's chain depends on
+    it, through the links before it (the first answer where none does). What is in view while a
+    control moves is what that control changes."""
+    solver = registry.solver(pid)
+    found = [c for c in cases(pid, options) if c.derivation is not None]
+    case = next((c for c in found if c.regime == regime), found[0] if found else None)
+    if case is None:
+        return {}
+    names_of = {sym: {name} for name, sym in solver.SYMBOLS.items()}
+    depends: dict[sp.Symbol, set] = {}
+
+    def on(expr) -> set:
+        return set().union(*(depends[s] if s in depends else names_of.get(s, set()) for s in expr.free_symbols))
+    for name, expr in case.inputs.items():
+        depends[case.derivation.symbols[name]] = on(expr)
+    by_answer = {}
+    for link in case.derivation.chain:
+        depends[link.symbol] = by_answer[link.name] = on(link.expr)
+    return {p: next((i for i, n in enumerate(names) if p in by_answer.get(n, ())), 0) for p in solver.LIVE.follows}
+
+
 def options_of(pid: str, params: Mapping[str, object]) -> tuple[tuple[str, str], ...]:
     return tuple(sorted((p.name, params[p.name]) for p in registry.solver(pid).PARAMS if isinstance(p, Choice)))
 

@@ -379,3 +379,48 @@ def test_the_forces_overlay_follows_a_drag_as_the_figure_draws_it(pid, tmp_path_
                     have = np.array([np.nan if v is None else v for v in pose[name]["xy".index(axis)]], dtype=float)
                     assert np.allclose(have, want, rtol=0, atol=1e-3 * width, equal_nan=True), (name, axis, have, want)
     check()
+
+
+@pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
+def test_the_stage_s_headline_shows_an_answer_the_dragged_control_changes(pid):
+    """While a lesson control is dragged the stage's headline shows ``solvers.live.leads``' answer for it:
+    moved a little on its range (the same regime), the solver's own value of that answer changes; where
+    the dependency finds none (the first answer), no answer changes."""
+    from ui.catalog import BY_ID
+
+    problem = BY_ID[pid]
+    solver = problem.solver
+    numbers = {p.name: p for p in solver.PARAMS if isinstance(p, Number)}
+
+    defaults = {p.name: p.default for p in solver.PARAMS}
+
+    @settings(max_examples=8, deadline=None, suppress_health_check=list(HealthCheck),
+              phases=(Phase.explicit, Phase.reuse, Phase.generate))
+    @given(st.data())
+    def check(data):  # the page's defaults, a followed control anywhere on its range (a student's drag)
+        name = data.draw(st.sampled_from(solver.LIVE.follows))
+        p = numbers[name]
+        at = data.draw(st.floats(float(p.ui_low if p.ui_low is not None else p.low), float(p.ui_high)))
+        kind, solution = outcome(pid, {**defaults, name: units.to_si(at, p.dimension)})
+        if kind != "values":
+            return
+        names = tuple(a.name for a in problem.answers_of(solution))
+        lead = live.leads(pid, live.options_of(pid, solution.params), solution.regime, names)
+        low = units.to_si(float(p.ui_low if p.ui_low is not None else p.low), p.dimension)
+        high = units.to_si(float(p.ui_high), p.dimension)
+        value = solution.params[name]
+        if not math.isfinite(value):
+            return
+        nudge = (high - low) * data.draw(st.sampled_from([0.02, -0.02, 0.05, -0.05]))
+        if not low <= value + nudge <= high:
+            nudge = -nudge
+        kind, moved = outcome(pid, {**solution.params, name: value + nudge})
+        if kind != "values" or moved.regime != solution.regime:
+            return
+        shown = names[lead[name]]
+        changes = {n: not close(moved.answers[n], solution.answers[n], abs(solution.answers[n]) + 1) for n in names
+                   if math.isfinite(solution.answers[n]) and math.isfinite(moved.answers[n])}
+        if changes.get(shown):
+            return
+        assert lead[name] == 0 and not any(changes.values()), (name, shown, changes, solution.params)
+    check()

@@ -609,9 +609,9 @@ def test_past_a_limit_the_badge_over_a_phone_s_stage_says_the_whole_note(browser
 
 
 def test_the_live_headline_over_a_phone_s_stage_is_whole_on_every_page(browser, app_url):
-    """A stage slider dragged on a phone (390 px): the live headline over the figure (the main answer and its
-    unit) is whole on one line on every page; the ladder's cut its angle: "… the wall: 35.26° (0.…" (an angle
-    is given in degrees alone there)."""
+    """A stage slider dragged on a phone (390 px): the live headline over the figure (the answer the control
+    changes and its unit) is whole, on at most two lines, on every page; the ladder's cut its angle: "… the
+    wall: 35.26° (0.…" (an angle is given in degrees alone there)."""
     context, page, errors = open_page(browser, f"{app_url}/", 390, 844, phone=True)
     found = {}
     for problem in PROBLEMS:
@@ -623,7 +623,10 @@ def test_the_live_headline_over_a_phone_s_stage_is_whole_on_every_page(browser, 
         page.wait_for_function("() => (document.querySelector('.dl-live-badge') || {}).textContent", timeout=10_000)
         page.wait_for_timeout(200)
         badge = page.evaluate("""() => { const b = document.querySelector('.dl-live-badge');
-          return {text: b.textContent, cut: b.scrollWidth > b.clientWidth, noteOnly: b.classList.contains('dl-live-note-only')}; }""")
+          const line = parseFloat(getComputedStyle(b).lineHeight);
+          return {text: b.textContent, cut: b.scrollWidth > b.clientWidth || b.scrollHeight > b.clientHeight + 1
+                  || b.querySelector('.dl-live-headline').getClientRects().length > 2 || b.clientHeight > 2.3 * line + 8,
+                  noteOnly: b.classList.contains('dl-live-note-only')}; }""")
         page.mouse.up()
         wait_until_idle(page)
         if badge["cut"] and not badge["noteOnly"]:  # (past a limit the note wraps, by design)
@@ -651,3 +654,44 @@ def test_a_smaller_projector_draws_the_motion_not_much_smaller(browser, app_url,
         assert not errors, errors
         context.close()
     assert scales[1] >= 0.6 * scales[0], (pid, scales)
+
+
+@pytest.mark.parametrize("size", [(1400, 1000), (390, 844)], ids=["laptop", "phone"])
+def test_the_live_headline_shows_what_the_dragged_control_changes(browser, app_url, size):
+    """On the pendulum's stage (issue 54: "angle at impact" stood still whatever was dragged): dragging e
+    heads the stage with the angular velocity after the impact, dragging θ₀ with the one before it, and
+    the number in view moves with the drag."""
+    from solvers import live
+    from tests.test_browser import TRACK, live_ready
+    from ui.catalog import BY_ID
+
+    problem = BY_ID["pendulum_rebound"]
+    solution = problem.solver.solve()
+    answers = problem.answers_of(solution)
+    names = tuple(a.name for a in answers)
+    lead = live.leads(problem.id, live.options_of(problem.id, solution.params), solution.regime, names)
+    context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound", *size, phone=size[0] < 500)
+    try:
+        page.locator(".dl-answers table").first.wait_for(timeout=60_000)
+        live_ready(page)
+        seen = {}
+        for name in ("e", "theta0"):
+            key = f"{problem.id}__si__{name}"
+            track = page.locator(f".st-key-{key} {TRACK}")
+            track.scroll_into_view_if_needed()
+            box = track.bounding_box()
+            hold_drag(page, box, 0.6, 0.75, moves=2)  # (θ₀ low on its range releases it below the impact angle: no impact)
+            first = page.locator(".dl-live-headline").inner_text()
+            page.mouse.move(box["x"] + 0.9 * box["width"], box["y"] + box["height"] / 2)
+            page.wait_for_timeout(200)
+            second = page.locator(".dl-live-headline").inner_text()
+            page.mouse.up()
+            wait_until_idle(page)
+            label = answers[lead[name]].label
+            assert first.startswith(label) and second.startswith(label), (name, label, first, second)
+            assert first != second, (name, first)  # the number in view follows the drag
+            seen[name] = label
+        assert seen["e"] != seen["theta0"], seen
+        assert not errors, errors
+    finally:
+        context.close()

@@ -78,6 +78,9 @@ def payload(problem: Problem, solution: Solution, answers, system: str, stage: F
     # JSON has no infinity (μ = ∞ on the disk's page): sent as a word, read back by live.js
     data["params"] = {k: ("inf" if isinstance(v, float) and math.isinf(v) else v) for k, v in data["params"].items()}
     data["regime"] = solution.regime
+    # the headline's answer while each control is dragged: one that control changes (solvers.live.leads)
+    data["leads"] = live.leads(problem.id, live.options_of(problem.id, solution.params), solution.regime,
+                               tuple(a.name for a in answers))
     scales = stage.extra.get("overlay_scales") if stage is not None else None  # the Forces overlay on the stage
     pose = (pose_module(problem.id, live.options_of(problem.id, solution.params), system, scales is not None)
             if stage is not None else None)

@@ -27,7 +27,9 @@ const STYLE = `
 .dl-live-badge.dl-live-note-only { white-space: normal; }  /* over Play too: the figure is dimmed, nothing to play */
 .dl-live-badge.dl-live-note-only .dl-live-note { display: none; }
 .dl-figure.dl-lecture .dl-live-badge { font-size: 1.3rem; }  /* read from the back of the room, as the title it covers */
-@media (max-width: 640px) { .dl-live-badge .dl-live-note { display: none; } }  /* a phone: the headline and its unit whole (the figure is dimmed) */
+/* a phone: the headline and its unit whole (the figure is dimmed), over two lines where the answer's words
+   are long ("angular speed when the top leaves the wall: …"), never cut */
+@media (max-width: 640px) { .dl-live-badge .dl-live-note { display: none; } .dl-live-badge { white-space: normal; } }
 .dl-live-status { font-size: 0.95rem; margin: 0 0 0.5rem 0; color: var(--st-orange-text-color, #9B4519); font-weight: 600; }
 .dl-live-status:empty { display: none; }
 .dl-live-value { font-variant-numeric: tabular-nums; }
@@ -389,8 +391,11 @@ function shownParams() {
 
 // A control showing another value than the run's (a box emptied to type in shows none yet).
 function changed(params) {
-  return state.data.follows.some(([name]) => !Number.isNaN(params[name]) && !Object.is(params[name], state.params[name]) &&
-    !(Math.abs(params[name] - state.params[name]) <= 1e-12 * Math.abs(state.params[name])));
+  return state.data.follows.some(([name]) => differs(params[name], state.params[name]));
+}
+
+function differs(shown, ran) {
+  return !Number.isNaN(shown) && !Object.is(shown, ran) && !(Math.abs(shown - ran) <= 1e-12 * Math.abs(ran));
 }
 
 function begin() {
@@ -572,7 +577,10 @@ function draw() {
   // The headline on the stage, where the eye is while dragging: the main answer, and a regime entered.
   // Past a limit (no values, the figure dimmed) the note alone, on as many lines as it takes: "ω₂: updating…"
   // says nothing, and cut to one line on a phone the note said nothing either ("Now: the spri…").
-  const main = state.data.answers[0], x = result.values && main ? result.values[main[0]] : undefined;
+  // (the answer the dragged control changes: solvers/live.leads; the first answer before any has moved)
+  const control = state.data.follows.find(([name]) => differs(params[name], state.params[name]));
+  const main = state.data.answers[(control && (state.data.leads || {})[control[0]]) || 0];
+  const x = result.values && main ? result.values[main[0]] : undefined;
   const noteOnly = !result.values && !!regimeText;
   // (a phone: an angle in degrees alone, its radians cut the line: "… 35.26° (0.…")
   const shownAs = main && NARROW.matches ? [...main.slice(0, 3), false, ...main.slice(4)] : main;
