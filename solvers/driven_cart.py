@@ -252,10 +252,14 @@ LIMIT_LABELS = {"mu_lift": ("μ at which the front wheels lift (μ = b/a)", "dim
 
 
 
+# What a drag past the limit says and the release's refusal opens with: one regime, the same words.
+LIFT_OFF = "the front wheels lift off (μa ≥ b): a wheelie this model cannot describe"
+
+
 def _live_cases(drive: str) -> tuple[Case, ...]:
     """Rear and all-wheel drive: the front wheels lift once μa ≥ b (``solve``'s limit); else the chain."""
     lift = () if drive == "front" else (
-        Case("lift_off", "the front wheels lift off (μa ≥ b): a wheelie this model cannot describe",
+        Case("lift_off", LIFT_OFF,
              when=sp.Not(mu * a < b), values=False),)
     return (*lift, Case(drive, "all four wheels on the ground", derivation(drive)))
 
@@ -269,9 +273,8 @@ def solve(**params) -> Solution:
     if p["drive"] != "front" and not p["mu"] * p["a"] < p["b"]:
         mu_lift = p["b"] / p["a"]
         raise FrontWheelsLiftError(
-            f"With {p['drive']}-wheel drive the front wheels lift off once μa ≥ b, that is for "
-            f"μ ≥ b/a = {plain_number(mu_lift)}; here μ = {plain_number(p['mu'])}. The cart would pop a wheelie, which "
-            f"this model (all four wheels on the ground) cannot describe.",
+            f"{LIFT_OFF[0].upper()}{LIFT_OFF[1:]} (all four wheels on the ground). With {p['drive']}-wheel drive "
+            f"they lift once μ ≥ b/a = {plain_number(mu_lift)}; here μ = {plain_number(p['mu'])}.",
             mu_lift=mu_lift)
     d_ = derivation(p["drive"])
     values = d_.evaluate(p)

@@ -386,10 +386,14 @@ def validated(params) -> dict:
 
 
 
+# What a drag past the limit says and the release's refusal opens with: one regime, the same words.
+NO_IMPACT = "released below the angle where the sphere touches the {surface}: no impact"
+
+
 def _live_cases(sphere: str, surface: str) -> tuple[Case, ...]:
     """Released at or below the impact angle: the limit ``solve`` refuses; else the chain."""
     d_ = derivation(sphere, surface)
-    return (Case("below_impact", f"released below the angle where the sphere touches the {surface}: no impact",
+    return (Case("below_impact", NO_IMPACT.format(surface=surface),
                  d_, sp.Not(theta0 > theta_I), values=False),
             Case(surface, f"the sphere strikes the {surface} and rebounds", d_))
 
@@ -403,9 +407,10 @@ def solve(**params) -> Solution:
     d_ = derivation(p["sphere"], p["surface"])
     impact = impact_angle(p)
     if not p["theta0"] > impact:
+        said = NO_IMPACT.format(surface=p["surface"])
         raise PhysicalLimitError(
-            f"The release angle θ₀ = {plain_number(math.degrees(p['theta0']))}° must be above the angle at which "
-            f"the sphere touches the {p['surface']}, θ_I = {plain_number(math.degrees(impact))}°.",
+            f"{said[0].upper()}{said[1:]}. The release angle θ₀ = {plain_number(math.degrees(p['theta0']))}° must be "
+            f"above the angle at which the sphere touches the {p['surface']}, θ_I = {plain_number(math.degrees(impact))}°.",
             theta_impact=impact)
     values = d_.evaluate(p)
     answers = {a.name: values[a.name] for a in ANSWERS}

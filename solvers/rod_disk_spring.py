@@ -291,6 +291,12 @@ def _validate(params) -> dict:
 
 
 
+# What a drag past the limit says and the release's refusal opens with: one regime, the same words.
+NEVER_UPRIGHT = "the rod never reaches θ₂: upright is stable, the spring holds it up (θ₁ = 0°)"
+NEVER_SPRING_WINS = "the rod never reaches θ₂: at its release the spring already beats the weights and pushes it back"
+NEVER_STOPS = "the rod never reaches θ₂: the spring stops it before and it swings back"
+
+
 def _live_cases(disk: str) -> tuple[Case, ...]:
     """Where ``largest_angle`` finds the spring stopping the rod before θ₂ (the same three tests: at
     rest upright, the spring winning at release, and T(θ) ≤ 0 on the solver's grid, T(θ) being the
@@ -300,10 +306,10 @@ def _live_cases(disk: str) -> tuple[Case, ...]:
     at = sp.Symbol("theta_at")
     energy_at = d_.expression_of("T2").subs(theta2, at)
     Q = sp.simplify(d_.expression_of("U_gravity") / (sp.cos(theta1) - sp.cos(theta2)))
-    said = "the spring stops the rod before θ₂: it never gets there"
-    return (Case("upright", said, when=sp.And(sp.Eq(theta1, 0), Q <= k), values=False),
-            Case("spring_wins", said, when=sp.And(theta1 > 0, Q * sp.sin(theta1) - k * theta1 <= 0), values=False),
-            Case("stops", said, when=Stops(energy_at, at, theta1, theta2, 4097), values=False),
+    return (Case("upright", NEVER_UPRIGHT, when=sp.And(sp.Eq(theta1, 0), Q <= k), values=False),
+            Case("spring_wins", NEVER_SPRING_WINS, when=sp.And(theta1 > 0, Q * sp.sin(theta1) - k * theta1 <= 0),
+                 values=False),
+            Case("stops", NEVER_STOPS, when=Stops(energy_at, at, theta1, theta2, 4097), values=False),
             Case(disk, "the rod reaches θ₂", d_))
 
 
@@ -316,20 +322,21 @@ def solve(**params) -> Solution:
     stop = largest_angle(p)
     if stop is not None:
         if stop == p["theta1"] == 0.0:  # upright, both moments vanish: which grows faster near θ = 0 decides
-            why = (f"upright is stable: the spring's moment kθ grows faster than the weights' Q sin θ (k = "
-                   f"{plain_number(p['k'])} N·m/rad ≥ Q = {plain_number(weight_moment(p))} N·m), so a nudge does not "
-                   "make it fall and the largest angle reached is θ₁ = 0°. Soften the spring below Q or release it "
-                   "further over")
+            said, why = NEVER_UPRIGHT, (
+                f"the spring's moment kθ grows faster than the weights' Q sin θ (k = {plain_number(p['k'])} N·m/rad "
+                f"≥ Q = {plain_number(weight_moment(p))} N·m), so a nudge does not make it fall. Soften the spring "
+                "below Q or release it further over")
         elif stop == p["theta1"]:
-            why = (f"at the release angle the spring's moment kθ already beats the weights' moment "
-                   f"Q sin θ (Q = {plain_number(weight_moment(p))} N·m), so the assembly does not fall toward θ₂ "
-                   f"at all: the largest angle reached is θ₁ = {plain_number(math.degrees(stop))}°. Soften the "
-                   "spring or release it further over")
+            said, why = NEVER_SPRING_WINS, (
+                f"the spring's moment kθ already beats the weights' Q sin θ (Q = {plain_number(weight_moment(p))} N·m) "
+                f"at θ₁ = {plain_number(math.degrees(stop))}°, the largest angle reached. Soften the spring or "
+                "release it further over")
         else:
-            why = (f"the spring stops it at θ = {plain_number(math.degrees(stop))}° (the largest angle reached) "
-                   "and it swings back; ask for θ₂ below that, or soften the spring")
-        raise SpringStopsRodError(
-            f"The rod never reaches θ₂ = {plain_number(math.degrees(p['theta2']))}°: {why}.", theta_max=stop)
+            said, why = NEVER_STOPS, (
+                f"it stops at θ = {plain_number(math.degrees(stop))}° (the largest angle reached); ask for θ₂ below "
+                "that, or soften the spring")
+        raise SpringStopsRodError(f"{said[0].upper()}{said[1:]}. Asked for θ₂ = {plain_number(math.degrees(p['theta2']))}°: "
+                                  f"{why}.", theta_max=stop)
     d_ = derivation(p["disk"])
     values = d_.evaluate(p)
     answers = {a.name: values[a.name] for a in ANSWERS}

@@ -695,3 +695,36 @@ def test_the_live_headline_shows_what_the_dragged_control_changes(browser, app_u
         assert not errors, errors
     finally:
         context.close()
+
+
+@pytest.mark.parametrize("pid, name", [("rod_disk_spring", "k"), ("pendulum_rebound", "theta0")])
+def test_a_control_released_past_a_limit_stays_where_it_was_on_a_phone(browser, app_url, pid, name):
+    """A phone (390×844): a stage slider dragged past the model's limit and released (the rod's k to its top,
+    the pendulum's θ₀ below the impact angle) stays where it was on the screen when the refusal is drawn
+    above it (it was pushed to y ≈ 1049 of 844): the student can drag it back at once, and the refusal's
+    words are the drag's (the same regime)."""
+    from tests.test_browser import TRACK, live_ready
+
+    context, page, errors = open_page(browser, f"{app_url}/{pid}", 390, 844, phone=True)
+    try:
+        page.locator(".dl-answers table").first.wait_for(timeout=60_000)
+        live_ready(page)
+        control = page.locator(f".st-key-{pid}__si__{name}")
+        control.scroll_into_view_if_needed()
+        box = control.locator(TRACK).bounding_box()
+        end = 1.05 if name == "k" else 0.02
+        hold_drag(page, box, 0.5, end)
+        page.wait_for_function("() => (document.querySelector('.dl-live-status') || {}).textContent", timeout=10_000)
+        said = page.locator(".dl-live-status").inner_text().removeprefix("Now: ").rstrip(".")
+        before = control.bounding_box()["y"]
+        page.mouse.up()
+        wait_until_idle(page)
+        page.locator("[data-testid='stAlert']").first.wait_for(timeout=30_000)
+        page.wait_for_timeout(800)
+        after = control.bounding_box()
+        assert abs(after["y"] - before) < 4 and 0 <= after["y"] and after["y"] + after["height"] <= 844, (before, after)
+        refusal = page.locator("[data-testid='stAlert']").first.inner_text()
+        assert said and said.casefold() in refusal.casefold(), (said, refusal)
+        assert not errors, errors
+    finally:
+        context.close()

@@ -295,6 +295,38 @@ function onDragMove(event) {
   schedule();
 }
 
+// The control just released stays where it was on the screen, whatever the run puts above it (a
+// refusal past a limit pushed a phone's slider below the screen): for a few seconds after the release,
+// a move of its top is scrolled back, until the person scrolls or touches the page themselves.
+const KEPT_MS = 4000;
+let keeping = null;
+function keepInPlace(element) {
+  const key = [...element.classList].find((c) => c.startsWith("st-key-"));
+  if (!key) return;
+  if (keeping) keeping.stop();
+  const top = element.getBoundingClientRect().top, until = performance.now() + KEPT_MS;
+  const stop = () => { keeping = null; for (const type of ["wheel", "touchstart", "keydown"]) window.removeEventListener(type, stop, true); };
+  for (const type of ["wheel", "touchstart", "keydown"]) window.addEventListener(type, stop, true);
+  const mine = keeping = {stop};
+  const step = () => {
+    if (keeping !== mine) return;
+    if (performance.now() > until) { stop(); return; }
+    const now = document.querySelector(`.${CSS.escape(key)}`);
+    const moved = now ? now.getBoundingClientRect().top - top : 0;
+    if (Math.abs(moved) > 1) (scrollerOf(now) || window).scrollBy(0, moved);
+    requestAnimationFrame(step);
+  };
+  requestAnimationFrame(step);
+}
+
+function scrollerOf(element) {
+  for (let el = element.parentElement; el; el = el.parentElement) {
+    const overflow = getComputedStyle(el).overflowY;
+    if ((overflow === "auto" || overflow === "scroll") && el.scrollHeight > el.clientHeight) return el;
+  }
+  return null;
+}
+
 function onDragEnd(event) {
   const ended = dragged;
   dragged = null;
@@ -303,6 +335,8 @@ function onDragEnd(event) {
   if (ended && ended.drawn && ended.last) {
     say(ended.input, ended.drawn.said, ended.drawn.valueBefore);  // the slider's own again (a release's render gives its new value)
     if (event.type === "pointerup") {
+      const control = ended.track.closest("[class*='st-key-']");
+      if (control) keepInPlace(control);
       // react-aria has seen none of the moves: one before its release, to the middle of the step the thumb
       // shows, so that its arithmetic lands there too (at the release's own point, half a step could round
       // the other way: θ₀ showed 28° and became 29°)
