@@ -66,6 +66,14 @@ def create(at: AppTest, roster: str = "label\ns01\ns02\n", before: bool = False,
     return at.button(key=new_key(at, "create")).click().run()
 
 
+def banner_of(page: AppTest) -> str:
+    """A student's assignment banner and the rules in the expander under it (ui.assignments.assignment_heading)."""
+    from ui.assignments import RULES
+
+    rules = next(e for e in page.expander if e.label == RULES)
+    return page.info[0].value + "\n\n" + "\n\n".join(m.value for m in rules.markdown)
+
+
 def new_key(at: AppTest, name: str) -> str:
     """The key of the new assignment form's input ``name`` (the form's keys are renewed once one is created)."""
     return widget(at, "assign__new", f"_{name}").key
@@ -235,7 +243,7 @@ def test_a_typo_costs_no_attempt_and_the_icon_matches_the_verdict(course):
     page = answer(page, "theta_rebound", rebound_in_degrees(ann))
     right = next(s for s in page.success if "Recorded: attempt 2 of 3" in s.value)
     assert "it counts" in right.value and right.icon == ":material/task_alt:"
-    assert "Highest angle after the bounce done (right)" in page.info[0].value.replace("\\", "")
+    assert "Highest angle after the bounce done (right)" in banner_of(page).replace("\\", "")
 
 
 def test_the_banner_tells_one_story(course):
@@ -243,7 +251,7 @@ def test_the_banner_tells_one_story(course):
     not a proctored assessment … hidden until you ask" under it."""
     _, s, (ann, _) = one_assignment()
     page = student(link_query(ann))
-    banner = page.info[0].value
+    banner = banner_of(page)
     for said in ("Graded assignment: Week 9: the bounce", "What counts", "costs no attempt", "Attempts left",
                  f"Due {records.when_text(s.due, 'UTC')}", "The solution** opens at your due time",
                  "earns no points"):
@@ -268,7 +276,7 @@ def test_right_but_late_reads_as_right_but_late_everywhere(course):
     # how the score was made names the late answer (was "nothing yet = 0 of 6": as if never tried)
     assert row["how"] == "no points = 0 of 6 (Highest angle after the bounce right but 2 h late: no credit)"
     # the banner says it is done (was "0 of 3" left after a wrong answer following the right one)
-    banner = page.info[0].value.replace("\\", "")
+    banner = banner_of(page).replace("\\", "")
     assert "Highest angle after the bounce done (right but 2 h late: no credit)" in banner
 
 
@@ -287,7 +295,7 @@ def test_an_attempt_after_a_right_one_changes_nothing_and_says_so(course, late):
         assert len(said) == 1 and "your attempt 1 at “Highest angle after the bounce” was already right, and it " \
             "stands: this one changes nothing" in said[0].value and "attempts left" not in said[0].value
     assert records.attempt_count(aid) == 3  # every attempt is still recorded
-    banner = page.info[0].value.replace("\\", "")
+    banner = banner_of(page).replace("\\", "")
     assert ("Highest angle after the bounce done (right but 2 h late: no credit)" if late else
             "Highest angle after the bounce done (right)") in banner
     book = records.gradebook(aid)

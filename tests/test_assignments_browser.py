@@ -135,7 +135,11 @@ def download(page, button: str) -> str:
 
 
 def banner(page) -> str:
-    return page.locator("[data-testid='stAlert']").filter(has_text="Graded assignment").first.inner_text()
+    """The assignment's banner, and the rules in the expander under it (read closed, as a screen reader may)."""
+    from ui.assignments import RULES
+
+    rules = page.locator("[data-testid='stExpander']").filter(has_text=RULES).first.text_content()
+    return page.locator("[data-testid='stAlert']").filter(has_text="Graded assignment").first.inner_text() + "\n" + rules
 
 
 def test_an_assignment_end_to_end(browser, course_url):
@@ -367,19 +371,20 @@ def test_named_slips_says_why_it_cannot_be_changed_while_hints_are_on(browser, c
     changed, and says why, in words on the page; unticking Hints gives it back."""
     context, page, errors = open_at(browser, f"{course_url}/assignments", "laptop", "UTC")
     enter_key(page)
-    new = page.locator("[data-testid='stExpander'] summary", has_text="New assignment")
-    if page.get_by_role("checkbox", name=re.compile("^Named slips")).count() == 0:
-        new.click()
-    names = page.get_by_role("checkbox", name=re.compile("^Named slips"))
+    # (the New assignment form's: an assignment made by an earlier test has its own, in its Edit expander)
+    new = page.locator("[data-testid='stExpander']").filter(has=page.locator("summary", has_text="New assignment"))
+    if new.locator("details").get_attribute("open") is None:
+        new.locator("summary").click()
+    names = new.get_by_role("checkbox", name=re.compile("^Named slips"))
     names.wait_for(state="attached", timeout=30_000)
     assert names.is_checked() and names.is_disabled()
-    reason = page.get_by_text("Hints on already name the slip", exact=False).first
+    reason = new.get_by_text("Hints on already name the slip", exact=False)
     reason.scroll_into_view_if_needed()
     assert reason.is_visible()
-    page.get_by_text("Hints: a known slip is named", exact=False).click()
+    new.get_by_text("Hints: a known slip is named", exact=False).click()
     wait_until_idle(page)
-    assert not page.get_by_role("checkbox", name=re.compile("^Named slips")).is_disabled()
-    assert page.get_by_text("Hints on already name the slip", exact=False).count() == 0
+    assert not new.get_by_role("checkbox", name=re.compile("^Named slips")).is_disabled()
+    assert new.get_by_text("Hints on already name the slip", exact=False).count() == 0
     assert not errors
     context.close()
 
@@ -422,4 +427,36 @@ def test_each_students_link_has_a_copy_button(browser, course_url, monkeypatch):
         assert page.get_by_role("button", name="Copied c01's link", exact=True).is_visible()
         shoot(page, f"links-to-copy-{size}")
         assert csp_violations(page) == [] and not errors, size
+        context.close()
+
+
+def test_on_a_phone_an_assignment_opens_on_its_problem(browser, course_url, monkeypatch):
+    """Issue 54: on a phone a student's assignment opened on two screens of rules and attempts left before
+    the givens. The banner says what and when; the problem's givens start on the first screen; the rules
+    are one tap away, in an expander after the banner (at every size)."""
+    from sqlalchemy import create_engine
+
+    from tests.conftest import _DATA_DIRS, COURSE_SECRET
+    from ui.assignments import RULES, student_url
+
+    monkeypatch.setenv(signing.SECRET_ENV, COURSE_SECRET)
+    bound = create_engine(f"sqlite:///{Path(_DATA_DIRS[0]) / 'dynamics-lab.sqlite'}")
+    due = dt.datetime.now(dt.timezone.utc) + dt.timedelta(days=2)
+    settings = records.Settings.of("Problem first", "pendulum_rebound", ("theta_rebound", "theta_impact"), 5e-3, due, 3)
+    (who,) = records.roster(records.create(settings, ["f01"], bound).id, bound)
+    for size in ("phone", "laptop"):
+        context, page, errors = open_at(browser, student_url(course_url, "pendulum_rebound", who), size, "Asia/Tokyo")
+        givens = page.locator("[data-testid='stMarkdownContainer'] table").filter(has_text="coefficient of restitution")
+        givens.first.wait_for(timeout=60_000)
+        wait_until_idle(page)
+        top = page.evaluate("() => scrollY") + givens.first.bounding_box()["y"]
+        assert top < SIZES[size][1] * 0.8, (size, top)  # the givens start on the first screen
+        assert "Graded assignment: Problem first" in banner(page) and "Due" in banner(page)
+        expander = page.locator("[data-testid='stExpander']").filter(has_text=RULES)
+        assert expander.count() == 1 and expander.locator("details").get_attribute("open") is None  # closed
+        shoot(page, f"problem-first-{size}")
+        expander.locator("summary").click()
+        expander.get_by_text("Attempts left", exact=True).wait_for()
+        assert "What counts" in expander.inner_text()
+        assert not errors
         context.close()

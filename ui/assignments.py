@@ -318,9 +318,12 @@ def _problem_links(link: StudentLink) -> str:
     return "<ol>" + "".join(items) + "</ol>"
 
 
+RULES = "The rules: what counts, your attempts left, the solution"
+
+
 def assignment_heading(link: StudentLink) -> None:
-    """The banner: that it is graded, what counts, the attempts left, the due time in the
-    student's own time zone, when the solution opens; or why nothing is recorded."""
+    """The banner: that it is graded and the due time in the student's own time zone (or why nothing is
+    recorded); under it, one tap away, what counts, the attempts left, the score and when the solution opens."""
     if link.settings is None:
         st.warning(link.notice, icon=":material/cloud_off:")
         return
@@ -340,7 +343,11 @@ def assignment_heading(link: StudentLink) -> None:
                      f"{s.late_rule()}.")
     else:
         lines.append(f"**Due {records.when_text(due, zone)}**{extended}, {whose} ({records.duration_text(due - now)} "
-                     f"from now). After it, {s.late_rule()}.")
+                     f"from now).")
+    # The banner says what and when; the rules are one tap away, so the problem comes first (on a phone
+    # the whole banner was two screens before the givens).
+    (st.info if s.accepting else st.warning)("\n\n".join(lines), icon=":material/assignment:")
+    lines = [f"**After the due time**: {s.late_rule()}."] if now <= due else []
     lines.append(f"**What counts**: a right answer (numbers within ±{s.tolerance * 100:g} %), within {allowed} "
                  f"attempts per answer, before you open the solution. An answer the page cannot read (a typo, "
                  f"an unknown name, a unit of another kind) is explained and costs no attempt; the same answer "
@@ -361,7 +368,8 @@ def assignment_heading(link: StudentLink) -> None:
         lines.append(f"**The solution** opens at your due time, {records.when_text(opens, zone)}.")
     else:
         lines.append("**The solution** is open; answers you give after opening it do not count.")
-    (st.info if s.accepting else st.warning)("\n\n".join(lines), icon=":material/assignment:")
+    with st.expander(RULES, icon=":material/rule:"):
+        st.markdown("\n\n".join(lines))
     if len(s.problems) > 1:
         st.markdown(f"**This assignment has {len(s.problems)} problems**, each with its own page:\n\n"
                     + _problem_links(link), unsafe_allow_html=True)  # (our titles and the signed query, escaped)
