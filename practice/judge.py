@@ -274,11 +274,13 @@ def _unit_text_message(unit_text: str, answer: Answer, system: str) -> str:
 class Judge:
     """Judges answers for one solution (one problem, one set of parameters, one derivation).
 
-    An answer is written in the givens: the problem's parameters. The unknowns, the other answers
-    and the intermediate results of the derivation are refused by name, so typing the unknown
-    (or v1x/R for ω₁) is never "the answer, as an expression"."""
+    An answer is written in the givens: the problem's parameters, and the answers the student has
+    already ``found`` (judged by their values: each stands for its expression in the givens). The
+    unknown, the other answers and the intermediate results of the derivation are refused by name,
+    so typing the unknown (or v1x/R for ω₁) is never "the answer, as an expression"."""
 
-    def __init__(self, solution: Solution, derivation: Derivation, answers=(), tolerance: float = RELATIVE_TOLERANCE):
+    def __init__(self, solution: Solution, derivation: Derivation, answers=(), tolerance: float = RELATIVE_TOLERANCE,
+                 found=()):
         self.solution = solution
         self.tolerance = tolerance  # relative, for numbers (an assignment may set its own)
         self.derivation = derivation
@@ -291,6 +293,7 @@ class Judge:
         self.answer_names = {a.name for a in answers} or set(solution.answers)
         self.givens = {name: sym for name, sym in self.symbols.items()
                        if name in solution.params and name not in self.results}
+        self.found = {name: self.results[name] for name in found if name in self.results and name in self.answer_names}
 
     # -- what students may type
     def typeable_symbols(self) -> dict[str, sp.Symbol]:
@@ -311,9 +314,11 @@ class Judge:
         return GREEK[word] + name[len(word):] if word in GREEK else name
 
     def givens_text(self) -> str:
-        """The givens as a student types them, Greek letters shown beside their names."""
+        """The givens as a student types them, Greek letters shown beside their names, and the answers
+        already found."""
+        named = [*self.givens.values(), *self.found.values()]
         return ", ".join(f"{self.typed_name(s)} ({self.shown_name(s)})" if self.shown_name(s) != self.typed_name(s)
-                         else self.typed_name(s) for s in self.givens.values())
+                         else self.typed_name(s) for s in named)
 
     def _result_named(self, name: str) -> str | None:
         """The result a typed name stands for (its answer name), if it is one."""
@@ -330,8 +335,10 @@ class Judge:
             pieces = [n for n in table if len(n) > 1 and n in name] if len(name) > 2 else []
             result = next((r for p in pieces if (r := self._result_named(p))), None)
         if result is not None:
-            what = ("the unknown you are asked for" if result == asked else "another answer of this problem"
-                    if result in self.answer_names else "an intermediate result of the derivation")
+            if result != asked and result in self.answer_names:
+                return (f"{name!r} is not a given: it is another answer of this problem. Check it first: once it "
+                        f"is right, you may write it here. {givens}")
+            what = "the unknown you are asked for" if result == asked else "an intermediate result of the derivation"
             return f"{name!r} is not a given: it is {what}. Write the answer in the givens only. {givens}"
         typeable = _symbol_table(list(self.givens.values()))
         for function in sorted(FUNCTIONS, key=len, reverse=True):  # asin before sin
@@ -349,10 +356,13 @@ class Judge:
     def parse(self, text: str, asked: str = "") -> sp.Expr:
         """Parse typed text into an expression over the givens (ValueError says what is wrong;
         ``asked`` names the answer being checked, to call it the unknown)."""
+        earlier = {name: sym for name, sym in self.found.items() if name != asked}
         try:
-            return parse_expression(text, self.givens.values())
+            expr = parse_expression(text, [*self.givens.values(), *earlier.values()])
         except UnknownName as error:
             raise ValueError(self._explain_unknown(error.name, asked)) from None
+        # an answer found earlier stands for its value: its expression in the givens
+        return expr.xreplace({sym: self.derivation.expression_of(name) for name, sym in earlier.items()})
 
     # -- judging
     def check(self, answer: Answer, text: str, system: str = "si") -> Verdict:

@@ -264,7 +264,7 @@ def derivation() -> tuple[Derivation, dict]:
              sp.latex(energy1, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate_sq, order="rev-lex")),
         Step("Its rate of change, d(θ̇²)/dt = 2θ̇θ̈, gives the angular acceleration",
              latex_eq(thetaddot, accel)),
-        Step(r"ΣF_x of Step 3 on the circle: the wall's push is the only horizontal force, $N_A = m\ddot x_G$",
+        Step(r"From $\sum F_x$ of Step 3, G on its circle: the wall's push is the only horizontal force, $N_A = m\ddot x_G$",
              r"N_A = m\,\ddot x_G = " + sp.latex(sp.factor(m * x_acc)) + " = " + sp.latex(wall)),
         Step(r"The floor carries the weight and G's vertical acceleration: $N_B = m(\ddot y_G + g)$",
              r"N_B = " + sp.latex(floor)),

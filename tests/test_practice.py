@@ -950,3 +950,31 @@ def test_a_unit_left_out_of_arithmetic_is_not_judged_a_prefix_is_named_and_so_is
         verdict = judge.check(answers[name], f"{solution.answers[name] * scale:.6g}")
         assert verdict.readable and not verdict.correct and f"the value in {unit}" in verdict.message, (pid, verdict.message)
         assert judge.check(answers[name], f"{solution.answers[name] * scale:.6g} {unit}").correct
+
+
+def test_practice_keeps_a_tally_and_takes_an_answer_found_right_in_the_next():
+    """Issue 54: an answer checked right is kept in a tally above the answer box for these numbers, and
+    its symbol may then be written in an answer that follows from it (I_cm with d_cm), judged by its
+    value; before it is found, the same symbol is refused as not a given, with the way to use it."""
+    from solvers.stick_ball import ANSWERS_STICK
+
+    names = [a.name for a in ANSWERS_STICK]
+    at = run_page("stick_ball", {"practice": "1"})
+    guess = "m_s*l^2/12 + m_s*d_cm^2 + m_b*(s - d_cm)^2"
+
+    def check(name: str, text: str):
+        at.selectbox(key="stick_ball__attempt_answer").select_index(names.index(name))
+        at.text_input(key="stick_ball__attempt").input(text)
+        at.button(key="stick_ball__check").click().run()
+        assert not at.exception
+        return " ".join(m.value for m in at.markdown)
+
+    shown = check("I_cm", guess)
+    assert any("d_cm" in w.value.replace("\\_", "_") and "not a given" in w.value and "Check it first" in w.value for w in at.warning)
+    assert "Right so far" not in shown
+    shown = check("d_cm", "m_b*s/(m_b + m_s)")
+    assert at.success and "Right so far (1 of 8)" in shown and "Still to check" in shown, shown
+    shown = check("I_cm", guess)
+    assert at.success and "Right so far (2 of 8)" in shown, shown
+    shown = check("I_cm", "m_s*l^2/12 + m_s*d_cm^2")  # a wrong one with the symbol: judged, not refused
+    assert at.error and not at.warning and "Right so far (2 of 8)" in shown

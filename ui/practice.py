@@ -192,7 +192,11 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
     if st.session_state.get(revealed_key) != signature:
         st.session_state.pop(revealed_key, None)
     tolerance_value = recording.tolerance if recording else RELATIVE_TOLERANCE
-    judge = Judge(solution, problem.solver.derivation_of(solution), answers, tolerance_value)
+    found_key = f"{problem.id}__found"  # the answers checked right for these numbers: the tally, and symbols to use
+    if st.session_state.get(found_key, (None,))[0] != signature:
+        st.session_state[found_key] = (signature, ())
+    found = st.session_state[found_key][1]
+    judge = Judge(solution, problem.solver.derivation_of(solution), answers, tolerance_value, found=found)
     revealed = st.session_state.get(revealed_key) == signature
     if not revealed:
         if recording is None:  # an assignment's banner says what holds for it instead
@@ -200,6 +204,7 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
                     "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
         st.markdown(statement(problem, solution, answers, system, judge))
         st.markdown(method(solution.steps[: solution.symbolic_steps], judge.derivation))
+    tally = st.empty()  # filled once this run's check is judged
     with st.form(key=f"{problem.id}__practice"):
         # How to type an answer is the chooser's help: its "?" comes before the choice, so Tab goes from the
         # choice straight into the box (a "?" in the box's label took the first Tab, and the typing went nowhere)
@@ -234,11 +239,27 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
             st.error(plain(message), icon=":material/cancel:")
         if recording is not None:
             recording.on_verdict(answer, text or "", verdict)
+        if verdict.correct and answer.name not in found:
+            found = (*found, answer.name)
+            st.session_state[found_key] = (signature, found)
+    if found and not revealed:
+        tally.markdown(_tally(answers, found, system))
     if not revealed and recording is not None and recording.reveal_blocked:
         st.markdown(plain(recording.reveal_blocked))
     elif not revealed:
         _reveal(problem, recording, revealed_key, signature)
     return revealed
+
+
+def _tally(answers, found, system: str) -> str:
+    """The answers checked right so far for these numbers, and those left (each may then be written in
+    an answer that follows from it)."""
+    right = [answer_label(a) for a in answers if a.name in found]
+    left = [answer_label(a) for a in answers if a.name not in found]
+    said = f"**Right so far ({len(right)} of {len(answers)}):** " + "; ".join(f"✓ {plain(r)}" for r in right)
+    if left:
+        said += "  \n**Still to check:** " + "; ".join(plain(x) for x in left)
+    return said + ("  \nYou may use a right answer's symbol in the answers that follow from it." if left else "")
 
 
 def _take_focus(key: str | None) -> None:
