@@ -229,12 +229,19 @@ PLOTS = """(g) => { const f = g._fullLayout, box = (xa, ya) => ({x: xa._offset, 
           scale: f.yaxis._length / Math.abs(f.yaxis.range[1] - f.yaxis.range[0])}; }"""
 
 
-@pytest.mark.parametrize("pid, beside", [("rod_disk_spring", True), ("pendulum_rebound", False)])
-def test_on_a_projector_a_tall_motion_stands_beside_its_second_plot(browser, app_url, pid, beside):
+# A filled body's size across as drawn at the first frame (px): the trace named ``name``.
+BODY_PX = """(g, name) => { const f = g._fullLayout, t = g.data.find((d) => d.name === name);
+  const xs = (t.x || []).filter((v) => v !== null);
+  return (Math.max(...xs) - Math.min(...xs)) * f.xaxis._length / Math.abs(f.xaxis.range[1] - f.xaxis.range[0]); }"""
+
+
+@pytest.mark.parametrize("pid, beside, body", [("rod_disk_spring", True, None), ("pendulum_rebound", True, "sphere")])
+def test_on_a_projector_a_tall_motion_stands_beside_its_second_plot(browser, app_url, pid, beside, body):
     """The rod and disk on the projector (1280×720, lecture view) were drawn some 85 px long: the motion,
     taller than wide, had the upper 60 % of a short, wide graph, its energy bars the rest, and equal axes
-    left most of its width empty. Beside the bars at the graph's whole height it is drawn larger; the
-    pendulum's wide motion stays above its θ(t), where it is larger."""
+    left most of its width empty. Beside the bars at the graph's whole height it is drawn larger. The
+    pendulum's sphere was 35 px across above its θ(t) beside a legend a third of the width (issue 54):
+    without the legend (the caption names the bodies, as on a phone) it stands beside θ(t), twice as large."""
     width, height = 1280, 720
     problem = next(p for p in PROBLEMS if p.id == pid)
     context, page, errors = open_page(browser, f"{app_url}/{pid}?lecture=1", width, height)
@@ -248,6 +255,11 @@ def test_on_a_projector_a_tall_motion_stands_beside_its_second_plot(browser, app
         assert drawn["scale"] >= 190, drawn  # px a metre: 153 above the bars
     else:
         assert motion["y"] + motion["height"] < second["y"], drawn
+    if body is not None:
+        across = page.locator(f"{STAGE} .dl-figure .dl-graph").first.evaluate(BODY_PX, body)
+        assert across >= 55, (body, across)  # (the sphere was 35)
+        if not page.locator(f"{STAGE} .dl-graph .legend").count():  # the caption names the bodies instead
+            assert body in page.locator(f"{STAGE} .dl-figure .dl-description").inner_text()
     assert not errors, errors
     context.close()
 

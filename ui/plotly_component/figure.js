@@ -581,6 +581,15 @@ class Figure {
     // needs (the stick on a 1024 px projector: 190 px of plot beside 330 px of names) has it in rows above.
     if (style && squeezedBeside(spec.data, layout, this.root.clientWidth))
       layout.legend = Object.assign({}, layout.legend, LEGEND_ABOVE);
+    // A motion with a second plot (the pendulum's θ(t), the rod's energy bars) on the projector's stage:
+    // where its legend, in a column or in rows, would draw the bodies a fifth smaller than none (the
+    // sphere was 35 px across), the caption below names them instead, as on a phone's stage.
+    if (style && args.fit_screen && layout.yaxis2 && layout.showlegend !== false && (layout.legend || {}).orientation === "v") {
+      const room = legendWidth(spec.data, layout), width = this.root.clientWidth, names = legendNames(spec.data).length;
+      const above = Object.assign({}, layout, {legend: Object.assign({}, layout.legend, LEGEND_ABOVE)});
+      const kept = Math.max(pairScale(layout, width, room, names), pairScale(above, width, room, names));
+      if (pairScale(Object.assign({}, layout, {showlegend: false}), width, room, names) > 1.25 * kept) layout.showlegend = false;
+    }
     const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
     const legendRoom = legendWidth(spec.data, layout);
     layout.height = sceneHeight(layout, layout.height, this.root.clientWidth);
@@ -888,6 +897,23 @@ function squeezedBeside(data, layout, width) {
   const above = Math.min(plotWidth / spanX, (height - rows) / spanY);
   return spanX > 0 && spanY > 0 && above > 1.1 * beside;
 }
+// The scale (px a unit) a motion above its second plot, or beside it where that is larger (``beside``), is
+// drawn at in a graph ``width`` px wide, with the layout's legend in a column (``room`` px), in rows or none.
+function pairScale(layout, width, room, names) {
+  const xa = layout.xaxis || {}, up = layout.yaxis || {};
+  if (!Array.isArray(xa.range) || !Array.isArray(up.range) || !up.domain) return 0;
+  const margin = layout.margin || {}, shown = layout.showlegend !== false, column = shown && (layout.legend || {}).orientation === "v";
+  const plotWidth = width - (margin.l ?? 80) - (margin.r ?? 80) - (column ? room : 0);
+  // rows above: as many as plotly's equal columns of the widest name need (``names`` entries)
+  const rows = shown && !column ? Math.ceil(names / Math.max(1, Math.floor(plotWidth / room))) * 1.45 * legendSize(layout) : 0;
+  const height = layout.height - (margin.t ?? 80) - (margin.b ?? 80) - rows;
+  const spanX = Math.abs(xa.range[1] - xa.range[0]), spanY = Math.abs(up.range[1] - up.range[0]);
+  if (!(spanX > 0 && spanY > 0 && plotWidth > 0 && height > 0)) return 0;
+  const stackedScale = Math.min(plotWidth / spanX, height * (up.domain[1] - up.domain[0]) / spanY);
+  const side = beside(layout, plotWidth, height);
+  return side ? Math.max(stackedScale, Math.min(side["xaxis.domain"][1] * plotWidth / spanX, height / spanY)) : stackedScale;
+}
+
 function beside(layout, width, height) {
   const up = layout.yaxis || {}, low = layout.yaxis2 || {}, xa = layout.xaxis || {};
   if (!up.domain || !low.domain || low.domain[1] > up.domain[0] || !layout.xaxis2 || !up.scaleanchor
