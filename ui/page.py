@@ -83,8 +83,6 @@ STAGE_CSS = """
     .st-key-dl_stage_controls > div:has([data-testid='stSlider']) { align-self: end; }
     /* the track is short beside its −/+: its end values stay whole numbers ("1.00", never "1.0 / 0") */
     .st-key-dl_stage_controls [data-testid='stSliderTickBar'] div { white-space: nowrap; }
-    /* and they stand at the track's ends (a wide slider's margins left them both mid-track) */
-    .st-key-dl_stage_controls [data-testid='stSliderTickBar'] { margin-left: 0 !important; margin-right: 0 !important; }
     .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p { font-size: 0.8rem; line-height: 1.25; }
     .st-key-dl_stage_controls [data-testid='stRadio'] [role='radiogroup'] p { font-size: 0.85rem; line-height: 1.3; }
     .st-key-dl_stage .dl-figure h4.dl-title { font-size: 1.05rem; margin: 0 0 0.2rem 0; }
