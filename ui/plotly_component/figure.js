@@ -56,9 +56,9 @@ const HTML = `
   <button class="dl-pause" type="button" aria-label="Pause the animation">❚❚ Pause</button>
   <button class="dl-back" type="button" aria-label="Step back one frame">◀</button>
   <button class="dl-forward" type="button" aria-label="Step forward one frame">▶</button>
-  <label class="dl-time"><span class="dl-readout"></span><input class="dl-scrub" type="range" min="0" max="0" step="1" value="0"></label>
   <button class="dl-forces" type="button" aria-pressed="false" hidden
     title="Lay the free-body diagram's forces on the motion, each arrow at its point, drawn to its size in that frame">Forces</button>
+  <label class="dl-time"><span class="dl-readout"></span><input class="dl-scrub" type="range" min="0" max="0" step="1" value="0"></label>
   <span class="dl-hint">Space: play/pause · ← →: step</span>
 </div>
 <div class="dl-graph" role="img"></div>
@@ -192,7 +192,7 @@ class Figure {
     this.scrub.addEventListener("input", () => { this.pause(); this.goTo(Number(this.scrub.value)); });
     this.root.addEventListener("keydown", (e) => {
       if (!this.frameNames.length || e.target === this.scrub && e.key !== " ") return;  // the range input steps itself
-      if (e.key === " " && e.target.tagName === "BUTTON") return;  // a focused button's own press (Forces, a step)
+      if (e.key === " " && e.target === this.forces) return;  // the Forces button's own press (Space plays elsewhere)
       if (e.key === " ") { e.preventDefault(); this.playing ? this.pause() : this.play(); }
       else if (e.key === "ArrowRight") { e.preventDefault(); this.pause(); this.goTo(this.frameIndex + 1); }
       else if (e.key === "ArrowLeft") { e.preventDefault(); this.pause(); this.goTo(this.frameIndex - 1); }
