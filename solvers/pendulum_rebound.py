@@ -409,8 +409,7 @@ def solve(**params) -> Solution:
     if not p["theta0"] > impact:
         said = NO_IMPACT.format(surface=p["surface"])
         raise PhysicalLimitError(
-            f"{said[0].upper()}{said[1:]} (θ₀ = {plain_number(math.degrees(p['theta0']))}°, not above θ_I = "
-            f"{plain_number(math.degrees(impact))}°).",
+            f"{said[0].upper()}{said[1:]} (θ₀ must be above θ_I = {plain_number(math.degrees(impact))}°).",
             theta_impact=impact)
     values = d_.evaluate(p)
     answers = {a.name: values[a.name] for a in ANSWERS}
