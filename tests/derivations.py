@@ -1,7 +1,24 @@
-"""Checks on a derivation's steps that several problems' own tests share."""
+"""Checks on a derivation's steps, and on its free-body diagrams, that several problems' own tests share."""
 from __future__ import annotations
 
+import sympy as sp
+
 from solvers import registry
+
+
+def number(expr, values) -> float:
+    """A declared expression's value at ``values`` (symbol -> number)."""
+    return float(sp.sympify(expr).subs(values))
+
+
+def declared_symbols(d) -> set:
+    """Every symbol the diagram's points, loads and kinetic sides use."""
+    exprs = []
+    for body in d.bodies:
+        exprs += [c for xy in body.points.values() for c in xy] + list(body.kinetic)
+    for load in d.loads:
+        exprs += [load.size, *(load.direction or ()), *load.components]
+    return set().union(*(sp.sympify(x).free_symbols for x in exprs))
 
 
 def no_title_states_an_answer(solution) -> None:

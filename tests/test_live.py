@@ -78,6 +78,14 @@ def outcome(pid: str, params: dict):
         return "refused", None
 
 
+def solved(pid: str, samples):
+    """The solutions of those ``samples`` the solver answers (limits and refusals left out)."""
+    for params in samples:
+        kind, solution = outcome(pid, params)
+        if kind == "values":
+            yield solution
+
+
 def close(a: float, b: float, scale: float) -> bool:
     return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12 * scale)
 
@@ -209,10 +217,7 @@ def test_the_caption_s_headline_follows_as_the_server_writes_it(pid, tmp_path_fa
     @given(st.lists(dragged(pid), min_size=8, max_size=8))
     def check(samples):
         cases = []
-        for p in samples:
-            kind, solution = outcome(pid, p)
-            if kind != "values":
-                continue
+        for solution in solved(pid, samples):
             stage = viz.figures(solution, "si")[0]
             if not stage.headline:
                 continue
@@ -268,10 +273,7 @@ def test_the_key_pose_follows_as_the_figure_draws_it(pid, tmp_path_factory):
     @given(st.lists(dragged(pid), min_size=6, max_size=6), st.sampled_from(["si", "us"]))
     def check(samples, system):
         cases = []
-        for p in samples:
-            kind, solution = outcome(pid, p)
-            if kind != "values":
-                continue
+        for solution in solved(pid, samples):
             options = live.options_of(pid, solution.params)
             cases.append((solution, [live.function_source(pid, options), pose_source(pid, options, system),
                                      as_json(solution.params), DIGITS]))
@@ -348,10 +350,7 @@ def test_the_forces_overlay_follows_a_drag_as_the_figure_draws_it(pid, tmp_path_
     @given(st.lists(dragged(pid), min_size=4, max_size=4), st.sampled_from(["si", "us"]))
     def check(samples, system):
         cases = []
-        for p in samples:
-            kind, solution = outcome(pid, p)
-            if kind != "values":
-                continue
+        for solution in solved(pid, samples):
             _, figures = _computed(pid, tuple(sorted(solution.params.items())), system, True)
             stage = figures[0]
             scales = stage.extra["overlay_scales"]

@@ -10,7 +10,7 @@ from hypothesis import assume, given, settings, strategies as st
 from scipy.integrate import solve_ivp
 
 from solvers import pendulum_rebound
-from tests.derivations import no_title_states_an_answer
+from tests.derivations import declared_symbols, no_title_states_an_answer, number
 from solvers.diagram import balance, balance_steps, fbd_steps, residuals
 from tests.strategies import pos
 from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures, static
@@ -277,22 +277,8 @@ def test_in_feet_the_figure_is_the_metric_one_scaled():
 # The free-body diagrams (Step 2), the balance laws written from them (Step 3), and the stage's frames
 
 
-def _number(expr, values) -> float:
-    return float(sp.sympify(expr).subs(values))
-
-
 def _vector(load, values) -> tuple[float, float]:
-    return tuple(_number(c, values) for c in load.vector)
-
-
-def _declared_symbols(d) -> set:
-    """Every symbol the diagram's points, loads and kinetic sides use."""
-    exprs = []
-    for body in d.bodies:
-        exprs += [c for xy in body.points.values() for c in xy] + list(body.kinetic)
-    for load in d.loads:
-        exprs += [load.size, *(load.direction or ()), *load.components]
-    return set().union(*(sp.sympify(x).free_symbols for x in exprs))
+    return tuple(number(c, values) for c in load.vector)
 
 
 def _balance_holds(d, solution, rel=1e-9) -> None:
@@ -303,7 +289,7 @@ def _balance_holds(d, solution, rel=1e-9) -> None:
     for n, body in enumerate(d.bodies):
         laws = balance(d, body.name)
         terms = [t for eq in laws for side in (eq.lhs, eq.rhs) for t in sp.Add.make_args(sp.expand(side))]
-        scale = max(abs(_number(t, values)) for t in terms)
+        scale = max(abs(number(t, values)) for t in terms)
         for law, left, right in rows[3 * n: 3 * n + 3]:
             assert abs(left - right) <= rel * scale, (d.phase, law, left, right, scale)
 
@@ -335,7 +321,7 @@ def test_each_diagram_s_balance_laws_hold_at_the_solvers_numbers(sphere, surface
     assert [(d.phase, d.law) for d in diagrams] == [("swing", "force"), ("impact", "impulse")]
     for d in diagrams:
         values = d.values(solution)
-        assert _declared_symbols(d) <= set(values), (d.phase, _declared_symbols(d) - set(values))
+        assert declared_symbols(d) <= set(values), (d.phase, declared_symbols(d) - set(values))
         _balance_holds(d, solution)
     swing = diagrams[0].values(solution)
     assert swing[pendulum_rebound.I_O] == solution.answers["I_O"]  # the inertia the derivation uses
@@ -378,7 +364,7 @@ def test_the_loads_point_as_the_physics_says(p):
     assert -sum(_vector(l, v)[1] for l in weights) == pytest.approx((p["m_r"] + p["m_s"]) * p["g"], rel=1e-12)
     pendulum = swing.body("the pendulum")
     for name, rho in (("G_r", p["L"] / 2), ("S", p["L"] + p["r"])):  # on the rod, at θ from the horizontal
-        x, y = (_number(c, v) for c in pendulum.points[name])
+        x, y = (number(c, v) for c in pendulum.points[name])
         angle = float(v[pendulum_rebound.theta])
         assert (x, y) == pytest.approx((rho * math.cos(angle), rho * math.sin(angle)), rel=1e-12, abs=1e-12)
 
@@ -387,8 +373,8 @@ def test_the_loads_point_as_the_physics_says(p):
     (push,) = [l for l in impact.loads if l.by == f"the {p['surface']}"]
     assert push.kind == "impulse" and push.at == "C"
     points = impact.body(push.on).points
-    cx, cy = (_number(c, w) for c in points["C"])
-    sx, sy = (_number(c, w) for c in points["S"])
+    cx, cy = (number(c, w) for c in points["C"])
+    sx, sy = (number(c, w) for c in points["S"])
     reach = p["L"] + 2 * p["r"]
     if p["surface"] == "floor":
         outward, gap = (0.0, 1.0), cy + p["d"]
@@ -419,7 +405,7 @@ def test_the_stage_s_frames_carry_each_diagram_at_each_frame(p):
     first = hits[0]
     for d in (swing, impact):
         per_frame = d.frames(solution, m)
-        assert set(per_frame) >= _declared_symbols(d)
+        assert set(per_frame) >= declared_symbols(d)
         assert all(np.shape(v) == (n,) for v in per_frame.values()), d.phase
         agree = _agreeing_frames(per_frame, d.values(solution))
         assert agree, d.phase  # the instant drawn is a frame of the stage
@@ -438,10 +424,10 @@ def test_the_stage_s_frames_carry_each_diagram_at_each_frame(p):
         at = {s: per_frame[s][i] for s in per_frame}
         xs, ys = drawn(figure, "sphere")[i]
         centre = circle(xs, ys)[:2]
-        sx, sy = (_number(c, at) for c in d.body("the pendulum").points["S"])
+        sx, sy = (number(c, at) for c in d.body("the pendulum").points["S"])
         assert centre == pytest.approx((sx, sy), abs=2 * DRAWN), d.phase
     surface_x, surface_y = static(figure, p["surface"])
-    cx, cy = (_number(c, {s: v[first] for s, v in impact.frames(solution, m).items()})
+    cx, cy = (number(c, {s: v[first] for s, v in impact.frames(solution, m).items()})
               for c in impact.body("the pendulum").points["C"])
     if p["surface"] == "floor":
         assert cy == pytest.approx(surface_y[0], abs=2 * DRAWN)

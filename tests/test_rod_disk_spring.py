@@ -9,7 +9,7 @@ from hypothesis import assume, given, settings, strategies as st
 from scipy.integrate import solve_ivp
 
 from solvers import rod_disk_spring
-from tests.derivations import no_title_states_an_answer
+from tests.derivations import declared_symbols, no_title_states_an_answer, number
 from solvers.diagram import balance, balance_steps, fbd_steps, residuals
 from tests.strategies import pos
 from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures, static
@@ -243,20 +243,6 @@ def test_with_no_spring_the_caption_says_it_goes_over_the_top():
 # The free-body diagram (Step 2), the balance laws written from it (Step 3), and the stage's frames
 
 
-def _number(expr, values) -> float:
-    return float(sp.sympify(expr).subs(values))
-
-
-def _declared_symbols(d) -> set:
-    """Every symbol the diagram's points, loads and kinetic sides use."""
-    exprs = []
-    for body in d.bodies:
-        exprs += [c for xy in body.points.values() for c in xy] + list(body.kinetic)
-    for load in d.loads:
-        exprs += [load.size, *(load.direction or ()), *load.components]
-    return set().union(*(sp.sympify(x).free_symbols for x in exprs))
-
-
 @pytest.mark.parametrize("disk", ["welded", "pinned"])
 @settings(max_examples=10, deadline=None)
 @given(VALID)
@@ -268,13 +254,13 @@ def test_the_balance_laws_hold_at_the_solvers_numbers(disk, p):
     solution = rod_disk_spring.solve(**p)
     (d,) = rod_disk_spring.free_body_diagrams(solution.params)
     values = d.values(solution)
-    assert _declared_symbols(d) <= set(values), _declared_symbols(d) - set(values)
+    assert declared_symbols(d) <= set(values), declared_symbols(d) - set(values)
     assert values[rod_disk_spring.theta] == p["theta2"] and values[rod_disk_spring.thetadot] == solution.answers["omega2"]
     I = p["m1"] * p["L"] ** 2 / 3 + p["m2"] * (p["L"] + p["R"]) ** 2 + (p["m2"] * p["R"] ** 2 / 2 if disk == "welded" else 0)
     assert values[rod_disk_spring.I_O] == pytest.approx(I, rel=1e-12)
     laws = balance(d, "the rod and disk")
     terms = [t for eq in laws for side in (eq.lhs, eq.rhs) for t in sp.Add.make_args(sp.expand(side))]
-    scale = max(abs(_number(t, values)) for t in terms)
+    scale = max(abs(number(t, values)) for t in terms)
     for law, left, right in residuals(d, solution):
         assert abs(left - right) <= 1e-9 * scale, (law, left, right, scale)
 
@@ -310,18 +296,18 @@ def test_the_loads_point_as_the_physics_says(p):
     weights = [l for l in d.loads if l.by == "gravity"]
     assert sorted(l.at for l in weights) == ["G_1", "G_2"]
     for load in weights:
-        x, y = (_number(c, v) for c in load.vector)
+        x, y = (number(c, v) for c in load.vector)
         assert x == 0 and y < 0, load.symbol
     angle = float(v[rod_disk_spring.theta])
     for name, rho in (("G_1", p["L"] / 2), ("G_2", p["L"] + p["R"]), ("A", p["L"])):
-        x, y = (_number(c, v) for c in body.points[name])
+        x, y = (number(c, v) for c in body.points[name])
         assert (x, y) == pytest.approx((rho * math.sin(angle), rho * math.cos(angle)), rel=1e-12, abs=1e-12)
     tip = [sp.sympify(c) for c in body.points["A"]]
-    turning = _number(tip[0] * sp.diff(tip[1], rod_disk_spring.theta) - tip[1] * sp.diff(tip[0], rod_disk_spring.theta), v)
+    turning = number(tip[0] * sp.diff(tip[1], rod_disk_spring.theta) - tip[1] * sp.diff(tip[0], rod_disk_spring.theta), v)
     assert turning < 0  # θ grows clockwise, as the stage turns the rod
     (couple,) = [l for l in d.loads if l.kind == "couple"]
     assert couple.by == "the torsional spring" and couple.at == "O"
-    along_theta = math.copysign(1.0, turning) * _number(couple.size, v)
+    along_theta = math.copysign(1.0, turning) * number(couple.size, v)
     assert along_theta * angle <= 0  # against the twist
     assert abs(along_theta) == pytest.approx(p["k"] * abs(angle), rel=1e-12, abs=1e-300)
 
@@ -338,7 +324,7 @@ def test_the_stage_s_frames_carry_the_diagram_at_each_frame(p):
     assert len(figure.spec["animation"]["times"]) == n
     (d,) = rod_disk_spring.free_body_diagrams(solution.params)
     per_frame = d.frames(solution, m)
-    assert set(per_frame) >= _declared_symbols(d)
+    assert set(per_frame) >= declared_symbols(d)
     assert all(np.shape(v) == (n,) and np.isfinite(v).all() for v in per_frame.values())
     values = d.values(solution)
     scale = max(abs(float(v)) for v in values.values())
@@ -350,12 +336,12 @@ def test_the_stage_s_frames_carry_the_diagram_at_each_frame(p):
     i = agree[0]
     xs, ys = drawn(figure, "disk")[i]
     at = {s: per_frame[s][i] for s in per_frame}
-    centre = [_number(c, at) for c in d.body("the rod and disk").points["G_2"]]
+    centre = [number(c, at) for c in d.body("the rod and disk").points["G_2"]]
     assert circle(xs, ys)[:2] == pytest.approx(centre, abs=2 * DRAWN)
     for j in (0, n // 2, n - 1):  # and at any frame
         xs, ys = drawn(figure, "disk")[j]
         at = {s: per_frame[s][j] for s in per_frame}
-        assert circle(xs, ys)[:2] == pytest.approx([_number(c, at) for c in d.body("the rod and disk").points["G_2"]],
+        assert circle(xs, ys)[:2] == pytest.approx([number(c, at) for c in d.body("the rod and disk").points["G_2"]],
                                                    abs=2 * DRAWN)
 
 

@@ -187,8 +187,7 @@ def _has_forces_overlay(problem: Problem) -> bool:
 @functools.cache
 def _overlaid(problem_id: str) -> bool:
     solver = BY_ID[problem_id].solver
-    declare = getattr(solver, "free_body_diagrams", None)
-    return declare is not None and any(d.frames is not None for d in declare(solver.solve().params))
+    return bool(diagram.overlaid(solver, solver.solve().params))
 
 
 def _forces_key(problem: Problem) -> str:

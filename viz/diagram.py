@@ -622,7 +622,7 @@ def _per_frame(expr, values: dict, frames: int):
                                (frames,)).copy()
 
 
-def _overlaid(solver, params) -> list:
+def overlaid(solver, params) -> list:
     """The diagrams the stage's overlay draws for these parameters' options (those that declare their
     frames); [] where the problem declares none."""
     declare = getattr(solver, "free_body_diagrams", None)
@@ -681,7 +681,7 @@ def overlay(solver, solution, motion: dict, width: float, length_scale: float = 
 
     from viz.common import line, moving, r
 
-    diagrams = _overlaid(solver, solution.params)
+    diagrams = overlaid(solver, solution.params)
     tracks = _tracks(diagrams)
     frames = len(motion["t"])
     values = {id(d): {k: np.asarray(v, dtype=float) for k, v in d.frames(solution, motion).items()} for d in diagrams}
@@ -724,7 +724,7 @@ def overlay_pose(solver, p, a, length_scale: float, xp) -> dict:
     while a control is dragged). An arrow no phase draws at that frame is left out."""
     import numpy as np
 
-    diagrams = _overlaid(solver, p)
+    diagrams = overlaid(solver, p)
     keyed = {id(d): {sym: sp.sympify(v) for sym, v in d.key(p, a).items()} for d in diagrams if d.key is not None}
     tracks, drawn = _tracks(diagrams), {}
     for ((kind, on, symbol), loads), (name, label_name) in zip(tracks.items(), _names(tracks)):
