@@ -882,6 +882,12 @@ function legendWidth(data, layout) {
 const legendSize = (layout) => ((layout.legend || {}).font || {}).size || (layout.font || {}).size || 12;
 const legendNames = (data) => data.filter((t) => t.showlegend !== false && t.name).map((t) => String(t.name));
 
+// The height (px) a legend of ``names`` entries takes in rows above a plot ``plotWidth`` px wide: as many rows
+// as plotly's equal columns of the widest name (``column`` px) need.
+function legendRows(layout, names, plotWidth, column) {
+  return Math.ceil(names / Math.max(1, Math.floor(plotWidth / column))) * 1.45 * legendSize(layout);
+}
+
 // Whether a single motion drawn to scale beside a legend in a column would be drawn larger (by more than a
 // tenth) with the legend in rows above it: the rows (as many as plotly's equal columns of the widest name
 // need) take height, the column takes width.
@@ -892,7 +898,7 @@ function squeezedBeside(data, layout, width) {
   const spanX = Math.abs(xa.range[1] - xa.range[0]), spanY = Math.abs(ya.range[1] - ya.range[0]);
   const plotWidth = width - ((layout.margin || {}).l ?? 80) - ((layout.margin || {}).r ?? 80), height = plotHeight(layout);
   const column = legendWidth(data, layout), names = legendNames(data).length;
-  const rows = Math.ceil(names / Math.max(1, Math.floor(plotWidth / column))) * 1.45 * legendSize(layout);
+  const rows = legendRows(layout, names, plotWidth, column);
   const beside = Math.min((plotWidth - column) / spanX, height / spanY);
   const above = Math.min(plotWidth / spanX, (height - rows) / spanY);
   return spanX > 0 && spanY > 0 && above > 1.1 * beside;
@@ -904,8 +910,7 @@ function pairScale(layout, width, room, names) {
   if (!Array.isArray(xa.range) || !Array.isArray(up.range) || !up.domain) return 0;
   const margin = layout.margin || {}, shown = layout.showlegend !== false, column = shown && (layout.legend || {}).orientation === "v";
   const plotWidth = width - (margin.l ?? 80) - (margin.r ?? 80) - (column ? room : 0);
-  // rows above: as many as plotly's equal columns of the widest name need (``names`` entries)
-  const rows = shown && !column ? Math.ceil(names / Math.max(1, Math.floor(plotWidth / room))) * 1.45 * legendSize(layout) : 0;
+  const rows = shown && !column ? legendRows(layout, names, plotWidth, room) : 0;
   const height = layout.height - (margin.t ?? 80) - (margin.b ?? 80) - rows;
   const spanX = Math.abs(xa.range[1] - xa.range[0]), spanY = Math.abs(up.range[1] - up.range[0]);
   if (!(spanX > 0 && spanY > 0 && plotWidth > 0 && height > 0)) return 0;
