@@ -111,7 +111,8 @@ def _swing(p, m, head, said: str, key_frame: int, key_caption: str) -> Figure:
     layout["height"] = 700
     spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout, frame_ms=50)
     description = (f"{said} {_release(p, m)}, it falls, {_after(p, m)}. Bars: kinetic, gravitational (zero hanging "
-                   "straight down) and spring energy; their sum stays constant.")
+                   "straight down) and spring energy; their sum stays constant. Drawn: the rod (grey) and the disk (blue, "
+                   "its marked radius orange) turning on the torsional spring (pink) about the pivot O.")
     return Figure("rod_disk_spring_motion", "The fall and the swing back, with the energy", spec, description,
                   height=700, key_frame=key_frame, key_caption=key_caption, headline=head)
 

@@ -28,6 +28,12 @@ const CSS = `
 .dl-figure.dl-lecture .dl-controls button { font-size: 20px; padding: 6px 18px; }
 .dl-figure.dl-lecture .dl-hint, .dl-figure.dl-lecture .dl-description, .dl-figure.dl-lecture .dl-readout { font-size: 18px; }
 .dl-figure.dl-lecture h4.dl-title { font-size: 1.6rem; }
+/* The projector's stage: the motion under the page's title as tall as the screen lets it (the rod and disk was
+   drawn 292 px tall at 1280×720). The figure's own heading is read to a screen reader, not shown (a drag's live
+   headline stands there, over the controls), and the keys are in the buttons' titles, not a line of their own. */
+.dl-figure.dl-lecture.dl-staged h4.dl-title { position: absolute; width: 1px; height: 1px; margin: 0; overflow: hidden;
+  clip-path: inset(50%); white-space: nowrap; }
+.dl-figure.dl-lecture.dl-staged .dl-hint { display: none; }
 /* the traces drawn over a held 3-D scene: hidden in WebGL, not in its legend */
 .dl-figure .dl-scene-held .legend .traces { opacity: 1 !important; }
 .dl-figure .dl-key { display: none; font-size: 14px; font-style: italic; margin: 0.2rem 0; }
@@ -52,10 +58,10 @@ const CSS = `
 const HTML = `
 <h4 class="dl-title"></h4>
 <div class="dl-controls" hidden>
-  <button class="dl-play" type="button" aria-label="Play the animation">▶ Play</button>
-  <button class="dl-pause" type="button" aria-label="Pause the animation">❚❚ Pause</button>
-  <button class="dl-back" type="button" aria-label="Step back one frame">◀</button>
-  <button class="dl-forward" type="button" aria-label="Step forward one frame">▶</button>
+  <button class="dl-play" type="button" aria-label="Play the animation" aria-keyshortcuts="Space" title="Space: play/pause">▶ Play</button>
+  <button class="dl-pause" type="button" aria-label="Pause the animation" aria-keyshortcuts="Space" title="Space: play/pause">❚❚ Pause</button>
+  <button class="dl-back" type="button" aria-label="Step back one frame" aria-keyshortcuts="ArrowLeft" title="←: step back">◀</button>
+  <button class="dl-forward" type="button" aria-label="Step forward one frame" aria-keyshortcuts="ArrowRight" title="→: step forward">▶</button>
   <button class="dl-forces" type="button" aria-pressed="false" hidden
     title="Lay the free-body diagram's forces on the motion, each arrow at its point, drawn to its size in that frame">Forces</button>
   <label class="dl-time"><span class="dl-readout"></span><input class="dl-scrub" type="range" min="0" max="0" step="1" value="0"></label>
@@ -582,13 +588,13 @@ class Figure {
     if (style && squeezedBeside(spec.data, layout, this.root.clientWidth))
       layout.legend = Object.assign({}, layout.legend, LEGEND_ABOVE);
     // A motion with a second plot (the pendulum's θ(t), the rod's energy bars) on the projector's stage:
-    // where its legend, in a column or in rows, would draw the bodies a fifth smaller than none (the
-    // sphere was 35 px across), the caption below names them instead, as on a phone's stage.
+    // where its legend in a column would draw the bodies a tenth smaller than none (the sphere was 35 px
+    // across, the rod's disk 30), the caption below names them instead, as on a phone's stage. (Rows above
+    // draw them no larger than none: they take the height a tall motion needs.)
     if (style && args.fit_screen && layout.yaxis2 && layout.showlegend !== false && (layout.legend || {}).orientation === "v") {
       const room = legendWidth(spec.data, layout), width = this.root.clientWidth, names = legendNames(spec.data).length;
-      const above = Object.assign({}, layout, {legend: Object.assign({}, layout.legend, LEGEND_ABOVE)});
-      const kept = Math.max(pairScale(layout, width, room, names), pairScale(above, width, room, names));
-      if (pairScale(Object.assign({}, layout, {showlegend: false}), width, room, names) > 1.25 * kept) layout.showlegend = false;
+      const none = pairScale(Object.assign({}, layout, {showlegend: false}), width, room, names);
+      if (none > 1.1 * pairScale(layout, width, room, names)) layout.showlegend = false;
     }
     const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
     const legendRoom = legendWidth(spec.data, layout);
@@ -929,7 +935,7 @@ function beside(layout, width, height) {
   // the motion's width at the whole height, short of what the second plot keeps
   const share = Math.min(0.72, height * spanX / spanY / width, 1 - gap - MIN_BESIDE / width);
   const besideScale = Math.min(share * width / spanX, height / spanY);
-  if (!(besideScale > 1.25 * stackedScale)) return null;
+  if (!(besideScale > 1.1 * stackedScale)) return null;
   return {"xaxis.domain": [0, share], "yaxis.domain": [0, 1], "xaxis2.domain": [share + gap, 1], "yaxis2.domain": [0, 1]};
 }
 

@@ -447,8 +447,11 @@ function begin() {
                  Object.assign(document.createElement("span"), {className: "dl-live-said"}),
                  Object.assign(document.createElement("span"), {className: "dl-live-note", textContent: MOTION_UPDATING}));
     fig.prepend(badge);
-    const title = fig.querySelector(".dl-title");  // all of it covered (the projector's is taller than a line)
-    if (title) badge.style.minHeight = `${title.offsetTop + title.offsetHeight}px`;
+    // all of the title covered (the projector's is taller than a line); where the title is not shown (the
+    // projector's stage), the controls' row in its place (their edges showed under a line of headline)
+    const title = fig.querySelector(".dl-title"), controls = fig.querySelector(".dl-controls");
+    const over = title && title.offsetHeight <= 1 && controls && !controls.hidden ? controls : title;
+    if (over) badge.style.minHeight = `${over.offsetTop + over.offsetHeight}px`;
   }
 }
 
