@@ -738,3 +738,28 @@ def test_a_control_released_past_a_limit_stays_where_it_was_on_a_phone(browser, 
         assert not errors, errors
     finally:
         context.close()
+
+
+
+
+def test_on_a_phone_each_slider_s_end_values_stand_at_its_ends(browser, app_url):
+    """A phone's stage sliders, two to a row: the ends' values (min and max) under each track stood
+    bunched mid-track ("0 100" in 64 px of a 172 px track, issue 54); each stands at its end."""
+    context, page, errors = open_page(browser, f"{app_url}/", 390, 844, phone=True)
+    found = {}
+    try:
+        for problem in PROBLEMS:
+            page.goto(f"{app_url}/{problem.id}")
+            wait_until_idle(page)
+            page.locator(f"{CONTROLS} [data-testid='stSliderTickBar']").first.wait_for(timeout=30_000)
+            ends = page.evaluate("""() => [...document.querySelectorAll(".st-key-dl_stage_controls [data-testid='stSlider']")].map((s) => {
+              const track = s.querySelector("[data-orientation='horizontal']").getBoundingClientRect();
+              const ticks = [...s.querySelector("[data-testid='stSliderTickBar']").children].map((c) => c.getBoundingClientRect());
+              return [ticks[0].left - track.left, track.right - ticks[ticks.length - 1].right]; })""")
+            bunched = [e for e in ends if max(e) > 16]
+            if bunched:
+                found[problem.id] = bunched
+        assert found == {}
+        assert not errors, errors
+    finally:
+        context.close()

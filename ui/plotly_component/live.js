@@ -45,11 +45,13 @@ const STYLE = `
   .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: 0; width: 44px; height: 32px; padding: 0;
     font-size: 1.4rem; line-height: 1; border-radius: 0.5rem; cursor: pointer; touch-action: manipulation;
     border: 1px solid rgba(128, 128, 128, 0.6); background: rgba(128, 128, 128, 0.12); color: inherit; }  /* the theme's text, light or dark */
-  /* the track's end values (shown while it is touched) between the −/+ under it */
-  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: 48px; margin-right: 48px; }
+  /* the track's end values (shown while it is touched) under its ends, the −/+ just inside them (between the
+     −/+ they stood bunched mid-track, "0 100" in 64 px of a 172 px track) */
+  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: var(--dl-ends-margin, 48px);
+    margin-right: var(--dl-ends-margin, 48px); }
   .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] p { font-size: 0.75rem; }
-  .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: 0; }
-  .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: 0; }
+  .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: var(--dl-low-end, 0px); }
+  .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: var(--dl-high-end, 0px); }
 }
 /* a short phone (360×740): at the track's ends, so that the figure, Play and the controls still share the first
    screen (under the track they would push the second row of controls below it) */
@@ -57,6 +59,8 @@ const STYLE = `
   .st-key-dl_stage_controls .dl-stepped { padding-bottom: 0; }
   .st-key-dl_stage_controls .dl-stepped > [role='group'] { padding-left: 56px; padding-right: 56px; }
   .st-key-dl_stage_controls .dl-step { bottom: 4px; }  /* level with the thumb */
+  .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: 0; }
+  .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: 0; }
   .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: -6px; margin-right: -6px; }
 }
 @media print { .dl-step { display: none !important; } }
@@ -813,6 +817,7 @@ function onPointerDown(event) {
 // burst of taps is one run, COMMIT_AFTER ms after the last. Hidden on a wide screen and on paper.
 function addSteppers() {
   for (const slider of document.querySelectorAll(".st-key-dl_stage_controls [data-testid='stSlider']")) {
+    placeSteppers(slider);
     if (slider.querySelector(":scope > .dl-step")) continue;
     const input = slider.querySelector("input[type='range']");
     if (!input) continue;
@@ -825,6 +830,23 @@ function addSteppers() {
       slider.append(button);
     }
   }
+}
+
+// The −/+ just inside the track's end values under its ends (their text's width and a gap), read from the
+// values' own font even while Streamlit hides them (they show while the track is touched); where the two
+// would then be closer than STEPPERS_APART, at the slider's ends with the values between them, as before.
+const ink = document.createElement("canvas").getContext("2d"), STEPPERS_APART = 12;
+function placeSteppers(slider) {
+  const ends = slider.querySelectorAll("[data-testid='stSliderTickBar'] p");
+  const track = slider.querySelector("[role='group'] > [data-orientation]");
+  if (ends.length !== 2 || !track) return;
+  const width = (p) => { ink.font = getComputedStyle(p).font; return ink.measureText(p.textContent).width; };
+  const own = slider.getBoundingClientRect(), along = track.getBoundingClientRect();
+  const low = Math.ceil(along.left - own.left + width(ends[0])) + 6, high = Math.ceil(own.right - along.right + width(ends[1])) + 6;
+  const inside = own.width - low - high - 2 * 44 >= STEPPERS_APART;
+  for (const [name, value] of [["--dl-low-end", inside ? low : 0], ["--dl-high-end", inside ? high : 0],
+                               ["--dl-ends-margin", inside ? 0 : 48]])
+    if (slider.style.getPropertyValue(name) !== `${value}px`) slider.style.setProperty(name, `${value}px`);  // (observed: no loop)
 }
 
 function onStep(event) {
