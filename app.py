@@ -2,10 +2,10 @@
 import streamlit as st
 
 from edge import widget_values
-from ui.catalog import GROUPS, PROBLEMS
+from solvers.catalog import GROUPS, PROBLEMS
 from ui.home import home
 from ui.params import refused_values_notice
-from ui.practice import take_instructor_link
+from ui.session import take_instructor_link
 
 # An emoji icon is drawn in the browser (an SVG data URL); a Material icon here would be fetched from
 # fonts.gstatic.com, which a lecture-hall network or a course site's policy may not reach.

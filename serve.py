@@ -33,7 +33,7 @@ def warm() -> float:
     from solvers import registry
     from solvers.core import Choice
     from ui import live
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
     from viz import on_request
 
     started = time.perf_counter()

@@ -322,7 +322,7 @@ def figure_alone(browser, page_id: str, changes: int) -> tuple[list[float], floa
     import importlib
 
     from ui import figure as component
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
 
     solver, viz = (importlib.import_module(f"{m}.{page_id}") for m in ("solvers", "viz"))
     name = BY_ID[page_id].primary[0]

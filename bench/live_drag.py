@@ -30,7 +30,7 @@ from playwright.sync_api import sync_playwright  # noqa: E402
 
 from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
 from bench.controls import lesson_control  # noqa: E402
-from ui.catalog import PROBLEMS  # noqa: E402
+from solvers.catalog import PROBLEMS  # noqa: E402
 
 # Each input event that gives the control a new value: its time, and the first task after the next
 # animation frame in which ``watched`` changed text. A pointer move of the drag always does (the drag

@@ -13,8 +13,9 @@ sys.path.insert(0, str(ROOT))
 
 import streamlit as st  # noqa: E402
 
-from ui.catalog import GROUPS, PROBLEMS  # noqa: E402
-from ui.page import RUN_CSS, VIEWS  # noqa: E402
+from solvers.catalog import GROUPS, PROBLEMS  # noqa: E402
+from ui.page import VIEWS  # noqa: E402
+from ui.stylesheet import RUN_CSS  # noqa: E402
 from ui.params import parameter_panel  # noqa: E402
 
 

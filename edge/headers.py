@@ -7,7 +7,7 @@ templates (``deploy/``); the LTI platforms the admin registered (``DL_LTI_PLATFO
 here, and only they, and their origins may receive the app's forms (a deep link's answer). The policy lets scripts come only from the app itself: its files, the
 blob: modules Streamlit's components v2 make in the page from the app's own code (the figure, the
 answers, the derivation), the hashes of the inline scripts (the one line in Streamlit's index.html,
-read from the file at start-up, and the app's own, ``ui.inline_scripts.ALL`` and the line that
+read from the file at start-up, and the app's own, ``edge.inline_scripts.ALL`` and the line that
 posts an LTI deep link's answer back to the LMS), and WebAssembly compiled by the app's own scripts ('wasm-unsafe-eval'; no
 eval of strings). The page connects only to its own server. Styles allow inline ones (Streamlit and
 plotly.js write style attributes). A browser test opens every page under it and finds no violation.
@@ -68,12 +68,12 @@ def _inline_scripts(html: str) -> list[str]:
 @functools.cache
 def inline_script_hashes() -> tuple[str, ...]:
     """CSP hashes of the inline scripts the pages hold: the one line in Streamlit's index.html, and
-    the app's own (``ui.inline_scripts.ALL``, put in the page by ``st.html``), each allowed by its
+    the app's own (``edge.inline_scripts.ALL``, put in the page by ``st.html``), each allowed by its
     exact text and nothing else."""
     import streamlit
 
     from lti.routes import AUTO_SUBMIT
-    from ui.inline_scripts import ALL
+    from edge.inline_scripts import ALL
 
     html = (Path(streamlit.__file__).parent / "static" / "index.html").read_text(encoding="utf-8")
     scripts = _inline_scripts(html) + [s for script in ALL for s in _inline_scripts(script)] + [AUTO_SUBMIT]

@@ -98,8 +98,7 @@ DL_SECONDS = 1800
 
 
 def _picker(checked: Launch, problem: str = "", said: str = "") -> Response:
-    from ui.catalog import BY_ID, PROBLEMS
-    from ui.practice import answer_label
+    from solvers.catalog import BY_ID, PROBLEMS
 
     if not checked.staff:
         raise lti.refuse("deep-linking request from a non-staff role",
@@ -126,7 +125,7 @@ def _picker(checked: Launch, problem: str = "", said: str = "") -> Response:
     chosen = BY_ID[problem]
     answers = chosen.answers_of(chosen.solver.solve())
     boxes = "".join(f"<label><input type='checkbox' name='answer' value='{a.name}' checked> "
-                    f"{html.escape(answer_label(a))}</label>" for a in answers)
+                    f"{html.escape(a.heading)}</label>" for a in answers)
     due = (dt.datetime.now(dt.timezone.utc) + dt.timedelta(days=7)).strftime("%Y-%m-%dT%H:%M")
     return page("Add an assignment", f"""<h1>Add “{html.escape(chosen.title)}”</h1>{notice}
 <form method='post' action='/lti/deep_link'>{hidden}<input type='hidden' name='problem' value='{problem}'>

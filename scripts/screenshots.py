@@ -16,7 +16,7 @@ from playwright.sync_api import sync_playwright
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
-from ui.catalog import PROBLEMS  # noqa: E402
+from solvers.catalog import PROBLEMS  # noqa: E402
 
 SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844), "phone-small": (360, 740)}
 VIEW = {"projector": "lecture=1"}  # the projector shows the lecture view

@@ -26,10 +26,10 @@ INSTRUCTOR_PAGE = str(ROOT / "pages" / "gradebook.py")
 
 
 def reset_database_caches():
-    from ui.assignments import _schema_ready
+    from ui.session import schema_ready
 
     db.engine.cache_clear()
-    _schema_ready.clear()
+    schema_ready.clear()
 
 
 @pytest.fixture
@@ -706,9 +706,8 @@ def test_the_points_boxes_come_in_reading_order(course):
     """Four columns of "Points:" boxes put the first, fifth… answers in one column: the page's order (and the
     Tab key's) went down each column. Rows of four keep the answers' own order, on creation and in the edit."""
     from solvers import disk_wall
-    from ui.practice import answer_label
 
-    names = [f"Points: {answer_label(a)}" for a in disk_wall.ANSWERS]
+    names = [f"Points: {a.heading}" for a in disk_wall.ANSWERS]
     at = instructor()
     at.multiselect(key=new_key(at, "problems")).set_value(["disk_wall"]).run()
     shown = [w.label for w in at.number_input if w.label.startswith("Points:")]

@@ -300,7 +300,7 @@ def test_a_wide_gradebook_scrolls_by_keyboard(browser, course_url, monkeypatch):
     from sqlalchemy import create_engine
 
     from tests.conftest import _DATA_DIRS, COURSE_SECRET
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
 
     monkeypatch.setenv(signing.SECRET_ENV, COURSE_SECRET)  # the shared server's, which signs the roster's links
     bound = create_engine(f"sqlite:///{Path(_DATA_DIRS[0]) / 'dynamics-lab.sqlite'}")  # the shared server's records
@@ -397,7 +397,7 @@ def test_each_students_link_has_a_copy_button(browser, course_url, monkeypatch):
     from sqlalchemy import create_engine
 
     from tests.conftest import _DATA_DIRS, COURSE_SECRET
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
 
     monkeypatch.setenv(signing.SECRET_ENV, COURSE_SECRET)
     bound = create_engine(f"sqlite:///{Path(_DATA_DIRS[0]) / 'dynamics-lab.sqlite'}")

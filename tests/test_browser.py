@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from scripts.live_app import CHROMIUM, wait_until_idle
-from ui.catalog import PROBLEMS
+from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
 SHOTS = Path(__file__).resolve().parent.parent / "screenshots" / "browser"
@@ -442,7 +442,7 @@ def test_answers_follow_a_dragged_slider_before_release_and_practice_has_none(br
     from solvers import units
     from tests.test_where_used import serious_violations
     from ui.results import answer_rows
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
     from viz.common import headline_text
     from viz.pendulum_rebound import figures, key_pose
     from solvers.live import leads as live_leads, options_of as live_options
@@ -804,7 +804,7 @@ def test_a_held_arrow_key_is_live_and_runs_the_page_once_after_release(browser, 
     from solvers import units
     from tests.test_where_used import serious_violations
     from ui.results import answer_rows
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
 
     context, page, errors = open_page(browser, f"{app_url}/rod_disk_spring")
     page.locator(".dl-answers table").first.wait_for()
@@ -873,7 +873,7 @@ def test_a_phone_steps_a_stage_slider_one_step_a_tap(browser, app_url):
     from solvers.rod_disk_spring import solve
     from solvers import units
     from ui.results import answer_rows
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
 
     context, page, errors = open_page(browser, f"{app_url}/rod_disk_spring", 390, 844, phone=True)
     page.locator(".dl-answers table").first.wait_for()

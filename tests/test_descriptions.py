@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from practice.variants import MAX_SEED, variant
-from ui.catalog import PROBLEMS
+from solvers.catalog import PROBLEMS
 
 
 def shown_forms(value: float) -> set[str]:

@@ -161,7 +161,7 @@ def test_labels_are_written_as_subscripts():
 
 def test_practice_withholds_the_diagram():
     """The exercise's method says to draw the diagram and shows neither it nor the balance laws."""
-    from ui.practice import DRAW_IT, exercise_steps
+    from practice.method import DRAW_IT, exercise_steps
 
     for pid in IDS:
         solver = registry.solver(pid)

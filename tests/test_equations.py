@@ -14,7 +14,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from tests import strategies
-from ui.catalog import PROBLEMS
+from solvers.catalog import PROBLEMS
 from ui.equations import PHONE_WIDTH_EM, WIDE_WIDTH_EM, _broken, broken, tokens, wide_too, width
 
 SCAFFOLD = {r"\begin", r"\end", "aligned", "&", r"\\", r"\quad", r"\small", r"\footnotesize", r"\scriptsize",

@@ -20,7 +20,7 @@ from tests.test_pages import assert_clean, downloads_shown
 from tests.test_practice import leaks, setup
 from tests.test_takehome import DEFINED, PDFLATEX, macros, unbalanced
 from ui import documents
-from ui.catalog import BY_ID
+from solvers.catalog import BY_ID
 
 ROOT = Path(__file__).resolve().parent.parent
 PAGE = str(ROOT / "pages" / "handouts.py")

@@ -23,7 +23,7 @@ from hypothesis import strategies as st
 from solvers import live, registry, units
 from solvers.core import Number, PhysicalLimitError
 from solvers.formatting import plain_number
-from ui.catalog import BY_ID
+from solvers.catalog import BY_ID
 
 ROOT = Path(__file__).resolve().parent.parent
 NODE = shutil.which("node")
@@ -387,7 +387,7 @@ def test_the_stage_s_headline_shows_an_answer_the_dragged_control_changes(pid):
     """While a lesson control is dragged the stage's headline shows ``solvers.live.leads``' answer for it:
     moved a little on its range (the same regime), the solver's own value of that answer changes; where
     the dependency finds none (the first answer), no answer changes."""
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
 
     problem = BY_ID[pid]
     solver = problem.solver

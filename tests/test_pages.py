@@ -16,7 +16,7 @@ from streamlit.runtime.media_file_manager import MediaFileManager
 from streamlit.testing.v1 import AppTest, app_test
 
 from solvers import units
-from ui.catalog import BY_ID, PROBLEMS
+from solvers.catalog import BY_ID, PROBLEMS
 from ui import takehome
 from ui.figure import ANSWERS, DERIVATION, LESSON, LINKS
 
@@ -679,7 +679,7 @@ def test_the_impact_point_s_slider_ends_at_the_stick_s_end(length):
 def test_the_download_route_reads_a_value_past_a_following_top_as_the_page_does():
     """parameters_of_link (the take-home download's reading of a link) falls back as the page does: ?s=99 on
     the stick gives the stick's end, l/2, and says why in plain text."""
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
     from ui.params import parameters_of_link
     values, warnings = parameters_of_link(BY_ID["stick_ball"], {"s": "99", "l": "0.4"}, "si", markdown=False)
     assert values["s"] == pytest.approx(0.2) and values["l"] == pytest.approx(0.4)

@@ -35,7 +35,7 @@ from tests.test_pages import (answer_section_text, answers_shown, answers_text, 
 from ui.figure import ANSWERS
 from solvers.core import Answer, Choice
 from practice.worker import SimplifyWorker
-from ui.practice import flat_latex
+from practice.method import flat_latex
 
 ROOT = Path(__file__).resolve().parent.parent
 IDS = registry.PROBLEM_IDS
@@ -554,11 +554,10 @@ def test_practice_mode_hides_answers_until_revealed():
     assert answers_text(at)
 
 
-def test_answer_labels_keep_their_symbols():
-    from ui.practice import answer_label
+def test_answer_headings_keep_their_symbols():
     from solvers.core import Answer as A
-    assert answer_label(A("a", "acceleration of the cm", "a", "acceleration")) == "Acceleration of the cm"
-    assert answer_label(A("I", "I_O about the pivot", "I_O", "inertia")) == "I_O about the pivot"
+    assert A("a", "acceleration of the cm", "a", "acceleration").heading == "Acceleration of the cm"
+    assert A("I", "I_O about the pivot", "I_O", "inertia").heading == "I_O about the pivot"
 
 
 def test_worker_is_killed_when_too_slow_and_comes_back():

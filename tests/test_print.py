@@ -18,7 +18,7 @@ import pytest
 
 from scripts.live_app import CHROMIUM, wait_until_idle
 from tests.conftest import INSTRUCTOR_KEY as KEY
-from ui.catalog import PROBLEMS
+from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
 
@@ -31,7 +31,7 @@ for tool, why in ((CHROMIUM, "apt-get install chromium"), ("pdftoppm", "apt-get 
 DPI = 72  # one image pixel per point: enough to see ink at an edge, quick to make
 MM = DPI / 25.4
 A4 = (210 * MM, 297 * MM)
-MARGINS = {"top": 14 * MM, "right": 12 * MM, "bottom": 16 * MM, "left": 12 * MM}  # ui/page.py PRINT_CSS
+MARGINS = {"top": 14 * MM, "right": 12 * MM, "bottom": 16 * MM, "left": 12 * MM}  # ui/stylesheet.py PRINT_CSS
 PAPER_TEXT_WIDTH = 703  # CSS px: 186 mm, the A4 text block the print layout fills
 INK = 200  # a pixel darker than this (0-255 grey) is ink
 

@@ -112,7 +112,7 @@ def test_the_live_view_s_modules_follow_the_base_path_set_after_warming():
 
     from solvers.pendulum_rebound import solve
     from ui import live
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
 
     problem, solution = BY_ID["pendulum_rebound"], solve()
     shown = importlib.import_module("viz.pendulum_rebound").figures(solution)

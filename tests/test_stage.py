@@ -14,7 +14,7 @@ import pytest
 
 from scripts.live_app import wait_until_idle
 from tests.test_browser import hold_drag, open_page  # which skips (or, in CI, fails) without Chromium and Playwright
-from ui.catalog import PROBLEMS
+from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
 
@@ -673,7 +673,7 @@ def test_the_live_headline_shows_what_the_dragged_control_changes(browser, app_u
     the number in view moves with the drag."""
     from solvers import live
     from tests.test_browser import TRACK, live_ready
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
 
     problem = BY_ID["pendulum_rebound"]
     solution = problem.solver.solve()

@@ -22,7 +22,7 @@ from solvers.core import Choice
 from tests.test_assignment_pages import course  # noqa: F401  (the fixture: a course with its database)
 from tests.test_pages import assert_clean, downloads_shown, run_page
 from ui import documents, notebook
-from ui.catalog import BY_ID, PROBLEMS
+from solvers.catalog import BY_ID, PROBLEMS
 
 IDS = [p.id for p in PROBLEMS]
 PDFLATEX = shutil.which("pdflatex")

@@ -24,7 +24,7 @@ from tests.test_practice import OPTIONS
 from tests.test_pages import (IDS, answer_section_text, answers_shown, assert_clean, derivation_shown, derivation_text,
                               derivations_shown, run_page, shown)
 from ui.figure import ANSWERS
-from ui.catalog import BY_ID
+from solvers.catalog import BY_ID
 from ui.params import as_shown, display_format
 
 # ----------------------------------------------------------------------------------------------

@@ -15,7 +15,7 @@ import pytest
 from scripts.live_app import CHROMIUM, wait_until_idle
 from tests.test_browser import open_page
 from tests.test_stage import overlaps, stage_faults
-from ui.catalog import PROBLEMS
+from solvers.catalog import PROBLEMS
 from ui.params import is_slider
 from ui.figure import LECTURE
 

@@ -18,31 +18,20 @@ import zoneinfo
 from dataclasses import dataclass, replace
 
 import streamlit as st
-from sqlalchemy.exc import SQLAlchemyError
 
-from assignments import migrate, records, signing
+from assignments import records, signing
 from assignments.identity import LinkRefused, StudentIdentity, from_link, is_assignment_link, link_query
-from lti import launch as lti_launch, passback, roster as lti_roster, store as lti_store
+from lti import passback, roster as lti_roster, store as lti_store
 from practice.judge import RELATIVE_TOLERANCE, Verdict
 from solvers import units
-from ui.catalog import BY_ID, PROBLEMS, Problem
-from ui.inline_scripts import COPY_LINKS, SCROLLABLE_TABLES
-from ui.practice import Recording, answer_label, instructor_key_entry
+from solvers.catalog import BY_ID, PROBLEMS, Problem
+from edge.inline_scripts import COPY_LINKS, SCROLLABLE_TABLES
+from ui.navigation import leave_legacy_pages_mode
 from ui.results import literal, plain
+from ui.session import (Recording, course_assignments, instructor_key_entry, lms_course, lti_arrival,
+                        schema_ready)
 
 UTC = dt.timezone.utc
-
-
-@st.cache_resource(show_spinner=False)
-def _schema_ready() -> bool:
-    """Bring the schema to head once per process (serve.py does it before listening; this covers
-    ``streamlit run app.py``). False when the database cannot be reached: tried again next run."""
-    try:
-        migrate.upgrade()
-    except Exception:  # noqa: BLE001  (reported to the user as "cannot be reached" by the caller)
-        _schema_ready.clear()
-        return False
-    return True
 
 
 def _browser_zone() -> str | None:
@@ -74,8 +63,8 @@ def _answer_labels(settings: records.Settings) -> dict[tuple[str, str], str]:
         problem = BY_ID.get(part.problem)
         every = {}
         if problem is not None:
-            every = {a.name: answer_label(a) for a in problem.solver.ANSWERS}
-            every |= {a.name: answer_label(a) for a in _answers_of(problem)}
+            every = {a.name: a.heading for a in problem.solver.ANSWERS}
+            every |= {a.name: a.heading for a in _answers_of(problem)}
         for name in part.answers:
             label = every.get(name, name)
             out[(part.problem, name)] = label if len(settings.parts) == 1 else f"{_title(part.problem)}: {label}"
@@ -108,41 +97,6 @@ class StudentLink:
     problem: str = ""  # the page's problem
 
 
-LAUNCH_SPENT = ("This launch from your course site has expired or was already used (it works once, for two "
-                "minutes). Open the activity again from your course's page in the LMS.")
-
-
-def lti_arrival() -> dict | None:
-    """What an LTI launch handed this session (lti/launch.py): the ``?lti=`` hand-off in the URL is
-    redeemed once and taken out of the URL, and the session keeps it (no cookie is needed in the
-    LMS's iframe). ``{"refused": …}`` when the hand-off is spent, expired or altered."""
-    token = st.query_params.get("lti")
-    if token:
-        del st.query_params["lti"]
-        payload = lti_launch.redeem(token, lti_store.spender()) if _schema_ready() else None
-        st.session_state["lti__arrival"] = payload or {"refused": LAUNCH_SPENT}
-    return st.session_state.get("lti__arrival")
-
-
-def lms_course() -> dict | None:
-    """The LMS course whose instructor (or TA) launched this session (issuer, context), or None. It
-    opens that course's assignments, their gradebook and their answer keys without the instructor
-    key, and nothing else the key opens (the ``?seed=N`` variants shared by every course, other
-    courses' assignments, creating assignments here)."""
-    arrival = lti_arrival()
-    return arrival if arrival and arrival.get("role") == "instructor" and arrival.get("ctx") else None
-
-
-def course_assignments(course: dict) -> set[int]:
-    """The assignments placed in the LMS course ``course`` (``lms_course()``'s); RecordingUnavailable
-    when the database cannot be reached (said on the page, never a traceback)."""
-    try:
-        return set(lti_store.contexts_assignments(course["iss"], course["ctx"]))
-    except (SQLAlchemyError, OSError) as error:
-        raise records.RecordingUnavailable("The course's database cannot be reached right now, so its "
-                                           "assignments cannot be read. Try again in a few minutes.") from error
-
-
 def student_link(problem: Problem) -> StudentLink | None:
     """None unless the page was opened with an assignment link or from an LMS launch; else the
     checked link (both identities meet here, and go on to the same records)."""
@@ -160,7 +114,7 @@ def student_link(problem: Problem) -> StudentLink | None:
         except LinkRefused as refusal:
             return StudentLink(refused=str(refusal))
     unrecorded = StudentLink(identity, notice=records.UNAVAILABLE, problem=problem.id)
-    if not _schema_ready():
+    if not schema_ready():
         return unrecorded
     try:
         settings = records.assignment(identity.assignment_id)
@@ -239,7 +193,7 @@ def recording(link: StudentLink, solution=None, system: str = "si") -> Recording
             st.error(str(error), icon=":material/cloud_off:")
             return
         passback.queue(identity)  # an LMS student's score waits for the sender thread, not this page
-        _said_recorded(kept, labels.get((problem, answer.name), answer_label(answer)), link, solution, answer, system)
+        _said_recorded(kept, labels.get((problem, answer.name), answer.heading), link, solution, answer, system)
 
     def on_reveal() -> bool:
         try:
@@ -389,7 +343,7 @@ def your_attempts(link: StudentLink, answers, solution=None, system: str = "si")
     s = standing.settings
     zone, _ = _zone(link)
     st.markdown("### Your attempts")
-    labels = {a.name: answer_label(a) for a in answers}
+    labels = {a.name: a.heading for a in answers}
     by_name = {a.name: a for a in answers}
     lines = []
     part = s.part(link.problem)
@@ -561,9 +515,9 @@ def _parts_inputs(p: str, chosen: list[str], s: records.Settings | None = None) 
             st.markdown(f"**{plain(problem.title)}**")
             counted = st.multiselect("Answers that count", list(answers),
                                      default=[a for a in had.answers if a in answers] if had else list(answers),
-                                     format_func=lambda name, answers=answers: answer_label(answers[name]),
+                                     format_func=lambda name, answers=answers: answers[name].heading,
                                      key=f"{p}answers_{pid}")
-            weights = [cell.number_input(f"Points: {answer_label(answers[name])}", 0.1, 1000.0,
+            weights = [cell.number_input(f"Points: {answers[name].heading}", 0.1, 1000.0,
                                          float(had.weight(name)) if had and name in had.answers else 1.0, 0.5,
                                          key=f"{p}weight_{pid}_{name}") for cell, name in zip(_in_rows(len(counted)), counted)]
         parts.append(records.Part(pid, tuple(counted), tuple(weights)))
@@ -1053,9 +1007,8 @@ def _history(aid: int, s: records.Settings) -> None:
 
 
 def instructor_page() -> None:
-    from ui.page import _leave_legacy_pages_mode  # (ui.page imports this module)
 
-    _leave_legacy_pages_mode()  # a deep link to /assignments on a fresh server: see ui/page.py
+    leave_legacy_pages_mode()  # a deep link to /assignments on a fresh server: see ui/navigation.py
     st.markdown("# Assignments\n:gray[Signed per-student links, every attempt recorded, the gradebook.]")
     arrival = lti_arrival()
     course = lms_course()
@@ -1067,7 +1020,7 @@ def instructor_page() -> None:
         st.warning(f"The course admin has not set a course secret (`{signing.SECRET_ENV}`, at least "
                    f"{signing.MIN_SECRET} characters), so assignment links cannot be signed.")
         return
-    if not _schema_ready():
+    if not schema_ready():
         st.error("The course's database cannot be reached, so assignments cannot be created or read now. "
                  "Practice pages still work. (Admin: check DL_DATABASE_URL and the database server.)")
         return

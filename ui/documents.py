@@ -5,7 +5,7 @@ compiles with pdflatex as it is) or as Markdown with ``$$`` math.
 Nothing here is typed twice: the steps are the solver's own LaTeX, the values are formatted by
 ``solvers.units`` as the page formats them, and an exercise (the Practice view before "Show the
 solution", or a handout's statement) keeps the method's steps that the page's own filter keeps
-(``ui.practice.result_forms``). No Streamlit calls (ui/takehome.py offers the files on the page).
+(``practice.method.result_forms``). No Streamlit calls (ui/takehome.py offers the files on the page).
 """
 from __future__ import annotations
 
@@ -16,10 +16,10 @@ from dataclasses import dataclass, replace
 from solvers import units
 from solvers.core import Choice, Solution
 from ui import results
-from ui.catalog import Problem
+from solvers.catalog import Problem
 from ui.equations import broken
 from solvers.solution import PARTS
-from ui.practice import answer_label, exercise_steps as method_steps
+from practice.method import exercise_steps as method_steps
 from viz import diagram as fbd
 
 
@@ -68,14 +68,14 @@ def _parts(parts_of_steps) -> tuple[tuple[int, str], ...]:
 
 
 def exercise_steps(solution: Solution, derivation) -> tuple[tuple[str, str], ...]:
-    """The method as the Practice view shows it (``ui.practice.exercise_steps``): (title, equation or "")."""
+    """The method as the Practice view shows it (``practice.method.exercise_steps``): (title, equation or "")."""
     return tuple((title, tex) for _, title, tex in method_steps(solution.steps[: solution.symbolic_steps], derivation))
 
 
 def document(problem: Problem, solution: Solution, answers, system: str = "si", link: str = "",
              exercise: bool = False, heading: str = "") -> Document:
     """The page's state as a document; ``exercise``: the statement and the method only."""
-    find = tuple((answer_label(a), a.symbol) for a in answers)
+    find = tuple((a.heading, a.symbol) for a in answers)
     common = dict(title=problem.title, blurb=problem.blurb, source=problem.source, link=link,
                   givens=givens(problem, solution, system), find=find, heading=heading)
     if exercise:

@@ -19,7 +19,7 @@ import re
 
 # The width a display row may take, in em of KaTeX's display font, as this module estimates it: a
 # 360 px phone's content box (328 px) holds 18.8 em at the phone font size of the derivation
-# (ui/page.py PHONE_CSS); the estimate runs up to 15 % short of KaTeX's real layout.
+# (ui/stylesheet.py PHONE_CSS); the estimate runs up to 15 % short of KaTeX's real layout.
 PHONE_WIDTH_EM = 16.0
 # The width a row may take where the column is wide (a laptop, a projector): a step whose phone rows
 # include one set smaller (below) is sent broken at this width too, and the page takes that where its

@@ -1,7 +1,7 @@
 """Handouts for a class (instructor key; an LMS instructor's session: its course's assignments only): for a problem and a range of variants, or an assignment's
 roster, each student's statement with their givens and room to work, and a separate answer key with
 each variant's answers and derivation. A printable page (the browser's Print: one sheet per student,
-ui/page.py PRINT_CSS) and the same as one LaTeX file or Markdown.
+ui/stylesheet.py PRINT_CSS) and the same as one LaTeX file or Markdown.
 
 Students are named only by what the instructor's roster gives (its opaque labels); a range of
 variants is labelled by variant number, with the ``?seed=N`` link that opens it. Assignments are read
@@ -16,10 +16,10 @@ from assignments import records
 from assignments.identity import parameters
 from practice.variants import MAX_SEED, variant
 from ui import documents
-from ui.catalog import BY_ID, PROBLEMS, Problem
-from ui.page import PRINT_CSS, _leave_legacy_pages_mode
-from ui.assignments import course_assignments, lms_course
-from ui.practice import instructor_key_entry, is_instructor
+from solvers.catalog import BY_ID, PROBLEMS, Problem
+from ui.navigation import leave_legacy_pages_mode
+from ui.session import course_assignments, instructor_key_entry, is_instructor, lms_course
+from ui.stylesheet import PRINT_CSS
 
 MAX_SHEETS = 60  # per handout: a longer class is printed in parts (each sheet is typeset in the page)
 RANGE, ROSTER = "A range of variants", "An assignment's roster"
@@ -161,7 +161,7 @@ def _whose(placed: set[int] | None, link: dict[str, str]) -> tuple[Problem, list
 
 
 def handouts_page() -> None:
-    _leave_legacy_pages_mode()
+    leave_legacy_pages_mode()
     st.html(PRINT_CSS + SHEET_CSS)
     st.markdown("# Handouts\n:gray[Printable sheets for a class: each student's givens with room to work, and a "
                 "separate answer key. Print with the browser (one student per sheet), or download LaTeX or "

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import streamlit as st
 
-from ui.catalog import GROUPS, PROBLEMS
+from solvers.catalog import GROUPS, PROBLEMS
 from ui.results import plain
 from ui.thumbnails import thumbnail_markdown
 

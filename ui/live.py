@@ -13,7 +13,7 @@ import math
 from solvers import live, registry, units
 from solvers.core import Solution
 from ui import figure
-from ui.catalog import Problem
+from solvers.catalog import Problem
 from ui.params import control_key, display_format
 from viz import diagram
 from viz.common import DIGITS, Figure, headline_text

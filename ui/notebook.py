@@ -20,7 +20,7 @@ from sympy.printing.str import StrPrinter
 
 from solvers import units
 from solvers.core import Choice, Solution
-from ui.catalog import Problem
+from solvers.catalog import Problem
 from viz import diagram as fbd
 
 # The notebook's cell that draws the free-body diagrams (viz.diagram.as_data) with matplotlib; a

@@ -13,153 +13,21 @@ import streamlit as st
 from assignments.identity import LINK_KEYS, parameters
 from practice.variants import variant
 from solvers.core import PhysicalLimitError, Solution, within_model_range
-from ui import assignments, figure, live, results, takehome
-from ui.practice import instructor_export, is_instructor, practice_panel, seed_from_url
-from ui.practice import method as practice_method
-from ui.catalog import BY_ID, Problem
-from ui.figure import show as show_figure
-from ui.stylesheet import Stylesheet
 from solvers import units
+from solvers.catalog import BY_ID, Problem
 from viz import diagram, on_request
 from edge import widget_values
+from ui import assignments, figure, live, results, takehome
+from ui.figure import show as show_figure
+from ui.navigation import leave_legacy_pages_mode
 from ui.params import (MAX_URL_VALUE, check_in_range, fixed_parameters, lesson_parameters, mirror_to_url,
                        more_parameters, parameter_panel, refused_values_notice, unknown_in_link)
+from ui.practice import method as practice_method, practice_panel, seed_from_url
 from ui.results import literal
+from ui.session import is_instructor
+from ui.stylesheet import LECTURE_CSS, PHONE_CSS, PRINT_CSS, RUN_CSS, STAGE_CSS, Stylesheet
+from ui.variants import variants_export
 
-LECTURE_CSS = """
-<style>
-  .stMainBlockContainer { font-size: 1.3rem; padding-top: 3.5rem; }
-  /* Streamlit's Markdown sets its paragraphs in 1rem: the blurb and Practice's text follow the projector's size */
-  .stMainBlockContainer [data-testid='stMarkdownContainer'] { font-size: inherit; }
-  .stMainBlockContainer h1 { font-size: 2.4rem; padding-top: 0; }
-  .stMainBlockContainer .katex { font-size: 1.45em; }
-  .stMainBlockContainer table { font-size: 1.25rem; }
-  /* a physical limit's label beside a refusal (ui/results.refused: a metric's small label) */
-  .stMainBlockContainer [data-testid='stMetricLabel'] p { font-size: 18px !important; }
-  /* the lesson's controls on the stage, read from the back of the room like the figure beside them */
-  .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p, .st-key-dl_stage_controls [role='radiogroup'] p,
-  .st-key-dl_stage_controls input, .st-key-dl_stage_controls [data-testid='stSliderThumbValue'],
-  .st-key-dl_stage_controls [data-testid='stSliderTickBar'] div {
-    font-size: 18px !important; line-height: 1.35; }
-  .st-key-dl_stage_controls [data-testid='stSlider'] [data-testid='stWidgetLabel'] { margin-bottom: 1.1rem; }  /* the value above the thumb clears it */
-  /* the free-body diagram's labels in projector type too (the SVG scales with its width) */
-  .dl-text figure.dl-fbd-figure { width: min(100%, 44rem); }
-</style>
-"""
-
-
-# Phones: display equations a step smaller (ui/equations.py breaks a long one over rows that fit
-# this size), and tables (the ledger has four columns) in smaller type and tighter cells, which wrap
-# between words only: a number, a unit and a word are never broken inside ("0.943 / 2 N·s").
-PHONE_CSS = """
-<style>
-  @media (max-width: 640px) {
-    .stMainBlockContainer { padding-top: 3.75rem; }  /* below the header and its » */
-    .stMainBlockContainer h1 { font-size: 1.65rem !important; padding-top: 0 !important; padding-bottom: 0.25rem !important; }
-    .stMainBlockContainer .katex-display { font-size: 0.9em; }
-    .stMainBlockContainer table { font-size: 0.85rem; }
-    .stMainBlockContainer th, .stMainBlockContainer td { padding: 0.3rem 0.35rem; }
-  }
-</style>
-"""
-
-
-# The stage (Study and Lecture): the motion with the lesson's controls beside it in a narrow column,
-# which a phone stacks below the figure; there the controls stand two to a row, so that the figure,
-# Play and the controls share the first screen (a finger drags anywhere on a track's 40 px). On paper
-# the motion takes the page's width and the controls are left out.
-STAGE_CSS = """
-<style>
-  /* the stage is a row: the motion 7 parts, the controls 3 (Streamlit wraps each in a layout wrapper) */
-  .st-key-dl_stage > [data-testid='stLayoutWrapper'] { min-width: 0; }
-  .st-key-dl_stage > [data-testid='stLayoutWrapper']:has(> .st-key-dl_motion) { flex: 7 1 0%; }
-  .st-key-dl_stage > [data-testid='stLayoutWrapper']:has(> .st-key-dl_stage_controls) { flex: 3 1 0%; }
-  @media (max-width: 640px) {
-    .st-key-dl_stage { flex-direction: column !important; gap: 0.5rem !important; }
-    .st-key-dl_stage > [data-testid='stLayoutWrapper'] { flex: none !important; width: 100%; }
-    .st-key-dl_stage_controls { display: grid !important; grid-template-columns: 1fr 1fr; column-gap: 14px; row-gap: 0; }
-    .st-key-dl_stage_controls > div { min-width: 0; width: auto !important; }
-    /* two sliders in a row: their tracks and −/+ level, whichever label wraps to a second line */
-    .st-key-dl_stage_controls > div:has([data-testid='stSlider']) { align-self: end; }
-    /* the track is short beside its −/+: its end values stay whole numbers ("1.00", never "1.0 / 0") */
-    .st-key-dl_stage_controls [data-testid='stSliderTickBar'] div { white-space: nowrap; }
-    .st-key-dl_stage_controls [data-testid='stWidgetLabel'] p { font-size: 0.8rem; line-height: 1.25; }
-    .st-key-dl_stage_controls [data-testid='stRadio'] [role='radiogroup'] p { font-size: 0.85rem; line-height: 1.3; }
-    .st-key-dl_stage .dl-figure h4.dl-title { font-size: 1.05rem; margin: 0 0 0.2rem 0; }
-  }
-  /* a short phone (360×740): the blurb a step smaller, so the stage starts higher */
-  @media (max-width: 640px) and (max-height: 800px) {
-    .stMainBlockContainer h1 { font-size: 1.5rem !important; }
-    .stMainBlockContainer h1 + p, .stMainBlockContainer [data-testid='stHeadingWithActionElements'] + p { font-size: 0.9rem; }
-  }
-  @media print {
-    .st-key-dl_stage { display: block !important; }
-    .st-key-dl_stage_controls { display: none !important; }
-  }
-</style>
-"""
-
-
-# A rerun without the fade: Streamlit marks every element stale while a run is under way and gives
-# it an opacity transition, which makes the browser repaint the whole page twice on every change
-# (about 20 ms each in software rendering, more than the run itself takes; BENCHMARKS.md §6). A run
-# here takes tens of milliseconds, so the fade would never show; Streamlit's running indicator in
-# the header still says a run is under way.
-RUN_CSS = """
-<style>
-  [data-stale] { transition: none !important; opacity: 1 !important; }
-  /* Keyboard focus seen (in either theme: the text's own colour): a switch showed it only as a label
-     background 1.1:1 against the page, and the main area (Streamlit's skip link's target) not at all. */
-  [data-testid='stCheckbox'] label:has(input:focus-visible) { outline: 2px solid currentColor; outline-offset: 3px;
-    border-radius: 4px; }
-  [data-testid='stMain']:focus-visible { outline: 2px solid currentColor; outline-offset: -4px; }
-</style>
-"""
-
-
-# Paper (the browser's Print): the page without Streamlit's frame and controls, flowing over A4 or
-# Letter pages numbered at the foot, no equation, table row, figure or alert cut across two pages,
-# the figures at their key instant (plotly_component/figure.js), and the link that reproduces the
-# page under its heading (ui/takehome.print_link). tests/test_print.py prints every page.
-PRINT_CSS = """
-<style>
-  .dl-print-only { display: none; }
-  @media print {
-    @page { margin: 14mm 12mm 16mm 12mm;
-      @bottom-center { content: "Page " counter(page) " of " counter(pages); font: 9pt sans-serif; color: #555; } }
-    [data-testid='stSidebar'], [data-testid='stSidebarCollapsedControl'], [data-testid='stHeader'],
-    [data-testid='stToolbar'], [data-testid='stDecoration'], [data-testid='stStatusWidget'],
-    [data-testid='stBottom'], [data-testid='stElementToolbar'], [data-testid='stSkeleton'],
-    [data-testid='stForm'], [data-testid='stButton'], [data-testid='stDownloadButton'],
-    [data-testid='stExpander'], [data-testid='stNumberInput'], [data-testid='stTextInput'],
-    [data-testid='stSelectbox'], [data-testid='stSlider'], [data-testid='stCheckbox'],
-    [data-testid='stButtonGroup'], [data-testid='stRadio'], [data-testid='stPopover'] { display: none !important; }
-    html, body, .stApp, [data-testid='stAppViewContainer'], [data-testid='stMain'], [data-testid='stAppScrollToBottomContainer'] {
-      height: auto !important; min-height: 0 !important; overflow: visible !important; position: static !important; }
-    html { font-size: 13px !important; }  /* paper: about 10 pt where the screen has 16 px */
-    .stMainBlockContainer { padding: 0 !important; max-width: none !important; }
-    .stMainBlockContainer .katex-display { overflow: visible !important; }
-    .dl-print-only { display: block; }
-    .dl-print-link { font-size: 0.85rem; overflow-wrap: anywhere; }
-    .dl-math, .katex-display, table, tr, li, [data-testid='stAlert'], figure { break-inside: avoid; }
-    h1, h2, h3, h4, .dl-text .dl-caption, .dl-text p:has(+ .dl-math) { break-after: avoid; }
-    /* the same in Markdown (a handout's key, the Practice method): a heading's box and a step's title over its
-       equation; Streamlit's flex box around Markdown a block on paper (Chromium keeps nothing together in a flex item) */
-    [data-testid='stHeadingWithActionElements'], [data-testid='stMarkdownContainer'] p:has(+ .katex-display) { break-after: avoid; }
-    div:has(> [data-testid='stMarkdownContainer']) { display: block !important; }
-    /* a step's title may carry inline math taller than its line (½ m R²): room above it at a page's top */
-    .dl-text p:has(+ .dl-math) { padding-top: 6px; }
-    /* and so may a list item's (the slips' −kπ²/8) */
-    .dl-text li { padding-top: 4px; }
-    /* a display equation in Markdown (the Practice method's) may open a page: room above its tallest row
-       there (a margin is dropped at a page's top, padding is not) */
-    [data-testid='stMarkdownContainer'] .katex-display { padding-top: 6px; }
-  }
-</style>
-"""
-
-
-# The page's styles, prepared once for each view (ui.stylesheet): Study and Practice, and Lecture.
 STYLES = {lecture: Stylesheet(RUN_CSS + PHONE_CSS + STAGE_CSS + PRINT_CSS + takehome.TAKEHOME_CSS + (LECTURE_CSS if lecture else ""))
           for lecture in (False, True)}
 
@@ -370,21 +238,8 @@ def _results(problem: Problem, solution, answers, system: str, figures, page, le
     figure.together(last, key="dl_derivation")
 
 
-def _leave_legacy_pages_mode() -> None:
-    """Streamlit runs a deep-linked ``pages/<id>.py`` by itself (its legacy pages-folder mode) until
-    app.py has called st.navigation once in the process, so a student opening a shared link on a
-    freshly started server would get a page without the app's navigation and layout (streamlit
-    issues #9624, #10276). st.navigation clears this process-wide flag on its first call; clear it
-    here and rerun, so app.py runs and serves the same page from the very first visit."""
-    from streamlit.runtime.pages_manager import PagesManager
-
-    if PagesManager.uses_pages_directory:
-        PagesManager.uses_pages_directory = False
-        st.rerun()
-
-
 def problem_page(problem_id: str) -> None:
-    _leave_legacy_pages_mode()
+    leave_legacy_pages_mode()
     problem = BY_ID[problem_id]
     link = assignments.student_link(problem)  # None unless opened with a signed assignment link
     unknown = _unknown_in_link(problem) if link is None else None  # (before the page writes its own address)
@@ -428,13 +283,13 @@ def problem_page(problem_id: str) -> None:
     answers = problem.answers_of(solution)
     if practice and not practice_panel(problem, solution, answers, system):
         takehome.downloads(problem, solution, answers, system, exercise=True)  # the statement and the method
-        instructor_export(problem)  # the statement, the method and the answer box, nothing more
+        variants_export(problem)  # the statement, the method and the answer box, nothing more
         return
     # fitted to the first screen where the view puts the motion first (Lecture), not below the answers
     _results(problem, solution, answers, system, figures, figures, lecture, fit_first=lecture)
     takehome.downloads(problem, solution, answers, system)
     if practice:
-        instructor_export(problem)
+        variants_export(problem)
 
 
 def _mirror(problem: Problem, params: dict, system: str, lecture: bool, practice: bool, seed, base: dict,

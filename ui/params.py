@@ -16,8 +16,8 @@ import streamlit as st
 
 from solvers.core import Choice, Number, ParameterError
 from solvers import units
-from ui.catalog import Problem
-from ui.inline_scripts import SLIDER_NAMES
+from solvers.catalog import Problem
+from edge.inline_scripts import SLIDER_NAMES
 from ui.results import literal, plain
 
 MAX_URL_VALUE = 32  # characters; longer values are not numbers anyone typed

@@ -17,7 +17,7 @@ import streamlit as st
 from edge import base_path
 from solvers.core import Solution
 from ui import documents, notebook
-from ui.catalog import Problem
+from solvers.catalog import Problem
 
 
 def page_link(problem: Problem) -> str:
@@ -37,7 +37,7 @@ PRINT_WORDS = "This page, with these numbers:"
 
 def print_link(problem: Problem) -> str:
     """HTML for the page's heading: the link that reproduces this page, shown only on paper
-    (ui/page.py PRINT_CSS)."""
+    (ui/stylesheet.py PRINT_CSS)."""
     link = html.escape(page_link(problem))
     return f'\n\n<p class="dl-print-only dl-print-link">{PRINT_WORDS} <a href="{link}">{link}</a></p>'
 
@@ -132,7 +132,7 @@ def made(problem_id: str, name: str, query_string: str, page_url: str) -> tuple[
     file the lesson page offers for the parameters of its address (``page_url``: the page's own
     address, which the file cites), or a plain-text refusal. No Streamlit."""
     from solvers.core import within_model_range
-    from ui.catalog import BY_ID
+    from solvers.catalog import BY_ID
     from ui.params import read_link
 
     plain_text = "text/plain; charset=utf-8"
