@@ -835,11 +835,13 @@ function addSteppers() {
 // The −/+ just inside the track's end values under its ends (their text's width and a gap), read from the
 // values' own font even while Streamlit hides them (they show while the track is touched); where the two
 // would then be closer than STEPPERS_APART, at the slider's ends with the values between them, as before.
-const ink = document.createElement("canvas").getContext("2d"), STEPPERS_APART = 12;
+const STEPPERS_APART = 12;
+let ink = null;  // a canvas's 2-D context, made on first use (none under node, where the tests load this module)
 function placeSteppers(slider) {
   const ends = slider.querySelectorAll("[data-testid='stSliderTickBar'] p");
   const track = slider.querySelector("[role='group'] > [data-orientation]");
   if (ends.length !== 2 || !track) return;
+  ink = ink || document.createElement("canvas").getContext("2d");
   const width = (p) => { ink.font = getComputedStyle(p).font; return ink.measureText(p.textContent).width; };
   const own = slider.getBoundingClientRect(), along = track.getBoundingClientRect();
   const low = Math.ceil(along.left - own.left + width(ends[0])) + 6, high = Math.ceil(own.right - along.right + width(ends[1])) + 6;
