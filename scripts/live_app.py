@@ -31,19 +31,20 @@ def free_port() -> int:
 
 
 def start_app(port: int, extra: list[str] | None = None, env: dict | None = None,
-              entry: list[str] | None = None) -> subprocess.Popen:
+              entry: list[str] | None = None, root: Path = ROOT) -> subprocess.Popen:
     """The production entry point (serve.py: warm, then Streamlit), so tests see what ships.
     ``entry`` replaces it, e.g. with a benchmark's baseline served by the same code. Its output
     goes to a new temporary file (``proc.log``), never to a pipe: a server that outlives many tests
-    would fill a pipe nobody reads and stall on its next log line."""
-    cmd = [sys.executable, *(entry or [str(ROOT / "serve.py")]), "--server.headless", "true",
+    would fill a pipe nobody reads and stall on its next log line. ``root``: the code's directory (a copy
+    of it: tests/test_read_only_code.py)."""
+    cmd = [sys.executable, *(entry or [str(root / "serve.py")]), "--server.headless", "true",
            "--server.port", str(port), "--server.address", "127.0.0.1",
            "--browser.gatherUsageStats", "false", "--server.fileWatcherType", "none", *(extra or [])]
     handle, name = tempfile.mkstemp(prefix="dl-app-", suffix=".log")
     os.close(handle)
     log = Path(name)
     with open(log, "ab") as out:
-        proc = subprocess.Popen(cmd, cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, env={**os.environ, **(env or {})})
+        proc = subprocess.Popen(cmd, cwd=root, stdout=out, stderr=subprocess.STDOUT, env={**os.environ, **(env or {})})
     proc.log = log
     return proc
 
@@ -73,10 +74,11 @@ class Server(NamedTuple):
 class Starting:
     """A server started now and waited for later: its warm-up (some 20 s) runs beside other work."""
 
-    def __init__(self, extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None):
+    def __init__(self, extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None,
+                 root: Path = ROOT):
         port = free_port()
         self.url = f"http://127.0.0.1:{port}"
-        self.proc = start_app(port, extra, env=env, entry=entry)
+        self.proc = start_app(port, extra, env=env, entry=entry, root=root)
 
     def ready(self) -> Server:
         wait_healthy(self.url, timeout=180, proc=self.proc)
@@ -92,9 +94,10 @@ class Starting:
 
 
 @contextlib.contextmanager
-def running_server(extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None):
-    """A started, healthy server (``Server``), stopped after."""
-    starting = Starting(extra, entry, env)
+def running_server(extra: list[str] | None = None, entry: list[str] | None = None, env: dict | None = None,
+                   root: Path = ROOT):
+    """A started, healthy server (``Server``) of the code in ``root``, stopped after."""
+    starting = Starting(extra, entry, env, root)
     try:
         yield starting.ready()
     finally:

@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import gzip
 import hashlib
+import os
+import tempfile
 import threading
 from functools import cache
 from pathlib import Path
@@ -33,18 +35,32 @@ NAME = "dynamics_lab_figure"
 _HERE = Path(__file__).resolve().parent
 _DIR = _HERE / "plotly_component"
 _BUNDLES = _HERE / "plotly_bundles"
+ASSETS_ENV = "DL_ASSET_DIR"
+
+
+@cache
+def assets() -> Path:
+    """Where the served files keyed by their content are written (the modules, the bundles, KaTeX and the
+    generated poses): ``DL_ASSET_DIR``, else a directory of this user's in the system's temporary directory;
+    never the code's own directory, so the code can be read-only (a container's root file system)."""
+    place = Path(os.environ.get(ASSETS_ENV) or Path(tempfile.gettempdir()) / f"dynamics-lab-assets-{os.getuid()}")
+    place.mkdir(parents=True, exist_ok=True)
+    return place
 KINDS = ("basic", "gl3d")
 YEAR = 365 * 24 * 3600
 
 
 def _keyed(source: Path | bytes, stem: str, suffix: str) -> tuple[str, bytes]:
-    """A file's content (or these bytes) under a name keyed by its hash, written beside the component's
-    module so that Streamlit's own component route can serve it too (without serve.py)."""
+    """A file's content (or these bytes) under a name keyed by its hash, written to the asset directory
+    (``assets``), which Streamlit's own component route serves (without serve.py too); written whole
+    under another name first, so that another process serving the same directory never reads half of it."""
     data = source if isinstance(source, bytes) else source.read_bytes()
     name = f"{stem}.{hashlib.sha256(data).hexdigest()[:16]}{suffix}"
-    target = _DIR / name
+    target = assets() / name
     if not target.exists() or target.stat().st_size != len(data):
-        target.write_bytes(data)
+        partial = target.with_name(f".{name}.{os.getpid()}.{threading.get_ident()}")
+        partial.write_bytes(data)
+        os.replace(partial, target)
     return name, data
 
 
@@ -121,8 +137,8 @@ def module_url(file: str) -> str:
 
 
 def generated_file(stem: str, text: str) -> str:
-    """A generated JavaScript module (ui/live.py: a figure's pose) written beside the component's files
-    under a name keyed by its content (the browser imports it once, not with every run): its name
+    """A generated JavaScript module (ui/live.py: a figure's pose) written to the asset directory beside
+    the component's files, under a name keyed by its content (the browser imports it once, not with every run): its name
     (``url`` gives its path)."""
     return _keyed(text.encode(), stem, ".js")[0]
 
@@ -150,7 +166,7 @@ def declared(name: str = NAME):
     with _lock:
         if not _components:
             bundles()
-            components_v1.declare_component(NAME, path=str(_DIR))
+            components_v1.declare_component(NAME, path=str(assets()))
         if name not in _components:
             file = COMPONENTS[name]
             # The module a run carries: a dynamic import of <file>.<hash>.js, which the browser
