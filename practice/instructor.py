@@ -7,7 +7,7 @@ Every try goes through ``THROTTLE``: after a wrong key, the next try from the sa
 waits 1, 2, 4 then 8 s, and the fifth wrong key in a row locks key entry for that session for 5
 minutes; from one client address (every session of it together) the waits go on doubling and the
 tenth wrong key locks it for 10 minutes. So one client gets at most 10 tries in its first minute
-and one every 10 minutes after that (tests/test_instructor.py counts them); a try while locked is
+and one every 10 minutes after that (tests/practice/test_instructor.py counts them); a try while locked is
 refused without looking at the key, and the right key works again once the time is up. Each wrong
 key is logged, without what was typed. The throttle lives in the process: each replica keeps its
 own (README: Security).

@@ -36,7 +36,7 @@ def start_app(port: int, extra: list[str] | None = None, env: dict | None = None
     ``entry`` replaces it, e.g. with a benchmark's baseline served by the same code. Its output
     goes to a new temporary file (``proc.log``), never to a pipe: a server that outlives many tests
     would fill a pipe nobody reads and stall on its next log line. ``root``: the code's directory (a copy
-    of it: tests/test_read_only_code.py)."""
+    of it: tests/house/test_read_only_code.py)."""
     cmd = [sys.executable, *(entry or [str(root / "serve.py")]), "--server.headless", "true",
            "--server.port", str(port), "--server.address", "127.0.0.1",
            "--browser.gatherUsageStats", "false", "--server.fileWatcherType", "none", *(extra or [])]

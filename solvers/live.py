@@ -12,7 +12,7 @@ does not have (an integral evaluated by quadrature) is left out, and its answers
 ``(p) => ({regime, values})`` (``p``: every parameter in SI, by name): for each case, its chain's
 links as constants (``sympy.cse`` over the chain, ``sympy.printing.jscode``), then its condition.
 The links are evaluated in the chain's order, as ``Derivation.evaluate`` does, so the browser's
-numbers are the server's to a few units in the last place (tests/test_live.py: 1e-9 relative).
+numbers are the server's to a few units in the last place (tests/pages/test_live.py: 1e-9 relative).
 Before the cases, the followed parameters' valid ranges (``Number.low``/``high``) are tested: a
 value the solver would refuse gives the regime ``"refused"`` and no values.
 """

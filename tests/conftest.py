@@ -127,7 +127,7 @@ def app_url(request):
     return request.getfixturevalue("shipped_server").url
 
 
-# The database tests run the same suite on both backends (tests/test_records.py): a SQLite file
+# The database tests run the same suite on both backends (tests/records/test_records.py): a SQLite file
 # per test, and a database per test in one PostgreSQL cluster per session. PostgreSQL is skipped
 # where it is not installed, except in CI (.ci/run installs it), where its absence is a failure.
 @pytest.fixture(scope="session")

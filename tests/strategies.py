@@ -1,5 +1,5 @@
 """Hypothesis strategies. Each problem's random *valid* parameters (SI, radians) are declared in its
-own tests/test_<pid>.py as ``VALID``; ``valid(pid)`` finds them for the tests every problem shares."""
+own tests/physics/test_<pid>.py as ``VALID``; ``valid(pid)`` finds them for the tests every problem shares."""
 from __future__ import annotations
 
 import importlib
@@ -12,8 +12,8 @@ def pos(lo, hi):
 
 
 def problem_tests(pid: str):
-    """The problem's own test module, tests/test_<pid>.py (its CONTRACT and VALID)."""
-    return importlib.import_module(f"tests.test_{pid}")
+    """The problem's own test module, tests/physics/test_<pid>.py (its CONTRACT and VALID)."""
+    return importlib.import_module(f"tests.physics.test_{pid}")
 
 
 def valid(pid: str) -> st.SearchStrategy[dict]:

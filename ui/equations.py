@@ -324,7 +324,7 @@ def broken(latex: str, limit: float = PHONE_WIDTH_EM) -> str:
     only the digits of the numeric steps change, while every digit is one glyph of one width to
     this module. So a step is broken once per *shape*: each digit replaced by its own stand-in
     (the first digit by U+E000, the second by U+E001, …), the shape's rows kept, and the digits
-    put back where their stand-ins went (``tests/test_equations.py`` holds this to breaking the
+    put back where their stand-ins went (``tests/pages/test_equations.py`` holds this to breaking the
     step itself)."""
     digits = _DIGIT.findall(latex)
     if not digits or len(digits) > 6000 or _PRIVATE.search(latex):

@@ -109,7 +109,7 @@ RUN_CSS = """
 # Paper (the browser's Print): the page without Streamlit's frame and controls, flowing over A4 or
 # Letter pages numbered at the foot, no equation, table row, figure or alert cut across two pages,
 # the figures at their key instant (plotly_component/figure.js), and the link that reproduces the
-# page under its heading (ui/takehome.print_link). tests/test_print.py prints every page.
+# page under its heading (ui/takehome.print_link). tests/browser/test_print.py prints every page.
 PRINT_CSS = """
 <style>
   .dl-print-only { display: none; }

@@ -103,7 +103,7 @@ def _box(height: float) -> dict:
     """The scene box's aspect ratio for a box 1.1 wide and ``height`` tall (one scale on all three
     axes), as large as a box 0.55 tall draws, and smaller as a taller box (a disk tilted past about
     32°) stands taller on screen from the camera: by that factor to the power 0.75, so the box and its
-    labels fit a projector's first screen while the disk still fills half the scene (tests/test_stage.py).
+    labels fit a projector's first screen while the disk still fills half the scene (tests/browser/test_stage.py).
     An orthographic camera's size is the box's aspect ratio, not the eye's distance."""
     elevation = math.atan2(CAMERA["eye"]["z"], math.hypot(CAMERA["eye"]["x"], CAMERA["eye"]["y"]))
     depth = 1.1 * math.sqrt(2) * math.sin(elevation)  # the floor's diagonal on screen

@@ -1,0 +1,134 @@
+"""The free-body diagrams as a person meets them, in Debian's Chromium: every page's Step 2 shows its
+diagrams at a laptop's, a projector's (the lecture view: labels in projector type) and a phone's
+size, no label on another or outside its picture, the picture inside the column; a screen reader
+gets each diagram's text alternative; axe-core finds nothing serious. One server and one browser
+serve the module (tests/conftest.py)."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from scripts.live_app import CHROMIUM
+from solvers import registry
+from tests.browser.test_browser import open_page
+
+pytestmark = pytest.mark.browser
+
+if not Path(CHROMIUM).exists():
+    if os.environ.get("CI"):
+        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
+    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
+
+pytest.importorskip("playwright.sync_api")
+
+SIZES = {"laptop": (1400, 1000, ""), "projector": (1280, 720, "?lecture=1"), "phone": (390, 844, "")}
+
+# Every diagram's labels, as drawn: each text's box, and its picture's.
+MEASURE = """() => [...document.querySelectorAll('svg.dl-fbd')].map((svg) => {
+  const r = (el) => { const b = el.getBoundingClientRect(); return [b.left, b.top, b.right, b.bottom]; };
+  return {svg: r(svg), column: r(svg.closest('.dl-text')), label: svg.getAttribute('aria-label'),
+          texts: [...svg.querySelectorAll('text')].map((t) => [t.textContent, ...r(t)])};
+})"""
+
+
+def _overlap(a, b) -> bool:
+    return not (a[2] <= b[0] + 0.5 or b[2] <= a[0] + 0.5 or a[3] <= b[1] + 0.5 or b[3] <= a[1] + 0.5)
+
+
+@pytest.mark.parametrize("size", list(SIZES))
+def test_every_page_draws_its_diagrams_legibly(browser, app_url, size):
+    from tests.browser.test_where_used import serious_violations
+
+    width, height, query = SIZES[size]
+    context, page, errors = open_page(browser, f"{app_url}/{registry.PROBLEM_IDS[0]}{query}", width, height,
+                                      phone=size == "phone")
+    try:
+        for n, pid in enumerate(registry.PROBLEM_IDS):
+            if n:
+                page.goto(f"{app_url}/{pid}{query}")
+            page.locator("svg.dl-fbd").first.wait_for(timeout=60_000)
+            solver = registry.solver(pid)
+            expected = len(solver.free_body_diagrams(solver.solve().params))
+            drawn = page.evaluate(MEASURE)
+            assert len(drawn) == expected, (pid, size, len(drawn))
+            for d in drawn:
+                assert d["label"].startswith("Free-body diagram"), (pid, d["label"])
+                svg = d["svg"]
+                assert svg[0] >= d["column"][0] - 1 and svg[2] <= d["column"][2] + 1, (pid, size, "wider than its column")
+                texts = d["texts"]
+                for i, (text, *box) in enumerate(texts):
+                    assert box[0] >= svg[0] - 0.5 and box[2] <= svg[2] + 0.5 and box[1] >= svg[1] - 0.5 \
+                        and box[3] <= svg[3] + 0.5, (pid, size, text, "leaves the figure")
+                    for other, *obox in texts[:i]:
+                        assert not _overlap(box, obox), (pid, size, text, other)
+                if size == "projector":  # the back row: load labels in projector type
+                    heights = [t[4] - t[2] for t in texts]
+                    assert max(heights) >= 18, (pid, heights)
+            if n == 0 or size == "phone" and pid == "stick_ball":
+                assert serious_violations(page) == [], (pid, size)
+        assert not errors, errors
+    finally:
+        context.close()
+
+
+# The stage's overlay as drawn: each Forces trace's points (non-null) and opacity, and the switch.
+OVERLAY = """() => {
+  const g = document.querySelector('.st-key-dl_stage .dl-graph'), b = document.querySelector('.st-key-dl_stage .dl-forces');
+  const full = g._fullData || [];
+  return {pressed: b && !b.hidden ? b.getAttribute('aria-pressed') : null,
+          traces: (g.data || []).map((t, i) => [t.name, t.legendgroup === 'forces', (t.x || []).filter((v) => v !== null).length,
+                                                  full[i] ? full[i].opacity : 1])};
+}"""
+
+
+@pytest.mark.parametrize("pid", ["disk_wall", "sliding_ladder"])
+def test_the_stage_s_forces_switch_is_pressed_by_keyboard_and_its_arrows_follow_a_drag(browser, app_url, pid):
+    """The Forces switch is a button in the motion's own row: pressed from the keyboard it lays the
+    diagram's arrows on the motion and the link keeps it; while a lesson control is dragged the arrows at
+    the key instant follow it (posed, not dimmed), as the bodies do; pressed again, they are gone."""
+    from bench.controls import lesson_control
+    from tests.browser.test_browser import TRACK, hold_drag
+    from scripts.live_app import wait_until_idle
+
+    context, page, errors = open_page(browser, f"{app_url}/{pid}", 1400, 1000)
+    try:
+        switch = page.locator(".st-key-dl_stage .dl-forces")
+        switch.wait_for(timeout=30_000)
+        assert page.evaluate(OVERLAY)["pressed"] == "false"
+        assert not any(forces for _, forces, _, _ in page.evaluate(OVERLAY)["traces"])
+        switch.focus()
+        page.keyboard.press("Enter")
+        page.wait_for_function("() => document.querySelector('.st-key-dl_stage .dl-forces').getAttribute('aria-pressed') === 'true'",
+                               timeout=30_000)
+        wait_until_idle(page)
+        assert "forces=1" in page.url
+        drawn = page.evaluate(OVERLAY)
+        assert sum(forces for _, forces, _, _ in drawn["traces"]) >= 2, drawn
+        # the pose modules: the page's first, then the one with the arrows (after the press)
+        page.wait_for_function("() => performance.getEntriesByType('resource').filter((r) => /\\/pose\\.[0-9a-f]+\\.js/.test(r.name)).length >= 2",
+                               timeout=30_000)
+        page.evaluate("async () => { for (const r of performance.getEntriesByType('resource'))"
+                      " if (/\\/pose\\.[0-9a-f]+\\.js/.test(r.name)) await import(r.name); }")
+        control = page.locator(f".st-key-{lesson_control(pid)[0]}")
+        hold_drag(page, control.locator(TRACK).bounding_box(), 0.45, 0.6)
+        page.wait_for_function("() => document.querySelector('.st-key-dl_stage .dl-graph.dl-live-stale') === null"
+                               " && !!document.querySelector('.dl-live-value')", timeout=10_000)
+        page.wait_for_timeout(300)
+        held = page.evaluate(OVERLAY)["traces"]
+        arrows = [(name, points, opacity) for name, forces, points, opacity in held if forces]
+        assert any(points for _, points, _ in arrows), arrows  # drawn at the key instant
+        assert all(opacity == 1 for _, points, opacity in arrows if points), arrows  # posed, not dimmed
+        page.mouse.up()
+        wait_until_idle(page)
+        switch.focus()
+        page.keyboard.press("Space")
+        page.wait_for_function("() => document.querySelector('.st-key-dl_stage .dl-forces').getAttribute('aria-pressed') === 'false'",
+                               timeout=30_000)
+        wait_until_idle(page)
+        assert not any(forces for _, forces, _, _ in page.evaluate(OVERLAY)["traces"])
+        assert "forces=1" not in page.url
+        assert not errors, errors
+    finally:
+        context.close()
