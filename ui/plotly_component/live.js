@@ -50,6 +50,9 @@ const STYLE = `
   .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: var(--dl-ends-margin, 48px);
     margin-right: var(--dl-ends-margin, 48px); }
   .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] p { font-size: 0.75rem; }
+  /* shown at rest too (Streamlit shows them only while the track is touched): a finger sees the range before
+     it moves, and the −/+ stand inside values that are there, not inside a gap */
+  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { opacity: 1 !important; }
   .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: var(--dl-low-end, 0px); }
   .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: var(--dl-high-end, 0px); }
 }
