@@ -15,14 +15,13 @@ from __future__ import annotations
 import csv
 import datetime as dt
 import io
-import os
 import re
 from pathlib import Path
 
 import pytest
 
 from assignments import records, signing
-from scripts.live_app import CHROMIUM, wait_until_idle
+from scripts.live_app import wait_until_idle
 from solvers import disk_wall
 from tests.conftest import INSTRUCTOR_KEY as KEY
 from practice.variants import ASSIGNMENT, variant
@@ -32,13 +31,6 @@ pytestmark = pytest.mark.browser
 SHOTS = Path(__file__).resolve().parents[2] / "screenshots" / "assignments"
 SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844)}
 TITLE = "Week 6: the disk and the wall"
-
-if not Path(CHROMIUM).exists():
-    if os.environ.get("CI"):
-        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
-    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
-
-playwright = pytest.importorskip("playwright.sync_api")
 
 from tests.browser.test_browser import csp_violations, open_page  # noqa: E402
 from tests.browser.test_where_used import serious_violations  # noqa: E402

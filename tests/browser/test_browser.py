@@ -7,24 +7,16 @@ Skipped when Chromium is missing on a workstation; in CI (CI set) a missing brow
 """
 from __future__ import annotations
 
-import os
 import re
 from pathlib import Path
 
 import pytest
 
-from scripts.live_app import CHROMIUM, wait_until_idle
+from scripts.live_app import wait_until_idle
 from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
 SHOTS = Path(__file__).resolve().parents[2] / "screenshots" / "browser"
-
-if not Path(CHROMIUM).exists():
-    if os.environ.get("CI"):
-        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
-    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
-
-playwright = pytest.importorskip("playwright.sync_api")
 
 
 def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: bool = False,

@@ -5,23 +5,12 @@ gets each diagram's text alternative; axe-core finds nothing serious. One server
 serve the module (tests/conftest.py)."""
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import pytest
 
-from scripts.live_app import CHROMIUM
 from solvers import registry
 from tests.browser.test_browser import open_page
 
 pytestmark = pytest.mark.browser
-
-if not Path(CHROMIUM).exists():
-    if os.environ.get("CI"):
-        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
-    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
-
-pytest.importorskip("playwright.sync_api")
 
 SIZES = {"laptop": (1400, 1000, ""), "projector": (1280, 720, "?lecture=1"), "phone": (390, 844, "")}
 

@@ -10,7 +10,6 @@ PostgreSQL, in one Chromium; each frame's page is shot (SQLite's run) into scree
 from __future__ import annotations
 
 import json
-import os
 import time
 from pathlib import Path
 
@@ -20,18 +19,13 @@ from sqlalchemy import text
 from assignments import db, records, signing
 from lti import launch as lti
 from practice.variants import ASSIGNMENT, variant
-from scripts.live_app import CHROMIUM, free_port, launch_browser, start_app, wait_healthy, wait_until_idle
+from scripts.live_app import free_port, launch_browser, start_app, wait_healthy, wait_until_idle
 from solvers import disk_wall, units
 from tests.lti_platform import INSTRUCTOR, ISSUER, LEARNER, LmsEmulator
 
 pytestmark = pytest.mark.browser
 SHOTS = Path(__file__).resolve().parents[2] / "screenshots" / "lti"
 KEY, SECRET = "instructor-key-0030", "course-secret-for-the-lti-tests-30"
-
-if not Path(CHROMIUM).exists():
-    if os.environ.get("CI"):
-        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
-    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
 
 sync_api = pytest.importorskip("playwright.sync_api")
 

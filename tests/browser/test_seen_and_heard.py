@@ -5,26 +5,16 @@ stated duration without a GPU. One server and one browser serve the whole module
 """
 from __future__ import annotations
 
-import os
 import re
-import statistics
 import time
-from pathlib import Path
 
 import pytest
 
-from scripts.live_app import CHROMIUM, wait_until_idle
+from scripts.live_app import wait_until_idle
 from tests.browser.test_browser import open_page
 from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
-
-if not Path(CHROMIUM).exists():
-    if os.environ.get("CI"):
-        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
-    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
-
-playwright = pytest.importorskip("playwright.sync_api")
 
 SIZES = [(1400, 1000), (1280, 720), (390, 844)]
 PHONES = [(390, 844), (360, 740)]

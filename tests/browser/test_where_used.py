@@ -7,12 +7,9 @@ browser serve the whole module.
 """
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import pytest
 
-from scripts.live_app import CHROMIUM, wait_until_idle
+from scripts.live_app import wait_until_idle
 from tests.browser.test_browser import open_page
 from tests.browser.test_stage import overlaps, stage_faults
 from solvers.catalog import PROBLEMS
@@ -21,12 +18,6 @@ from ui.figure import LECTURE
 
 pytestmark = pytest.mark.browser
 
-if not Path(CHROMIUM).exists():
-    if os.environ.get("CI"):
-        raise RuntimeError(f"CI needs Chromium at {CHROMIUM} (.ci/run installs Debian's chromium)")
-    pytest.skip(f"no Chromium at {CHROMIUM}: apt-get install chromium", allow_module_level=True)
-
-playwright = pytest.importorskip("playwright.sync_api")
 axe_playwright = pytest.importorskip("axe_playwright_python.sync_playwright")
 
 IDS = [p.id for p in PROBLEMS]
