@@ -592,9 +592,8 @@ class Figure {
     // across, the rod's disk 30), the caption below names them instead, as on a phone's stage. (Rows above
     // draw them no larger than none: they take the height a tall motion needs.)
     if (style && args.fit_screen && layout.yaxis2 && layout.showlegend !== false && (layout.legend || {}).orientation === "v") {
-      const room = legendWidth(spec.data, layout), width = this.root.clientWidth, names = legendNames(spec.data).length;
-      const none = pairScale(Object.assign({}, layout, {showlegend: false}), width, room, names);
-      if (none > 1.1 * pairScale(layout, width, room, names)) layout.showlegend = false;
+      const room = legendWidth(spec.data, layout), width = this.root.clientWidth;
+      if (pairScale(layout, width, 0) > 1.1 * pairScale(layout, width, room)) layout.showlegend = false;
     }
     const legendBeside = layout.showlegend !== false && (layout.legend || {}).orientation === "v";
     const legendRoom = legendWidth(spec.data, layout);
@@ -910,14 +909,13 @@ function squeezedBeside(data, layout, width) {
   return spanX > 0 && spanY > 0 && above > 1.1 * beside;
 }
 // The scale (px a unit) a motion above its second plot, or beside it where that is larger (``beside``), is
-// drawn at in a graph ``width`` px wide, with the layout's legend in a column (``room`` px), in rows or none.
-function pairScale(layout, width, room, names) {
+// drawn at in a graph ``width`` px wide beside a legend in a column ``room`` px wide (0: no legend).
+function pairScale(layout, width, room) {
   const xa = layout.xaxis || {}, up = layout.yaxis || {};
   if (!Array.isArray(xa.range) || !Array.isArray(up.range) || !up.domain) return 0;
-  const margin = layout.margin || {}, shown = layout.showlegend !== false, column = shown && (layout.legend || {}).orientation === "v";
-  const plotWidth = width - (margin.l ?? 80) - (margin.r ?? 80) - (column ? room : 0);
-  const rows = shown && !column ? legendRows(layout, names, plotWidth, room) : 0;
-  const height = layout.height - (margin.t ?? 80) - (margin.b ?? 80) - rows;
+  const margin = layout.margin || {};
+  const plotWidth = width - (margin.l ?? 80) - (margin.r ?? 80) - room;
+  const height = layout.height - (margin.t ?? 80) - (margin.b ?? 80);
   const spanX = Math.abs(xa.range[1] - xa.range[0]), spanY = Math.abs(up.range[1] - up.range[0]);
   if (!(spanX > 0 && spanY > 0 && plotWidth > 0 && height > 0)) return 0;
   const stackedScale = Math.min(plotWidth / spanX, height * (up.domain[1] - up.domain[0]) / spanY);
