@@ -835,15 +835,20 @@ function addSteppers() {
   }
 }
 
-// The −/+ just inside the track's end values under its ends (their text's width and a gap), read from the
-// values' own font even while Streamlit hides them (they show while the track is touched); where the two
-// would then be closer than STEPPERS_APART, at the slider's ends with the values between them, as before.
+// The −/+ just inside the track's end values under its ends (their text's width, in the values' own font,
+// and a gap); where the two would then be closer than STEPPERS_APART, at the slider's ends with the values
+// between them, as before. Measured again when the values' text changes (the units) or the slider's size
+// does (a phone turned), not on each of a drag's values (the observer above calls this on every one).
 const STEPPERS_APART = 12;
 let ink = null;  // a canvas's 2-D context, made on first use (none under node, where the tests load this module)
-function placeSteppers(slider) {
+function placeSteppers(slider, resized = false) {
   const ends = slider.querySelectorAll("[data-testid='stSliderTickBar'] p");
   const track = slider.querySelector("[role='group'] > [data-orientation]");
   if (ends.length !== 2 || !track) return;
+  const said = `${ends[0].textContent} ${ends[1].textContent}`;
+  if (!resized && slider.dataset.dlEnds === said) return;
+  slider.dataset.dlEnds = said;
+  if (!slider.dlResized) (slider.dlResized = new ResizeObserver(() => placeSteppers(slider, true))).observe(slider);
   ink = ink || document.createElement("canvas").getContext("2d");
   const width = (p) => { ink.font = getComputedStyle(p).font; return ink.measureText(p.textContent).width; };
   const own = slider.getBoundingClientRect(), along = track.getBoundingClientRect();
