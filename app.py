@@ -2,6 +2,7 @@
 import streamlit as st
 
 from edge import widget_values
+from edge.streamlit_dom import css
 from solvers.catalog import GROUPS, PROBLEMS
 from ui.home import home
 from ui.params import refused_values_notice
@@ -15,19 +16,19 @@ st.set_page_config(page_title="Dynamics Lab", page_icon="🔄", layout="wide")
 # entries to one line: "Rod-and-sphere pendulum bounces off the floo…"). A link reached by the keyboard
 # is outlined in its own text's colour (Streamlit tints it a faint grey, the same as the current page's:
 # on that one, focus could not be seen), dark on the light theme, light on the dark.
-st.html("""<style>
-  [data-testid='stSidebarNavLink'] span[label], [data-testid='stSidebarNavLink'] span[label] *,
-  [data-testid='stPageLink-NavLink'] > span:last-child, [data-testid='stPageLink-NavLink'] > span:last-child * {
+st.html(css("""<style>
+  $sidebarNavLink span[label], $sidebarNavLink span[label] *,
+  $pageLink > span:last-child, $pageLink > span:last-child * {
     white-space: normal; overflow: visible; text-overflow: clip; height: auto;
   }
-  [data-testid='stSidebarNavLink']:focus-visible, [data-testid='stPageLink-NavLink']:focus-visible {
+  $sidebarNavLink:focus-visible, $pageLink:focus-visible {
     outline: 2px solid currentColor; outline-offset: -2px;
   }
   /* A table cell is 400 px at most: a student's link (one long word) was cut mid-signature. */
-  [data-testid='stTable'] td a, [data-testid='stTable'] td code { overflow-wrap: anywhere; }
+  $table td a, $table td code { overflow-wrap: anywhere; }
   /* A choice longer than its box (an answer's label on a phone) ends in "…", not cut mid-word with no sign. */
-  [data-testid='stSelectbox'] input { text-overflow: ellipsis; }
-</style>""")
+  $selectbox input { text-overflow: ellipsis; }
+</style>"""))
 
 widget_values.install()  # (serve.py installs it before the first session; this covers `streamlit run`)
 take_instructor_link()  # ?instructor=KEY leaves the address bar on every page, the home page too
@@ -40,9 +41,9 @@ for group in GROUPS:
                     for p in PROBLEMS if p.group == group]
 # The Assignments page is at /assignments, the address its title names; /gradebook, where it was first,
 # opens it too (links already given out, bookmarks), without a second entry in the navigation.
-pages["For instructors"] = [st.Page("pages/gradebook.py", title="Assignments", icon=":material/assignment:",
+pages["For instructors"] = [st.Page("app_pages/gradebook.py", title="Assignments", icon=":material/assignment:",
                                    url_path="assignments"),
-                            st.Page("pages/gradebook.py", title="Assignments", icon=":material/assignment:",
+                            st.Page("app_pages/gradebook.py", title="Assignments", icon=":material/assignment:",
                                     url_path="gradebook", visibility="hidden"),
-                            st.Page("pages/handouts.py", title="Handouts", icon=":material/print:", url_path="handouts")]
+                            st.Page("app_pages/handouts.py", title="Handouts", icon=":material/print:", url_path="handouts")]
 st.navigation(pages).run()

@@ -224,12 +224,6 @@ def run(script: Path, argv: list[str]) -> None:
     from edge import widget_values
 
     widget_values.install()
-    # app.py's st.navigation names every page from the first visit on. Left to itself, Streamlit takes a
-    # pages/ folder for its legacy pages mode until st.navigation first runs in the process, and there
-    # an address with no file of its name (/assignments: pages/gradebook.py) was "Page not found".
-    from streamlit.runtime.pages_manager import PagesManager
-
-    PagesManager.uses_pages_directory = False
     # The warmed derivations (sympy trees, lambdified code) live as long as the process: move them
     # out of the collector's sight, so a full collection under load scans only what requests make.
     gc.collect()

@@ -88,7 +88,7 @@ def measure(pid: str, variant: str, changes: int) -> tuple[float, float, float]:
     from bench.controls import changes_of, lesson_control
 
     key, _, _, _ = lesson_control(pid)
-    page = AppTest.from_file(str(ROOT / "pages" / f"{pid}.py"), default_timeout=120).run()
+    page = AppTest.from_file(str(ROOT / "app_pages" / f"{pid}.py"), default_timeout=120).run()
     empty = AppTest.from_file(str(ROOT / "bench" / "empty_page.py"), default_timeout=120).run()
     page_times, empty_times = [], []
     values = changes_of(pid, changes)

@@ -43,6 +43,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
+from edge.streamlit_dom import SELECTORS, js_prelude  # noqa: E402
 from solvers import registry  # noqa: E402
 
 PAGES = list(registry.PROBLEM_IDS)
@@ -52,7 +53,7 @@ VIEWPORT = {"width": 1400, "height": 1000}
 
 # Installed in every document; only the top one uses it. Graphs are looked for in the page and in
 # every same-origin iframe, so the benchmark does not depend on how the figure is embedded.
-HELPERS = """
+HELPERS = js_prelude() + """
 if (window === window.top) {
   // Every websocket message the page receives, with the start of the first frame after it is handled.
   const Native = window.WebSocket;
@@ -76,11 +77,11 @@ if (window === window.top) {
       return out;
     },
     idle() {
-      const app = document.querySelector("[data-testid='stApp']");
-      return !!app && app.dataset.testScriptState === 'notRunning';
+      const app = document.querySelector(DOM.app);
+      return !!app && app.getAttribute(DOM.attributes.scriptState) === DOM.scriptIdle;
     },
     drawn(figures) {
-      if (figures === 0) return this.idle() && document.querySelectorAll("[data-testid='stApp'] input").length >= 2;
+      if (figures === 0) return this.idle() && document.querySelectorAll(`${DOM.app} input`).length >= 2;
       const g = this.graphs();
       return g.length >= figures && g.every(d => d._fullLayout && d.querySelector('.main-svg'));
     },
@@ -164,10 +165,10 @@ def visit(page, url: str, figures: int) -> tuple[float, Wire]:
 
 
 def first_box(page):
-    boxes = page.locator("[data-testid='stSidebar'] [data-testid='stNumberInput'] input, "
-                         "[data-testid='stMain'] [data-testid='stNumberInput'] input")
+    boxes = page.locator(f"{SELECTORS['sidebar']} {SELECTORS['numberInput']} input, "
+                         f"{SELECTORS['main']} {SELECTORS['numberInput']} input")
     if boxes.count() == 0:
-        page.locator("[data-testid='stSidebar']").get_by_text("More parameters", exact=True).click()
+        page.locator(SELECTORS["sidebar"]).get_by_text("More parameters", exact=True).click()
         boxes.first.wait_for(timeout=30_000)
         wait_until_idle(page)
     return boxes.first

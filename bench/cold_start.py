@@ -32,7 +32,7 @@ print(json.dumps({{"imports": t1 - t0, "first": t2 - t1, "second": t3 - t2}}))
 def main() -> None:
     print("| page | process start to first render | first render | second render |\n|---|---|---|---|")
     for page in PAGES:
-        out = subprocess.run([sys.executable, "-c", CODE.format(path=str(ROOT / "pages" / f"{page}.py"))],
+        out = subprocess.run([sys.executable, "-c", CODE.format(path=str(ROOT / "app_pages" / f"{page}.py"))],
                              cwd=ROOT, capture_output=True, text=True, check=True, timeout=300)
         t = json.loads(out.stdout.strip().splitlines()[-1])
         print(f"| {page} | {(t['imports'] + t['first']):.2f} s | {t['first']:.2f} s | {t['second'] * 1000:.0f} ms |")

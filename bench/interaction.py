@@ -103,8 +103,8 @@ def main() -> None:
         key, _, kind, _ = CONTROLS[pid]
         values = (changes_of(pid, 2) * args.changes)[2:args.changes + 2] if args.revisit else changes_of(pid, args.changes)
         if args.revisit:  # both values seen once, untimed, so every timed change is a cache's answer
-            paired_changes(ROOT / "pages" / f"{pid}.py", key, kind, changes_of(pid, 2))
-        page, empty, ratio, page_cpu, empty_cpu = paired_changes(ROOT / "pages" / f"{pid}.py", key, kind, values)
+            paired_changes(ROOT / "app_pages" / f"{pid}.py", key, kind, changes_of(pid, 2))
+        page, empty, ratio, page_cpu, empty_cpu = paired_changes(ROOT / "app_pages" / f"{pid}.py", key, kind, values)
         ratios[pid] = ratio
         print(f"| {pid} | {page * 1000:.1f} ms | {empty * 1000:.1f} ms | {ratio:.2f} "
               f"| {page_cpu * 1000:.1f} / {empty_cpu * 1000:.1f} ms ({page_cpu / empty_cpu:.1f}) |", flush=True)

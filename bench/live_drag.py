@@ -29,6 +29,7 @@ sys.path.insert(0, str(ROOT))
 from playwright.sync_api import sync_playwright  # noqa: E402
 
 from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
+from edge.streamlit_dom import keyed  # noqa: E402
 from bench.controls import lesson_control  # noqa: E402
 from solvers.catalog import PROBLEMS  # noqa: E402
 
@@ -148,7 +149,7 @@ def live_page(browser, url: str, problem, moves: int) -> dict:
     wait_until_idle(page)
     page.locator(".dl-answers table").first.wait_for()
     key, _, kind, _ = lesson_control(problem.id)  # the control every benchmark moves
-    control = page.locator(f".st-key-{key}")
+    control = page.locator(keyed(key))
     control.scroll_into_view_if_needed()
     page.evaluate(PROBE, ".dl-answers table")  # the answers (the headline may not depend on this control)
     loaded = len(sent)

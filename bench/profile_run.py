@@ -55,7 +55,7 @@ def main() -> None:
         values = [round(0.9 - 0.5 * i / args.changes, 6) for i in range(1, args.changes + 1)]
         key, kind = "x", "slider"
     else:
-        at = AppTest.from_file(str(ROOT / "pages" / f"{args.page}.py"), default_timeout=120).run()
+        at = AppTest.from_file(str(ROOT / "app_pages" / f"{args.page}.py"), default_timeout=120).run()
         values = changes_of(args.page, args.changes)
         key, _, kind, _ = lesson_control(args.page)
     for value in values:

@@ -12,6 +12,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from playwright.sync_api import sync_playwright
 from scripts.live_app import running_app, launch_browser, wait_until_idle
+from edge.streamlit_dom import keyed
 from bench.controls import lesson_control
 from bench.live_drag import drag_slider, slider_steps, type_box
 pid = sys.argv[1] if len(sys.argv) > 1 else "pendulum_rebound"
@@ -22,7 +23,7 @@ with running_app() as url, sync_playwright() as pw:
     page.goto(f"{url}/{pid}"); wait_until_idle(page); page.locator(".dl-answers table").first.wait_for()
     page.wait_for_timeout(1000)
     key, _, kind, _ = lesson_control(pid)
-    control = page.locator(f".st-key-{key}")
+    control = page.locator(keyed(key))
     b.start_tracing(page=page, path=str(TRACE), categories=["devtools.timeline", "disabled-by-default-devtools.timeline", "v8.execute", "blink.user_timing"])
     if kind == "slider":
         drag_slider(page, control.locator("[data-orientation='horizontal'][style*='position: relative']").bounding_box(), 40, *slider_steps(control))

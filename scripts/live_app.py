@@ -17,6 +17,7 @@ import time
 import urllib.request
 from pathlib import Path
 from typing import NamedTuple
+from edge.streamlit_dom import ATTRIBUTES, SCRIPT_IDLE, SELECTORS
 
 ROOT = Path(__file__).resolve().parent.parent
 CHROMIUM = os.environ.get("CHROMIUM", "/usr/bin/chromium")
@@ -116,7 +117,8 @@ def launch_browser(playwright):
 
 def wait_until_idle(page, timeout: float = 30_000) -> None:
     """Wait for the script run to finish (and for Streamlit to have started one at all)."""
-    page.wait_for_selector("[data-testid='stApp']", timeout=timeout)
+    app = SELECTORS["app"]
+    page.wait_for_selector(app, timeout=timeout)
     page.wait_for_timeout(300)
-    page.wait_for_selector("[data-testid='stApp'][data-test-script-state='notRunning']", timeout=timeout)
+    page.wait_for_selector(f"{app}[{ATTRIBUTES['scriptState']}='{SCRIPT_IDLE}']", timeout=timeout)
     page.wait_for_timeout(300)

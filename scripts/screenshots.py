@@ -16,6 +16,7 @@ from playwright.sync_api import sync_playwright
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from scripts.live_app import launch_browser, running_app, wait_until_idle  # noqa: E402
+from edge.streamlit_dom import SELECTORS  # noqa: E402
 from solvers.catalog import PROBLEMS  # noqa: E402
 
 SIZES = {"laptop": (1400, 1000), "projector": (1280, 720), "phone": (390, 844), "phone-small": (360, 740)}
@@ -52,7 +53,7 @@ def main() -> None:
                     name = out / f"{path or 'home'}-{theme}-{size}.png"
                     page.screenshot(path=str(name.with_name(name.stem + "-first.png")))
                     # Streamlit scrolls its main block, not the document: grow the window to fit it.
-                    tall = page.evaluate("document.querySelector('[data-testid=\"stMain\"]').scrollHeight")
+                    tall = page.evaluate("(main) => document.querySelector(main).scrollHeight", SELECTORS["main"])
                     page.set_viewport_size({"width": w, "height": max(h, int(tall))})
                     page.wait_for_timeout(500)
                     page.screenshot(path=str(name))

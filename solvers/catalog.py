@@ -20,7 +20,7 @@ class Problem(About):
 
     @property
     def page_path(self) -> str:
-        return f"pages/{self.id}.py"
+        return f"app_pages/{self.id}.py"
 
     def answers_of(self, solution) -> tuple:
         """The answers a solution shows: its regime's (``answers_for``), where the problem has them."""

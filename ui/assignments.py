@@ -26,7 +26,6 @@ from practice.judge import RELATIVE_TOLERANCE, Verdict
 from solvers import units
 from solvers.catalog import BY_ID, PROBLEMS, Problem
 from edge.inline_scripts import COPY_LINKS, SCROLLABLE_TABLES
-from ui.navigation import leave_legacy_pages_mode
 from ui.results import literal, plain
 from ui.session import (Recording, course_assignments, instructor_key_entry, lms_course, lti_arrival,
                         schema_ready)
@@ -1007,8 +1006,6 @@ def _history(aid: int, s: records.Settings) -> None:
 
 
 def instructor_page() -> None:
-
-    leave_legacy_pages_mode()  # a deep link to /assignments on a fresh server: see ui/navigation.py
     st.markdown("# Assignments\n:gray[Signed per-student links, every attempt recorded, the gradebook.]")
     arrival = lti_arrival()
     course = lms_course()

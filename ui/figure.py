@@ -28,7 +28,7 @@ import orjson
 import streamlit as st
 import streamlit.components.v1 as components_v1
 
-from edge import base_path
+from edge import base_path, streamlit_dom
 from viz.common import Figure
 
 NAME = "dynamics_lab_figure"
@@ -84,8 +84,12 @@ IMPORTED = ("live.js",)
 
 @cache
 def module(file: str = "figure.js") -> tuple[str, bytes]:
-    """A component's JavaScript module (plotly_component/<file>), keyed by its content."""
-    return _keyed(_DIR / file, file.removesuffix(".js"), ".js")
+    """A component's JavaScript module (plotly_component/<file>), keyed by its content; one that reads
+    Streamlit's page gets its selectors first, as data (``DOM``: edge/streamlit_dom.py, the one seam)."""
+    source = (_DIR / file).read_text()
+    if "DOM." in source:
+        source = streamlit_dom.js_prelude() + source
+    return _keyed(source.encode(), file.removesuffix(".js"), ".js")
 
 
 def kind_of(figure: Figure, page=()) -> str:

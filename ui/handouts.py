@@ -17,9 +17,9 @@ from assignments.identity import parameters
 from practice.variants import MAX_SEED, variant
 from ui import documents
 from solvers.catalog import BY_ID, PROBLEMS, Problem
-from ui.navigation import leave_legacy_pages_mode
 from ui.session import course_assignments, instructor_key_entry, is_instructor, lms_course
 from ui.stylesheet import PRINT_CSS
+from edge.streamlit_dom import css
 
 MAX_SHEETS = 60  # per handout: a longer class is printed in parts (each sheet is typeset in the page)
 RANGE, ROSTER = "A range of variants", "An assignment's roster"
@@ -27,16 +27,16 @@ STATEMENTS, KEY = "Statements, for the students", "Answer key"
 WHAT = {"statements": STATEMENTS, "key": KEY}  # the link's ?what=
 # On paper each sheet starts a page and a statement's page is left blank below "Your work" (on
 # screen a dashed box stands for it); the page's own heading and choices are not printed.
-SHEET_CSS = """
+SHEET_CSS = css("""
 <style>
   .dl-sheet-break { break-after: page; height: 0; }
   .dl-work { border: 1px dashed rgba(128, 128, 128, 0.6); border-radius: 4px; height: 6rem; margin: 0.5rem 0 1.5rem; }
   @media print {
     .dl-work { display: none; }
-    [data-testid='stElementContainer']:has(.dl-screen-only) { display: none !important; }
+    $elementContainer:has(.dl-screen-only) { display: none !important; }
   }
 </style>
-"""
+""")
 
 
 def _answers(problem: Problem, solution, counted: tuple[str, ...] = ()):
@@ -161,7 +161,6 @@ def _whose(placed: set[int] | None, link: dict[str, str]) -> tuple[Problem, list
 
 
 def handouts_page() -> None:
-    leave_legacy_pages_mode()
     st.html(PRINT_CSS + SHEET_CSS)
     st.markdown("# Handouts\n:gray[Printable sheets for a class: each student's givens with room to work, and a "
                 "separate answer key. Print with the browser (one student per sheet), or download LaTeX or "

@@ -17,9 +17,9 @@ from solvers import units
 from solvers.catalog import BY_ID, Problem
 from viz import diagram, on_request
 from edge import widget_values
+from edge.streamlit_dom import KEYS
 from ui import assignments, figure, live, results, takehome
 from ui.figure import show as show_figure
-from ui.navigation import leave_legacy_pages_mode
 from ui.params import (MAX_URL_VALUE, check_in_range, fixed_parameters, lesson_parameters, mirror_to_url,
                        more_parameters, parameter_panel, refused_values_notice, unknown_in_link)
 from ui.practice import method as practice_method, practice_panel, seed_from_url
@@ -239,7 +239,6 @@ def _results(problem: Problem, solution, answers, system: str, figures, page, le
 
 
 def problem_page(problem_id: str) -> None:
-    leave_legacy_pages_mode()
     problem = BY_ID[problem_id]
     link = assignments.student_link(problem)  # None unless opened with a signed assignment link
     unknown = _unknown_in_link(problem) if link is None else None  # (before the page writes its own address)
@@ -311,9 +310,9 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     if widget_values.take_refusals():
         refused_values_notice()
     forces = _forces_on(problem)  # (the stage's own switch: its press reruns this fragment)
-    stage = st.container(key="dl_stage", horizontal=True, wrap=False, gap="medium")  # a row (STAGE_CSS), not columns: two elements fewer a run
-    motion_column = stage.container(key="dl_motion")
-    params = lesson_parameters(problem, system, None, stage.container(key="dl_stage_controls"))
+    stage = st.container(key=KEYS["stage"], horizontal=True, wrap=False, gap="medium")  # a row (STAGE_CSS), not columns: two elements fewer a run
+    motion_column = stage.container(key=KEYS["motion"])
+    params = lesson_parameters(problem, system, None, stage.container(key=KEYS["stageControls"]))
     _mirror(problem, params, system, lecture, False, None, {}, bool(forces))
     solved = _solved_or_refused(problem, params, system, motion_column, lecture=lecture, forces=bool(forces))
     if solved is None:

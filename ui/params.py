@@ -26,7 +26,7 @@ URL_NUMBER = re.compile(r"[+-]?(?:(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0
 
 
 def control_key(problem: Problem, system: str, name: str) -> str:
-    """The Streamlit key of a parameter's control (its element carries the class st-key-<key>)."""
+    """The Streamlit key of a parameter's control (its element's selector: edge.streamlit_dom.keyed)."""
     return f"{problem.id}__{system}__{name}"
 
 

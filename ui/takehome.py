@@ -18,6 +18,7 @@ from edge import base_path
 from solvers.core import Solution
 from ui import documents, notebook
 from solvers.catalog import Problem
+from edge.streamlit_dom import css
 
 
 def page_link(problem: Problem) -> str:
@@ -82,7 +83,7 @@ DOWNLOAD = re.compile(r"/download/([a-z_]{1,40})/([A-Za-z0-9_.-]{1,80})$")
 MAX_QUERY = 4096  # bytes: a page's query is a few hundred
 DOWNLOAD_RATE, DOWNLOAD_BURST = 4.0, 40  # files a second per client address: a class behind one NAT, not a script
 ICON = '<span aria-hidden="true" class="dl-download-icon">↓</span>'  # st.html's sanitiser drops an inline SVG
-TAKEHOME_CSS = """
+TAKEHOME_CSS = css("""
 <style>
   .dl-downloads { display: flex; flex-wrap: wrap; gap: 0.5rem; }
   .dl-downloads a { display: inline-flex; align-items: center; gap: 0.4rem; padding: 0.25rem 0.75rem; min-height: 2.5rem;
@@ -94,13 +95,13 @@ TAKEHOME_CSS = """
     .dl-downloads { display: none !important; }
     /* the lesson's print link comes last in its fragment (lesson_links): on paper, first, under the
        title, in room the fragment keeps at its top (two lines: a long query wraps once) */
-    [data-testid='stVerticalBlock']:has(> [data-testid='stElementContainer'] .dl-lesson-links) {
+    $verticalBlock:has(> $elementContainer .dl-lesson-links) {
       position: relative !important; padding-top: 2.8rem; }
-    [data-testid='stElementContainer']:has(.dl-lesson-links) { position: static !important; }
+    $elementContainer:has(.dl-lesson-links) { position: static !important; }
     .dl-lesson-links { position: absolute !important; top: 0; left: 0; right: 0; }
   }
 </style>
-"""
+""")
 
 
 def lesson_links(problem: Problem, downloads: bool = True) -> None:

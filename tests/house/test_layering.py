@@ -89,9 +89,9 @@ def test_each_form_of_import_is_caught(source, found):
 # --- the whole project's import graph ---------------------------------------------------------------
 # The pages' side in layers a reader can see (issue 52): the kit (shared pieces) imports the domain and
 # other kit pieces only; each feature imports the kit and the domain, never another feature or the
-# composer; the composer (one problem page from the features) and the entry points (app.py, pages/) above
+# composer; the composer (one problem page from the features) and the entry points (app.py, app_pages/) above
 # them all. The server's edge (edge/) and the LMS (lti/) import nothing from the pages or the drawings.
-KIT = {"ui", "ui.equations", "ui.figure", "ui.live", "ui.params", "ui.results", "ui.session", "ui.navigation",
+KIT = {"ui", "ui.equations", "ui.figure", "ui.live", "ui.params", "ui.results", "ui.session",
        "ui.stylesheet", "ui.documents", "ui.notebook", "ui.thumbnails"}
 FEATURES = {"ui.practice", "ui.assignments", "ui.takehome", "ui.handouts", "ui.home", "ui.variants"}
 COMPOSER = {"ui.page"}

@@ -24,6 +24,7 @@ from solvers import live, registry, units
 from solvers.core import Number, PhysicalLimitError
 from solvers.formatting import plain_number
 from solvers.catalog import BY_ID
+from ui import figure as component
 
 ROOT = Path(__file__).resolve().parents[2]
 NODE = shutil.which("node")
@@ -38,7 +39,7 @@ BATCH = 40
 
 def node(tmp_path: Path, program: str, payload) -> list:
     """Run ``program`` (an ES module importing live.js as ``./live.mjs``) with ``payload`` on stdin."""
-    (tmp_path / "live.mjs").write_text((ROOT / "ui/plotly_component/live.js").read_text())
+    (tmp_path / "live.mjs").write_bytes(component.module("live.js")[1])  # as served: the seam's DOM first
     (tmp_path / "main.mjs").write_text('import fs from "node:fs";\nimport * as live from "./live.mjs";\n'
                                        "const input = JSON.parse(fs.readFileSync(0, 'utf8'));\n" + program)
     out = subprocess.run([NODE, str(tmp_path / "main.mjs")], input=json.dumps(payload), capture_output=True,

@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def run_page(pid: str, query: dict | None = None) -> AppTest:
-    at = AppTest.from_file(str(ROOT / "pages" / f"{pid}.py"), default_timeout=TIMEOUT)
+    at = AppTest.from_file(str(ROOT / "app_pages" / f"{pid}.py"), default_timeout=TIMEOUT)
     at.query_params.update(query or {})
     return at.run()
 
@@ -610,7 +610,7 @@ def test_a_links_value_past_a_top_that_follows_another_falls_back_as_out_of_rang
 def test_a_name_given_twice_takes_the_last_and_the_address_keeps_only_it():
     """?V=2&V=3: the page takes the last, 3, and writes the address back with 3 alone, so a link copied from
     it says what the page shows (it kept both)."""
-    at = AppTest.from_file(str(ROOT / "pages" / "disk_wall.py"), default_timeout=TIMEOUT)
+    at = AppTest.from_file(str(ROOT / "app_pages" / "disk_wall.py"), default_timeout=TIMEOUT)
     at.query_params["V"] = ["2", "3"]
     at.run()
     assert_clean(at)

@@ -125,15 +125,15 @@ def own_tests_lack(pid: str, tests) -> list[str]:
 
 def page_lacks(pid: str, source: str | None) -> list[str]:
     if source is None:
-        return [f"{pid}: no page pages/{pid}.py"]
+        return [f"{pid}: no page app_pages/{pid}.py"]
     if f'problem_page("{pid}")' not in source:
-        return [f'{pid}: pages/{pid}.py does not call problem_page("{pid}")']
+        return [f'{pid}: app_pages/{pid}.py does not call problem_page("{pid}")']
     return []
 
 
 def lacks(pid: str) -> list[str]:
     """Everything the registered problem ``pid`` lacks of the protocol."""
-    page = ROOT / "pages" / f"{pid}.py"
+    page = ROOT / "app_pages" / f"{pid}.py"
     return (solver_lacks(pid, _optional_module(f"solvers.{pid}")) + viz_lacks(pid, _optional_module(f"viz.{pid}"))
             + own_tests_lack(pid, _optional_module(f"tests.physics.test_{pid}"))
             + page_lacks(pid, page.read_text() if page.exists() else None))
@@ -192,7 +192,7 @@ def test_what_a_problem_lacks_is_named():
     assert own_tests_lack("sliding_ladder", SimpleNamespace()) == ["sliding_ladder: tests/physics/test_sliding_ladder.py has no CONTRACT"]
     assert own_tests_lack("sliding_ladder", None) == ["sliding_ladder: no tests/physics/test_sliding_ladder.py"]
     assert page_lacks("sliding_ladder", 'problem_page("ladder")') == [
-        'sliding_ladder: pages/sliding_ladder.py does not call problem_page("sliding_ladder")']
+        'sliding_ladder: app_pages/sliding_ladder.py does not call problem_page("sliding_ladder")']
     assert lacks("no_such_problem")[0] == "no_such_problem: no solver module solvers/no_such_problem.py"
 
 
@@ -201,9 +201,9 @@ def test_what_a_problem_lacks_is_named():
 
 
 def test_every_registered_problem_has_its_page_and_every_page_is_registered():
-    pages = {p.stem for p in (ROOT / "pages").glob("*.py")}
+    pages = {p.stem for p in (ROOT / "app_pages").glob("*.py")}
     NOT_PROBLEMS = {"gradebook", "handouts"}  # the instructors' pages (not named "assignments": a page
-    # script's folder is on sys.path, and pages/assignments.py would shadow the assignments package)
+    # script's folder is on sys.path, and app_pages/assignments.py would shadow the assignments package)
     assert pages - NOT_PROBLEMS == set(registry.PROBLEM_IDS)
     assert len(set(registry.PROBLEM_IDS)) == len(registry.PROBLEM_IDS)
 
@@ -237,11 +237,11 @@ def test_the_shared_thumbnail_helper_gives_an_image_with_its_text_alternative():
 # One place: the app's code names a problem only in the problem's own files and the registry
 
 
-APP_CODE = ("app.py", "serve.py", "ui", "practice", "solvers", "viz", "pages")
+APP_CODE = ("app.py", "serve.py", "ui", "practice", "solvers", "viz", "app_pages")
 
 
 def own_files(pid: str) -> set[str]:
-    return {f"solvers/{pid}.py", f"viz/{pid}.py", f"pages/{pid}.py", f"tests/physics/test_{pid}.py"}
+    return {f"solvers/{pid}.py", f"viz/{pid}.py", f"app_pages/{pid}.py", f"tests/physics/test_{pid}.py"}
 
 
 def ids_outside_own_files(sources: dict[str, str], ids) -> list[str]:

@@ -354,7 +354,7 @@ def test_a_move_of_the_slider_on_the_page_finds_its_angle_warmed():
 
     for params in ladder.WARM:
         ladder_viz.figures(ladder.solve(**params))
-    at = AppTest.from_file(str(Path(__file__).resolve().parents[2] / "pages" / "sliding_ladder.py"),
+    at = AppTest.from_file(str(Path(__file__).resolve().parents[2] / "app_pages" / "sliding_ladder.py"),
                            default_timeout=60).run()
     before = ladder.integrated.cache_info().misses, ladder._sampled.cache_info().misses
     for degrees in (47, 12, 88):

@@ -383,7 +383,7 @@ def test_instructor_csv_has_parameters_and_answers():
 
 
 def run_page(pid, query):
-    at = AppTest.from_file(str(ROOT / "pages" / f"{pid}.py"), default_timeout=60)
+    at = AppTest.from_file(str(ROOT / "app_pages" / f"{pid}.py"), default_timeout=60)
     at.query_params.update(query)
     return at.run()
 

@@ -22,7 +22,7 @@ from solvers import units
 
 ROOT = Path(__file__).resolve().parents[2]
 KEY, SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
-INSTRUCTOR_PAGE = str(ROOT / "pages" / "gradebook.py")
+INSTRUCTOR_PAGE = str(ROOT / "app_pages" / "gradebook.py")
 
 
 def reset_database_caches():
@@ -89,7 +89,7 @@ def gradebook_table(at: AppTest):
 
 
 def student(query: dict) -> AppTest:
-    at = AppTest.from_file(str(ROOT / "pages" / "pendulum_rebound.py"), default_timeout=60)
+    at = AppTest.from_file(str(ROOT / "app_pages" / "pendulum_rebound.py"), default_timeout=60)
     at.query_params.update(query)
     return at.run()
 
@@ -585,7 +585,7 @@ def test_feedback_policy_per_assignment_and_practice_keeps_its_hints(course):
     assert page.error[0].value.startswith("Not right. Check each step")
     mine = next(t.value for t in page.table if "slip" in t.value.columns)  # nor does the list of attempts name it
     assert len(mine) == 3 and set(mine["slip"]) == {""}
-    practice = AppTest.from_file(str(ROOT / "pages" / "pendulum_rebound.py"), default_timeout=60)
+    practice = AppTest.from_file(str(ROOT / "app_pages" / "pendulum_rebound.py"), default_timeout=60)
     practice.query_params.update({"practice": "1"})
     practice = answer(practice.run(), "theta_rebound", slip_value(pendulum_rebound.solve().params))
     assert E_FOR_E2 in practice.error[0].value  # Practice keeps today's feedback
@@ -612,7 +612,7 @@ def test_a_problem_set_is_one_assignment_with_one_score(course):
     (links,) = [m for m in page.markdown if "This assignment has 2 problems" in m.value]
     query = html.escape(urllib.parse.urlencode(link_query(ann)))
     assert links.allow_html and f'<a href="disk_wall?{query}" target="_self">' in links.value
-    other = AppTest.from_file(str(ROOT / "pages" / "disk_wall.py"), default_timeout=60)
+    other = AppTest.from_file(str(ROOT / "app_pages" / "disk_wall.py"), default_timeout=60)
     other.query_params.update(link_query(ann))
     other.run()
     assert not other.exception and "Graded assignment" in other.info[0].value

@@ -23,7 +23,7 @@ from ui import documents
 from solvers.catalog import BY_ID
 
 ROOT = Path(__file__).resolve().parents[2]
-PAGE = str(ROOT / "pages" / "handouts.py")
+PAGE = str(ROOT / "app_pages" / "handouts.py")
 
 
 def handouts(query: dict | None = None) -> AppTest:

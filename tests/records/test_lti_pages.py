@@ -47,7 +47,7 @@ def test_a_learner_launch_opens_their_variant_records_and_works_once(course):
     assert any("Recorded: attempt 1 of 3" in i.value for i in page.info)
     with db.session() as s:
         assert s.query(db.LtiScore).filter_by(assignment_id=aid, label=label).count() == 1  # queued for the LMS
-    elsewhere = AppTest.from_file(str(ROOT / "pages" / "disk_wall.py"), default_timeout=60)
+    elsewhere = AppTest.from_file(str(ROOT / "app_pages" / "disk_wall.py"), default_timeout=60)
     elsewhere.session_state["lti__arrival"] = page.session_state["lti__arrival"]  # the same session, another page
     elsewhere.run()
     assert not elsewhere.exception and not elsewhere.error  # practice there, as anyone
@@ -77,7 +77,7 @@ def test_the_lms_instructor_sees_their_course_only_without_a_key(course):
     assert key_holder.text_input(key="assign__instructor_key")  # without a launch: the key, as before
 
 
-HANDOUTS = str(ROOT / "pages" / "handouts.py")
+HANDOUTS = str(ROOT / "app_pages" / "handouts.py")
 
 
 def handouts_as(arrival: dict | None) -> AppTest:
@@ -122,7 +122,7 @@ def test_an_lms_instructor_on_a_problem_page_is_told_their_course_keys_not_given
     migrate.upgrade()
     placed("Ours", "course-1", "rl-1")
     placed("Theirs", "course-2", "rl-2")
-    at = AppTest.from_file(str(ROOT / "pages" / "pendulum_rebound.py"), default_timeout=60)
+    at = AppTest.from_file(str(ROOT / "app_pages" / "pendulum_rebound.py"), default_timeout=60)
     at.query_params["practice"] = "1"  # the export is in Practice
     at.query_params["lti"] = lti.handoff({"role": "instructor", "iss": ISSUER, "ctx": "course-1", "a": 0})
     at.run()

@@ -520,11 +520,11 @@ class Figure {
   // height; and that height, as any figure's further down, where less than MIN_FITTED of the first
   // screen is left below its top (it starts at the screen's foot or past it: nothing to fit to).
   screenHeight(height) {
-    const main = this.root.closest("[data-testid='stMain']");
+    const main = this.root.closest(DOM.main);
     const graph = this.graph.getBoundingClientRect();
     const top = graph.top + (main ? main.scrollTop : 0);
-    const stage = this.root.closest(".st-key-dl_stage");
-    const controls = stage && stage.querySelector(".st-key-dl_stage_controls");
+    const stage = this.root.closest(DOM.stage);
+    const controls = stage && stage.querySelector(DOM.stageControls);
     const box = controls && controls.getBoundingClientRect();
     const below = box && box.height && box.top > graph.top ? box.bottom - graph.bottom : 0;  // caption, controls
     const room = Math.floor(window.innerHeight - top - (below || this.captionLine()) - 12);
@@ -665,7 +665,7 @@ class Figure {
   // A figure fitted to the first screen fits again when what shares the screen with it changes: the
   // lesson's controls drawn (or redrawn taller) after it, what is above it grown, the window turned or resized.
   watchStage() {
-    const stage = this.root.closest(".st-key-dl_stage");
+    const stage = this.root.closest(DOM.stage);
     if (!this.refitting) {
       this.refitting = () => {
         if (!this.fitHeight || !this.Plotly || !this.graph.layout || this.printing) return;
@@ -679,7 +679,7 @@ class Figure {
     }
     // The stage grows when the controls are drawn or change; the page's column grows too when what is
     // above the stage does (the title set in its web font, a notice), which moves the stage down unresized.
-    const column = this.root.closest(".stMainBlockContainer");
+    const column = this.root.closest(DOM.mainBlock);
     for (const [watched, element] of [["watched", stage], ["watchedColumn", column]]) {
       if (!element || element === this[watched]) continue;
       if (this[watched]) this.stageWatch.unobserve(this[watched]);

@@ -38,33 +38,33 @@ const STYLE = `
    track keeps the column's whole width (between them it had a third of it, too short to drag to a value) */
 .dl-step { display: none; }
 @media (max-width: 640px) {
-  .st-key-dl_stage_controls .dl-stepped { position: relative; padding-bottom: 32px; }
-  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderThumbValue'] { z-index: 1; }
+  ${DOM.stageControls} .dl-stepped { position: relative; padding-bottom: 32px; }
+  ${DOM.stageControls} .dl-stepped ${DOM.sliderThumbValue} { z-index: 1; }
   /* 44 px wide, 32 tall: wholly below the track's 40 px of touch, so a finger a little low on the thumb
      still drags it (44 tall, they reached 12 px into it and took the drag) */
-  .st-key-dl_stage_controls .dl-step { display: block; position: absolute; bottom: 0; width: 44px; height: 32px; padding: 0;
+  ${DOM.stageControls} .dl-step { display: block; position: absolute; bottom: 0; width: 44px; height: 32px; padding: 0;
     font-size: 1.4rem; line-height: 1; border-radius: 0.5rem; cursor: pointer; touch-action: manipulation;
     border: 1px solid rgba(128, 128, 128, 0.6); background: rgba(128, 128, 128, 0.12); color: inherit; }  /* the theme's text, light or dark */
   /* the track's end values (shown while it is touched) under its ends, the −/+ just inside them (between the
      −/+ they stood bunched mid-track, "0 100" in 64 px of a 172 px track) */
-  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: var(--dl-ends-margin, 48px);
+  ${DOM.stageControls} .dl-stepped ${DOM.sliderTickBar} { margin-left: var(--dl-ends-margin, 48px);
     margin-right: var(--dl-ends-margin, 48px); }
-  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] p { font-size: 0.75rem; }
+  ${DOM.stageControls} .dl-stepped ${DOM.sliderTickBar} p { font-size: 0.75rem; }
   /* shown at rest too (Streamlit shows them only while the track is touched): a finger sees the range before
      it moves, and the −/+ stand inside values that are there, not inside a gap */
-  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { opacity: 1 !important; }
-  .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: var(--dl-low-end, 0px); }
-  .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: var(--dl-high-end, 0px); }
+  ${DOM.stageControls} .dl-stepped ${DOM.sliderTickBar} { opacity: 1 !important; }
+  ${DOM.stageControls} .dl-step[data-steps='-1'] { left: var(--dl-low-end, 0px); }
+  ${DOM.stageControls} .dl-step[data-steps='1'] { right: var(--dl-high-end, 0px); }
 }
 /* a short phone (360×740): at the track's ends, so that the figure, Play and the controls still share the first
    screen (under the track they would push the second row of controls below it) */
 @media (max-width: 640px) and (max-height: 800px) {
-  .st-key-dl_stage_controls .dl-stepped { padding-bottom: 0; }
-  .st-key-dl_stage_controls .dl-stepped > [role='group'] { padding-left: 56px; padding-right: 56px; }
-  .st-key-dl_stage_controls .dl-step { bottom: 4px; }  /* level with the thumb */
-  .st-key-dl_stage_controls .dl-step[data-steps='-1'] { left: 0; }
-  .st-key-dl_stage_controls .dl-step[data-steps='1'] { right: 0; }
-  .st-key-dl_stage_controls .dl-stepped [data-testid='stSliderTickBar'] { margin-left: -6px; margin-right: -6px; }
+  ${DOM.stageControls} .dl-stepped { padding-bottom: 0; }
+  ${DOM.stageControls} .dl-stepped > [role='group'] { padding-left: 56px; padding-right: 56px; }
+  ${DOM.stageControls} .dl-step { bottom: 4px; }  /* level with the thumb */
+  ${DOM.stageControls} .dl-step[data-steps='-1'] { left: 0; }
+  ${DOM.stageControls} .dl-step[data-steps='1'] { right: 0; }
+  ${DOM.stageControls} .dl-stepped ${DOM.sliderTickBar} { margin-left: -6px; margin-right: -6px; }
 }
 @media print { .dl-step { display: none !important; } }
 .dl-live-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }
@@ -192,7 +192,7 @@ let resting = 0;    // the timer that ends a live view whose controls are back a
 const RESTING_MS = 300;
 
 const $$ = (selector) => [...document.querySelectorAll(selector)];
-const stage = () => document.querySelector(".st-key-dl_stage");
+const stage = () => document.querySelector(DOM.stage);
 const answersTable = () => document.querySelector(".dl-text.dl-answers table");
 
 // What the server drew that a live value cannot redraw: dimmed, with a word, until the run replaces it.
@@ -206,7 +206,7 @@ function staleParts() {
 
 function controlValue(name) {
   const [, key, factor] = state.data.follows.find(([n]) => n === name);
-  const box = document.querySelector(`.st-key-${CSS.escape(key)} input`);
+  const box = document.querySelector(`.${DOM.keyPrefix}${CSS.escape(key)} input`);
   if (!box) return null;
   if (dragged && dragged.input === box && dragged.value !== null && box.value === dragged.seen) return dragged.value;
   if (box.type === "range") return restingValue(box, state.params[name] * factor);
@@ -276,7 +276,7 @@ export function draggedValue(start, travel, size, min, max, step) {
 }
 
 function onDragStart(event) {
-  const slider = event.target.closest && event.target.closest(".st-key-dl_stage_controls [data-testid='stSlider']");
+  const slider = event.target.closest && event.target.closest(`${DOM.stageControls} ${DOM.slider}`);
   // (none on a page without the live view: a run the solver refused has no answers to follow, and
   // react-aria draws the drag back to a value it takes)
   if (!slider || !state || !event.isPrimary || event.button !== 0 || event.target.closest(".dl-step")) return;
@@ -308,7 +308,7 @@ function onDragMove(event) {
 const KEPT_MS = 4000;
 let keeping = null;
 function keepInPlace(element) {
-  const key = [...element.classList].find((c) => c.startsWith("st-key-"));
+  const key = [...element.classList].find((c) => c.startsWith(DOM.keyPrefix));
   if (!key) return;
   if (keeping) keeping.stop();
   const top = element.getBoundingClientRect().top, until = performance.now() + KEPT_MS;
@@ -342,7 +342,7 @@ function onDragEnd(event) {
   if (ended && ended.drawn && ended.last) {
     say(ended.input, ended.drawn.said, ended.drawn.valueBefore);  // the slider's own again (a release's render gives its new value)
     if (event.type === "pointerup") {
-      const control = ended.track.closest("[class*='st-key-']");
+      const control = ended.track.closest(`[class*='${DOM.keyPrefix}']`);
       if (control) keepInPlace(control);
       // react-aria has seen none of the moves: one before its release, to the middle of the step the thumb
       // shows, so that its arithmetic lands there too (at the release's own point, half a step could round
@@ -369,18 +369,18 @@ function travelTo({input, track, start, value}) {
 
 // Where a drag starts: the value the slider shows (off its steps too, as react-aria's state has it).
 function startValue(input) {
-  const follow = state && state.data.follows.find(([, key]) => input.closest(`.st-key-${CSS.escape(key)}`));
+  const follow = state && state.data.follows.find(([, key]) => input.closest(`.${DOM.keyPrefix}${CSS.escape(key)}`));
   return follow ? restingValue(input, state.params[follow[0]] * follow[2]) : Number(input.value);
 }
 
 // The parts of a stage slider that a drag moves, as Streamlit 1.67 draws them, or null.
 function drawnParts(slider, track, input) {
   const thumb = [...track.children].find((child) => child.contains(input) && child.style.left);
-  const label = thumb && thumb.querySelector("[data-testid='stSliderThumbValue']");
+  const label = thumb && thumb.querySelector(DOM.sliderThumbValue);
   const text = label && label.querySelector("p"), shown = text && /^-?\d+(?:\.(\d+))?$/.exec(text.textContent);
   const fill = track.firstElementChild, gradient = fill ? getComputedStyle(fill).backgroundImage : "";
   if (!shown || !(text.firstChild instanceof Text) || (gradient.match(/-?[\d.]+%/g) || []).length !== 4) return null;
-  const follow = state && state.data.follows.find(([, key]) => slider.closest(`.st-key-${CSS.escape(key)}`));
+  const follow = state && state.data.follows.find(([, key]) => slider.closest(`.${DOM.keyPrefix}${CSS.escape(key)}`));
   const general = follow && /^%\.(\d+)g$/.exec(follow[3] || "");  // "%.6g": six figures, no trailing zeros
   return {root: slider, thumb, label, fill, gradient, decimals: (shown[1] || "").length, figures: general ? Number(general[1]) : 0,
           left: thumb.style.left, text: text.textContent, said: input.getAttribute("aria-valuetext"), valueBefore: input.value};
@@ -446,7 +446,7 @@ function begin() {
   liveCaption();
   holdPose();
   for (const el of staleParts()) el.classList.add("dl-live-stale");
-  const fig = document.querySelector(".st-key-dl_stage .dl-figure");
+  const fig = document.querySelector(`${DOM.stage} .dl-figure`);
   // Over the figure's title, not dimmed with it, and taking no room: nothing under the finger moves.
   if (fig && !document.querySelector(".dl-live-badge")) {
     const badge = Object.assign(document.createElement("p"), {className: "dl-live-badge"});
@@ -465,7 +465,7 @@ function begin() {
 // The stage figure's caption: its headline (viz.common.headline: the run's words, numbers in slots)
 // apart from the rest, which is dimmed; its own announcements off while it changes on every frame.
 function liveCaption() {
-  const el = document.querySelector(".st-key-dl_stage .dl-figure .dl-description"), head = state.data.headline;
+  const el = document.querySelector(`${DOM.stage} .dl-figure .dl-description`), head = state.data.headline;
   if (!el || !head || !el.textContent.startsWith(head.text)) return;
   state.caption = {el, text: el.textContent, said: el.getAttribute("aria-live")};
   el.setAttribute("aria-live", "off");
@@ -497,7 +497,7 @@ const POSE_LIVE = "key instant live · the motion is updating…";
 const DIMMED = 0.3;
 
 function stageFigure() {
-  const el = document.querySelector(".st-key-dl_stage .dl-figure");
+  const el = document.querySelector(`${DOM.stage} .dl-figure`);
   return el && el.dlFigure && el.dlFigure.Plotly && el.dlFigure.frames.length ? el.dlFigure : null;
 }
 
@@ -658,7 +658,7 @@ function schedule() { if ((state || (dragged && dragged.drawn)) && !frame) frame
 // The stage's controls: a slider's value (react-aria sets its range input while it is dragged), a
 // number box's typing, a held key (below).
 function watch() {
-  const controls = document.querySelector(".st-key-dl_stage_controls") || document.body;
+  const controls = document.querySelector(DOM.stageControls) || document.body;
   if (controls.dlLiveWatched) return;
   controls.dlLiveWatched = true;
   new MutationObserver(() => { addSteppers(); schedule(); }).observe(controls, {subtree: true, attributes: true,
@@ -677,12 +677,12 @@ function watch() {
 let watchingRuns = false;
 function watchRuns() {
   if (watchingRuns) return;
-  const app = document.querySelector("[data-testid='stApp']");
+  const app = document.querySelector(DOM.app);
   if (!app) return;
   watchingRuns = true;
   new MutationObserver(() => {
-    if (app.getAttribute("data-test-script-state") === "notRunning") requestAnimationFrame(() => settle());
-  }).observe(app, {attributes: true, attributeFilter: ["data-test-script-state"]});
+    if (app.getAttribute(DOM.attributes.scriptState) === DOM.scriptIdle) requestAnimationFrame(() => settle());
+  }).observe(app, {attributes: true, attributeFilter: [DOM.attributes.scriptState]});
 }
 
 // A run that drew no live view (a refused value: no answers, no figure) takes its element away without
@@ -749,7 +749,7 @@ export function pageSize(min, max, step) {  // react-aria's: a tenth of the rang
 }
 
 function stageSlider(el) {
-  return el instanceof HTMLInputElement && el.type === "range" && el.closest(".st-key-dl_stage_controls [data-testid='stSlider']") ? el : null;
+  return el instanceof HTMLInputElement && el.type === "range" && el.closest(`${DOM.stageControls} ${DOM.slider}`) ? el : null;
 }
 
 // The value the slider takes (the input sanitises it to its range and steps) and tells React of it.
@@ -807,7 +807,7 @@ function onFocusOut(event) {
 
 // A pointer on the slider being held by keys: react-aria's drag commits on its release.
 function onPointerDown(event) {
-  if (held && !event.target.closest(".dl-step") && held.input.closest("[data-testid='stSlider']").contains(event.target)) {
+  if (held && !event.target.closest(".dl-step") && held.input.closest(DOM.slider).contains(event.target)) {
     clearTimeout(held.timer);
     held = null;
   }
@@ -819,7 +819,7 @@ function onPointerDown(event) {
 // screen readers ("θ₂ one step lower"). A tap moves one step as a key press does (above): live, and a
 // burst of taps is one run, COMMIT_AFTER ms after the last. Hidden on a wide screen and on paper.
 function addSteppers() {
-  for (const slider of document.querySelectorAll(".st-key-dl_stage_controls [data-testid='stSlider']")) {
+  for (const slider of document.querySelectorAll(`${DOM.stageControls} ${DOM.slider}`)) {
     placeSteppers(slider);
     if (slider.querySelector(":scope > .dl-step")) continue;
     const input = slider.querySelector("input[type='range']");
@@ -842,7 +842,7 @@ function addSteppers() {
 const STEPPERS_APART = 12;
 let ink = null;  // a canvas's 2-D context, made on first use (none under node, where the tests load this module)
 function placeSteppers(slider, resized = false) {
-  const ends = slider.querySelectorAll("[data-testid='stSliderTickBar'] p");
+  const ends = slider.querySelectorAll(`${DOM.sliderTickBar} p`);
   const track = slider.querySelector("[role='group'] > [data-orientation]");
   if (ends.length !== 2 || !track) return;
   const said = `${ends[0].textContent} ${ends[1].textContent}`;
