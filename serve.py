@@ -27,14 +27,13 @@ ROOT = Path(__file__).resolve().parent
 def warm() -> float:
     """Solve every problem for every option (deriving each sympy chain once), build its figures and
     generate its live view's function and pose module (for each unit system it is offered in)."""
-    import importlib
-
     from practice.worker import shared_worker
     from solvers import registry
     from solvers.core import Choice
     from ui import live
     from solvers.catalog import BY_ID
     from viz import on_request
+    from viz.catalog import drawings
 
     started = time.perf_counter()
     shared_worker().warm()
@@ -43,19 +42,19 @@ def warm() -> float:
     requested = [threading.Thread(target=on_request.figure, args=(pid, tuple(sorted(solver.solve().params.items()))),
                                   name=f"warm {pid}'s on-request figure")
                  for pid, solver in zip(registry.PROBLEM_IDS, registry.solvers())
-                 if hasattr(importlib.import_module(f"viz.{pid}"), "on_request")]
+                 if drawings(pid).on_request]
     for thread in requested:
         thread.start()
     for pid, solver in zip(registry.PROBLEM_IDS, registry.solvers()):
-        viz = importlib.import_module(f"viz.{pid}")
+        figures = drawings(pid).figures
         choices = [p for p in solver.PARAMS if isinstance(p, Choice)]
         for combination in itertools.product(*(c.options for c in choices)):
             solution = solver.solve(**dict(zip((c.name for c in choices), combination)))
-            viz.figures(solution)
+            figures(solution)
             for system in ("si", "us") if BY_ID[pid].us_units else ("si",):
                 live.warm(pid, solution.params, system)  # the live view's function and pose module
         for params in solver.WARM:  # the states no option combination reaches, or a slider's every position
-            viz.figures(solver.solve(**params))
+            figures(solver.solve(**params))
     for thread in requested:
         thread.join()
     return time.perf_counter() - started

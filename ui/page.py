@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import contextlib
 import functools
-import importlib
 import math
 from concurrent.futures.process import BrokenProcessPool
 
@@ -16,6 +15,7 @@ from solvers.core import PhysicalLimitError, Solution, within_model_range
 from solvers import units
 from solvers.catalog import BY_ID, Problem
 from viz import diagram, on_request
+from viz.catalog import drawings
 from edge import widget_values
 from edge.streamlit_dom import KEYS
 from ui import assignments, figure, live, results, takehome
@@ -75,7 +75,8 @@ def _forces_on(problem: Problem) -> bool | None:
 
 def _unknown_in_link(problem: Problem) -> str | None:
     """What the page says of a link's names it does not know and of its flags' values it does not take."""
-    switches = ("lecture", "practice", *filter(None, [_on_request_flag_name(problem)]),
+    asked = drawings(problem.id).on_request
+    switches = ("lecture", "practice", *([asked.flag] if asked else []),
                 *([FORCES_FLAG] if _has_forces_overlay(problem) else []))
     said = [unknown_in_link(problem, st.query_params.keys(), LINK_FLAGS | set(switches))]
     units_asked = st.query_params.get("units", "si")
@@ -120,7 +121,7 @@ def _computed(problem_id: str, key: tuple, system: str, forces: bool = False):
     stage figure with the free-body diagram's forces on the motion (viz.diagram.overlay)."""
     solver = BY_ID[problem_id].solver
     solution = solver.solve(**dict(key))
-    figures = tuple(importlib.import_module(f"viz.{problem_id}").figures(solution, system))
+    figures = tuple(drawings(problem_id).figures(solution, system))
     if forces:
         stage = figures[0]
         x_range = stage.spec["layout"]["xaxis"]["range"]
@@ -138,19 +139,13 @@ def _solve_and_draw(problem: Problem, params: dict, system: str, forces: bool = 
     return _computed(problem.id, tuple(sorted(params.items())), system, forces)
 
 
-def _on_request_label(problem: Problem) -> str:
-    """The words of the switch for a problem's costly figure on request (its ``on_request``'s first
-    clause), or "" where it offers none."""
-    viz = importlib.import_module(f"viz.{problem.id}")
-    return viz.on_request.__doc__.split(":")[0] if hasattr(viz, "on_request") else ""
-
-
 def _on_request(problem: Problem, solution, figures) -> None:
     """A costly extra figure some problems offer (e.g. Euler's disk running down), drawn only when
     asked for, in a worker process (viz.on_request), and kept by parameters across sessions; drawn
     with the plotly.js of the page's ``figures``."""
-    label = _on_request_label(problem)
-    if label and st.toggle(label, key=f"{problem.id}__on_request"):
+    asked = drawings(problem.id).on_request
+    label = asked.label if asked else ""
+    if asked and st.toggle(label, key=f"{problem.id}__on_request"):
         ahead = on_request.waiting()  # (a figure already drawn is shown at once: the spinner never appears)
         words = ("Integrating the equations of motion: usually 5 to 15 s"
                  + (f", after {ahead} run{'s' if ahead > 1 else ''} other students asked for first" if ahead else "") + "…")
@@ -164,17 +159,13 @@ def _on_request(problem: Problem, solution, figures) -> None:
         show_figure(drawn, page=figures)
 
 
-def _on_request_flag_name(problem: Problem) -> str | None:
-    """``ON_REQUEST_FLAG`` in the problem's viz module (e.g. "rundown"), or None."""
-    return getattr(importlib.import_module(f"viz.{problem.id}"), "ON_REQUEST_FLAG", None)
-
-
 def _on_request_flag(problem: Problem) -> dict[str, str]:
     """The URL flag that keeps a problem's on-request figure open (``ON_REQUEST_FLAG`` in its viz
     module, e.g. ?rundown=1): the switch starts from the link and the link follows the switch."""
-    flag = _on_request_flag_name(problem)
-    if flag is None:
+    asked = drawings(problem.id).on_request
+    if asked is None:
         return {}
+    flag = asked.flag
     key = f"{problem.id}__on_request"
     if key not in st.session_state:
         st.session_state[key] = st.query_params.get(flag) == "1"
@@ -211,7 +202,8 @@ def _limit_figures(problem: Problem, params: dict, system: str, lecture: bool, o
     """The figures that show why a physical limit stops the model (``at_limit`` in the problem's viz
     module, where it has one); the first fitted to a laptop's first screen where it stands on the stage
     (not under a refusal in projector type: too little of the screen is left)."""
-    figures = getattr(importlib.import_module(f"viz.{problem.id}"), "at_limit", lambda *_: [])(params, system)
+    at_limit = drawings(problem.id).at_limit
+    figures = at_limit(params, system) if at_limit else []
     for n, drawn in enumerate(figures):
         show_figure(drawn, page=figures, lecture=lecture, fit_screen=on_stage and n == 0 and not lecture)
 
@@ -230,7 +222,7 @@ def _results(problem: Problem, solution, answers, system: str, figures, page, le
     last = [figure.part(figure.DERIVATION, "derivation", _derivation_data(problem.solver, solution))]
     if links is not None:
         last.append(figure.part(figure.LINKS, "links", orjson.dumps(links)))
-    if not _on_request_label(problem):
+    if not drawings(problem.id).on_request:
         figure.together([*parts, *last], key="dl_results")
         return
     figure.together(parts, key="dl_results")

@@ -8,11 +8,11 @@ import numpy as np
 
 from solvers import eulers_disk as solver
 from solvers.core import plain_fixed, plain_number as n
+from viz.catalog import OnRequest
 from viz.common import COLORS, Figure, animated, base_layout, line, moving, r, thumbnail
 
 PLAY_SECONDS = 4.0  # one precession lasts this long on screen
 MM = 1000.0  # the 3-D view is drawn in millimetres
-ON_REQUEST_FLAG = "rundown"  # ?rundown=1 keeps "Letting it run down" open in a shared link
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     f'<ellipse cx="100" cy="88" rx="70" ry="14" fill="none" stroke="{COLORS["velocity"]}" stroke-width="2" stroke-dasharray="5 4"/>'
@@ -222,3 +222,7 @@ def on_request(solution, damping: float = 5e-6) -> Figure:
                    f"N·m·s): {said}")
     return Figure("eulers_disk_decay", "Letting it run down (full equations, with dissipation)",
                   {"data": data, "layout": layout}, description, animated=False, height=420)
+
+
+# behind a switch of these words; ?rundown=1 keeps it open in a shared link
+ON_REQUEST = OnRequest("Letting it run down", "rundown", on_request)

@@ -10,7 +10,6 @@ kept in the server by its parameters, shared by every session.
 from __future__ import annotations
 
 import functools
-import importlib
 import multiprocessing
 import threading
 from concurrent.futures import ProcessPoolExecutor
@@ -64,9 +63,10 @@ def waiting() -> int:
 def drawn(problem_id: str, params: tuple):
     """The problem's on-request figure for these parameters (``(name, value)`` pairs), drawn here."""
     from solvers import registry
+    from viz.catalog import drawings
 
     solution = registry.solver(problem_id).solve(**dict(params))
-    return importlib.import_module(f"viz.{problem_id}").on_request(solution)
+    return drawings(problem_id).on_request.draw(solution)
 
 
 @functools.lru_cache(maxsize=64)

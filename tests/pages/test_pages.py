@@ -3,7 +3,6 @@ its state round-trips through the URL, and bad input of any kind ends in a plain
 from __future__ import annotations
 
 import html
-import importlib
 import math
 import re
 from pathlib import Path
@@ -17,6 +16,7 @@ from streamlit.testing.v1 import AppTest, app_test
 
 from solvers import units
 from solvers.catalog import BY_ID, PROBLEMS
+from viz.catalog import drawings
 from ui import takehome
 from ui.figure import ANSWERS, DERIVATION, LESSON, LINKS
 
@@ -513,7 +513,8 @@ def test_a_links_unknown_name_is_said_and_left_out(pid, view):
     views, a variant, an extra figure's switch) are never called unknown."""
     solver = BY_ID[pid].solver
     first = solver.ABOUT.primary[0]
-    flag = getattr(importlib.import_module(f"viz.{pid}"), "ON_REQUEST_FLAG", None)
+    asked = drawings(pid).on_request
+    flag = asked.flag if asked else None
     known = {**view, **({"units": "us"} if BY_ID[pid].us_units else {}), **({flag: "1"} if flag else {})}
     assert [w.value for w in run_page(pid, known).warning] == []
     at = run_page(pid, {**known, f"{first}x": "1", "Vz": "nan"})

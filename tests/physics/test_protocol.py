@@ -15,6 +15,7 @@ from solvers import registry
 from solvers.core import Answer, Choice, Number
 from solvers.diagram import Diagram
 from solvers.protocol import About, Mistake, Variants
+from viz.catalog import OnRequest
 from viz.common import thumbnail
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -108,8 +109,8 @@ def viz_lacks(pid: str, viz) -> list[str]:
         missing.append(f"{pid}: viz has no THUMBNAIL")
     elif not ('role="img"' in sketch and re.search(r'aria-label="[^"]+"', sketch)):
         missing.append(f'{pid}: viz THUMBNAIL has no role="img" and aria-label (use viz.common.thumbnail)')
-    if hasattr(viz, "on_request") and not isinstance(getattr(viz, "ON_REQUEST_FLAG", None), str):
-        missing.append(f"{pid}: viz has on_request() but no ON_REQUEST_FLAG")
+    if hasattr(viz, "ON_REQUEST") and not isinstance(viz.ON_REQUEST, OnRequest):
+        missing.append(f"{pid}: viz's ON_REQUEST is not a viz.catalog.OnRequest")
     return missing
 
 

@@ -14,6 +14,7 @@ import pytest
 
 from solvers import registry
 from ui import figure as component
+from viz.catalog import drawings
 
 IDS = registry.PROBLEM_IDS
 
@@ -60,9 +61,9 @@ def test_the_bundles_are_the_plotly_js_of_the_pinned_plotly_package():
 @pytest.mark.parametrize("pid", IDS)
 def test_a_page_gets_one_bundle_that_has_all_its_traces(pid):
     solution = importlib.import_module(f"solvers.{pid}").solve()
-    viz = importlib.import_module(f"viz.{pid}")
-    page = viz.figures(solution)  # as ui/page.py shows them, the on-request figure with the page's
-    shown = [*page, viz.on_request(solution)] if hasattr(viz, "on_request") else page
+    page = drawings(pid).figures(solution)  # as ui/page.py shows them, the on-request figure with the page's
+    asked = drawings(pid).on_request
+    shown = [*page, asked.draw(solution)] if asked else page
     kinds = {component.kind_of(fig, page) for fig in shown}
     types = {trace.get("type", "scatter") for fig in shown for trace in fig.spec["data"]}
     assert len(kinds) == 1, kinds  # one plotly.js per page
