@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 
 from solvers import registry
-from tests.browser.test_browser import open_page
+from tests.browser.test_browser import open_page, visit
 
 pytestmark = pytest.mark.browser
 
@@ -36,7 +36,7 @@ def test_every_page_draws_its_diagrams_legibly(browser, app_url, size):
     try:
         for n, pid in enumerate(registry.PROBLEM_IDS):
             if n:
-                page.goto(f"{app_url}/{pid}{query}")
+                visit(page, app_url, f"{pid}{query}")
             page.locator("svg.dl-fbd").first.wait_for(timeout=60_000)
             solver = registry.solver(pid)
             expected = len(solver.free_body_diagrams(solver.solve().params))

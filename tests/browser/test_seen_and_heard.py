@@ -11,7 +11,7 @@ import time
 import pytest
 
 from scripts.live_app import wait_until_idle
-from tests.browser.test_browser import open_page
+from tests.browser.test_browser import open_page, visit
 from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
@@ -80,8 +80,7 @@ def test_every_control_is_announced_in_words_once(browser, app_url, size):
     # Each path at one of the sizes, in turn (names do not change with the width; every size and
     # every path is still read, at a third of the time of each path at each size).
     for path in NAMED_PATHS[SIZES.index(size)::len(SIZES)]:
-        page.goto(f"{app_url}/{path}")
-        wait_until_idle(page)
+        visit(page, app_url, path)  # from the navigation where it can be, as a student goes from page to page
         show_sidebar(page)
         names = control_names(page)
         if path not in ("", "gradebook"):
@@ -135,8 +134,7 @@ def test_on_a_phone_no_value_unit_or_word_breaks_inside(browser, app_url, size):
     context, page, errors = open_sized(browser, f"{app_url}/", size)
     found = {}
     for path in PHONE_PATHS[PHONES.index(size)::len(PHONES)]:  # each path at one width, in turn
-        page.goto(f"{app_url}/{path}")
-        wait_until_idle(page)
+        visit(page, app_url, path)  # from the navigation where it can be, as a student goes from page to page
         if path:
             page.locator(".dl-answers table, [data-testid='stMain'] table").first.wait_for(timeout=30_000)
         page.wait_for_timeout(500)

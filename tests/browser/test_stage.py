@@ -13,7 +13,7 @@ from __future__ import annotations
 import pytest
 
 from scripts.live_app import wait_until_idle
-from tests.browser.test_browser import hold_drag, open_page  # which skips (or, in CI, fails) without Chromium and Playwright
+from tests.browser.test_browser import hold_drag, open_page, visit  # which skips (or, in CI, fails) without Chromium and Playwright
 from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
@@ -625,8 +625,7 @@ def test_the_live_headline_over_a_phone_s_stage_is_whole_on_every_page(browser, 
     context, page, errors = open_page(browser, f"{app_url}/", 390, 844, phone=True)
     found = {}
     for problem in PROBLEMS:
-        page.goto(f"{app_url}/{problem.id}")
-        wait_until_idle(page)
+        visit(page, app_url, problem.id)  # from the navigation, as a student goes from page to page
         page.locator(f"{STAGE} .dl-figure .dl-graph").first.wait_for()
         hold_drag(page, page.locator(f"{CONTROLS} [data-testid='stSlider'] [role='group'] > [data-orientation]").first.bounding_box(),
                   0.3, 0.5)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 
 from scripts.live_app import wait_until_idle
-from tests.browser.test_browser import open_page
+from tests.browser.test_browser import open_page, visit
 from tests.browser.test_stage import overlaps, stage_faults
 from solvers.catalog import PROBLEMS
 from ui.params import is_slider
@@ -173,8 +173,11 @@ def _the_figure_follows_the_sidebar(page, where: str) -> None:
 def test_on_a_phone(browser, app_url, size):
     width, _ = size
     # The phone size of the issues (390x844) on every page; the narrowest on every other page.
-    for n, problem in enumerate(PROBLEMS if size == PHONES[0] else PROBLEMS[::2]):
-        context, page, errors = open_at(browser, f"{app_url}/{problem.id}", size, phone=True)
+    tour = PROBLEMS if size == PHONES[0] else PROBLEMS[::2]
+    context, page, errors = open_at(browser, f"{app_url}/{tour[0].id}", size, phone=True)
+    for n, problem in enumerate(tour):
+        if n:
+            visit(page, app_url, problem.id)  # from the navigation, as a student goes from page to page
         where = f"{problem.id} at {width} px"
         frame = graph_of(page)  # measure the settled page, its figure drawn
         # The stage: the motion, Play and the lesson's controls (below it) in the first screen of a phone.
@@ -207,7 +210,7 @@ def test_on_a_phone(browser, app_url, size):
         if n == 0:
             _controls_reachable_and_results_kept(page, where)
         assert not errors, (where, errors)
-        context.close()
+    context.close()
 
 
 def _controls_reachable_and_results_kept(page, where: str) -> None:
