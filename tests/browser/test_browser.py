@@ -342,12 +342,11 @@ def test_the_browser_rebuilds_the_frames_the_server_means(browser, app_url):
     from viz.common import expanded
 
     context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    page = context.new_page()
     for problem in PROBLEMS:
         figure = importlib.import_module(f"viz.{problem.id}").figures(problem.solver.solve(), "si")[0]
         meant = expanded(json.loads(figure.json()))["frames"]
-        page = context.new_page()
-        page.goto(f"{app_url}/{problem.id}")
-        wait_until_idle(page)
+        visit(page, app_url, problem.id)
         graph = page.locator(".dl-figure .dl-graph").first
         graph.locator(".main-svg").first.wait_for()
         got = graph.evaluate("(el) => el._transitionData._frames.map(f => f.data.map(d =>"
@@ -361,7 +360,6 @@ def test_the_browser_rebuilds_the_frames_the_server_means(browser, app_url):
                         b = np.asarray(expected[k], dtype=float)
                         assert a.shape == b.shape and (np.isnan(a) == np.isnan(b)).all(), (problem.id, k)
                         assert np.nanmax(np.abs(a - b), initial=0.0) <= 1e-9, (problem.id, k)
-        page.close()
     context.close()
 
 
@@ -686,8 +684,7 @@ def test_a_posed_figure_is_drawn_as_plotly_draws_it(browser, app_url):
     for problem in PROBLEMS:
         if problem.id == "eulers_disk":  # a 3-D scene: its pose is set on its WebGL objects (sceneUpdate)
             continue
-        page.goto(f"{app_url}/{problem.id}")
-        wait_until_idle(page)
+        visit(page, app_url, problem.id)  # from the navigation, as a student goes from page to page
         page.locator(".st-key-dl_stage .dl-figure .main-svg").first.wait_for()
         got = page.evaluate(REDRAWN)
         assert got["written"], problem.id

@@ -210,8 +210,7 @@ def test_the_motion_its_play_and_the_lesson_s_controls_share_a_laptop_s_first_sc
     context, page, errors = open_page(browser, f"{app_url}/", width, height)
     found = {}
     for problem in PROBLEMS:
-        page.goto(f"{app_url}/{problem.id}")
-        wait_until_idle(page)
+        visit(page, app_url, problem.id)  # from the navigation, as a student goes from page to page
         faults = stage_faults(page, problem, height)
         if faults:
             found[problem.id] = faults
@@ -748,8 +747,7 @@ def test_on_a_phone_each_slider_s_end_values_stand_at_its_ends(browser, app_url)
     found = {}
     try:
         for problem in PROBLEMS:
-            page.goto(f"{app_url}/{problem.id}")
-            wait_until_idle(page)
+            visit(page, app_url, problem.id)  # from the navigation, as a student goes from page to page
             page.locator(f"{CONTROLS} [data-testid='stSliderTickBar']").first.wait_for(timeout=30_000)
             ends = page.evaluate("""() => [...document.querySelectorAll(".st-key-dl_stage_controls [data-testid='stSlider']")].map((s) => {
               const track = s.querySelector("[data-orientation='horizontal']").getBoundingClientRect();

@@ -244,8 +244,7 @@ def test_no_serious_accessibility_violations_in_study_and_practice_and_home(brow
     page = context.new_page()
     found = {}
     for path, name in VIEWS:
-        page.goto(f"{app_url}/{path}")
-        wait_until_idle(page)
+        visit(page, app_url, path)  # from the navigation where it can be
         if page.locator(FIGURE).count():
             graph_of(page)  # audit the figure's frame drawn
         found[name] = serious_violations(page)
