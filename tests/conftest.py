@@ -58,6 +58,7 @@ def _shipped_env() -> dict:
 # 20 s on the second core while the first tests (AppTest's, without a server) run. By name, the
 # settings each starts with (made when it starts: the shared one's data directory).
 _EARLY: dict = {}
+_USES: dict[str, int] = {}  # how many collected tests still need a server of that name (each its own: "fresh")
 _SETTINGS = {"shipped": _shipped_env, "fresh": dict}
 SERVED = {"shipped_server", "app_url", "fresh_server", "browser"}
 
@@ -82,6 +83,7 @@ def pytest_collection_finish(session):
         _EARLY["shipped"] = Starting(env=_SETTINGS["shipped"]())
     if "fresh_server" in used:
         _EARLY["fresh"] = Starting(env=_SETTINGS["fresh"]())
+        _USES["fresh"] = sum("fresh_server" in getattr(item, "fixturenames", ()) for item in session.items)
 
 
 def pytest_unconfigure(config):
@@ -96,6 +98,9 @@ def _early(name: str):
     from scripts.live_app import Starting
 
     starting = _EARLY.pop(name, None) or Starting(env=_SETTINGS[name]())
+    _USES[name] = _USES.get(name, 1) - 1
+    if _USES[name] > 0:  # a fresh server for the next test that needs one, warming while this one runs
+        _EARLY[name] = Starting(env=_SETTINGS[name]())
     try:
         yield starting.ready()
     finally:
