@@ -93,9 +93,8 @@ def test_a_deep_link_on_a_fresh_server_gets_the_app(browser, fresh_server):
     """The first visit of a server nobody has opened yet: a deep link with a parameter."""
     context, page, errors = open_page(browser, f"{fresh_server.url}/driven_cart?mu=0.5")
     nav = page.locator("[data-testid='stSidebarNav']").inner_text()
-    assert "Euler's disk" in nav and "Home" in nav  # the app's navigation, not the pages folder
-    # The page reruns once to leave Streamlit's legacy pages mode: its heading may come a moment
-    # after the first idle state on a busy machine.
+    assert "Euler's disk" in nav and "Home" in nav  # the app's navigation (app_pages/: no legacy pages mode)
+    # (its heading may come a moment after the first idle state on a busy machine)
     page.locator("[data-testid='stMain'] h1", has_text="Cart with driven wheels").wait_for(timeout=30_000)
     assert page.locator("[data-testid='stException']").count() == 0
     assert not errors
