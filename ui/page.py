@@ -144,8 +144,7 @@ def _on_request(problem: Problem, solution, figures) -> None:
     asked for, in a worker process (viz.on_request), and kept by parameters across sessions; drawn
     with the plotly.js of the page's ``figures``."""
     asked = drawings(problem.id).on_request
-    label = asked.label if asked else ""
-    if asked and st.toggle(label, key=f"{problem.id}__on_request"):
+    if asked and st.toggle(asked.label, key=f"{problem.id}__on_request"):
         ahead = on_request.waiting()  # (a figure already drawn is shown at once: the spinner never appears)
         words = ("Integrating the equations of motion: usually 5 to 15 s"
                  + (f", after {ahead} run{'s' if ahead > 1 else ''} other students asked for first" if ahead else "") + "…")
@@ -153,15 +152,15 @@ def _on_request(problem: Problem, solution, figures) -> None:
             try:
                 drawn = on_request.figure(problem.id, tuple(sorted(solution.params.items())))
             except BrokenProcessPool:  # its worker died twice (killed, out of memory): said, never a traceback
-                st.error(f"“{label}” could not be computed: its worker process stopped twice. Switch it off "
+                st.error(f"“{asked.label}” could not be computed: its worker process stopped twice. Switch it off "
                          "and on again to retry.", icon=":material/error:")
                 return
         show_figure(drawn, page=figures)
 
 
 def _on_request_flag(problem: Problem) -> dict[str, str]:
-    """The URL flag that keeps a problem's on-request figure open (``ON_REQUEST_FLAG`` in its viz
-    module, e.g. ?rundown=1): the switch starts from the link and the link follows the switch."""
+    """The URL flag that keeps a problem's on-request figure open (its viz module's ``ON_REQUEST.flag``,
+    e.g. ?rundown=1): the switch starts from the link and the link follows the switch."""
     asked = drawings(problem.id).on_request
     if asked is None:
         return {}

@@ -283,10 +283,9 @@ def test_an_assignment_end_to_end(browser, course_url):
         c.close()
 
 
-def test_a_wide_gradebook_scrolls_by_keyboard(browser, course_url, monkeypatch):
-    """Three problems' answers on a 1280×720 projector: the gradebook is wider than the page and scrolled
-    sideways only with a mouse (axe-core: scrollable-region-focusable, serious). Its box is a named region
-    that Tab reaches and the arrow keys scroll."""
+def seeded_assignment(monkeypatch, title: str, answers: dict[str, int], roster: list[str]) -> str:
+    """An assignment written straight into the shared server's records (the first ``answers[pid]`` answers of
+    each problem, due in two days): its choice in the gradebook's selectbox."""
     import importlib
 
     from sqlalchemy import create_engine
@@ -296,14 +295,22 @@ def test_a_wide_gradebook_scrolls_by_keyboard(browser, course_url, monkeypatch):
 
     monkeypatch.setenv(signing.SECRET_ENV, COURSE_SECRET)  # the shared server's, which signs the roster's links
     bound = create_engine(f"sqlite:///{Path(_DATA_DIRS[0]) / 'dynamics-lab.sqlite'}")  # the shared server's records
-    parts = tuple(records.Part(pid, tuple(a.name for a in importlib.import_module(f"solvers.{pid}").ANSWERS)[:4])
-                  for pid in ("pendulum_rebound", "disk_wall", "sliding_ladder"))
+    parts = tuple(records.Part(pid, tuple(a.name for a in importlib.import_module(f"solvers.{pid}").ANSWERS)[:n])
+                  for pid, n in answers.items())
     due = dt.datetime.now(dt.timezone.utc) + dt.timedelta(days=2)
-    title = "Three problems, twelve answers"
-    aid = records.create(records.Settings(title, parts, 5e-3, due, 3), ["s01", "s02"], bound).id
+    aid = records.create(records.Settings(title, parts, 5e-3, due, 3), roster, bound).id
+    return f"{aid}: {title} ({', '.join(BY_ID[p.problem].title for p in parts)})"
+
+
+def test_a_wide_gradebook_scrolls_by_keyboard(browser, course_url, monkeypatch):
+    """Three problems' answers on a 1280×720 projector: the gradebook is wider than the page and scrolled
+    sideways only with a mouse (axe-core: scrollable-region-focusable, serious). Its box is a named region
+    that Tab reaches and the arrow keys scroll."""
+    assignment = seeded_assignment(monkeypatch, "Three problems, twelve answers",
+                                   dict.fromkeys(("pendulum_rebound", "disk_wall", "sliding_ladder"), 4), ["s01", "s02"])
     context, page, errors = open_at(browser, f"{course_url}/gradebook", "projector", "UTC")
     enter_key(page)
-    choose(page, "Assignment", f"{aid}: {title} ({', '.join(BY_ID[p.problem].title for p in parts)})")
+    choose(page, "Assignment", assignment)
     wait_for_text(page, "Reading the gradebook")
     box = page.locator("[data-testid='stTable'] > div").filter(has=page.locator("table[aria-label='Gradebook']"))
     assert box.evaluate("b => b.scrollWidth > b.clientWidth")  # wider than the page: the case at hand

@@ -3,17 +3,11 @@ each is looked for in a page where the app draws it, one test per name. After an
 names that no longer match are this module's failures, and nothing else has to be searched."""
 from __future__ import annotations
 
-import datetime as dt
-import importlib
-from pathlib import Path
-
 import pytest
 from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
-from assignments import records, signing
 from edge import streamlit_dom
-from solvers.catalog import BY_ID
-from tests.browser.test_assignments_browser import choose, wait_for_text
+from tests.browser.test_assignments_browser import choose, seeded_assignment, wait_for_text
 from tests.browser.test_browser import open_page
 from tests.conftest import INSTRUCTOR_KEY
 
@@ -43,27 +37,12 @@ def test_every_name_in_the_seam_has_a_place_to_be_found():
     assert set(WHERE) == set(streamlit_dom.SELECTORS) and set(WHERE.values()) == set(PLACES)
 
 
-def _an_assignment(monkeypatch) -> str:
-    """An assignment in the shared server's records: its choice in the gradebook's selectbox."""
-    from sqlalchemy import create_engine
-
-    from tests.conftest import _DATA_DIRS, COURSE_SECRET
-
-    monkeypatch.setenv(signing.SECRET_ENV, COURSE_SECRET)  # the shared server's, which signs the roster's links
-    bound = create_engine(f"sqlite:///{Path(_DATA_DIRS[0]) / 'dynamics-lab.sqlite'}")  # the shared server's records
-    answers = tuple(a.name for a in importlib.import_module("solvers.disk_wall").ANSWERS)[:1]
-    due = dt.datetime.now(dt.timezone.utc) + dt.timedelta(days=2)
-    aid = records.create(records.Settings(TITLE, (records.Part("disk_wall", answers),), 5e-3, due, 3), ["s01"],
-                         bound).id
-    return f"{aid}: {TITLE} ({BY_ID['disk_wall'].title})"
-
-
 @pytest.fixture(scope="module")
 def matches(browser, app_url, request):
     """place -> (name -> how many elements its selector matches there), each place opened once."""
     monkeypatch = pytest.MonkeyPatch()
     request.addfinalizer(monkeypatch.undo)
-    found, assignment = {}, _an_assignment(monkeypatch)
+    found, assignment = {}, seeded_assignment(monkeypatch, TITLE, {"disk_wall": 1}, ["s01"])
     for place, (path, width, height) in PLACES.items():
         context, page, errors = open_page(browser, app_url + path, width, height)
         if place == "a gradebook":
