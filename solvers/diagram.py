@@ -147,6 +147,58 @@ class Diagram:
         return tuple(load for load in self.loads if load.on == body)
 
 
+@dataclass(frozen=True)
+class DiagramSlip:
+    """A classic slip in drawing a problem's diagram, declared beside its answers' slips (MISTAKES):
+    a load the physics does not put there, as a student draws it. ``key`` names the slip ("force of
+    motion", "centripetal force", "friction on a smooth wall"); ``message`` is the tutor's words
+    (never the diagram's answer). It matches a drawn load that no declared load accounts for, on
+    ``on`` (a body's name; "" any), at ``at`` (a named point; "" anywhere on the body), of one of
+    ``kinds``, along ``direction`` (a unit vector in the solver's symbols, within the judge's
+    tolerance; ``either_way``: its opposite too; None: any direction)."""
+
+    key: str
+    message: str
+    on: str = ""
+    at: str = ""
+    kinds: tuple[str, ...] = ("force", "impulse")
+    direction: Vector | None = None
+    either_way: bool = False
+    phase: str = ""  # the diagram it belongs to ("" every diagram of the problem)
+
+
+class Numbers(dict):
+    """Every expression of a diagram evaluated at once (``numbers``): expression -> float."""
+
+
+_COMPILED: dict[int, tuple] = {}  # id(diagram) -> (the diagram, its expressions, their function)
+
+
+def _expressions(diagram: Diagram) -> list:
+    out = []
+    for body in diagram.bodies:
+        out += [c for point in body.points.values() for c in point]
+        out += [shape.radius for shape in body.outline if isinstance(shape, Circle)]
+    for load in diagram.loads:
+        out += [load.size, *(load.direction or ()), *load.components]
+    return [sp.sympify(e) for e in out]
+
+
+def numbers(diagram: Diagram, values) -> Numbers:
+    """Every expression the drawing reads, at ``values``, by one function compiled once per diagram
+    (sympy's ``subs`` on each cost a new state some 10 ms)."""
+    compiled = _COMPILED.get(id(diagram))
+    if compiled is None or compiled[0] is not diagram:
+        exprs = list(dict.fromkeys(_expressions(diagram)))
+        free = sorted(set().union(*(e.free_symbols for e in exprs)), key=lambda s: s.name)
+        compiled = (diagram, exprs, free, sp.lambdify(free, exprs, modules="math"))
+        if len(_COMPILED) > 512:
+            _COMPILED.clear()
+        _COMPILED[id(diagram)] = compiled
+    _, exprs, free, fn = compiled
+    return Numbers(zip(exprs, (float(x) for x in fn(*(float(values[s]) for s in free)))))
+
+
 def _cross(r: Vector, f: Vector) -> sp.Expr:
     return r[0] * f[1] - r[1] * f[0]
 

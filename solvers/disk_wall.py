@@ -33,7 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
-from .diagram import Body, Circle, Diagram, Load, balance, balance_steps, fbd_steps
+from .diagram import Body, DiagramSlip, Circle, Diagram, Load, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
@@ -135,6 +135,18 @@ IMPACT = Diagram(
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
     """The diagrams the derivation uses, for these parameters (one: the impact's instant)."""
     return (IMPACT,)
+
+
+# The classic slips in drawing this diagram (practice/diagram_judge.py), as MISTAKES are the answers':
+# each a load the physics does not put there, with a tutor's words that never show the diagram.
+DIAGRAM_SLIPS = (
+    DiagramSlip("force of motion", "no force or impulse carries the disk along its velocity: before the "
+                "impact it keeps moving by its own momentum.", on="the disk", direction=(sp.sin(theta), sp.cos(theta))),
+    DiagramSlip("weight in the table's plane", "the disk slides on a horizontal table: its weight and the table's "
+                "support act out of this plane and balance each other (and over the impact's instant a finite "
+                "force adds no impulse).", on="the disk", direction=(0, -1)),
+)
+
 
 
 @functools.cache

@@ -33,7 +33,7 @@ from .core import (
     relative_tolerance,
     validate_params,
 )
-from .diagram import Body, Circle, Diagram, Load, Outline, balance, balance_steps, fbd_steps
+from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Outline, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .sweeps import swept
 from .protocol import About, Mistake, Variants
@@ -177,6 +177,19 @@ def side_view(drive: str) -> Diagram:
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
     """The side view for this drive (one diagram: the forces are the same throughout)."""
     return (side_view(params["drive"]),)
+
+
+# The classic slips in drawing this diagram (practice/diagram_judge.py), as MISTAKES are the answers':
+# each a load the physics does not put there, with a tutor's words that never show the diagram.
+DIAGRAM_SLIPS = (
+    DiagramSlip("traction at a free wheel", "those wheels are not driven: a free-rolling wheel of negligible mass "
+                "takes no friction from the ground.", at="R", direction=(1, 0), either_way=True, phase="front"),
+    DiagramSlip("traction at a free wheel", "those wheels are not driven: a free-rolling wheel of negligible mass "
+                "takes no friction from the ground.", at="F", direction=(1, 0), either_way=True, phase="rear"),
+    DiagramSlip("m a drawn as a force", "m a is what the forces produce, the balance laws' other side; it is not a "
+                "force on the cart.", at="C", direction=(1, 0), either_way=True),
+)
+
 
 
 def _same_equations(these, those) -> bool:

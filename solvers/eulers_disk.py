@@ -32,7 +32,7 @@ from .core import (
     root_with_sign,
     validate_params,
 )
-from .diagram import Body, Diagram, Load, Rod, balance, balance_steps, fbd_steps
+from .diagram import Body, DiagramSlip, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .sweeps import swept
 from .protocol import About, Mistake, Variants
@@ -151,6 +151,16 @@ def steady() -> Diagram:
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
     """The steady precession's diagram (the same for every parameter set; the stage is 3-D: no frames)."""
     return (steady(),)
+
+
+# The classic slips in drawing this diagram (practice/diagram_judge.py), as MISTAKES are the answers':
+# each a load the physics does not put there, with a tutor's words that never show the diagram.
+DIAGRAM_SLIPS = (
+    DiagramSlip("centripetal force", "G is at rest in steady precession: nothing needs to turn it; and a "
+                "centripetal force is never a force of its own, it is what the real forces add up to.",
+                at="G", direction=(1, 0), either_way=True),
+)
+
 
 
 @functools.cache

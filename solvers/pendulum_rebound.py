@@ -35,7 +35,7 @@ from .core import (
     require,
     validate_params,
 )
-from .diagram import Body, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
+from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 from .swing import ATOL, DRAWING, RTOL, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg
@@ -278,6 +278,21 @@ def free_body_diagrams(params) -> tuple[Diagram, ...]:
     """The swing's (drawn halfway down the first fall) and the impact's (the first impact) diagrams for
     this surface."""
     return diagrams(params["surface"])
+
+
+# The diagram the drawing exercise asks for (practice/diagram_judge.py): the impact, where the rebound is decided (the worked solution's diagram)
+EXERCISE_DIAGRAM = "impact"
+
+# The classic slips in drawing this diagram (practice/diagram_judge.py), as MISTAKES are the answers':
+# each a load the physics does not put there, with a tutor's words that never show the diagram.
+DIAGRAM_SLIPS = (
+    DiagramSlip("weight in an impact", "a weight is a finite force: its impulse over the impact's instant is "
+                "negligible against the contact's and the pin's.", kinds=("impulse",), direction=(0, -1),
+                phase="impact"),
+    DiagramSlip("centripetal force", "a centripetal force is not a force of its own: it is what the real forces' "
+                "components toward O add up to.", at="G", direction=(-sp.cos(theta), -sp.sin(theta)), phase="swing"),
+)
+
 
 
 @functools.cache

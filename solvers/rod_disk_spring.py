@@ -34,7 +34,7 @@ from .core import (
     require,
     validate_params,
 )
-from .diagram import Body, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
+from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live, Stops
 from .protocol import About, Mistake, Variants
 from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
@@ -183,6 +183,17 @@ def swing_diagram(disk: str) -> Diagram:
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
     """The fall's diagram for this disk (drawn passing θ₂)."""
     return (swing_diagram(params["disk"]),)
+
+
+# The classic slips in drawing this diagram (practice/diagram_judge.py), as MISTAKES are the answers':
+# each a load the physics does not put there, with a tutor's words that never show the diagram.
+DIAGRAM_SLIPS = (
+    DiagramSlip("centripetal force", "a centripetal force is not a force of its own: it is what the real forces' "
+                "components toward O add up to.", at="G", direction=(-sp.sin(theta), -sp.cos(theta))),
+    DiagramSlip("force of motion", "no force carries the body along its velocity: the weights, the spring and the "
+                "pin are all that act on it.", at="G", direction=(sp.cos(theta), -sp.sin(theta)), either_way=True),
+)
+
 
 
 @functools.cache

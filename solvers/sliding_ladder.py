@@ -39,7 +39,7 @@ from .core import (
     within_model_range,
 )
 from . import units
-from .diagram import Body, Diagram, Load, Rod, balance, balance_steps, fbd_steps
+from .diagram import Body, DiagramSlip, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
@@ -191,6 +191,20 @@ FLOOR_ONLY = Diagram(
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
     """Both phases' diagrams (the same for every parameter set)."""
     return (BOTH_CONTACTS, FLOOR_ONLY)
+
+
+# The classic slips in drawing this diagram (practice/diagram_judge.py), as MISTAKES are the answers':
+# each a load the physics does not put there, with a tutor's words that never show the diagram.
+DIAGRAM_SLIPS = (
+    DiagramSlip("friction on a smooth surface", "the wall is smooth: it pushes along its normal only, with no "
+                "friction along it.", at="A", direction=(0, 1), either_way=True),
+    DiagramSlip("friction on a smooth surface", "the floor is smooth: it pushes along its normal only, with no "
+                "friction along it.", at="B", direction=(1, 0), either_way=True),
+    DiagramSlip("centripetal force", "a centripetal force is not a force of its own: G moves on a circle because "
+                "of the real forces, which is what they add up to.", at="G",
+                direction=(-sp.cos(theta), -sp.sin(theta))),
+)
+
 
 
 # Released nearer the floor or the wall than this, the motion is too small or its start too slow

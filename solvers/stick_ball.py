@@ -34,7 +34,7 @@ from .core import (
     require,
     validate_params,
 )
-from .diagram import Body, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
+from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .protocol import About, Mistake, Variants
 
@@ -172,6 +172,17 @@ IMPACT = Diagram(
 def free_body_diagrams(params) -> tuple[Diagram, ...]:
     """The impact's instant (the same diagram whether the ball attaches or bounces)."""
     return (IMPACT,)
+
+
+# The classic slips in drawing this diagram (practice/diagram_judge.py), as MISTAKES are the answers':
+# each a load the physics does not put there, with a tutor's words that never show the diagram.
+DIAGRAM_SLIPS = (
+    DiagramSlip("force of motion", "no force or impulse carries the ball along its velocity: before the impact it "
+                "keeps moving by its own momentum.", on="the ball", at="B", direction=(1, 0)),
+    DiagramSlip("weight in the table's plane", "the ball and the stick slide on a horizontal table: the weights and "
+                "the table's support act out of this plane and balance.", direction=(0, -1)),
+)
+
 
 
 def _sides(eq: sp.Eq) -> tuple[sp.Expr, sp.Expr]:

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from solvers.diagram import Circle, Diagram, Outline, Rod
+from solvers.diagram import Circle, Diagram, Numbers, Outline, Rod, numbers
 
 BODY_SIZE = 180.0  # the largest body's extent, in the drawing's units (an SVG viewBox's)
 ARROW = 62.0  # a load's length
@@ -175,44 +175,12 @@ def label_width(tex: str, size: float = FONT) -> float:
 # ------------------------------------------------------------------------------------------------
 # Layout
 
-class _Numbers(dict):
-    """Every expression of a diagram evaluated at once (``numbers``): expression -> float."""
-
-
 def _num(expr, values) -> float:
     if isinstance(expr, (int, float)):
         return float(expr)
-    if isinstance(values, _Numbers):
+    if isinstance(values, Numbers):
         return values[sp.sympify(expr)]
     return float(sp.sympify(expr).subs(values))
-
-
-_COMPILED: dict[int, tuple] = {}  # id(diagram) -> (the diagram, its expressions, their function)
-
-
-def _expressions(diagram: Diagram) -> list:
-    out = []
-    for body in diagram.bodies:
-        out += [c for point in body.points.values() for c in point]
-        out += [shape.radius for shape in body.outline if isinstance(shape, Circle)]
-    for load in diagram.loads:
-        out += [load.size, *(load.direction or ()), *load.components]
-    return [sp.sympify(e) for e in out]
-
-
-def numbers(diagram: Diagram, values) -> _Numbers:
-    """Every expression the drawing reads, at ``values``, by one function compiled once per diagram
-    (sympy's ``subs`` on each cost a new state some 10 ms)."""
-    compiled = _COMPILED.get(id(diagram))
-    if compiled is None or compiled[0] is not diagram:
-        exprs = list(dict.fromkeys(_expressions(diagram)))
-        free = sorted(set().union(*(e.free_symbols for e in exprs)), key=lambda s: s.name)
-        compiled = (diagram, exprs, free, sp.lambdify(free, exprs, modules="math"))
-        if len(_COMPILED) > 512:
-            _COMPILED.clear()
-        _COMPILED[id(diagram)] = compiled
-    _, exprs, free, fn = compiled
-    return _Numbers(zip(exprs, (float(x) for x in fn(*(float(values[s]) for s in free)))))
 
 
 def _unit(x: float, y: float) -> tuple[float, float]:

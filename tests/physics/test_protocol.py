@@ -13,7 +13,7 @@ import pytest
 
 from solvers import registry
 from solvers.core import Answer, Choice, Number
-from solvers.diagram import Diagram
+from solvers.diagram import Diagram, DiagramSlip
 from solvers.protocol import About, Mistake, Variants
 from viz.catalog import OnRequest
 from viz.common import thumbnail
@@ -95,7 +95,28 @@ def solver_lacks(pid: str, solver) -> list[str]:
         diagrams = declare(solver.solve().params)
         if not diagrams or not _tuple_of(diagrams, Diagram):
             missing.append(f"{pid}: free_body_diagrams() gives no Diagram (a non-empty tuple of solvers.diagram.Diagram)")
+        else:
+            missing += _diagram_slips_lacks(pid, solver, diagrams)
     return missing
+
+
+def _diagram_slips_lacks(pid: str, solver, diagrams) -> list[str]:
+    """DIAGRAM_SLIPS (the drawing exercise's slips) name bodies, points and phases the diagrams have;
+    EXERCISE_DIAGRAM, if given, names a phase."""
+    slips = getattr(solver, "DIAGRAM_SLIPS", None)
+    if not _tuple_of(slips, DiagramSlip):
+        return [f"{pid}: no DIAGRAM_SLIPS (a tuple of solvers.diagram.DiagramSlip, may be empty)"]
+    out = []
+    bodies = {b.name: b for d in diagrams for b in d.bodies}
+    for slip in slips:
+        if slip.on and slip.on not in bodies:
+            out.append(f"{pid}: DIAGRAM_SLIPS name a body no diagram has: {slip.on!r}")
+        elif slip.at and not any(slip.at in b.points for b in ([bodies[slip.on]] if slip.on else bodies.values())):
+            out.append(f"{pid}: DIAGRAM_SLIPS name a point no body has: {slip.at!r}")
+    wanted = getattr(solver, "EXERCISE_DIAGRAM", "")
+    if wanted and wanted not in {d.phase for d in diagrams}:
+        out.append(f"{pid}: EXERCISE_DIAGRAM names no diagram's phase: {wanted!r}")
+    return out
 
 
 def viz_lacks(pid: str, viz) -> list[str]:
@@ -177,6 +198,14 @@ def test_what_a_problem_lacks_is_named():
         found = solver_lacks("sliding_ladder", copied(solver, without=(name,)))
         assert any(m.startswith(f"sliding_ladder: no {name}") for m in found), (name, found)
     assert "gives no Diagram" in solver_lacks("sliding_ladder", copied(solver, free_body_diagrams=lambda p: ()))[0]
+    assert solver_lacks("sliding_ladder", copied(solver, without=("DIAGRAM_SLIPS",))) == [
+        "sliding_ladder: no DIAGRAM_SLIPS (a tuple of solvers.diagram.DiagramSlip, may be empty)"]
+    assert solver_lacks("sliding_ladder", copied(solver, DIAGRAM_SLIPS=(DiagramSlip("k", "m", on="the moon"),))) == [
+        "sliding_ladder: DIAGRAM_SLIPS name a body no diagram has: 'the moon'"]
+    assert solver_lacks("sliding_ladder", copied(solver, DIAGRAM_SLIPS=(DiagramSlip("k", "m", at="Z"),))) == [
+        "sliding_ladder: DIAGRAM_SLIPS name a point no body has: 'Z'"]
+    assert solver_lacks("sliding_ladder", copied(solver, EXERCISE_DIAGRAM="nowhere")) == [
+        "sliding_ladder: EXERCISE_DIAGRAM names no diagram's phase: 'nowhere'"]
     wrong = Mistake("no_such_answer", "feedback", lambda p: 0)
     assert solver_lacks("sliding_ladder", copied(solver, MISTAKES=(wrong,))) == [
         "sliding_ladder: MISTAKES name what is not an answer: ['no_such_answer']"]
