@@ -73,10 +73,12 @@ def bundles() -> dict[str, tuple[str, bytes]]:
 DERIVATION = "dynamics_lab_derivation"
 ANSWERS = "dynamics_lab_answers"
 LESSON = "dynamics_lab_lesson"
+DRAW = "dynamics_lab_draw"
 # Each component's name and the module that draws it (plotly_component/<file>): this file's figure,
 # the answers and the derivation that ui/results.py shows (one module, text.js, for both), and the
-# lesson's parts below its stage together in one element (``together``).
-COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js", LESSON: "lesson.js"}
+# lesson's parts below its stage together in one element (``together``), and the drawing exercise's
+# free-body diagram (ui/diagram_exercise.py).
+COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js", LESSON: "lesson.js", DRAW: "draw.js"}
 # Modules the components import: the live values while a lesson control is dragged (ui/live.py),
 # which ride with the answers they follow (an element of their own cost every run two widgets' work).
 IMPORTED = ("live.js",)

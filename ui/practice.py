@@ -16,6 +16,7 @@ from solvers.core import Choice, Derivation, Solution
 from solvers.solution import PARTS
 from solvers import units
 from solvers.catalog import Problem
+from ui.diagram_exercise import draw_exercise
 from ui.equations import PHONE_WIDTH_EM, broken
 from edge.inline_scripts import TAKE_FOCUS
 from ui.results import literal, plain, plain_with_math
@@ -96,6 +97,8 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
                     "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
         st.markdown(statement(problem, solution, answers, system, judge))
         st.markdown(method(solution.steps[: solution.symbolic_steps], judge.derivation))
+        draw_exercise(problem, solution, recording.on_diagram if recording is not None else None)
+        st.markdown("### The answers")
     tally = st.empty()  # filled once this run's check is judged
     with st.form(key=f"{problem.id}__practice"):
         # How to type an answer is the chooser's help: its "?" comes before the choice, so Tab goes from the

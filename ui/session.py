@@ -145,3 +145,4 @@ class Recording:
     reveal_blocked: str = ""  # why "Show the solution" is not offered yet ("" when it is)
     say: Callable[[Verdict], str] | None = None  # the verdict's message under the feedback policy
     reveal_costs: str = ""  # what opening the solution costs, asked to confirm first ("": opened at once)
+    on_diagram: Callable | None = None  # (drawing, diagram verdict), a readable Check of the free-body diagram

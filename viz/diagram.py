@@ -17,7 +17,7 @@ from __future__ import annotations
 import html
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import sympy as sp
 
@@ -198,8 +198,9 @@ def _segment_hits_box(a, b, box: Box) -> bool:
     return False
 
 
-def layout(diagram: Diagram, values) -> Drawing:
-    """The diagram for these values (``diagram.values(solution)``), laid out."""
+def layout(diagram: Diagram, values, every_point: bool = False) -> Drawing:
+    """The diagram for these values (``diagram.values(solution)``), laid out; ``every_point``: every
+    named point marked (the drawing exercise's blank body), not only those a load or a balance law uses."""
     values = numbers(diagram, {k: float(v) for k, v in values.items()})
     bodies = []
     for body in diagram.bodies:
@@ -240,7 +241,8 @@ def layout(diagram: Diagram, values) -> Drawing:
     # the points a reader needs named: where a load acts, the mass centre, the moment point
     named = {(b.name, n) for b in diagram.bodies for n in (b.centre, b.about)} | {
         (load.on, load.at) for load in diagram.loads if load.at}
-    used_points = {(b.name, n) for b in diagram.bodies for n in b.points if (b.name, n) in named}
+    used_points = {(b.name, n) for b in diagram.bodies for n in b.points
+                   if (b.name, n) in named or (every_point and not n.startswith("_"))}
     # Loads
     pending: list[tuple[Arrow | Curl, tuple[float, float], tuple[float, float]]] = []
     for load in diagram.loads:
@@ -550,6 +552,39 @@ def as_data(drawing: Drawing) -> dict:
         "curls": [[[round(v, 1) for v in _xy] for _xy in _curl_points(c)] + [lab(c.label)] for c in drawing.curls],
         "text": drawing.text,
     }
+
+
+# ------------------------------------------------------------------------------------------------
+# The drawing exercise's blank: the bodies isolated, every named point and the basis, no load
+
+def blank(diagram: Diagram, values) -> dict:
+    """What the drawing exercise (ui/plotly_component/draw.js) is sent: the bodies isolated with every
+    named point marked and the basis, as SVG with room around for the student's arrows, and each
+    point's place in it (SVG units, y down). Nothing of the loads: not their number, kinds or places."""
+    drawing = layout(replace(diagram, loads=()), values, every_point=True)
+    room = ARROW + FONT * 1.5
+    b = drawing.box
+    drawing.box = Box(b.x0 - room, b.y0 - room, b.x1 + room, b.y1 + room)
+    names = ", ".join(f"{body.name} with its points {', '.join(n for n in body.points if not n.startswith('_'))}"
+                      for body in diagram.bodies)
+    axes = " and ".join(plain_label(e) for e in diagram.basis)
+    drawing.text = f"{names} isolated, to draw the loads on; the basis {axes}."
+    spots = {}
+    for body in diagram.bodies:
+        for name in body.points:
+            if not name.startswith("_"):
+                spots[(body.name, name)] = None
+    # the marked points, in the order laid out, matched back to their bodies by position
+    placed = iter(drawing.points)
+    points = []
+    for (body_name, name), _ in spots.items():
+        x, y, label = next(placed)
+        assert label.tex == name
+        points.append({"body": body_name, "name": name, "x": round(x - drawing.box.x0, 1),
+                       "y": round(drawing.box.y1 - y, 1)})
+    return {"svg": svg(drawing, "dl-draw-body"), "points": points, "bodies": [b.name for b in diagram.bodies],
+            "basis": [plain_label(e) for e in diagram.basis], "law": diagram.law,
+            "size": [round(drawing.box.x1 - drawing.box.x0, 1), round(drawing.box.y1 - drawing.box.y0, 1)]}
 
 
 # ------------------------------------------------------------------------------------------------
