@@ -92,7 +92,7 @@ def test_each_form_of_import_is_caught(source, found):
 # composer; the composer (one problem page from the features) and the entry points (app.py, app_pages/) above
 # them all. The server's edge (edge/) and the LMS (lti/) import nothing from the pages or the drawings.
 KIT = {"ui", "ui.equations", "ui.figure", "ui.live", "ui.params", "ui.results", "ui.session",
-       "ui.stylesheet", "ui.documents", "ui.notebook", "ui.thumbnails"}
+       "ui.stylesheet", "ui.documents", "ui.notebook", "ui.thumbnails", "ui.diagram_exercise"}
 FEATURES = {"ui.practice", "ui.assignments", "ui.takehome", "ui.handouts", "ui.home", "ui.variants"}
 COMPOSER = {"ui.page"}
 APART_FROM_THE_PAGES = ("edge", "lti")

@@ -277,3 +277,25 @@ def test_a_pin_s_reaction_is_right_in_any_direction_or_as_two_perpendicular_comp
     assert judge(diagram, values, (floor, *pair)).right
     skew = (DrawnLoad("impulse", "the pendulum", "O", 30.0, "O1"), DrawnLoad("impulse", "the pendulum", "O", 80.0, "O2"))
     assert not judge(diagram, values, (floor, *skew)).right
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_the_blank_the_page_is_sent_shows_no_load(pid):
+    """What the drawing exercise sends the browser (viz.diagram.blank) names every point and no load: no
+    load's symbol, name or what exerts it, no arrow but the basis's, and the same for any parameters."""
+    from viz.diagram import blank
+    solver = registry.solver(pid)
+    solution = solver.solve()
+    diagram = exercise_diagram(solver, solution)
+    sent = blank(diagram, diagram.values(solution))
+    text = str(sent)
+    bodies = {b.name for b in diagram.bodies}
+    for load in diagram.loads:
+        for word in (load.name, load.by):
+            assert word in bodies or word not in text, (pid, word)
+    named = {(b.name, n) for b in diagram.bodies for n in b.points if not n.startswith("_")}
+    # the only words drawn: each named point's letter and the basis's two
+    assert sent["svg"].count("<text") == len(named) + 2
+    assert sent["svg"].count("<polygon") == 2 + sum(1 for b in diagram.bodies for s in b.outline
+                                                   if type(s).__name__ == "Outline")  # the basis's two heads
+    assert {(p["body"], p["name"]) for p in sent["points"]} == named

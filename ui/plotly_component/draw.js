@@ -37,7 +37,7 @@ const CSS = `
 `;
 const SVG = "http://www.w3.org/2000/svg";
 const COLOR = "#b3261e", PICKED = "#E69F00";
-const ARROW = 62, HANDLE = 22, STEP = 15;
+const ARROW = 62, HANDLE = 27, STEP = 15;
 const WORDS = {force: "Force", impulse: "Impulse", couple: "Couple"};
 const drawings = new WeakMap();
 
@@ -87,7 +87,7 @@ class Drawing {
     kindLabel.append(this.kind);
     const nameLabel = el("label", {}, "Name");
     this.name = el("input", {type: "text", maxlength: "40", autocomplete: "off", spellcheck: "false",
-                             placeholder: "e.g. N_A", "data-dl": "name"});
+                             placeholder: "e.g. W", "data-dl": "name"});
     nameLabel.append(this.name);
     this.pointLabel = el("label", {}, "At");
     this.point = el("select", {"data-dl": "point"});
