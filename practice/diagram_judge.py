@@ -393,7 +393,11 @@ def judge(diagram: Diagram, values: Mapping, drawing: Iterable[DrawnLoad],
     found: list[tuple[int, Finding]] = []
     for a, unit, diffs in matched:
         e, d, i = expected[a], drawn[unit[0]], unit[0]
-        if "kind" in diffs:
+        slip = _slip_for(d, slips, values) if diffs and "kind" not in diffs else None
+        if slip is not None:  # drawn as a classic slip draws it (friction where a normal pushes): the load meant is missing
+            found.append((i, Finding(slip.key, f"{d.called[:1].upper() + d.called[1:]}: {slip.message}", i)))
+            lost.append(a)
+        elif "kind" in diffs:
             found.append((i, _wrong_kind(e, d, i, diagram)))
         elif "point" in diffs:
             found.append((i, _wrong_point(e, d, i)))

@@ -40,10 +40,20 @@ def read_sent(sent, diagram):
     return read_drawing(raw, diagram)
 
 
+def _signature(solution: Solution) -> str:
+    return repr(sorted(solution.params.items()))
+
+
+def diagram_right(problem: Problem, solution: Solution) -> bool:
+    """Whether this session's diagram for these numbers was last checked right."""
+    signature, _, verdict = st.session_state.get(f"{problem.id}__fbd_kept", (None, None, None))
+    return signature == _signature(solution) and verdict is not None and verdict.right
+
+
 def draw_exercise(problem: Problem, solution: Solution, on_verdict=None) -> Verdict | None:
     """The exercise, for these numbers; the verdict of this run's Check (None without one).
     ``on_verdict(drawing, verdict)``: an assignment records a readable one."""
-    signature = repr(sorted(solution.params.items()))
+    signature = _signature(solution)
     key = f"fbd-{problem.id}"  # (a component's key may not hold "__")
     kept = f"{problem.id}__fbd_kept"  # (signature, the drawing as last checked, its verdict)
     if st.session_state.get(kept, (None,))[0] != signature:

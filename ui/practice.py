@@ -16,7 +16,7 @@ from solvers.core import Choice, Derivation, Solution
 from solvers.solution import PARTS
 from solvers import units
 from solvers.catalog import Problem
-from ui.diagram_exercise import draw_exercise
+from ui.diagram_exercise import diagram_right, draw_exercise
 from ui.equations import PHONE_WIDTH_EM, broken
 from edge.inline_scripts import TAKE_FOCUS
 from ui.results import literal, plain, plain_with_math
@@ -61,16 +61,21 @@ def statement(problem: Problem, solution: Solution, answers, system: str, judge:
                         "**Find**", find])
 
 
-def method(steps, derivation: Derivation) -> str:
-    """The method (``exercise_steps``) under the course's four headings."""
+def method(steps, derivation: Derivation, parts=(1, 2, 3, 4)) -> str:
+    """The method (``exercise_steps``) under the course's four headings: those of ``parts`` (numbered as
+    in the whole method), under "The method" when the first part is among them."""
     blocks, last = [], None
     for i, (part, title, tex) in enumerate(exercise_steps(steps, derivation), start=1):
+        if part not in parts:
+            continue
         if part != last:
             blocks.append(f"#### {PARTS[part]}")
             last = part
         blocks.append(f"**{i}.** {plain_with_math(title)}")
         if tex:  # broken over rows where wide (a display equation that scrolls sideways is a region a keyboard cannot reach)
             blocks.append(f"$$\n{broken(tex, PHONE_WIDTH_EM)}\n$$")
+    if 1 not in parts:
+        return "\n\n".join(blocks)
     return "\n\n".join(["### The method", ":gray[The steps to take. Equations that lead to a result appear "
                         "with the solution.]", *blocks])
 
@@ -96,8 +101,16 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
             st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
                     "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
         st.markdown(statement(problem, solution, answers, system, judge))
-        st.markdown(method(solution.steps[: solution.symbolic_steps], judge.derivation))
+        # the course's order: the diagram first, then the balance laws written from it and the analysis (whose
+        # steps name its loads: they appear once the diagram is right, or with the solution)
+        steps = solution.steps[: solution.symbolic_steps]
+        st.markdown(method(steps, judge.derivation, parts=(1, 2)))
         draw_exercise(problem, solution, recording.on_diagram if recording is not None else None)
+        if diagram_right(problem, solution):
+            st.markdown(method(steps, judge.derivation, parts=(3, 4)))
+        else:
+            st.markdown(":gray[The balance laws written from the diagram, and the analysis, follow once your "
+                        "diagram is right (or with the solution).]")
         st.markdown("### The answers")
     tally = st.empty()  # filled once this run's check is judged
     with st.form(key=f"{problem.id}__practice"):
