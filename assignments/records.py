@@ -27,7 +27,7 @@ import math
 import re
 import zoneinfo
 from collections import Counter
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, replace
 from typing import Callable, Iterable, TypeVar
 
 from sqlalchemy import exists, func, select
@@ -111,6 +111,11 @@ class Part:
 
 
 Question = tuple[str, str]  # (problem, answer)
+
+# The free-body diagram as a question of its own, beside a problem's answers: drawn and judged on the page
+# (practice/diagram_judge.py), recorded like a typed answer (the drawing in words as what was "typed").
+DIAGRAM = "free_body_diagram"
+DIAGRAM_HEADING = "Free-body diagram"
 
 
 def in_zone(moment: dt.datetime, zone: str) -> dt.datetime:
@@ -430,7 +435,8 @@ def _answer_named(problem: str, answer: str, in_a_set: bool) -> str:
         solver = registry.solver(problem)
     except KeyError:
         return f"{problem}/{answer}"
-    label = f"“{next((a.heading for a in solver.ANSWERS if a.name == answer), answer)}”"
+    headings = {a.name: a.heading for a in solver.ANSWERS} | {DIAGRAM: DIAGRAM_HEADING}
+    label = f"“{headings.get(answer, answer)}”"
     return f"{solver.ABOUT.title}: {label}" if in_a_set else label
 
 

@@ -25,6 +25,7 @@ the drawing as the page sends it, or as ``DrawnLoad``s)::
 """
 from __future__ import annotations
 
+import hashlib
 import itertools
 import math
 import re
@@ -451,3 +452,21 @@ def drawn_as_declared(diagram: Diagram, values: Mapping, components: bool = Fals
             x, y = (nums[sp.sympify(c)] for c in e.load.components)
             out.append(DrawnLoad(e.kind, e.body, e.at, _degrees((x, y)) if (x or y) else 90.0, name))
     return tuple(out)
+
+
+def in_words(drawing: Iterable[DrawnLoad], bodies: int = 1) -> str:
+    """A drawing as a line of text (what an assignment keeps as the attempt): "force “W” at G, 270°; …";
+    with more than one body, each point with its body."""
+    def one(d: DrawnLoad) -> str:
+        name = f" “{d.name}”" if d.name else ""
+        where = (f" at {d.at}" + (f" on {d.body}" if bodies > 1 else "")) if d.at else f" on {d.body}"
+        way = ("counter-clockwise" if d.angle != 270 else "clockwise") if d.kind == "couple" else f"{d.angle:g}°"
+        return f"{d.kind}{name}{where}, {way}"
+    return "; ".join(one(d) for d in drawing)
+
+
+def reading(drawing: Iterable[DrawnLoad]) -> str:
+    """What a drawing says, as a short key: the same loads at the same points in the same directions
+    (names and order aside) read alike, so the same drawing checked twice is one attempt."""
+    loads = sorted((d.kind, d.body, d.at if d.kind != "couple" else "", round(d.angle) % 360) for d in drawing)
+    return "fbd:" + hashlib.sha256(repr(loads).encode()).hexdigest()[:16]

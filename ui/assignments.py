@@ -16,12 +16,14 @@ import re
 import urllib.parse
 import zoneinfo
 from dataclasses import dataclass, replace
+from types import SimpleNamespace
 
 import streamlit as st
 
 from assignments import records, signing
 from assignments.identity import LinkRefused, StudentIdentity, from_link, is_assignment_link, link_query
 from lti import passback, roster as lti_roster, store as lti_store
+from practice import diagram_judge
 from practice.judge import RELATIVE_TOLERANCE, Verdict
 from solvers import units
 from solvers.catalog import BY_ID, PROBLEMS, Problem
@@ -63,7 +65,7 @@ def _answer_labels(settings: records.Settings) -> dict[tuple[str, str], str]:
         every = {}
         if problem is not None:
             every = {a.name: a.heading for a in problem.solver.ANSWERS}
-            every |= {a.name: a.heading for a in _answers_of(problem)}
+            every |= {a.name: a.heading for a in _answers_of(problem)} | {records.DIAGRAM: records.DIAGRAM_HEADING}
         for name in part.answers:
             label = every.get(name, name)
             out[(part.problem, name)] = label if len(settings.parts) == 1 else f"{_title(part.problem)}: {label}"
@@ -194,6 +196,33 @@ def recording(link: StudentLink, solution=None, system: str = "si") -> Recording
         passback.queue(identity)  # an LMS student's score waits for the sender thread, not this page
         _said_recorded(kept, labels.get((problem, answer.name), answer.heading), link, solution, answer, system)
 
+    part = settings.part(problem)
+    counts_diagram = part is not None and records.DIAGRAM in part.answers
+
+    def on_diagram(drawing, verdict) -> None:
+        """A readable drawing checked: an attempt at the free-body diagram, where it counts."""
+        if not counts_diagram:
+            return
+        if verdict.right:
+            said = "Right."
+        else:  # kept as the feedback policy lets the page say it
+            said = "Not right: " + (" ".join(f.message for f in verdict.findings) if settings.hints else
+                                    ", ".join(verdict.keys) if settings.slip_names else "")
+        try:
+            kept = records.record_attempt(identity, records.DIAGRAM, diagram_judge.in_words(drawing, len(
+                {d.body for d in drawing})), verdict.right, said, ", ".join(verdict.keys), problem=problem,
+                reading=diagram_judge.reading(drawing))
+        except records.NotAccepted as error:
+            st.warning(str(error), icon=":material/lock:")
+            return
+        except records.RecordingUnavailable as error:
+            st.error(str(error), icon=":material/cloud_off:")
+            return
+        passback.queue(identity)
+        _said_recorded(kept, records.DIAGRAM_HEADING, link, None, SimpleNamespace(name=records.DIAGRAM), system)
+
+    diagram_done = bool(standing and counts_diagram and standing.cells[(problem, records.DIAGRAM)].right_at())
+
     def on_reveal() -> bool:
         try:
             records.record_reveal(identity, problem=problem)
@@ -204,7 +233,8 @@ def recording(link: StudentLink, solution=None, system: str = "si") -> Recording
 
     costs = ("Opening the solution is recorded, and your instructor sees it. After it, no answer to this problem "
              "earns points: answers already right keep theirs.")
-    return Recording(settings.tolerance, on_verdict, on_reveal, revealed, blocked, say, costs)
+    return Recording(settings.tolerance, on_verdict, on_reveal, revealed, blocked, say, costs, on_diagram,
+                     diagram_done, (settings.hints, settings.slip_names))
 
 
 def _named(label: str) -> str:
@@ -288,7 +318,7 @@ def assignment_heading(link: StudentLink) -> None:
     now = records.now()
     lines = [f"**Graded assignment: {plain(s.title)}**, for student {literal(link.identity.label)}."]
     if not s.accepting:
-        lines.append(f"**Closed by your instructor**: answers are checked but no longer recorded.")
+        lines.append("**Closed by your instructor**: answers are checked but no longer recorded.")
     extended = " (your extension)" if standing and standing.grant.extended_due and due > s.due else ""
     if now > due:
         lines.append(f"**Due {records.when_text(due, zone)}**{extended}, {whose}: that has passed "
@@ -342,7 +372,7 @@ def your_attempts(link: StudentLink, answers, solution=None, system: str = "si")
     s = standing.settings
     zone, _ = _zone(link)
     st.markdown("### Your attempts")
-    labels = {a.name: a.heading for a in answers}
+    labels = {a.name: a.heading for a in answers} | {records.DIAGRAM: records.DIAGRAM_HEADING}
     by_name = {a.name: a for a in answers}
     lines = []
     part = s.part(link.problem)
@@ -508,15 +538,19 @@ def _parts_inputs(p: str, chosen: list[str], s: records.Settings | None = None) 
     parts = []
     for pid in chosen:
         problem = BY_ID[pid]
-        answers = {a.name: a for a in _answers_of(problem)}
+        headings = {a.name: a.heading for a in _answers_of(problem)}
+        typed = list(headings)
+        headings[records.DIAGRAM] = f"{records.DIAGRAM_HEADING} (drawn on the page)"
         had = s.part(pid) if s is not None else None
         with st.container(border=True):
             st.markdown(f"**{plain(problem.title)}**")
-            counted = st.multiselect("Answers that count", list(answers),
-                                     default=[a for a in had.answers if a in answers] if had else list(answers),
-                                     format_func=lambda name, answers=answers: answers[name].heading,
-                                     key=f"{p}answers_{pid}")
-            weights = [cell.number_input(f"Points: {answers[name].heading}", 0.1, 1000.0,
+            counted = st.multiselect("Answers that count", list(headings),
+                                     default=[a for a in had.answers if a in headings] if had else typed,
+                                     format_func=lambda name, headings=headings: headings[name],
+                                     key=f"{p}answers_{pid}",
+                                     help="The free-body diagram is a question too: the student draws it and checks "
+                                          "it on the page, and each readable drawing is an attempt.")
+            weights = [cell.number_input(f"Points: {headings[name]}", 0.1, 1000.0,
                                          float(had.weight(name)) if had and name in had.answers else 1.0, 0.5,
                                          key=f"{p}weight_{pid}_{name}") for cell, name in zip(_in_rows(len(counted)), counted)]
         parts.append(records.Part(pid, tuple(counted), tuple(weights)))

@@ -7,7 +7,7 @@ from __future__ import annotations
 import orjson
 import streamlit as st
 
-from practice.diagram_judge import Unreadable, Verdict, exercise_diagram, judge, read_drawing
+from practice.diagram_judge import DrawnLoad, Unreadable, Verdict, exercise_diagram, judge, read_drawing
 from solvers.catalog import Problem
 from solvers.core import Solution
 from ui.figure import DRAW, declared
@@ -50,17 +50,19 @@ def diagram_right(problem: Problem, solution: Solution) -> bool:
     return signature == _signature(solution) and verdict is not None and verdict.right
 
 
-def draw_exercise(problem: Problem, solution: Solution, on_verdict=None) -> Verdict | None:
-    """The exercise, for these numbers; the verdict of this run's Check (None without one).
-    ``on_verdict(drawing, verdict)``: an assignment records a readable one."""
+def draw_exercise(problem: Problem, solution: Solution, on_verdict=None, feedback=(True, True)) -> Verdict | None:
+    """The exercise, for these numbers; the verdict of the last Check (None before one).
+    ``on_verdict(drawing, verdict)``: an assignment records a readable one; ``feedback``: its policy,
+    (the tutor's words, the slips' names without them)."""
     signature = _signature(solution)
     key = f"fbd-{problem.id}"  # (a component's key may not hold "__")
     kept = f"{problem.id}__fbd_kept"  # (signature, the drawing as last checked, its verdict)
+    fresh = f"{problem.id}__fbd_fresh"  # a Check this run: an assignment records it
     if st.session_state.get(kept, (None,))[0] != signature:
         st.session_state[kept] = (signature, [], None)
     diagram = exercise_diagram(problem.solver, solution)
 
-    def checked():
+    def checked():  # (a callback: it runs before the script, so what it says is said below, where Check was)
         sent = (st.session_state.get(key) or {}).get("check")
         try:
             drawing = read_sent(sent, diagram)
@@ -69,8 +71,7 @@ def draw_exercise(problem: Problem, solution: Solution, on_verdict=None) -> Verd
             return
         verdict = judge(diagram, diagram.values(solution), drawing, getattr(problem.solver, "DIAGRAM_SLIPS", ()))
         st.session_state[kept] = (signature, [d.__dict__ for d in drawing], verdict)
-        if on_verdict is not None and verdict.readable:
-            on_verdict(drawing, verdict)
+        st.session_state[fresh] = True
 
     st.markdown("### Draw the free-body diagram")
     st.markdown(plain(f"Isolate {' and '.join(b.name for b in diagram.bodies)} ({diagram.title.lower()}): put on "
@@ -80,17 +81,26 @@ def draw_exercise(problem: Problem, solution: Solution, on_verdict=None) -> Verd
     data = canvas[:-1] + b',"canvas_key":' + orjson.dumps(signature) + b',"drawn":' + orjson.dumps(drawn) + b"}"
     declared(DRAW)(data=data, key=key, on_check_change=checked)
     if verdict is not None:
-        show_verdict(verdict)
+        show_verdict(verdict, *feedback, counted=on_verdict is not None)
+    if st.session_state.pop(fresh, False) and on_verdict is not None and verdict is not None and verdict.readable:
+        on_verdict(tuple(DrawnLoad(**d) for d in drawn), verdict)
     return verdict
 
 
-def show_verdict(verdict: Verdict) -> None:
+def show_verdict(verdict: Verdict, hints: bool = True, slip_names: bool = True, counted: bool = False) -> None:
+    """The verdict as the feedback policy lets it be said: the tutor's words, or only what kind of thing
+    is wrong (the slips' names), or only right or not."""
     if not verdict.readable:
-        st.warning(plain(verdict.message), icon=":material/edit_note:")
+        st.warning(plain(verdict.message) + (" This is not counted as an attempt." if counted else ""),
+                   icon=":material/edit_note:")
     elif verdict.right:
         st.success("Right: every load is there, at its point, the way the physics sets it. Now write the balance "
                    "laws from it.", icon=":material/check_circle:")
     else:
         n = len(verdict.findings)
-        st.error(f"Not yet: {n} thing{'s' if n > 1 else ''} to look at.\n\n"
-                 + "\n".join(f"- {plain(f.message)}" for f in verdict.findings), icon=":material/cancel:")
+        said = f"Not yet: {n} thing{'s' if n > 1 else ''} to look at."
+        if hints:
+            said += "\n\n" + "\n".join(f"- {plain(f.message)}" for f in verdict.findings)
+        elif slip_names:
+            said += " " + plain("; ".join(dict.fromkeys(verdict.keys))) + "."
+        st.error(said, icon=":material/cancel:")

@@ -105,8 +105,9 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         # steps name its loads: they appear once the diagram is right, or with the solution)
         steps = solution.steps[: solution.symbolic_steps]
         st.markdown(method(steps, judge.derivation, parts=(1, 2)))
-        draw_exercise(problem, solution, recording.on_diagram if recording is not None else None)
-        if diagram_right(problem, solution):
+        draw_exercise(problem, solution, recording.on_diagram if recording is not None else None,
+                      recording.diagram_feedback if recording is not None else (True, True))
+        if diagram_right(problem, solution) or (recording is not None and recording.diagram_right):
             st.markdown(method(steps, judge.derivation, parts=(3, 4)))
         else:
             st.markdown(":gray[The balance laws written from the diagram, and the analysis, follow once your "

@@ -146,3 +146,5 @@ class Recording:
     say: Callable[[Verdict], str] | None = None  # the verdict's message under the feedback policy
     reveal_costs: str = ""  # what opening the solution costs, asked to confirm first ("": opened at once)
     on_diagram: Callable | None = None  # (drawing, diagram verdict), a readable Check of the free-body diagram
+    diagram_right: bool = False  # the free-body diagram was recorded right already (the method's later steps open)
+    diagram_feedback: tuple[bool, bool] = (True, True)  # the assignment's hints, and slip names without them

@@ -283,9 +283,11 @@ def test_an_assignment_end_to_end(browser, course_url):
         c.close()
 
 
-def seeded_assignment(monkeypatch, title: str, answers: dict[str, int], roster: list[str]) -> str:
+def seeded_assignment(monkeypatch, title: str, answers: dict[str, int], roster: list[str], also: tuple[str, ...] = (),
+                      ids: list | None = None) -> str:
     """An assignment written straight into the shared server's records (the first ``answers[pid]`` answers of
-    each problem, due in two days): its choice in the gradebook's selectbox."""
+    each problem, and the questions ``also`` names, the free-body diagram, due in two days): its choice in the
+    gradebook's selectbox (its id appended to ``ids``)."""
     import importlib
 
     from sqlalchemy import create_engine
@@ -295,10 +297,12 @@ def seeded_assignment(monkeypatch, title: str, answers: dict[str, int], roster: 
 
     monkeypatch.setenv(signing.SECRET_ENV, COURSE_SECRET)  # the shared server's, which signs the roster's links
     bound = create_engine(f"sqlite:///{Path(_DATA_DIRS[0]) / 'dynamics-lab.sqlite'}")  # the shared server's records
-    parts = tuple(records.Part(pid, tuple(a.name for a in importlib.import_module(f"solvers.{pid}").ANSWERS)[:n])
+    parts = tuple(records.Part(pid, tuple(a.name for a in importlib.import_module(f"solvers.{pid}").ANSWERS)[:n] + also)
                   for pid, n in answers.items())
     due = dt.datetime.now(dt.timezone.utc) + dt.timedelta(days=2)
     aid = records.create(records.Settings(title, parts, 5e-3, due, 3), roster, bound).id
+    if ids is not None:
+        ids.append(aid)
     return f"{aid}: {title} ({', '.join(BY_ID[p.problem].title for p in parts)})"
 
 

@@ -169,3 +169,67 @@ def test_nothing_of_the_diagram_reaches_the_browser_before_the_solution(browser,
         page.locator("svg.dl-fbd").first.wait_for(timeout=30_000)  # and with the solution, the diagram
     finally:
         context.close()
+
+
+def test_in_an_assignment_the_diagram_is_a_question_recorded_like_an_answer(browser, app_url, monkeypatch):
+    """The ladder's diagram counted beside one answer: nothing drawn costs no attempt; a wrong drawing is
+    attempt 1, the same drawing again is not counted again, the right one counts; the method's later
+    steps open; the student's table and the gradebook's CSV have it."""
+    import csv
+    import io
+
+    from assignments import records
+    from assignments.identity import StudentIdentity, link_query
+    from tests.browser.test_assignments_browser import choose, download, enter_key, seeded_assignment, wait_for_text
+    from urllib.parse import urlencode
+
+    ids: list[int] = []
+    choice = seeded_assignment(monkeypatch, "Draw the ladder", {"sliding_ladder": 1}, ["s01"], (records.DIAGRAM,), ids)
+    identity = StudentIdentity(ids[0], "s01", records.student_seed(ids[0], "s01"))
+    context, page, errors = open_page(browser, f"{app_url}/sliding_ladder?{urlencode(link_query(identity))}")
+    try:
+        wait_for_text(page, "Graded assignment")
+        d = page.locator(DRAW)
+        d.wait_for(timeout=60_000)
+        assert "follow once your diagram is right" in page.locator("[data-testid='stMain']").inner_text()
+        d.locator("[data-dl=check]").click()
+        assert "Nothing is drawn yet" in page.get_by_text("This is not counted as an attempt").first.inner_text()
+        for name, at in (("W", "G"), ("N", "B")):
+            d.locator("[data-dl=point]").select_option(label=at)
+            d.locator("[data-dl=name]").fill(name)
+            d.locator("[data-dl=add]").click()
+        d.locator("[data-dl=check]").click()
+        page.get_by_text("Recorded: attempt 1 of 3 at “Free-body diagram”").wait_for(timeout=30_000)
+        d.locator("[data-dl=check]").click()  # the same drawing again
+        page.get_by_text("not counted again").first.wait_for(timeout=30_000)
+        svg = d.locator(".dl-draw-canvas > svg")
+        svg.focus()
+        for _ in range(12):  # N (selected, the last added) turned up
+            page.keyboard.press("ArrowUp")
+        d.locator("[data-dl=point]").select_option(label="A")
+        d.locator("[data-dl=name]").fill("N_A")
+        d.locator("[data-dl=add]").click()
+        svg.focus()
+        for _ in range(6):
+            page.keyboard.press("ArrowUp")
+        d.locator("[data-dl=check]").click()
+        page.get_by_text("Right, and it counts").first.wait_for(timeout=30_000)
+        main = page.locator("[data-testid='stMain']").inner_text()
+        assert "follow once your diagram is right" not in main and "Newton–Euler" in main
+        assert "Free-body diagram: right at attempt 2" in main, main[-1500:]
+        assert not errors, errors
+    finally:
+        context.close()
+    context, page, errors = open_page(browser, f"{app_url}/gradebook")
+    try:
+        enter_key(page)
+        choose(page, "Assignment", choice)
+        page.get_by_role("button", name="Download the gradebook (CSV)").wait_for(timeout=60_000)
+        book = list(csv.DictReader(io.StringIO(download(page, "Download the gradebook (CSV)"))))
+        assert [(r["label"], r["Free-body diagram:points"], r["Free-body diagram:out_of"]) for r in book] == [
+            ("s01", "1", "1")]
+        attempts = list(csv.DictReader(io.StringIO(download(page, "Download every attempt (CSV)"))))
+        drawn = [a for a in attempts if a["answer"] == records.DIAGRAM]
+        assert len(drawn) == 2 and drawn[0]["typed"].startswith("force “W” at G, 270°")
+    finally:
+        context.close()
