@@ -21,6 +21,7 @@ from ui.equations import broken
 from solvers.solution import PARTS
 from practice.method import exercise_steps as method_steps
 from viz import diagram as fbd
+from viz.catalog import drawings
 
 
 @dataclass(frozen=True)
@@ -44,6 +45,7 @@ class Document:
     work_space: bool = False  # a student's sheet: room to work instead of the method
     parts: tuple[tuple[int, str], ...] = ()  # (index of a step, the heading of the course's step it opens)
     diagrams: tuple[fbd.Drawing, ...] = ()  # the free-body diagrams, drawn under Step 2's heading
+    sketch: fbd.Drawing | None = None  # the problem's sketch, under "The problem" (viz/sketch.py)
 
 
 def givens(problem: Problem, solution: Solution, system: str = "si") -> tuple[tuple[str, str, str], ...]:
@@ -77,7 +79,8 @@ def document(problem: Problem, solution: Solution, answers, system: str = "si", 
     """The page's state as a document; ``exercise``: the statement and the method only."""
     find = tuple((a.heading, a.symbol) for a in answers)
     common = dict(title=problem.title, blurb=problem.blurb, source=problem.source, link=link,
-                  givens=givens(problem, solution, system), find=find, heading=heading)
+                  givens=givens(problem, solution, system), find=find, heading=heading,
+                  sketch=drawings(problem.id).sketch(solution.params))
     if exercise:
         shown = method_steps(solution.steps[: solution.symbolic_steps], problem.solver.derivation_of(solution))
         return Document(**common, steps=tuple((title, tex) for _, title, tex in shown), exercise=True,
@@ -109,7 +112,10 @@ def markdown(doc: Document) -> str:
     out = [f"*{heading}*\n" if heading else "", f"# {doc.title}", "", f"{doc.blurb} Source: {doc.source}.", ""]
     if doc.link:
         out += [f"This page, with these numbers: [{doc.link}]({doc.link})", ""]
-    out += ["## The problem", "", "| given | symbol | value |", "|---|---|---|"]
+    out += ["## The problem", ""]
+    if doc.sketch is not None:
+        out += [f"![{doc.sketch.text}]({_data_uri(doc.sketch)})", ""]
+    out += ["| given | symbol | value |", "|---|---|---|"]
     out += [f"| {_cell(label)} | {f'${_cell(symbol)}$' if symbol else ''} | {_cell(value)} |"
             for label, symbol, value in doc.givens]
     out += ["", "**Find**", ""] + [f"- {label}, ${symbol}$" for label, symbol in doc.find] + [""]
@@ -252,7 +258,10 @@ def tex_body(doc: Document) -> str:
     out += [r"\section*{" + tex_text(doc.title) + "}", tex_text(f"{doc.blurb} Source: {doc.source}.") + r"\par"]
     if doc.link:
         out.append(r"\textbf{This page, with these numbers:}\\" + "\n" + tex_link(doc.link) + r"\par")
-    out += [r"\subsection*{The problem}", r"\begin{tabular}{p{6.3cm}ll}", r"\textbf{given} & \textbf{symbol} & \textbf{value}\\"]
+    out.append(r"\subsection*{The problem}")
+    if doc.sketch is not None:
+        out += [r"\begin{center}", fbd.tikz(doc.sketch, 6.0), r"\end{center}"]
+    out += [r"\begin{tabular}{p{6.3cm}ll}", r"\textbf{given} & \textbf{symbol} & \textbf{value}\\"]
     out += [f"{tex_text(label)} & {f'${symbol}$' if symbol else ''} & {tex_text(value)}\\\\"
             for label, symbol, value in doc.givens]
     out += [r"\end{tabular}", "", r"\textbf{Find}", r"\begin{itemize}"]  # a blank line ends a table's paragraph
@@ -294,7 +303,7 @@ def tex_body(doc: Document) -> str:
 
 def _preamble(docs) -> str:
     """The preamble, with TikZ where a free-body diagram is drawn."""
-    return PREAMBLE + (r"\usepackage{tikz}" + "\n" if any(d.diagrams for d in docs) else "")
+    return PREAMBLE + (r"\usepackage{tikz}" + "\n" if any(d.diagrams or d.sketch for d in docs) else "")
 
 
 def latex(doc: Document) -> str:

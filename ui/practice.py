@@ -4,6 +4,7 @@ solution on request. The instructor's side (the variant export, and Study or Lec
 link) needs the instructor key. Nothing a student types is evaluated or rendered as Markdown."""
 from __future__ import annotations
 
+import base64
 import html
 import re
 
@@ -20,6 +21,8 @@ from ui.diagram_exercise import diagram_right, draw_exercise
 from ui.equations import PHONE_WIDTH_EM, broken
 from edge.inline_scripts import TAKE_FOCUS
 from ui.results import literal, plain, plain_with_math
+from viz.catalog import drawings
+from viz.diagram import svg
 from ui.session import Recording
 
 def seed_from_url() -> tuple[int | None, str | None]:
@@ -45,7 +48,7 @@ def answer_choice(answer, system: str) -> str:
 
 
 def statement(problem: Problem, solution: Solution, answers, system: str, judge: Judge) -> str:
-    """The problem as an exercise: every given with its value, then what to find."""
+    """The problem as an exercise (under its heading and sketch): every given with its value, then what to find."""
     rows = ["| given | symbol, typed as | value |", "|---|---|---|"]
     for p in problem.solver.PARAMS:
         value = solution.params[p.name]
@@ -57,8 +60,15 @@ def statement(problem: Problem, solution: Solution, answers, system: str, judge:
             rows.append(f"| {plain(p.label)} | ${p.symbol}$ {typed} | {units.format_quantity(value, p.dimension, system)} |")
     find = "\n".join(f"- {plain(a.heading)}, ${a.symbol}$" + (f", in {plain(u)}" if (u := read_in(a, system)) else "")
                      for a in answers)
-    return "\n\n".join(["### The problem", "\n".join(rows),
+    return "\n\n".join(["\n".join(rows),
                         "**Find**", find])
+
+
+def sketch_image(problem: Problem, solution: Solution) -> str:
+    """The problem's sketch (viz/sketch.py) as a Markdown image: its SVG in a data: URI, its words as the alt text."""
+    drawing = drawings(problem.id).sketch(solution.params)
+    data = base64.b64encode(svg(drawing, "dl-sketch").encode()).decode()
+    return f"![{plain(drawing.text)}](data:image/svg+xml;base64,{data})"
 
 
 def method(steps, derivation: Derivation, parts=(1, 2, 3, 4)) -> str:
@@ -100,6 +110,10 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         if recording is None:  # an assignment's banner says what holds for it instead
             st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
                     "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
+        # the problem's sketch above its table, as the worked solutions open: an image with its text alternative
+        # (an SVG in the page's Markdown is taken out by Streamlit's sanitiser)
+        st.markdown("### The problem")
+        st.markdown(sketch_image(problem, solution))
         st.markdown(statement(problem, solution, answers, system, judge))
         # the course's order: the diagram first, then the balance laws written from it and the analysis (whose
         # steps name its loads: they appear once the diagram is right, or with the solution)

@@ -24,6 +24,7 @@ class Drawings:
     at_limit: Callable | None  # (params, system) -> the figures that show why a physical limit stops the model
     key_pose: Callable | None  # the stage figure's bodies at its key instant, for the browser's live pose
     on_request: OnRequest | None
+    sketch: Callable  # params -> the problem's sketch (viz/sketch.py): its bodies at the start, the givens marked
 
 
 @cache
@@ -31,4 +32,4 @@ def drawings(pid: str) -> Drawings:
     """The drawings of the registered problem ``pid``."""
     module = importlib.import_module(f"viz.{pid}")
     return Drawings(module.figures, module.THUMBNAIL, getattr(module, "at_limit", None),
-                    getattr(module, "key_pose", None), getattr(module, "ON_REQUEST", None))
+                    getattr(module, "key_pose", None), getattr(module, "ON_REQUEST", None), module.sketch)

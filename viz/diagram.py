@@ -85,6 +85,37 @@ class Curl:
 
 
 @dataclass
+class Line:
+    """A sketch's line (viz/sketch.py): a fixed surface ("support", hatched on its ``side``: +1 to the left
+    of a→b) or a "dashed" guide."""
+    a: tuple[float, float]
+    b: tuple[float, float]
+    style: str = "support"
+    side: int = 1
+
+
+@dataclass
+class Dim:
+    """A length marked between two ends, with its symbol."""
+    a: tuple[float, float]
+    b: tuple[float, float]
+    label: Label
+
+
+@dataclass
+class Arc:
+    """An angle marked at ``centre`` from ``start`` to ``end`` (radians, counter-clockwise), with its symbol."""
+    centre: tuple[float, float]
+    radius: float
+    start: float
+    end: float
+    label: Label
+
+
+GIVEN_COLOR = "#0072B2"  # a sketch's given velocities and spins (a load's red is the diagram's)
+
+
+@dataclass
 class Drawing:
     """A diagram laid out: shapes in the drawing's units, y up; ``box`` holds everything."""
 
@@ -97,11 +128,14 @@ class Drawing:
     curls: list[Curl] = field(default_factory=list)
     box: Box = field(default_factory=lambda: Box(0, 0, 1, 1))
     text: str = ""  # the text alternative
+    lines: list[Line] = field(default_factory=list)  # a sketch's supports and guides
+    dims: list[Dim] = field(default_factory=list)  # a sketch's marked lengths
+    arcs: list[Arc] = field(default_factory=list)  # a sketch's marked angles
 
     @property
     def labels(self) -> list[Label]:
         return ([p[2] for p in self.points] + [a.label for a in self.arrows if a.label]
-                + [c.label for c in self.curls if c.label])
+                + [c.label for c in self.curls if c.label] + [m.label for m in (*self.dims, *self.arcs)])
 
 
 # ------------------------------------------------------------------------------------------------
@@ -449,6 +483,8 @@ def svg(drawing: Drawing, css_class: str = "dl-fbd") -> str:
            f'aria-label="{html.escape(drawing.text)}" xmlns="http://www.w3.org/2000/svg" '
            f'style="max-width:{width * 1.25:.0f}px" font-family="\'Times New Roman\', serif" font-style="italic">',
            f'<rect width="{width:.1f}" height="{height:.1f}" fill="#ffffff"/>']
+    for line in drawing.lines:
+        out.append(_svg_line(line, flip))
     for poly in drawing.polygons:
         pts = " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in poly))
         out.append(f'<polygon points="{pts}" fill="{BODY_FILL}" stroke="{BODY_STROKE}" stroke-width="2"/>')
@@ -461,17 +497,21 @@ def svg(drawing: Drawing, css_class: str = "dl-fbd") -> str:
                    f'stroke-width="9" stroke-linecap="round"/>'
                    f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="{BODY_FILL}" '
                    f'stroke-width="5" stroke-linecap="round"/>')
+    for dim in drawing.dims:
+        out.append(_svg_dim(dim, flip))
+    for arc in drawing.arcs:
+        out.append(_svg_arc(arc, flip))
     for x, y, label in drawing.points:
         px, py = flip(x, y)
         out.append(f'<circle cx="{px:.1f}" cy="{py:.1f}" r="3" fill="{BODY_STROKE}"/>')
         out.append(_svg_text(label, flip, BODY_STROKE, ' font-style="normal" class="dl-fbd-point"'))
     for arrow in drawing.arrows:
-        color = BASIS_COLOR if arrow.kind == "basis" else LOAD_COLOR
+        color = {"basis": BASIS_COLOR, "given": GIVEN_COLOR}.get(arrow.kind, LOAD_COLOR)
         head = _head(arrow.tail, arrow.head, 12 if arrow.kind != "basis" else 9)
         d = _unit(arrow.head[0] - arrow.tail[0], arrow.head[1] - arrow.tail[1])
         stop = (arrow.head[0] - d[0] * 8, arrow.head[1] - d[1] * 8)
         (x0, y0), (x1, y1) = flip(*arrow.tail), flip(*stop)
-        widths = {"force": 3, "impulse": 3, "basis": 1.6}
+        widths = {"force": 3, "impulse": 3, "basis": 1.6, "given": 2.4}
         out.append(f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="{color}" '
                    f'stroke-width="{widths[arrow.kind]}"/>')
         pts = " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in head))
@@ -481,8 +521,9 @@ def svg(drawing: Drawing, css_class: str = "dl-fbd") -> str:
             cls = ' class="dl-fbd-label"' if arrow.kind != "basis" else ' class="dl-fbd-basis" font-style="normal" font-weight="bold"'
             out.append(_svg_text(arrow.label, flip, color, cls))
     for curl in drawing.curls:
-        out.append(_svg_curl(curl, flip))
-        out.append(_svg_text(curl.label, flip, LOAD_COLOR, ' class="dl-fbd-label"'))
+        color = GIVEN_COLOR if curl.load == "given" else LOAD_COLOR
+        out.append(_svg_curl(curl, flip, color))
+        out.append(_svg_text(curl.label, flip, color, ' class="dl-fbd-label"'))
     out.append("</svg>")
     return "".join(out)
 
@@ -494,12 +535,57 @@ def _curl_points(curl: Curl, n: int = 24):
     return pts if curl.ccw else pts[::-1]
 
 
-def _svg_curl(curl: Curl, flip) -> str:
+def _svg_curl(curl: Curl, flip, color: str = LOAD_COLOR) -> str:
     pts = _curl_points(curl)
     path = " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in pts[:-2]))
     head = " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in _head(pts[-6], pts[-1], 11)))
-    return (f'<polyline points="{path}" fill="none" stroke="{LOAD_COLOR}" stroke-width="3"/>'
-            f'<polygon points="{head}" fill="{LOAD_COLOR}" stroke="{LOAD_COLOR}" stroke-width="2"/>')
+    return (f'<polyline points="{path}" fill="none" stroke="{color}" stroke-width="3"/>'
+            f'<polygon points="{head}" fill="{color}" stroke="{color}" stroke-width="2"/>')
+
+
+def _hatches(line: Line, step: float = 9.0, depth: float = 8.0):
+    """A support's short strokes on its fixed side, as (tail, tip) pairs in the drawing's units."""
+    (ax, ay), (bx, by) = line.a, line.b
+    n = math.hypot(bx - ax, by - ay) or 1.0
+    ux, uy = (bx - ax) / n, (by - ay) / n
+    side = (-uy * line.side, ux * line.side)
+    out, t = [], step / 2
+    while t < n:
+        x, y = ax + ux * t, ay + uy * t
+        out.append(((x, y), (x + (side[0] - ux) * depth, y + (side[1] - uy) * depth)))
+        t += step
+    return out
+
+
+def _svg_line(line: Line, flip) -> str:
+    (x0, y0), (x1, y1) = flip(*line.a), flip(*line.b)
+    if line.style == "dashed":
+        return (f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="{BODY_STROKE}" '
+                f'stroke-width="1.4" stroke-dasharray="6 4"/>')
+    out = [f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="{BODY_STROKE}" stroke-width="2.4"/>']
+    for a, b in _hatches(line):
+        (p, q), (r, t) = flip(*a), flip(*b)
+        out.append(f'<line x1="{p:.1f}" y1="{q:.1f}" x2="{r:.1f}" y2="{t:.1f}" stroke="{BODY_STROKE}" stroke-width="1"/>')
+    return "".join(out)
+
+
+def _svg_dim(dim: Dim, flip) -> str:
+    (x0, y0), (x1, y1) = flip(*dim.a), flip(*dim.b)
+    heads = "".join('<polygon points="' + " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in _head(a, b, 8))) +
+                    f'" fill="{BASIS_COLOR}"/>' for a, b in ((dim.b, dim.a), (dim.a, dim.b)))
+    return (f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="{BASIS_COLOR}" stroke-width="1.2"/>'
+            + heads + _svg_text(dim.label, flip, BASIS_COLOR, ' class="dl-sketch-given"'))
+
+
+def _arc_points(arc: Arc, n: int = 20):
+    return [(arc.centre[0] + arc.radius * math.cos(a), arc.centre[1] + arc.radius * math.sin(a))
+            for a in (arc.start + (arc.end - arc.start) * k / n for k in range(n + 1))]
+
+
+def _svg_arc(arc: Arc, flip) -> str:
+    path = " ".join(f"{x:.1f},{y:.1f}" for x, y in (flip(*p) for p in _arc_points(arc)))
+    return (f'<polyline points="{path}" fill="none" stroke="{BASIS_COLOR}" stroke-width="1.4"/>'
+            + _svg_text(arc.label, flip, BASIS_COLOR, ' class="dl-sketch-given"'))
 
 
 # ------------------------------------------------------------------------------------------------
@@ -510,6 +596,10 @@ def tikz(drawing: Drawing, width_cm: float = 7.0) -> str:
     k = width_cm / (b.x1 - b.x0)
     p = lambda x, y: f"({(x - b.x0) * k:.2f},{(y - b.y0) * k:.2f})"
     out = [r"\begin{tikzpicture}[line cap=round, >=latex]"]
+    for line in drawing.lines:
+        out.append((r"\draw[dashed] " if line.style == "dashed" else r"\draw[thick] ") + f"{p(*line.a)} -- {p(*line.b)};")
+        if line.style != "dashed":
+            out += [rf"\draw[thin] {p(*a)} -- {p(*b)};" for a, b in _hatches(line)]
     for poly in drawing.polygons:
         out.append(r"\draw[fill=black!8, thick] " + " -- ".join(p(*q) for q in poly) + " -- cycle;")
     for cx, cy, r in drawing.circles:
@@ -521,7 +611,7 @@ def tikz(drawing: Drawing, width_cm: float = 7.0) -> str:
         out.append(rf"\node[font=\small] at {p(label.x, label.y)} {{${label.tex}$}};")
     for arrow in drawing.arrows:
         style = {"force": "->, very thick, red!70!black", "impulse": "-{Latex[open]}, very thick, red!70!black",
-                 "basis": "->, thin"}[arrow.kind]
+                 "basis": "->, thin", "given": "->, thick, blue!70!black"}[arrow.kind]
         style = style.replace("-{Latex[open]}", "->, double")  # without the arrows.meta library: a double shaft
         out.append(rf"\draw[{style}] {p(*arrow.tail)} -- {p(*arrow.head)};")
         if arrow.label:
@@ -529,8 +619,15 @@ def tikz(drawing: Drawing, width_cm: float = 7.0) -> str:
             out.append(rf"\node[font=\small] at {p(arrow.label.x, arrow.label.y)} {{${tex}$}};")
     for curl in drawing.curls:
         pts = _curl_points(curl)
-        out.append(r"\draw[->, very thick, red!70!black] " + " -- ".join(p(*q) for q in pts) + ";")
+        color = "blue!70!black" if curl.load == "given" else "red!70!black"
+        out.append(rf"\draw[->, very thick, {color}] " + " -- ".join(p(*q) for q in pts) + ";")
         out.append(rf"\node[font=\small] at {p(curl.label.x, curl.label.y)} {{${curl.label.tex}$}};")
+    for dim in drawing.dims:
+        out.append(rf"\draw[<->, thin] {p(*dim.a)} -- {p(*dim.b)};")
+        out.append(rf"\node[font=\small] at {p(dim.label.x, dim.label.y)} {{${dim.label.tex}$}};")
+    for arc in drawing.arcs:
+        out.append(r"\draw[thin] " + " -- ".join(p(*q) for q in _arc_points(arc)) + ";")
+        out.append(rf"\node[font=\small] at {p(arc.label.x, arc.label.y)} {{${arc.label.tex}$}};")
     out.append(r"\end{tikzpicture}")
     return "\n".join(out)
 

@@ -9,6 +9,7 @@ from solvers import disk_wall as solver
 from solvers.core import plain_number as n
 from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, as_one, base_layout, circles, holding, line, moving, padded,
                          r, segments, thumbnail, trails)
+from viz.sketch import Drawing, Sketch
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     f'<line x1="10" y1="14" x2="190" y2="14" stroke="{COLORS["ink"]}" stroke-width="5"/>'
@@ -80,3 +81,20 @@ def key_pose(p, a, system: str = "si", xp=np) -> dict:
     drawn = _bodies(zero, zero, zero, p["V"] * xp.sin(p["theta"]) + zero, p["V"] * xp.cos(p["theta"]) + zero,
                     zero + 1, p["R"], p, a, xp)
     return {name: (x[0], y[0]) for name, (x, y) in drawn.items()}
+
+
+def sketch(params) -> Drawing:
+    """The problem's sketch: the disk sliding toward the wall at V, θ from the wall's normal, spinning at ω."""
+    R, th = params["R"], params["theta"]
+    s = Sketch(solver, "The disk slides toward a rough wall, spinning")
+    C = (-2.6 * R * math.sin(th), -R - 2.6 * R * math.cos(th))
+    s.support((C[0] - 1.6 * R, 0.0), (max(2.4 * R, C[0] + 2.4 * R), 0.0), side=1)
+    s.disk(C, R)
+    s.point(C, "C", (-1, 0.25), 30.0)
+    s.dashed(C, (C[0], C[1] + 1.9 * R))  # the wall's normal through C
+    s.velocity(C, math.pi / 2 - th, 1.6 * R, "V")
+    if th > math.radians(2):
+        s.angle(C, math.pi / 2 - th, math.pi / 2, "theta", 1.15 * R)
+    s.spin(C, 0.32 * R, params["omega"] >= 0, "omega")
+    s.length(C, (C[0] + R * math.cos(math.radians(-50)), C[1] + R * math.sin(math.radians(-50))), "R", 0.0)
+    return s.drawing()

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import numpy as np
+import sympy as sp
 
 from solvers import driven_cart as solver
 from solvers.core import plain_number as n
 from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, circles, column, holding, joined, line, moving,
                          points, r, segments, thumbnail)
+from viz.sketch import Drawing, Sketch
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     f'<line x1="5" y1="96" x2="195" y2="96" stroke="{COLORS["ink"]}" stroke-width="4"/>'
@@ -134,3 +136,27 @@ def versus_mu(params, accel: float | None = None) -> Figure:
 def at_limit(params, system: str = "si") -> list[Figure]:
     """Beside a refusal (the front wheels lift): the curves that show where, and why."""
     return [versus_mu(params)]
+
+
+def sketch(params) -> Drawing:
+    """The problem's sketch: the cart at rest on level ground, its centre of mass C a height a up,
+    midway between the axles 2b apart (the driven ones as the drive option says)."""
+    values = {solver.a: params["a"], solver.b: params["b"], solver.x_C: 0.0}
+    at = {name: (float(sp.sympify(x).subs(values)), float(sp.sympify(y).subs(values)))
+          for name, (x, y) in solver._CART_POINTS.items()}
+    wheel = float(solver._WHEEL.subs(values))
+    a, b = params["a"], params["b"]
+    s = Sketch(solver, f"The cart on level ground ({params['drive']}-wheel drive)")
+    s.support((at["_1"][0] - 0.4 * b, 0.0), (at["_2"][0] + 0.4 * b, 0.0), side=-1)
+    s.polygon([at[k] for k in ("_1", "_2", "_3", "_4")])
+    s.disk(at["_front_hub"], wheel)
+    s.disk(at["_rear_hub"], wheel)
+    s.point(at["C"], "C", (-1, 1))
+    s.point(at["F"], "F", (1, -1))
+    s.point(at["R"], "R", (-1, -1))
+    side = at["_1"][0] - 0.3 * b  # the height marked left of the body, level with C
+    s.dashed(at["C"], (side - 0.1 * b, a))
+    s.length((side, 0.0), (side, a), "a", 0.0)
+    s.length((-b, -0.7 * a), (0.0, -0.7 * a), "b", 0.0)
+    s.length((0.0, -0.7 * a), (b, -0.7 * a), "b", 0.0)
+    return s.drawing()

@@ -10,6 +10,7 @@ from solvers import eulers_disk as solver
 from solvers.core import plain_fixed, plain_number as n
 from viz.catalog import OnRequest
 from viz.common import COLORS, Figure, animated, base_layout, line, moving, r, thumbnail
+from viz.sketch import Drawing, Sketch
 
 PLAY_SECONDS = 4.0  # one precession lasts this long on screen
 MM = 1000.0  # the 3-D view is drawn in millimetres
@@ -226,3 +227,18 @@ def on_request(solution, damping: float = 5e-6) -> Figure:
 
 # behind a switch of these words; ?rundown=1 keeps it open in a shared link
 ON_REQUEST = OnRequest("Letting it run down", "rundown", on_request)
+
+
+def sketch(params) -> Drawing:
+    """The problem's sketch: the disk seen edge-on, tilted at θ from the table, touching it at A."""
+    r_, th = params["r"], params["theta"]
+    s = Sketch(solver, "Euler's disk, edge-on, rolling on the table")
+    top = (2 * r_ * math.cos(th), 2 * r_ * math.sin(th))
+    G = (top[0] / 2, top[1] / 2)
+    s.support((-0.4 * r_, 0.0), (2.4 * r_, 0.0), side=-1)
+    s.rod((0.0, 0.0), top, 14.0)
+    s.point((0.0, 0.0), "A", (-1, 0.2))
+    s.point(G, "G", (-0.3, 1), 18.0)
+    s.angle((0.0, 0.0), 0.0, th, "theta", 1.2 * r_)
+    s.length(G, top, "r", 0.2 * r_)
+    return s.drawing(basis=(r"\mathbf{e}_y", r"\mathbf{E}_z"))

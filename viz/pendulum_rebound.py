@@ -10,6 +10,7 @@ from solvers.core import plain_fixed, plain_number
 from solvers import units
 from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, circles, column, fitted, line, moving, points,
                          r, segments, STILL_HEIGHT, still_layout, thumbnail, trails)
+from viz.sketch import Drawing, Sketch
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     f'<line x1="10" y1="100" x2="190" y2="100" stroke="{COLORS["ink"]}" stroke-width="5"/>'
@@ -148,3 +149,29 @@ def _rebounds(p, a, peaks) -> str:
 def deg(angle: float) -> str:
     """An angle in degrees as the caption writes it (0.1°)."""
     return plain_fixed(math.degrees(angle), 1) + "°"
+
+
+def sketch(params) -> Drawing:
+    """The problem's sketch: the rod and sphere released at θ₀ about the pin O, the floor a depth d below O
+    (or the wall the hanging sphere touches)."""
+    L, r_, th0 = params["L"], params["r"], params["theta0"]
+    s = Sketch(solver, "The rod and sphere, released about the pin O")
+    u = (math.cos(th0), math.sin(th0))
+    S = ((L + r_) * u[0], (L + r_) * u[1])
+    reach = L + 2 * r_
+    if params["surface"] == "wall":
+        s.support((-r_, -1.05 * reach), (-r_, 0.15 * reach), side=1)
+    else:
+        d = params["d"]
+        s.support((-0.25 * reach, -d), (1.05 * reach, -d), side=-1)
+        s.length((0.0, 0.0), (0.0, -d), "d", -0.12 * reach)
+    s.polygon([(0.0, 0.0), (-0.05 * reach, 0.08 * reach), (0.05 * reach, 0.08 * reach)])  # the pin's bracket
+    s.rod((0.0, 0.0), (L * u[0], L * u[1]))
+    s.disk(S, r_)
+    s.point((0.0, 0.0), "O", (-1, -0.6), 16.0)
+    s.dashed((0.0, 0.0), (0.45 * L, 0.0))
+    if th0 > math.radians(2):
+        s.angle((0.0, 0.0), 0.0, th0, "theta0", 0.3 * L)
+    s.length((0.0, 0.0), (L * u[0], L * u[1]), "L", 0.09 * reach)
+    s.length(S, (S[0] + r_ * math.cos(th0 - math.pi / 2), S[1] + r_ * math.sin(th0 - math.pi / 2)), "r", 0.0)
+    return s.drawing()

@@ -10,6 +10,7 @@ from solvers import rod_disk_spring as solver
 from solvers.core import plain_fixed, plain_number as n, validate_params
 from viz.common import (COLORS, Figure, headline, headline_text, animated, base_layout, circles, fitted, line, moving, points, r, segments,
                          spirals, STILL_HEIGHT, still_layout, symbolic, thumbnail)
+from viz.sketch import Drawing, Sketch
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     f'<path d="M70,60 m-10,0 a10,10 0 1 0 20,0 a14,14 0 1 0 -28,0 a18,18 0 1 0 36,0" fill="none" stroke="{COLORS["force"]}" stroke-width="2"/>'
@@ -180,3 +181,24 @@ def _after(p, m) -> str:
                 "over the top: it keeps turning")
     stopper = "the spring stops it" if p["k"] > 0 else "it comes to rest (as high as it started)"
     return f"swings on until {stopper} at about {deg(m['theta'].max())}, and returns"
+
+
+def sketch(params) -> Drawing:
+    """The problem's sketch: the rod and disk released at θ₁ from the upward vertical, the torsional
+    spring k at the pin, and (dashed) the angle θ₂ where the speed is wanted."""
+    L, R, th1, th2 = params["L"], params["R"], params["theta1"], params["theta2"]
+    s = Sketch(solver, "The rod and disk on a torsional spring, released about the pin O")
+    along = lambda rho, th: (rho * math.sin(th), rho * math.cos(th))  # noqa: E731
+    s.polygon([(0.0, 0.0), (-0.06 * L, -0.1 * L), (0.06 * L, -0.1 * L)])
+    s.dashed((0.0, 0.0), (0.0, 0.6 * L))  # the upward vertical
+    s.dashed((0.0, 0.0), along(L + 2 * R, th2))
+    s.rod((0.0, 0.0), along(L, th1))
+    s.disk(along(L + R, th1), R)
+    s.point((0.0, 0.0), "O", (-1, -0.2), 34.0)
+    s.spin((0.0, 0.0), 0.12 * L, True, "k")
+    if th1 > math.radians(2):
+        s.angle((0.0, 0.0), math.pi / 2 - th1, math.pi / 2, "theta1", 0.3 * L)
+    s.angle((0.0, 0.0), math.pi / 2 - th2, math.pi / 2, "theta2", 0.45 * L)
+    s.length((0.0, 0.0), along(L, th1), "L", -0.12 * L)
+    s.length(along(L + R, th1), along(L + 2 * R, th1), "R", -0.12 * L)
+    return s.drawing()

@@ -8,6 +8,7 @@ from solvers import sliding_ladder as solver
 from solvers.core import plain_number as n
 from viz.common import (COLORS, Figure, headline, headline_text, animated, arrows, base_layout, column, line, moving, points, r,
                          thumbnail)
+from viz.sketch import Drawing, Sketch
 
 # The ladder is drawn as a strip THICKNESS × L wide on the side away from the corner, so its edge
 # through A and B is the modelled rod and the drawing never enters the wall or the floor.
@@ -157,3 +158,19 @@ def _reactions(solution, m) -> Figure:
         f"(its push stays at least {n(low)} N) until the ladder lands flat at t = {n(a['t_floor'])} s.")
     return Figure("sliding_ladder_reactions", "The wall's and the floor's reactions against time",
                   {"data": data, "layout": layout}, description, animated=False, height=380)
+
+
+def sketch(params) -> Drawing:
+    """The problem's sketch: the ladder released at θ₀ against the smooth wall, on the smooth floor."""
+    L, th0 = params["L"], params["theta0"]
+    s = Sketch(solver, "The ladder against a smooth wall, on a smooth floor")
+    A, B = (0.0, L * np.sin(th0)), (L * np.cos(th0), 0.0)
+    s.support((0.0, 0.0), (0.0, 1.15 * A[1]), side=1)
+    s.support((0.0, 0.0), (1.2 * B[0], 0.0), side=-1)
+    s.rod(B, A)
+    s.point(A, "A", (1, 0.6))
+    s.point(B, "B", (0.4, 1))
+    s.point(((A[0] + B[0]) / 2, (A[1] + B[1]) / 2), "G", (-1, -0.8))
+    s.angle(B, np.pi - th0, np.pi, "theta0", 0.2 * L)
+    s.length(B, A, "L", -0.08 * L)
+    return s.drawing()

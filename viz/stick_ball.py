@@ -7,6 +7,7 @@ from solvers import stick_ball as solver
 from solvers.core import plain_number as n
 from viz.common import (COLORS, Figure, headline, headline_text, animated, base_layout, circles, column, line, moving, padded, points,
                          r, segments, thumbnail, trails)
+from viz.sketch import Drawing, Sketch
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     f'<line x1="120" y1="10" x2="120" y2="100" stroke="{COLORS["body"]}" stroke-width="7"/>'
@@ -83,3 +84,17 @@ def _after(p, a, m) -> str:
         what += (f". At t = {n(m['second_contact'], 3)} s the turning stick reaches the ball again: a second "
                  "impact, which this page does not model, so the motion stops there")
     return what
+
+
+def sketch(params) -> Drawing:
+    """The problem's sketch: the stick at rest, the ball sliding into it at v, a distance s from its middle."""
+    l, s_ = params["l"], params["s"]
+    s = Sketch(solver, "The ball slides into a free stick on a smooth table")
+    s.rod((0.0, -l / 2), (0.0, l / 2))
+    s.point((0.0, 0.0), "M", (1, 0))
+    ball = (-0.42 * l, s_)
+    s.disk(ball, 0.06 * l)
+    s.velocity((ball[0] + 0.07 * l, ball[1]), 0.0, 0.2 * l, "v")
+    s.length((0.0, -l / 2), (0.0, l / 2), "l", -0.16 * l)
+    s.length((0.0, 0.0), (0.0, s_), "s", 0.1 * l)
+    return s.drawing()

@@ -125,6 +125,8 @@ def viz_lacks(pid: str, viz) -> list[str]:
     missing = []
     if not callable(getattr(viz, "figures", None)):
         missing.append(f"{pid}: viz has no figures()")
+    if not callable(getattr(viz, "sketch", None)):
+        missing.append(f"{pid}: viz has no sketch(params) (the problem's sketch: viz/sketch.py)")
     sketch = getattr(viz, "THUMBNAIL", None)
     if not isinstance(sketch, str):
         missing.append(f"{pid}: viz has no THUMBNAIL")
