@@ -123,6 +123,14 @@ _CART_POINTS = {"C": (x_C, a), "F": (x_C + b, 0), "R": (x_C - b, 0),
                 "_1": (x_C - b - _WHEEL, _BOTTOM), "_2": (x_C + b + _WHEEL, _BOTTOM),
                 "_3": (x_C + b + _WHEEL, _TOP), "_4": (x_C - b - _WHEEL, _TOP)}
 AXLES = (("front", "F", N_front), ("rear", "R", N_rear))
+
+
+def cart_shape(a_: float, b_: float) -> tuple[dict[str, tuple[float, float]], float]:
+    """The cart's named points and corners (``_CART_POINTS``) in metres at rest (x_C = 0), and its wheels'
+    radius, for a CM height ``a_`` and half wheelbase ``b_``: the problem's sketch draws them."""
+    at = {a: a_, b: b_, x_C: 0.0}
+    return ({name: (float(sp.sympify(x).subs(at)), float(sp.sympify(y).subs(at))) for name, (x, y) in _CART_POINTS.items()},
+            float(_WHEEL.subs(at)))
 DRIVEN_AXLES = {"front": ("front",), "rear": ("rear",), "all": ("front", "rear")}
 
 

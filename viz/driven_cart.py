@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-import sympy as sp
 
 from solvers import driven_cart as solver
 from solvers.core import plain_number as n
@@ -141,11 +140,8 @@ def at_limit(params, system: str = "si") -> list[Figure]:
 def sketch(params) -> Drawing:
     """The problem's sketch: the cart at rest on level ground, its centre of mass C a height a up,
     midway between the axles 2b apart (the driven ones as the drive option says)."""
-    values = {solver.a: params["a"], solver.b: params["b"], solver.x_C: 0.0}
-    at = {name: (float(sp.sympify(x).subs(values)), float(sp.sympify(y).subs(values)))
-          for name, (x, y) in solver._CART_POINTS.items()}
-    wheel = float(solver._WHEEL.subs(values))
     a, b = params["a"], params["b"]
+    at, wheel = solver.cart_shape(a, b)
     s = Sketch(solver, f"The cart on level ground ({params['drive']}-wheel drive)")
     s.support((at["_1"][0] - 0.4 * b, 0.0), (at["_2"][0] + 0.4 * b, 0.0), side=-1)
     s.polygon([at[k] for k in ("_1", "_2", "_3", "_4")])
