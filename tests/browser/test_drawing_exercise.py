@@ -110,6 +110,11 @@ def test_drawn_wrong_by_touch_on_a_phone(browser, app_url):
         said = _verdict(page)
         assert "“F” is drawn at C: does anything touch the disk there?" in said
         assert page.evaluate("document.documentElement.scrollWidth") <= 390
+        from tests.browser.test_where_used import serious_violations
+        assert serious_violations(page) == []
+        page.get_by_role("heading", name="The problem").scroll_into_view_if_needed()
+        sketch = page.locator("img[alt^='The disk slides toward a rough wall']")
+        assert sketch.count() == 1 and sketch.bounding_box()["width"] <= 390
         assert not errors, errors
     finally:
         context.close()

@@ -634,3 +634,30 @@ def test_an_edit_of_the_points_is_said_answer_by_answer_in_the_pages_words(datab
     with_disk = (changed, records.Part("disk_wall", ("v1x",), (3,)))
     assert records.edit(aid, records.replace(before, parts=with_disk), database) == [
         "Spinning disk hits a rough wall added"]
+
+
+def test_the_free_body_diagram_is_a_question_scored_like_an_answer(database):
+    """The diagram counted beside an answer, with its points: a drawing (in words, with its reading) is an
+    attempt; the same drawing again is one; late and attempt rules apply; the gradebook and its CSV have it."""
+    from practice.diagram_judge import DrawnLoad, in_words, reading
+
+    parts = (records.Part("sliding_ladder", ("N_A0", records.DIAGRAM), (1, 2)),)
+    aid, (ann, bob) = new_assignment(database, parts=parts, late_policy="fixed", late_value=0.5)
+    wrong = (DrawnLoad("force", "the ladder", "G", 270.0, "W"),)
+    right = wrong + (DrawnLoad("force", "the ladder", "B", 90.0, "N_B"), DrawnLoad("force", "the ladder", "A", 0.0, "N_A"))
+    renamed = (DrawnLoad("force", "the ladder", "G", 270.0, "weight"),)  # the same drawing, named otherwise
+    first = records.record_attempt(ann, records.DIAGRAM, in_words(wrong), False, "Not right", "missing", database,
+                                   BEFORE, "sliding_ladder", reading(wrong))
+    again = records.record_attempt(ann, records.DIAGRAM, in_words(renamed), False, "Not right", "missing", database,
+                                   BEFORE, "sliding_ladder", reading(renamed))
+    assert first.number == 1 and again.repeated and in_words(wrong) == "force “W” at G, 270°"
+    records.record_attempt(ann, records.DIAGRAM, in_words(right), True, "Right.", "", database, BEFORE,
+                           "sliding_ladder", reading(right))
+    records.record_attempt(bob, records.DIAGRAM, in_words(right), True, "Right.", "", database,
+                           DUE + dt.timedelta(hours=2), "sliding_ladder", reading(right))
+    book = records.gradebook(aid, database)
+    assert book.settings.out_of == 3 and book.score("s01") == 2 and book.score("s02") == 1
+    assert records.Settings.errors(book.settings) == []
+    row = list(csv.DictReader(io.StringIO(records.gradebook_csv(book))))[0]
+    assert row[f"{records.DIAGRAM}:points"] == "2" and row[f"{records.DIAGRAM}:status"] == "right at attempt 2"
+    assert records._answer_named("sliding_ladder", records.DIAGRAM, False) == "“Free-body diagram”"
