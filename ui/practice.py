@@ -48,7 +48,9 @@ def answer_choice(answer, system: str) -> str:
 
 
 def statement(problem: Problem, solution: Solution, answers, system: str, judge: Judge) -> str:
-    """The problem as an exercise (under its heading and sketch): every given with its value, then what to find."""
+    """The problem as an exercise: its sketch above its table, as the worked solutions open (an image with its
+    text alternative: an SVG in the page's Markdown is taken out by Streamlit's sanitiser), every given with
+    its value, then what to find."""
     rows = ["| given | symbol, typed as | value |", "|---|---|---|"]
     for p in problem.solver.PARAMS:
         value = solution.params[p.name]
@@ -60,7 +62,7 @@ def statement(problem: Problem, solution: Solution, answers, system: str, judge:
             rows.append(f"| {plain(p.label)} | ${p.symbol}$ {typed} | {units.format_quantity(value, p.dimension, system)} |")
     find = "\n".join(f"- {plain(a.heading)}, ${a.symbol}$" + (f", in {plain(u)}" if (u := read_in(a, system)) else "")
                      for a in answers)
-    return "\n\n".join(["\n".join(rows),
+    return "\n\n".join(["### The problem", sketch_image(problem, solution), "\n".join(rows),
                         "**Find**", find])
 
 
@@ -110,10 +112,6 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         if recording is None:  # an assignment's banner says what holds for it instead
             st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
                     "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
-        # the problem's sketch above its table, as the worked solutions open: an image with its text alternative
-        # (an SVG in the page's Markdown is taken out by Streamlit's sanitiser)
-        st.markdown("### The problem")
-        st.markdown(sketch_image(problem, solution))
         st.markdown(statement(problem, solution, answers, system, judge))
         # the course's order: the diagram first, then the balance laws written from it and the analysis (whose
         # steps name its loads: they appear once the diagram is right, or with the solution)

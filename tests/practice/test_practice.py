@@ -460,7 +460,11 @@ def page_text(at) -> str:
 
 
 def leaks(text: str, solution, answers, judge, system: str = "si") -> list[str]:
-    """Any answer's value (as the page formats it, and to 3–4 figures) or closed form in ``text``."""
+    """Any answer's value (as the page formats it, and to 3–4 figures) or closed form in ``text``. A drawing's
+    coordinates and stroke widths (an SVG, a TikZ picture) are not values a reader sees: they are left out
+    (what the problem's sketch and the drawing exercise's blank show is tested on its own, test_sketch.py and
+    test_diagram_judge.py)."""
+    text = re.sub(r"\\begin\{tikzpicture\}.*?\\end\{tikzpicture\}|<svg\b.*?</svg>", "", text, flags=re.S)
     found = []
     givens = {units.format_value(units.to_display(v, p.dimension, system), 4)
               for p in importlib.import_module(f"solvers.{solution.problem}").PARAMS
