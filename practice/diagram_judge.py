@@ -42,6 +42,7 @@ from solvers.diagram import Diagram, DiagramSlip, Load, numbers
 TOLERANCE_DEG = 20.0  # a drawn direction's allowance (the keyboard turns an arrow in 15° steps)
 MAX_LOADS = 24  # a drawing with more is not read (no diagram here has more than six)
 MAX_NAME = 40  # characters of a load's name kept
+MAX_PAIRS = 12  # candidate component pairs weighed (a diagram here has at most two reactions of unknown direction)
 KINDS = ("force", "impulse", "couple")
 ARTICLE = {"force": "a force", "impulse": "an impulse", "couple": "a couple"}
 
@@ -230,9 +231,11 @@ def _match(drawn, expected):
     """The pairing of drawn units to expected loads with the fewest findings: (pairs of (expected
     index, unit, mismatches)), unmatched expected indices, unmatched drawn indices."""
     best = None
-    pairs = _component_pairs(drawn, expected)
+    # (bounded: a drawing of many perpendicular loads at one pin would otherwise ask for millions of pairings)
+    pairs = _component_pairs(drawn, expected)[:MAX_PAIRS]
+    open_reactions = sum(1 for e in expected if e.direction is None and e.kind != "couple")
     choices = [()]
-    for r in range(1, min(len(pairs), 3) + 1):
+    for r in range(1, min(len(pairs), open_reactions, 3) + 1):
         choices += [c for c in itertools.combinations(pairs, r) if len({i for p in c for i in p}) == 2 * r]
     for chosen in choices:
         paired = {i for p in chosen for i in p}

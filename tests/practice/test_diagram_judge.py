@@ -301,3 +301,12 @@ def test_the_blank_the_page_is_sent_shows_no_load(pid):
     assert sent["svg"].count("<polygon") == 2 + sum(1 for b in diagram.bodies for s in b.outline
                                                    if type(s).__name__ == "Outline")  # the basis's two heads
     assert {(p["body"], p["name"]) for p in sent["points"]} == named
+
+
+def test_a_drawing_of_many_perpendicular_loads_at_a_pin_is_judged_not_searched_forever():
+    """24 loads at the pin, alternately along the basis's two vectors: many ways to pair them as components.
+    The judge weighs a bounded number of pairings (MAX_PAIRS, and no more pairs than open reactions)."""
+    raw = [{"kind": "impulse", "body": "the pendulum", "at": "O", "angle": (i % 2) * 90, "name": f"O{i}"}
+           for i in range(24)]
+    verdict = judge_problem("pendulum_rebound", {}, raw)
+    assert not verdict.right and len(verdict.findings) == 22  # two are the pin's components; one, up, is the floor's at O
