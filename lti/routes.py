@@ -126,6 +126,8 @@ def _picker(checked: Launch, problem: str = "", said: str = "") -> Response:
     answers = chosen.answers_of(chosen.solver.solve())
     boxes = "".join(f"<label><input type='checkbox' name='answer' value='{a.name}' checked> "
                     f"{html.escape(a.heading)}</label>" for a in answers)
+    boxes += (f"<label><input type='checkbox' name='answer' value='{records.DIAGRAM}'> "
+              f"{html.escape(records.DIAGRAM_HEADING)} (drawn on the page)</label>")
     due = (dt.datetime.now(dt.timezone.utc) + dt.timedelta(days=7)).strftime("%Y-%m-%dT%H:%M")
     return page("Add an assignment", f"""<h1>Add “{html.escape(chosen.title)}”</h1>{notice}
 <form method='post' action='/lti/deep_link'>{hidden}<input type='hidden' name='problem' value='{problem}'>

@@ -239,8 +239,9 @@ def test_deep_linking_places_an_assignment_with_a_line_item_in_the_lms(tool, lms
     sealed = re.search(r"name='dl' value='([^']+)'", picker.text).group(1)
     step = tool.post("/lti/deep_link", data={"dl": sealed, "problem": "pendulum_rebound"})
     assert "Answers that count" in step.text and "theta_rebound" in step.text
+    assert f"value='{records.DIAGRAM}'>" in step.text  # the free-body diagram offered, not chosen by default
     done = tool.post("/lti/deep_link", data={"dl": sealed, "problem": "pendulum_rebound", "step": "create",
-                                             "title": "Week 10: rebound", "answer": ["theta_rebound"],
+                                             "title": "Week 10: rebound", "answer": ["theta_rebound", records.DIAGRAM],
                                              "tolerance": "0.01", "attempts": "2", "due": "2031-02-01T12:00"})
     assert done.status_code == 200, done.text
     action = re.search(r"<form method='post' action='([^']+)'>", done.text).group(1)
@@ -248,11 +249,11 @@ def test_deep_linking_places_an_assignment_with_a_line_item_in_the_lms(tool, lms
     assert action == lms.url + "/deep_link_return"
     assert requests.post(action, data={"JWT": token}, timeout=10).status_code == 200  # the platform checks it
     (item,) = lms.deep_links[-1]
-    assert item["type"] == "ltiResourceLink" and item["lineItem"]["scoreMaximum"] == 1
+    assert item["type"] == "ltiResourceLink" and item["lineItem"]["scoreMaximum"] == 2
     aid = int(item["custom"]["dl_assignment"].split(".")[0])
     made = records.assignment(aid, tool.database)
     assert (made.title, made.tolerance, made.attempts_allowed) == ("Week 10: rebound", 0.01, 2)
-    assert [p.answers for p in made.parts] == [("theta_rebound",)]
+    assert [p.answers for p in made.parts] == [("theta_rebound", records.DIAGRAM)]
     got = handed(tool, tool.post("/lti/launch", data=form_of(tool, lms, "learner-3", LEARNER, resource_link="rl-new",
                                                              custom=item["custom"])))
     assert (got["role"], got["a"]) == ("student", aid)
