@@ -115,7 +115,12 @@ RUN_CSS = css("""
 PRINT_CSS = css("""
 <style>
   .dl-print-only { display: none; }
+  /* the problem's sketch (a Markdown image: ui/practice.sketch_image, the handouts): whole; on paper beside the
+     givens' table, so that a student's sheet keeps its statement and room to work on one page */
+  $markdown img[src^="data:image/svg+xml"] { max-width: 100%; height: auto; }
   @media print {
+    $markdown img[src^="data:image/svg+xml"] { float: right; max-height: 5cm !important; max-width: 42% !important;
+      width: auto !important; margin: 0 0 0.5rem 1rem; }
     @page { margin: 14mm 12mm 16mm 12mm;
       @bottom-center { content: "Page " counter(page) " of " counter(pages); font: 9pt sans-serif; color: #555; } }
     /* (the header holds Streamlit's toolbar, its running man and the sidebar's expand button) */

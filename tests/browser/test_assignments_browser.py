@@ -435,8 +435,9 @@ def test_each_students_link_has_a_copy_button(browser, course_url, monkeypatch):
 
 def test_on_a_phone_an_assignment_opens_on_its_problem(browser, course_url, monkeypatch):
     """Issue 54: on a phone a student's assignment opened on two screens of rules and attempts left before
-    the givens. The banner says what and when; the problem's givens start on the first screen; the rules
-    are one tap away, in an expander after the banner (at every size)."""
+    the givens. The banner says what and when; the problem starts on the first screen (its sketch, issue 50,
+    then its givens straight after it); the rules are one tap away, in an expander after the banner (at
+    every size)."""
     from sqlalchemy import create_engine
 
     from tests.conftest import _DATA_DIRS, COURSE_SECRET
@@ -452,8 +453,11 @@ def test_on_a_phone_an_assignment_opens_on_its_problem(browser, course_url, monk
         givens = page.locator("[data-testid='stMarkdownContainer'] table").filter(has_text="coefficient of restitution")
         givens.first.wait_for(timeout=60_000)
         wait_until_idle(page)
-        top = page.evaluate("() => scrollY") + givens.first.bounding_box()["y"]
-        assert top < SIZES[size][1] * 0.8, (size, top)  # the givens start on the first screen
+        sketch = page.locator("[data-testid='stMarkdownContainer'] img[alt^='The rod and sphere']").first.bounding_box()
+        table = givens.first.bounding_box()
+        top = page.evaluate("() => scrollY") + sketch["y"]
+        assert top < SIZES[size][1] * 0.8, (size, top)  # the problem starts on the first screen
+        assert 0 <= table["y"] - (sketch["y"] + sketch["height"]) < 60, (size, table, sketch)  # its givens next
         assert "Graded assignment: Problem first" in banner(page) and "Due" in banner(page)
         expander = page.locator("[data-testid='stExpander']").filter(has_text=RULES)
         assert expander.count() == 1 and expander.locator("details").get_attribute("open") is None  # closed

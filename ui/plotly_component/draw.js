@@ -34,6 +34,12 @@ const CSS = `
 .dl-draw .dl-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip: rect(0 0 0 0); white-space: nowrap; }
 .dl-draw .dl-draw-handle { cursor: grab; touch-action: none; }
 .dl-draw .dl-draw-spot { cursor: pointer; }
+/* on paper: the bodies and the basis to draw on by hand, none of the controls */
+@media print {
+  .dl-draw .dl-draw-bar, .dl-draw .dl-draw-help, .dl-draw .dl-draw-empty, .dl-draw ol, .dl-draw button,
+  .dl-draw .dl-draw-handle { display: none !important; }
+  .dl-draw .dl-draw-canvas > svg { max-height: 7cm; }
+}
 `;
 const SVG = "http://www.w3.org/2000/svg";
 const COLOR = "#b3261e", PICKED = "#E69F00";
