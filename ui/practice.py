@@ -66,11 +66,20 @@ def statement(problem: Problem, solution: Solution, answers, system: str, judge:
                         "**Find**", find])
 
 
+_SKETCHES: dict[tuple[str, str], str] = {}  # (problem, its numbers) -> the sketch as Markdown: each Check reruns the page
+
+
 def sketch_image(problem: Problem, solution: Solution) -> str:
     """The problem's sketch (viz/sketch.py) as a Markdown image: its SVG in a data: URI, its words as the alt text."""
-    drawing = drawings(problem.id).sketch(solution.params)
-    data = base64.b64encode(svg(drawing, "dl-sketch").encode()).decode()
-    return f"![{plain(drawing.text)}](data:image/svg+xml;base64,{data})"
+    key = (problem.id, repr(sorted(solution.params.items())))
+    kept = _SKETCHES.get(key)
+    if kept is None:
+        drawing = drawings(problem.id).sketch(solution.params)
+        data = base64.b64encode(svg(drawing, "dl-sketch").encode()).decode()
+        if len(_SKETCHES) > 512:
+            _SKETCHES.clear()
+        kept = _SKETCHES[key] = f"![{plain(drawing.text)}](data:image/svg+xml;base64,{data})"
+    return kept
 
 
 def method(steps, derivation: Derivation, parts=(1, 2, 3, 4)) -> str:
