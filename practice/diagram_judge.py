@@ -37,7 +37,7 @@ import sympy as sp
 from scipy.optimize import linear_sum_assignment
 
 from solvers import registry
-from solvers.diagram import Diagram, DiagramSlip, Load, numbers
+from solvers.diagram import Diagram, DiagramSlip, Load, numbers, signed_direction, value_at
 
 TOLERANCE_DEG = 20.0  # a drawn direction's allowance (the keyboard turns an arrow in 15° steps)
 MAX_LOADS = 24  # a drawing with more is not read (no diagram here has more than six)
@@ -158,9 +158,7 @@ def _expected(diagram: Diagram, nums) -> list[_Expected]:
     for load in diagram.loads:
         direction = None
         if load.kind != "couple" and load.direction is not None:
-            x, y = (nums[sp.sympify(c)] for c in load.direction)
-            if nums[sp.sympify(load.size)] < 0:
-                x, y = -x, -y
+            x, y = signed_direction(load, nums)
             norm = math.hypot(x, y)
             direction = (x / norm, y / norm) if norm > 0 else None
         out.append(_Expected(load, load.on, load.at, load.kind, direction))
@@ -283,7 +281,7 @@ def _pushes(e: _Expected, diagram: Diagram, nums) -> bool:
         return False
     body = diagram.body(e.body)
     at, centre = body.points[e.at], body.points[body.centre]
-    out = (nums[sp.sympify(at[0])] - nums[sp.sympify(centre[0])], nums[sp.sympify(at[1])] - nums[sp.sympify(centre[1])])
+    out = (value_at(at[0], nums) - value_at(centre[0], nums), value_at(at[1], nums) - value_at(centre[1], nums))
     return e.direction[0] * out[0] + e.direction[1] * out[1] < -1e-9
 
 
@@ -452,7 +450,7 @@ def drawn_as_declared(diagram: Diagram, values: Mapping, components: bool = Fals
         elif components:
             out += [DrawnLoad(e.kind, e.body, e.at, 0.0, name + "x"), DrawnLoad(e.kind, e.body, e.at, 90.0, name + "y")]
         else:
-            x, y = (nums[sp.sympify(c)] for c in e.load.components)
+            x, y = (value_at(c, nums) for c in e.load.components)
             out.append(DrawnLoad(e.kind, e.body, e.at, _degrees((x, y)) if (x or y) else 90.0, name))
     return tuple(out)
 

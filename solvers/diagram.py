@@ -199,6 +199,18 @@ def numbers(diagram: Diagram, values) -> Numbers:
     return Numbers(zip(exprs, (float(x) for x in fn(*(float(values[s]) for s in free)))))
 
 
+def value_at(expr, nums: Numbers) -> float:
+    """A declared expression (or a plain number) at ``numbers``' values."""
+    return float(expr) if isinstance(expr, (int, float)) else nums[sp.sympify(expr)]
+
+
+def signed_direction(load: Load, nums: Numbers) -> tuple[float, float]:
+    """A load of declared direction: its direction's components at ``numbers``' values, reversed where its
+    size is negative (the way it really acts there; not normalised)."""
+    x, y = (value_at(c, nums) for c in load.direction)
+    return (-x, -y) if value_at(load.size, nums) < 0 else (x, y)
+
+
 def _cross(r: Vector, f: Vector) -> sp.Expr:
     return r[0] * f[1] - r[1] * f[0]
 

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field, replace
 
 import sympy as sp
 
-from solvers.diagram import Circle, Diagram, Numbers, Outline, Rod, numbers
+from solvers.diagram import Circle, Diagram, Numbers, Outline, Rod, numbers, signed_direction
 
 BODY_SIZE = 180.0  # the largest body's extent, in the drawing's units (an SVG viewBox's)
 ARROW = 62.0  # a load's length
@@ -291,11 +291,7 @@ def layout(diagram: Diagram, values, every_point: bool = False) -> Drawing:
         if load.direction is None:
             parts = [((1.0, 0.0), load.components[0]), ((0.0, 1.0), load.components[1])]
         else:
-            size = _num(load.size, values)
-            d = _unit(_num(load.direction[0], values), _num(load.direction[1], values))
-            if size < 0:
-                d = (-d[0], -d[1])
-            parts = [(d, load.symbol)]
+            parts = [(_unit(*signed_direction(load, values)), load.symbol)]
         for d, symbol in parts:
             out = (at[0] - inward_ref[0], at[1] - inward_ref[1])
             # a contact's push has its head at the point; a body force (the weight) starts there
@@ -428,10 +424,7 @@ def text_alternative(diagram: Diagram, values) -> str:
                 parts.append(f"{load.name}{where}, direction unknown, drawn as its components {c[0]} along x "
                              f"and {c[1]} along y")
             else:
-                size = _num(load.size, values)
-                d = _unit(_num(load.direction[0], values), _num(load.direction[1], values))
-                if size < 0:
-                    d = (-d[0], -d[1])
+                d = _unit(*signed_direction(load, values))
                 parts.append(f"{load.name} {plain_label(load.symbol)}{where}, {_way(d)}")
         kind = "impulses" if diagram.law == "impulse" else "forces"
         sentences.append(f"Free-body diagram, {diagram.title.lower()}: {body.name}, with the {kind} on it: "
