@@ -181,12 +181,10 @@ def recording(link: StudentLink, solution=None, system: str = "si") -> Recording
     def say(verdict: Verdict) -> str:
         return records.feedback(verdict.message, verdict.correct, verdict.mistake, settings)
 
-    def on_verdict(answer, typed: str, verdict: Verdict) -> None:
-        if not verdict.readable or not typed.strip():
-            return  # explained above; not an attempt
+    def recorded(write, label: str, answer, shown_with) -> None:
+        """An attempt written by ``write()``, then said; or why it could not be."""
         try:
-            kept = records.record_checked(identity, problem, answer.name, typed,
-                                          replace(verdict, message=say(verdict)))
+            kept = write()
         except records.NotAccepted as error:
             st.warning(str(error), icon=":material/lock:")
             return
@@ -194,7 +192,14 @@ def recording(link: StudentLink, solution=None, system: str = "si") -> Recording
             st.error(str(error), icon=":material/cloud_off:")
             return
         passback.queue(identity)  # an LMS student's score waits for the sender thread, not this page
-        _said_recorded(kept, labels.get((problem, answer.name), answer.heading), link, solution, answer, system)
+        _said_recorded(kept, label, link, shown_with, answer, system)
+
+    def on_verdict(answer, typed: str, verdict: Verdict) -> None:
+        if not verdict.readable or not typed.strip():
+            return  # explained above; not an attempt
+        recorded(lambda: records.record_checked(identity, problem, answer.name, typed,
+                                                replace(verdict, message=say(verdict))),
+                 labels.get((problem, answer.name), answer.heading), answer, solution)
 
     part = settings.part(problem)
     counts_diagram = part is not None and records.DIAGRAM in part.answers
@@ -208,18 +213,11 @@ def recording(link: StudentLink, solution=None, system: str = "si") -> Recording
         else:  # kept as the feedback policy lets the page say it
             said = "Not right: " + (" ".join(f.message for f in verdict.findings) if settings.hints else
                                     ", ".join(verdict.keys) if settings.slip_names else "")
-        try:
-            kept = records.record_attempt(identity, records.DIAGRAM, diagram_judge.in_words(drawing, len(
-                {d.body for d in drawing})), verdict.right, said, ", ".join(verdict.keys), problem=problem,
-                reading=diagram_judge.reading(drawing))
-        except records.NotAccepted as error:
-            st.warning(str(error), icon=":material/lock:")
-            return
-        except records.RecordingUnavailable as error:
-            st.error(str(error), icon=":material/cloud_off:")
-            return
-        passback.queue(identity)
-        _said_recorded(kept, records.DIAGRAM_HEADING, link, None, SimpleNamespace(name=records.DIAGRAM), system)
+        typed = diagram_judge.in_words(drawing, len({d.body for d in drawing}))
+        recorded(lambda: records.record_attempt(identity, records.DIAGRAM, typed, verdict.right, said,
+                                                ", ".join(verdict.keys), problem=problem,
+                                                reading=diagram_judge.reading(drawing)),
+                 records.DIAGRAM_HEADING, SimpleNamespace(name=records.DIAGRAM), None)
 
     diagram_done = bool(standing and counts_diagram and standing.cells[(problem, records.DIAGRAM)].right_at())
 
