@@ -115,10 +115,33 @@ def launch_browser(playwright):
     return playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
 
 
+# A page's record of its script runs, installed before its own scripts (``context.add_init_script(IDLE_WATCH)``):
+# how many runs have ended, when the run state last changed and when the page last sent on its websocket (a
+# widget's change, a page link: each a run asked for). ``wait_until_idle`` then waits on what happened.
+IDLE_WATCH = f"""window.__dlIdle = {{runs: 0, changed: 0, sent: 0}};
+new MutationObserver((records) => {{ for (const r of records) {{
+  window.__dlIdle.changed = performance.now();
+  if (r.target.getAttribute(r.attributeName) === '{SCRIPT_IDLE}' && r.oldValue !== '{SCRIPT_IDLE}') window.__dlIdle.runs++;
+}} }}).observe(document, {{subtree: true, attributes: true, attributeOldValue: true,
+                          attributeFilter: ['{ATTRIBUTES["scriptState"]}']}});
+const dlIdleSend = WebSocket.prototype.send;
+WebSocket.prototype.send = function (data) {{ window.__dlIdle.sent = performance.now(); return dlIdleSend.call(this, data); }};"""
+QUIET_MS = 300  # how long the page is left alone after a run ends (or after the call, for a run still to be asked)
+IDLE_NOW = f"""([from, quiet]) => {{ const s = window.__dlIdle, app = document.querySelector("{SELECTORS['app']}");
+  return !!app && app.getAttribute('{ATTRIBUTES["scriptState"]}') === '{SCRIPT_IDLE}' && s.runs > 0
+         && performance.now() - Math.max(s.changed, s.sent, from) >= quiet; }}"""
+
+
 def wait_until_idle(page, timeout: float = 30_000) -> None:
-    """Wait for the script run to finish (and for Streamlit to have started one at all)."""
+    """Wait for the script run to finish (and for Streamlit to have started one at all), then for the page
+    to be quiet for ``QUIET_MS``: no run state changed and nothing sent (a control's change may be sent a
+    moment after the key or the pointer). In a page with ``IDLE_WATCH``, a page's first run is waited for
+    and a run's end is seen as it happens; elsewhere, fixed times before and after."""
     app = SELECTORS["app"]
     page.wait_for_selector(app, timeout=timeout)
-    page.wait_for_timeout(300)
+    if page.evaluate("() => !!window.__dlIdle"):
+        page.wait_for_function(IDLE_NOW, arg=[page.evaluate("performance.now()"), QUIET_MS], timeout=timeout)
+        return
+    page.wait_for_timeout(QUIET_MS)
     page.wait_for_selector(f"{app}[{ATTRIBUTES['scriptState']}='{SCRIPT_IDLE}']", timeout=timeout)
-    page.wait_for_timeout(300)
+    page.wait_for_timeout(QUIET_MS)
