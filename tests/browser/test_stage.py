@@ -20,6 +20,19 @@ pytestmark = pytest.mark.browser
 
 STAGE, CONTROLS = ".st-key-dl_stage", ".st-key-dl_stage_controls"
 
+
+# The stage's graph drawn: plotly's full data and layout made (a 3-D scene's too). A page idle has sent its
+# figure; plotly draws it a moment later (Euler's disk: its 3-D bundle loaded first).
+DRAWN = """(selector) => { const g = document.querySelector(selector);
+  return !!(g && g._fullData && g._fullData.length && g._fullLayout && (!g.layout.scene || g._fullLayout.scene)); }"""
+
+
+def stage_graph(page):
+    """The stage's graph, once plotly has drawn it."""
+    page.wait_for_function(DRAWN, arg=f"{STAGE} .dl-graph", timeout=30_000)
+    return page.locator(f"{STAGE} .dl-graph").first
+
+
 # The motion's box as drawn: every frame's moving traces on the motion's axes (x, y), in pixels, beside
 # the plot area; and how many pixels a unit is along each axis (equal axes: the same). A 3-D scene:
 # the scene's box beside the graph's.
@@ -423,8 +436,7 @@ def test_a_body_dragged_larger_stays_inside_the_axes(browser, app_url, pid, key)
     instant stays inside the plot while the mouse is held (the axes widen to hold it; they ran past them), and
     after the release the run's own figure is drawn with its own ranges."""
     context, page, errors = open_page(browser, f"{app_url}/{pid}", 1400, 1000)
-    page.wait_for_timeout(500)
-    graph = page.locator(f"{STAGE} .dl-graph").first
+    graph = stage_graph(page)
     before = graph.evaluate(POSED_REACH, None)["ranges"]
     control = page.locator(f".st-key-{pid}__si__{key}")
     thumb = control.locator("input[type='range']")
@@ -462,8 +474,7 @@ def test_a_3d_body_dragged_larger_stays_inside_its_scene(browser, app_url):
     rim drawn off the scene and over the page above it, until release. The box grows with it (one scale on all
     three axes) while the mouse is held, and after release the run's own figure is drawn."""
     context, page, errors = open_page(browser, f"{app_url}/eulers_disk?lecture=1", 1280, 720)
-    page.wait_for_timeout(500)
-    graph = page.locator(f"{STAGE} .dl-graph").first
+    graph = stage_graph(page)
     before = graph.evaluate(SCENE_REACH)
     control = page.locator(".st-key-eulers_disk__si__r")
     thumb = control.locator("input[type='range']")
