@@ -994,11 +994,7 @@ def test_keyboard_focus_is_seen_on_a_switch_and_on_the_main_area(browser, app_ur
     area (the skip link's target, a tab stop) showed nothing: both are outlined, 2 px, in the text's colour. In a
     context of its own: a page opened beside others in a kept one did not show the main area's :focus-visible."""
     context = browser.new_context(viewport={"width": 1400, "height": 1000})
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(f"{app_url}/disk_wall")
-    wait_until_idle(page)
+    page, errors = open_in(context, f"{app_url}/disk_wall")
     seen = {}
     for _ in range(60):
         page.keyboard.press("Tab")
