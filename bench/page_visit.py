@@ -6,7 +6,8 @@ Performance.getMetrics: the main thread's task, script and other time) and the w
     .venv/bin/python bench/page_visit.py
 
 Not a speed target: the reason the browser tests' tours go from page to page by the navigation
-(docs/benchmarks-log.md, "A page visit in the browser tests")."""
+(docs/benchmarks-log.md, "A page visit in the browser tests"), and what loading two pages at a time gives a
+2-core machine (``tour``: the same log, "third round")."""
 from __future__ import annotations
 
 import statistics
@@ -18,9 +19,9 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 from playwright.sync_api import sync_playwright  # noqa: E402
 
-from scripts.live_app import launch_browser, running_server, wait_until_idle  # noqa: E402
+from scripts.live_app import IDLE_WATCH, launch_browser, running_server, wait_until_idle  # noqa: E402
 from solvers import registry  # noqa: E402
-from tests.browser.test_browser import visit  # noqa: E402
+from tests.browser.test_browser import tour, visit  # noqa: E402
 
 KEYS = ("TaskDuration", "ScriptDuration", "TaskOtherDuration")
 
@@ -62,6 +63,23 @@ def main() -> None:
             drawn(page, idle=False)
             after = metrics(cdp)
             rows["by the navigation"].append((time.perf_counter() - started, {k: after[k] - before[k] for k in KEYS}))
+        # The pages by their addresses in one context (its cache warm), one after another and two at a time.
+        context = browser.new_context(viewport={"width": 1400, "height": 1000})
+        context.add_init_script(IDLE_WATCH)
+        urls = [f"{server.url}/{pid}" for pid in pages]
+        tours = {}
+        for how in ("one after another", "two at a time (tour)", "one after another", "two at a time (tour)"):
+            started = time.perf_counter()
+            if how == "one after another":
+                for url in urls:
+                    page = context.new_page()
+                    page.goto(url)
+                    drawn(page)
+                    page.close()
+            else:
+                for page, _ in tour(context, urls):
+                    drawn(page, idle=False)
+            tours.setdefault(how, []).append(time.perf_counter() - started)
     print(f"{len(pages)} problem pages at 1400x1000, medians")
     print("| opened | wall to the drawn figure (s) | main thread: tasks (s) | of it script (s) | other (s) |")
     print("|---|---|---|---|---|")
@@ -69,6 +87,9 @@ def main() -> None:
         wall = statistics.median(w for w, _ in samples)
         cells = [statistics.median(m[k] for _, m in samples) for k in KEYS]
         print(f"| {how} | {wall:.2f} | " + " | ".join(f"{c:.2f}" for c in cells) + " |")
+    print(f"\nThe {len(pages)} pages by their addresses in one context, each to its drawn figure (s, two runs):")
+    for how, walls in tours.items():
+        print(f"- {how}: " + ", ".join(f"{w:.1f}" for w in walls))
 
 
 if __name__ == "__main__":

@@ -59,6 +59,7 @@ def _shipped_env() -> dict:
 # settings each starts with (made when it starts: the shared one's data directory).
 _EARLY: dict = {}
 _USES: dict[str, int] = {}  # how many collected tests still need a server of that name (each its own: "fresh")
+_AFTER_SHIPPED: list[str] = []  # servers to start once the shared one is ready
 _SETTINGS = {"shipped": _shipped_env, "fresh": dict}
 SERVED = {"shipped_server", "app_url", "fresh_server", "browser"}
 
@@ -82,7 +83,11 @@ def pytest_collection_finish(session):
     if "shipped_server" in used or ("app_url" in used and not os.environ.get("APP_URL")):
         _EARLY["shipped"] = Starting(env=_SETTINGS["shipped"]())
     if "fresh_server" in used:
-        _EARLY["fresh"] = Starting(env=_SETTINGS["fresh"]())
+        # (started once the shared server is warm, not beside it: two warming at once doubled the first test's wait)
+        if "shipped" in _EARLY:
+            _AFTER_SHIPPED.append("fresh")
+        else:
+            _EARLY["fresh"] = Starting(env=_SETTINGS["fresh"]())
         _USES["fresh"] = sum("fresh_server" in getattr(item, "fixturenames", ()) for item in session.items)
 
 
@@ -102,7 +107,13 @@ def _early(name: str):
     if _USES[name] > 0:  # a fresh server for the next test that needs one, warming while this one runs
         _EARLY[name] = Starting(env=_SETTINGS[name]())
     try:
-        yield starting.ready()
+        server = starting.ready()
+        if name == "shipped":
+            while _AFTER_SHIPPED:
+                later = _AFTER_SHIPPED.pop()
+                if later not in _EARLY and _USES.get(later, 0) > 0:  # (still to be used)
+                    _EARLY[later] = Starting(env=_SETTINGS[later]())
+        yield server
     finally:
         starting.stop()
 

@@ -25,6 +25,13 @@ def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: b
     """A new page at this viewport (a phone: mobile, touch, 2× pixels) and time zone, opened and idle, its
     context (``context.close()`` when done) and the list its script errors go to. The page is new (a new
     session of the app); its context is the module's for that viewport (``Kept``)."""
+    lease = kept_context(browser, width, height, phone, zone)
+    return (lease, *open_in(lease, url))
+
+
+def kept_context(browser, width: int = 1400, height: int = 1000, phone: bool = False, zone: str | None = None):
+    """The module's context for this viewport (a phone: mobile, touch, 2× pixels) and time zone, as a ``Lease``
+    (``close()`` when done)."""
     extra = {"is_mobile": True, "has_touch": True, "device_scale_factor": 2} if phone else {}
     if zone:
         extra["timezone_id"] = zone
@@ -35,8 +42,7 @@ def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: b
         context.add_init_script(CSP_WATCH)
         context.add_init_script(IDLE_WATCH)
         kept[key] = Kept(context)
-    lease = Lease(kept[key])
-    return (lease, *open_in(lease, url))
+    return Lease(kept[key])
 
 
 class Kept:
@@ -88,6 +94,26 @@ def open_in(context, url: str):
     page.goto(url)
     wait_until_idle(page)
     return page, errors
+
+
+def tour(context, urls):
+    """Each of ``urls`` in a new page of ``context`` (``kept_context``), handed over idle as (page, errors) and
+    closed when the next is asked for; the next one's load starts before a page is handed over, so a second
+    renderer works on the machine's second core while the caller measures this one (a tour of the seven pages
+    in 0.7 of the time of one after another: docs/benchmarks-log.md)."""
+    def start(url):
+        page, errors = context.new_page(), []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.goto(url, wait_until="commit")
+        return page, errors
+
+    ahead = start(urls[0]) if urls else None
+    for n in range(len(urls)):
+        page, errors = ahead
+        ahead = start(urls[n + 1]) if n + 1 < len(urls) else None
+        wait_until_idle(page)
+        yield page, errors
+        page.close()
 
 
 def visit(page, app_url: str, path: str) -> None:

@@ -10,8 +10,8 @@ from __future__ import annotations
 import pytest
 
 from scripts.live_app import wait_until_idle
-from tests.browser.test_browser import open_in, open_page, visit
-from tests.browser.test_stage import MOTION_SCALE, STAGE, overlaps, stage_faults
+from tests.browser.test_browser import kept_context, open_page, tour, visit
+from tests.browser.test_stage import MOTION_SCALE, overlaps, stage_faults, stage_graph
 from solvers.catalog import PROBLEMS
 from ui.params import is_slider
 from ui.figure import LECTURE
@@ -80,21 +80,14 @@ def test_lecture_view_on_a_projector_and_a_smaller_one(browser, app_url):
     (px per unit of its x axis)."""
     scales = {}
     for size in PROJECTORS:
-        context = None
-        for problem in PROBLEMS:
-            checked = size == PROJECTORS[0] or problem in PROBLEMS[1::2]
-            if checked or problem.id != "eulers_disk":
-                url = f"{app_url}/{problem.id}?lecture=1"
-                if context is None:
-                    context, page, errors = open_at(browser, url, size)
-                else:  # a new page, as a fresh visit, in the same browser (the app's scripts from its cache)
-                    page.close()
-                    page, errors = open_in(context, url)
-                page.wait_for_timeout(500)
-                scales[problem.id, size] = page.locator(f"{STAGE} .dl-graph").first.evaluate(MOTION_SCALE)
-                if checked:
-                    _lecture_view_checks(page, problem, size)
-                assert not errors, (problem.id, size, errors)
+        context = kept_context(browser, *size)
+        visited = [p for p in PROBLEMS if size == PROJECTORS[0] or p in PROBLEMS[1::2] or p.id != "eulers_disk"]
+        # each a new page, as a fresh visit, in the same browser (the app's scripts from its cache)
+        for problem, (page, errors) in zip(visited, tour(context, [f"{app_url}/{p.id}?lecture=1" for p in visited])):
+            scales[problem.id, size] = stage_graph(page).evaluate(MOTION_SCALE)
+            if size == PROJECTORS[0] or problem in PROBLEMS[1::2]:
+                _lecture_view_checks(page, problem, size)
+            assert not errors, (problem.id, size, errors)
         context.close()
     smaller = {pid: (scales[pid, PROJECTORS[0]], scale) for (pid, size), scale in scales.items()
                if size == PROJECTORS[1] and scale is not None}
@@ -187,9 +180,13 @@ def _the_figure_follows_the_sidebar(page, where: str) -> None:
     for button, narrower in (("[data-testid='stExpandSidebarButton']", True),
                              ("[data-testid='stSidebar'] [data-testid='stSidebarCollapseButton'] button", False)):
         page.locator(button).click()
-        page.wait_for_timeout(1000)
-        width = graph.bounding_box()["width"]
-        assert (width < wide - 100) if narrower else width == pytest.approx(wide, abs=2), (where, wide, width)
+        follows = (lambda w: w < wide - 100) if narrower else (lambda w: w == pytest.approx(wide, abs=2))
+        for _ in range(50):  # (the sidebar slides, then the figure is redrawn: up to 10 s on a busy machine)
+            page.wait_for_timeout(200)
+            width = graph.bounding_box()["width"]
+            if follows(width) and drawn.bounding_box()["width"] == pytest.approx(width, abs=2):
+                break
+        assert follows(width), (where, wide, width)
         assert drawn.bounding_box()["width"] == pytest.approx(width, abs=2), (where, "the drawing did not follow")
 
 
@@ -199,9 +196,9 @@ def _the_figure_follows_the_sidebar(page, where: str) -> None:
 def test_on_a_phone(browser, app_url, size):
     width, _ = size
     # The phone size of the issues (390x844) on every page; the narrowest on every other page.
-    tour = PROBLEMS if size == PHONES[0] else PROBLEMS[::2]
-    context, page, errors = open_at(browser, f"{app_url}/{tour[0].id}", size, phone=True)
-    for n, problem in enumerate(tour):
+    pages = PROBLEMS if size == PHONES[0] else PROBLEMS[::2]
+    context, page, errors = open_at(browser, f"{app_url}/{pages[0].id}", size, phone=True)
+    for n, problem in enumerate(pages):
         if n:
             visit(page, app_url, problem.id)  # from the navigation, as a student goes from page to page
         where = f"{problem.id} at {width} px"
