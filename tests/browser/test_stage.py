@@ -628,31 +628,13 @@ def test_past_a_limit_the_badge_over_a_phone_s_stage_says_the_whole_note(browser
     context.close()
 
 
-def test_the_live_headline_over_a_phone_s_stage_is_whole_on_every_page(browser, app_url):
+def test_the_live_headline_over_a_phone_s_stage_is_whole_on_every_page(phone_tour):
     """A stage slider dragged on a phone (390 px): the live headline over the figure (the answer the control
     changes and its unit) is whole, on at most two lines, on every page; the ladder's cut its angle: "… the
     wall: 35.26° (0.…" (an angle is given in degrees alone there)."""
-    context, page, errors = open_page(browser, f"{app_url}/", 390, 844, phone=True)
-    found = {}
-    for problem in PROBLEMS:
-        visit(page, app_url, problem.id)  # from the navigation, as a student goes from page to page
-        page.locator(f"{STAGE} .dl-figure .dl-graph").first.wait_for()
-        hold_drag(page, page.locator(f"{CONTROLS} [data-testid='stSlider'] [role='group'] > [data-orientation]").first.bounding_box(),
-                  0.3, 0.5)
-        page.wait_for_function("() => (document.querySelector('.dl-live-badge') || {}).textContent", timeout=10_000)
-        page.wait_for_timeout(200)
-        badge = page.evaluate("""() => { const b = document.querySelector('.dl-live-badge');
-          const line = parseFloat(getComputedStyle(b).lineHeight);
-          return {text: b.textContent, cut: b.scrollWidth > b.clientWidth || b.scrollHeight > b.clientHeight + 1
-                  || b.querySelector('.dl-live-headline').getClientRects().length > 2 || b.clientHeight > 2.3 * line + 8,
-                  noteOnly: b.classList.contains('dl-live-note-only')}; }""")
-        page.mouse.up()
-        wait_until_idle(page)
-        if badge["cut"] and not badge["noteOnly"]:  # (past a limit the note wraps, by design)
-            found[problem.id] = badge["text"]
-    assert found == {}
-    assert not errors, errors
-    context.close()
+    badges = {pid: seen["badge"] for pid, seen in phone_tour.items()}
+    assert len(badges) == len(PROBLEMS)
+    assert {pid: b["text"] for pid, b in badges.items() if b["cut"] and not b["noteOnly"]} == {}  # (past a limit the note wraps, by design)
 
 
 MOTION_SCALE = """(g) => { const l = g._fullLayout;
@@ -735,23 +717,51 @@ def test_a_control_released_past_a_limit_stays_where_it_was_on_a_phone(browser, 
 
 
 
-def test_on_a_phone_each_slider_s_end_values_stand_at_its_ends(browser, app_url):
+def test_on_a_phone_each_slider_s_end_values_stand_at_its_ends(phone_tour):
     """A phone's stage sliders, two to a row: the ends' values (min and max) under each track stood
     bunched mid-track ("0 100" in 64 px of a 172 px track, issue 54); each stands at its end."""
+    ends = {pid: seen["ends"] for pid, seen in phone_tour.items()}
+    assert len(ends) == len(PROBLEMS) and all(ends.values()), ends
+    assert {pid: [e for e in each if max(e) > 16] for pid, each in ends.items() if any(max(e) > 16 for e in each)} == {}
+
+
+# Each stage slider's ends' values beside its track's ends (px: the first's left, the last's right).
+SLIDER_ENDS = """() => [...document.querySelectorAll(".st-key-dl_stage_controls [data-testid='stSlider']")].map((s) => {
+  const track = s.querySelector("[data-orientation='horizontal']").getBoundingClientRect();
+  const ticks = [...s.querySelector("[data-testid='stSliderTickBar']").children].map((c) => c.getBoundingClientRect());
+  return [ticks[0].left - track.left, track.right - ticks[ticks.length - 1].right]; })"""
+
+# The live badge over the stage as drawn: its text, whether it is cut (or on more than two lines), and
+# whether it holds the note alone (past a limit).
+BADGE = """() => { const b = document.querySelector('.dl-live-badge');
+  const line = parseFloat(getComputedStyle(b).lineHeight);
+  return {text: b.textContent, cut: b.scrollWidth > b.clientWidth || b.scrollHeight > b.clientHeight + 1
+          || b.querySelector('.dl-live-headline').getClientRects().length > 2 || b.clientHeight > 2.3 * line + 8,
+          noteOnly: b.classList.contains('dl-live-note-only')}; }"""
+
+
+@pytest.fixture(scope="module")
+def phone_tour(browser, app_url):
+    """Every problem page at 390×844, reached from the navigation as a student goes from page to page, seen
+    once for the tests above: its sliders' ends (as opened), then its live badge while the first stage slider
+    is held mid-drag (released after: the page runs once more). problem id -> what was seen."""
     context, page, errors = open_page(browser, f"{app_url}/", 390, 844, phone=True)
-    found = {}
+    seen = {}
     try:
         for problem in PROBLEMS:
-            visit(page, app_url, problem.id)  # from the navigation, as a student goes from page to page
+            visit(page, app_url, problem.id)
             page.locator(f"{CONTROLS} [data-testid='stSliderTickBar']").first.wait_for(timeout=30_000)
-            ends = page.evaluate("""() => [...document.querySelectorAll(".st-key-dl_stage_controls [data-testid='stSlider']")].map((s) => {
-              const track = s.querySelector("[data-orientation='horizontal']").getBoundingClientRect();
-              const ticks = [...s.querySelector("[data-testid='stSliderTickBar']").children].map((c) => c.getBoundingClientRect());
-              return [ticks[0].left - track.left, track.right - ticks[ticks.length - 1].right]; })""")
-            bunched = [e for e in ends if max(e) > 16]
-            if bunched:
-                found[problem.id] = bunched
-        assert found == {}
+            ends = page.evaluate(SLIDER_ENDS)
+            page.locator(f"{STAGE} .dl-figure .dl-graph").first.wait_for()
+            hold_drag(page, page.locator(f"{CONTROLS} [data-testid='stSlider'] [role='group'] > [data-orientation]")
+                      .first.bounding_box(), 0.3, 0.5)
+            page.wait_for_function("() => (document.querySelector('.dl-live-badge') || {}).textContent", timeout=10_000)
+            page.wait_for_timeout(200)
+            badge = page.evaluate(BADGE)
+            page.mouse.up()
+            wait_until_idle(page)
+            seen[problem.id] = {"ends": ends, "badge": badge}
         assert not errors, errors
     finally:
         context.close()
+    return seen
