@@ -325,12 +325,26 @@ def test_the_motion_refits_when_what_is_above_the_stage_grows(browser, app_url):
     context.close()
 
 
+def settled_box(page, locator) -> dict:
+    """``locator``'s box once it has stayed put for 100 ms (a finger put down where it was a moment before
+    missed a thumb that the stage's refit had moved: the drag moved nothing, on a busy machine)."""
+    last = box(locator)
+    for _ in range(50):
+        page.wait_for_timeout(100)
+        now = box(locator)
+        if now == last:
+            break
+        last = now
+    return last
+
+
 def finger_drag(page, touch, slider, travel: float, moves: int, said: list | None = None,
                 ending: str = "touchEnd") -> list[str]:
     """A finger on ``slider``'s thumb moved ``travel`` px along its track in ``moves`` equal moves (CDP touch
     events, ``touch`` a CDP session), then lifted (``ending``; "touchCancel": the browser took the touch
     back): the thumb's value after each move, and in ``said`` what a screen reader gets of it (``heard``)."""
-    thumb = box(slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
+    stage_graph(page)  # drawn, then fitted to the screen: the controls below it may still move
+    thumb = settled_box(page, slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
     x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
     touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
     shown = []
@@ -611,7 +625,8 @@ def test_past_a_limit_the_badge_over_a_phone_s_stage_says_the_whole_note(browser
     page.wait_for_timeout(300)
     slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").nth(1)  # θ₀
     touch = context.new_cdp_session(page)
-    thumb = box(slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
+    stage_graph(page)  # drawn, then fitted to the screen: the controls below it may still move
+    thumb = settled_box(page, slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
     x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
     touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
     for n in range(1, 9):
