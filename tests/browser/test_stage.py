@@ -338,14 +338,20 @@ def settled_box(page, locator) -> dict:
     return last
 
 
+def thumb_centre(page, slider) -> tuple[float, float]:
+    """Where a finger goes down on ``slider``'s thumb: its centre once the stage is drawn and fitted to the
+    screen (the controls below it may still move until then) and the thumb has settled."""
+    stage_graph(page)
+    thumb = settled_box(page, slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
+    return thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
+
+
 def finger_drag(page, touch, slider, travel: float, moves: int, said: list | None = None,
                 ending: str = "touchEnd") -> list[str]:
     """A finger on ``slider``'s thumb moved ``travel`` px along its track in ``moves`` equal moves (CDP touch
     events, ``touch`` a CDP session), then lifted (``ending``; "touchCancel": the browser took the touch
     back): the thumb's value after each move, and in ``said`` what a screen reader gets of it (``heard``)."""
-    stage_graph(page)  # drawn, then fitted to the screen: the controls below it may still move
-    thumb = settled_box(page, slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
-    x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
+    x, y = thumb_centre(page, slider)
     touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
     shown = []
     for n in range(1, moves + 1):
@@ -625,9 +631,7 @@ def test_past_a_limit_the_badge_over_a_phone_s_stage_says_the_whole_note(browser
     page.wait_for_timeout(300)
     slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").nth(1)  # θ₀
     touch = context.new_cdp_session(page)
-    stage_graph(page)  # drawn, then fitted to the screen: the controls below it may still move
-    thumb = settled_box(page, slider.locator("[role='group'] > [data-orientation] > div[style*='absolute']").first)
-    x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
+    x, y = thumb_centre(page, slider)
     touch.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
     for n in range(1, 9):
         touch.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": max(2, x - 25 * n), "y": y}]})
