@@ -35,7 +35,10 @@ take_instructor_link()  # ?instructor=KEY leaves the address bar on every page, 
 if widget_values.take_refusals():
     refused_values_notice()
 
-pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True)]}
+# /room: a question put to the lecture hall, answered on phones (ui/room.py); reached by its code's link, not listed
+pages = {"": [st.Page(home, title="Home", icon=":material/home:", default=True),
+              st.Page("app_pages/lecture_question.py", title="Your lecture's question", icon=":material/how_to_vote:",
+                      url_path="room", visibility="hidden")]}
 for group in GROUPS:
     pages[group] = [st.Page(p.page_path, title=p.title, icon=p.icon, url_path=p.id)
                     for p in PROBLEMS if p.group == group]

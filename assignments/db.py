@@ -177,6 +177,36 @@ class LtiScore(Base):
     error: Mapped[str] = mapped_column(String(1000), default="")
 
 
+class RoomQuestion(Base):
+    """One round of a question put to a lecture hall (room/): the problem, the question, the givens the
+    room sees, and where it stands. Asking again after a discussion is the next round under the same code."""
+    __tablename__ = "room_question"
+    __table_args__ = (UniqueConstraint("code", "round"),)
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    code: Mapped[str] = mapped_column(String(8), index=True)  # what the room types (room.store.CODE_ALPHABET)
+    round: Mapped[int] = mapped_column(Integer)  # 1, then 2 after a discussion, ...
+    problem: Mapped[str] = mapped_column(String(40))
+    question: Mapped[str] = mapped_column(String(60))  # room.questions.Question.key
+    params: Mapped[dict] = mapped_column(JSON)  # every given, in SI
+    system: Mapped[str] = mapped_column(String(4))  # the units the room reads: si or us
+    hide_motion: Mapped[bool] = mapped_column(Boolean)  # the motion stays off the projector until the reveal
+    status: Mapped[str] = mapped_column(String(12))  # open, closed, revealed, ended
+    opened: Mapped[dt.datetime] = mapped_column(UTCDateTime, index=True)  # the lecture's date and time
+    course: Mapped[str] = mapped_column(String(600), default="")  # an LMS course (issuer and context), if any
+
+
+class RoomResponse(Base):
+    """One browser session's answer to one round: only what it counts as (no name, address, device, or
+    the text typed), and when it was last changed."""
+    __tablename__ = "room_response"
+    __table_args__ = (UniqueConstraint("question_id", "responder"),)
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    question_id: Mapped[int] = mapped_column(ForeignKey("room_question.id", ondelete="CASCADE"), index=True)
+    responder: Mapped[str] = mapped_column(String(64))  # a hash of the browser session's random id
+    category: Mapped[str] = mapped_column(String(200))  # right, a slip's name, other, or a choice's word
+    at: Mapped[dt.datetime] = mapped_column(UTCDateTime)
+
+
 def database_url() -> str:
     url = os.environ.get(URL_ENV, "").strip()
     if url:

@@ -60,7 +60,7 @@ CLOSED = ("Your instructor has closed this assignment, so answers are checked bu
           "Ask your instructor if you think it should still be open.")
 
 
-def _guarded(fn: Callable[..., T]) -> Callable[..., T]:
+def guarded(fn: Callable[..., T]) -> Callable[..., T]:
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
         try:
@@ -339,7 +339,7 @@ class Created:
     students: int  # on its roster now
 
 
-@_guarded
+@guarded
 def create(settings: Settings, labels: Iterable[str] = (), bound: Engine | None = None,
            when: dt.datetime | None = None) -> Created:
     """Create the assignment with its roster, in one transaction; or, if the same assignment (see
@@ -370,7 +370,7 @@ def create(settings: Settings, labels: Iterable[str] = (), bound: Engine | None 
         return Created(row.id, False, row.created, count)
 
 
-@_guarded
+@guarded
 def find(settings: Settings, bound: Engine | None = None) -> Created | None:
     """The assignment these settings would create, if it exists already."""
     with db.session(bound) as s:
@@ -386,14 +386,14 @@ def create_assignment(settings: Settings, bound: Engine | None = None) -> int:
     return create(settings, (), bound).id
 
 
-@_guarded
+@guarded
 def assignment(assignment_id: int, bound: Engine | None = None) -> Settings | None:
     with db.session(bound) as s:
         row = s.get(db.Assignment, assignment_id)
         return _settings(row) if row else None
 
 
-@_guarded
+@guarded
 def assignments(bound: Engine | None = None, archived: bool = True) -> list[tuple[int, Settings]]:
     """Every assignment, newest first (without the archived ones if ``archived`` is False)."""
     with db.session(bound) as s:
@@ -466,7 +466,7 @@ def _parts_changed(before: list[dict], after: list[dict]) -> list[str]:
     return said
 
 
-@_guarded
+@guarded
 def edit(assignment_id: int, settings: Settings, bound: Engine | None = None,
          when: dt.datetime | None = None) -> list[str]:
     """Change an assignment's settings (a due time in the past is allowed: it closes the
@@ -506,7 +506,7 @@ def set_status(assignment_id: int, status: str, bound: Engine | None = None, whe
     return edit(assignment_id, replace(settings, status=status), bound, when)
 
 
-@_guarded
+@guarded
 def grant(assignment_id: int, label: str, *, extended_due: dt.datetime | None = None, extra_attempts: int = 0,
           bound: Engine | None = None, when: dt.datetime | None = None) -> str:
     """Give one student an extension (a later due time; None: none) and extra attempts per answer;
@@ -542,7 +542,7 @@ def _grant(s, student: db.Student, extended_due: str | None, extra: int, when: d
     return said
 
 
-@_guarded
+@guarded
 def undo(assignment_id: int, change_id: int, bound: Engine | None = None, when: dt.datetime | None = None) -> str:
     """Put back what a change replaced (itself a logged change). ValueError if it cannot be undone:
     the creation (archive the assignment instead), or a change whose fields have changed since."""
@@ -582,7 +582,7 @@ class Logged:
     undone: bool  # a later change undid it
 
 
-@_guarded
+@guarded
 def history(assignment_id: int, bound: Engine | None = None) -> list[Logged]:
     """Every change to the assignment, newest first."""
     with db.session(bound) as s:
@@ -651,7 +651,7 @@ def parse_roster(text: str) -> list[str]:
     return labels
 
 
-@_guarded
+@guarded
 def enrol(assignment_id: int, labels: Iterable[str], bound: Engine | None = None) -> list[StudentIdentity]:
     """Add these labels to the roster (a label already there keeps its variant); return every
     student of the roster, in label order."""
@@ -671,14 +671,14 @@ def enrol(assignment_id: int, labels: Iterable[str], bound: Engine | None = None
     return roster(assignment_id, bound)
 
 
-@_guarded
+@guarded
 def roster(assignment_id: int, bound: Engine | None = None) -> list[StudentIdentity]:
     with db.session(bound) as s:
         rows = s.scalars(select(db.Student).where(db.Student.assignment_id == assignment_id).order_by(db.Student.label))
         return [StudentIdentity(assignment_id, r.label, r.seed) for r in rows]
 
 
-@_guarded
+@guarded
 def enrolled(identity: StudentIdentity, bound: Engine | None = None) -> bool:
     """The identity's label is on the assignment's roster, with the identity's variant."""
     with db.session(bound) as s:
@@ -774,7 +774,7 @@ def _normal(typed: str) -> str:
     return " ".join(typed.split())
 
 
-@_guarded
+@guarded
 def record_attempt(identity: StudentIdentity, answer: str, typed: str, correct: bool, message: str, slip: str = "",
                    bound: Engine | None = None, when: dt.datetime | None = None, problem: str | None = None,
                    reading: str = "") -> Recorded:
@@ -840,7 +840,7 @@ def record_checked(identity: StudentIdentity, problem: str, answer: str, typed: 
                           problem, getattr(verdict, "reading", ""))
 
 
-@_guarded
+@guarded
 def record_reveal(identity: StudentIdentity, bound: Engine | None = None, when: dt.datetime | None = None,
                   problem: str | None = None) -> None:
     with db.session(bound) as s, s.begin():
@@ -851,7 +851,7 @@ def record_reveal(identity: StudentIdentity, bound: Engine | None = None, when: 
                         at=when or now()))
 
 
-@_guarded
+@guarded
 def solution_shown(identity: StudentIdentity, bound: Engine | None = None, problem: str | None = None) -> bool:
     """The student opened the solution (of ``problem``; of any problem of the assignment if None)."""
     with db.session(bound) as s:
@@ -861,7 +861,7 @@ def solution_shown(identity: StudentIdentity, bound: Engine | None = None, probl
         return bool(s.scalar(select(exists().where(*where))))
 
 
-@_guarded
+@guarded
 def attempts_of(identity: StudentIdentity, bound: Engine | None = None) -> list[Recorded]:
     """One student's attempts at one assignment (every problem), in the order recorded."""
     with db.session(bound) as s:
@@ -877,7 +877,7 @@ def _attempts_in(s, identity: StudentIdentity) -> list[Recorded]:
     return _numbered(rows, settings, grants)
 
 
-@_guarded
+@guarded
 def attempt_count(assignment_id: int, bound: Engine | None = None) -> int:
     with db.session(bound) as s:
         return s.scalar(select(func.count()).select_from(db.Attempt).where(db.Attempt.assignment_id == assignment_id))
@@ -1095,7 +1095,7 @@ def _percent(n: int, total: int) -> str:
     return f"{round(100 * n / total)} %"
 
 
-@_guarded
+@guarded
 def gradebook(assignment_id: int, bound: Engine | None = None, settings: Settings | None = None,
               grants: dict[str, Grant] | None = None) -> Gradebook | None:
     """The assignment's gradebook; or, with ``settings`` or some students' ``grants``, what it would be under
@@ -1139,7 +1139,7 @@ class Standing:
         return round(sum(self.settings.weight(q) * c.credit for q, c in self.cells.items()), 4)
 
 
-@_guarded
+@guarded
 def standing(identity: StudentIdentity, bound: Engine | None = None) -> Standing | None:
     with db.session(bound) as s:
         row = s.get(db.Assignment, identity.assignment_id)
@@ -1239,7 +1239,7 @@ def lms_csv(book: Gradebook, lms: str = "canvas") -> str:
     return safe_csv(header, rows)
 
 
-@_guarded
+@guarded
 def attempts_csv(assignment_id: int, bound: Engine | None = None, names: dict[Question, str] | None = None) -> str:
     """Every attempt, as recorded (typed text included, neutralised), with what it earned; each answer by
     its ids and as the page names it (``names``)."""

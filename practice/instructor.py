@@ -22,6 +22,7 @@ import math
 import os
 import threading
 import time
+from typing import Callable
 
 KEY_ENV = "DL_INSTRUCTOR_KEY"
 MIN_LENGTH = 8  # a shorter key is too easy to guess, and is treated as not set
@@ -83,8 +84,12 @@ class Verdict:
 
 
 class Throttle:
-    def __init__(self, clock=time.monotonic):
+    """Wrong tries of a secret, counted per browser session and per client address (``session`` and
+    ``address``: the two rules); ``what`` names the secret in the log. One instance per secret."""
+    def __init__(self, clock=time.monotonic, session: Rule = SESSION, address: Rule = ADDRESS, what: str = "instructor key"):
         self.clock = clock
+        self.rules = (session, address)
+        self.what = what
         self.records: collections.OrderedDict[tuple[str, str], Record] = collections.OrderedDict()
         self.lock = threading.Lock()
 
@@ -101,17 +106,22 @@ class Throttle:
         return record
 
     def try_key(self, candidate: object, session: str, address: str) -> Verdict:
+        return self.attempt(lambda: key_matches(candidate), session, address)
+
+    def attempt(self, right: Callable[[], bool], session: str, address: str) -> Verdict:
+        """One try: refused without calling ``right`` while this session or address must wait; else
+        ``right()`` decides, and a wrong try lengthens the wait."""
         now = self.clock()
         with self.lock:
-            mine = [(SESSION, self._record("session", session, now)), (ADDRESS, self._record("address", address, now))]
+            mine = [(self.rules[0], self._record("session", session, now)), (self.rules[1], self._record("address", address, now))]
             wait = max(record.next_try - now for _, record in mine)
             if wait > 0:
                 locked = any(r.failures >= rule.lock_after and r.next_try - now > 0 for rule, r in mine)
                 return Verdict(ok=False, wait=wait, locked=locked, checked=False)
-            if key_matches(candidate):
+            if right():
                 for _, record in mine:
                     record.failures, record.next_try = 0, 0.0
-                log.info("instructor key accepted from %s (session %s)", address, session[:8])
+                log.info("%s accepted from %s (session %s)", self.what, address, session[:8])
                 return Verdict(ok=True)
             for rule, record in mine:
                 record.failures += 1
@@ -121,8 +131,8 @@ class Throttle:
                                          else rule.waits[min(step, len(rule.waits) - 1)])
             wait = max(record.next_try - now for _, record in mine)
             locked = any(r.failures >= rule.lock_after for rule, r in mine)
-        log.warning("wrong instructor key from %s (session %s): %d in a row from the address, next try in %.0f s%s",
-                    address, session[:8], mine[1][1].failures, wait, " (locked)" if locked else "")
+        log.warning("wrong %s from %s (session %s): %d in a row from the address, next try in %.0f s%s",
+                    self.what, address, session[:8], mine[1][1].failures, wait, " (locked)" if locked else "")
         return Verdict(ok=False, wait=wait, locked=locked)
 
 

@@ -35,7 +35,7 @@ from .core import (
 )
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, balance, balance_steps, fbd_steps
 from .live import Case, Live
-from .protocol import About, Mistake, Variants
+from .protocol import About, Mistake, RegimeQuestion, Variants
 
 ABOUT = About(
     title="Spinning disk hits a rough wall",
@@ -364,4 +364,11 @@ MISTAKES = (
     Mistake("omega1", "The spin term's sign: with ω counter-clockwise, B moves at v_x − Rω.",
             lambda p: (sp.Rational(2, 3) * V * sp.sin(theta) - R * omega / 3) / R,
             lambda p: p["mu"] == float("inf")),
+)
+
+# What a lecture hall may be asked before the motion is shown (ui/room.py), besides the answers.
+ROOM_QUESTIONS = (
+    RegimeQuestion("stick_or_slip", "During the impact, does the disk's rim stick to the wall or slide along it?",
+                   (("stick", "It sticks: B stops sliding"), ("slip", "It slides the whole time")),
+                   lambda p: solve(**p).regime),
 )

@@ -36,7 +36,7 @@ from .core import (
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Outline, balance, balance_steps, fbd_steps
 from .live import Case, Live
 from .sweeps import swept
-from .protocol import About, Mistake, Variants
+from .protocol import About, Mistake, RegimeQuestion, Variants
 
 ABOUT = About(
     title="Cart with driven wheels",
@@ -391,4 +391,19 @@ MISTAKES = (
             lambda p: mu * g, lambda p: p["drive"] != "all"),
     Mistake("accel", "Without the load transfer (N = mg/4 each) you get μg/2; the moment balance "
             "shifts load between the axles.", lambda p: mu * g / 2, lambda p: p["drive"] != "all"),
+)
+
+
+def _front_wheels(p: dict) -> str:
+    try:
+        solve(**p)
+    except FrontWheelsLiftError:
+        return "lift"
+    return "stay"
+
+
+# What a lecture hall may be asked before the motion is shown (ui/room.py), besides the answers.
+ROOM_QUESTIONS = (
+    RegimeQuestion("front_wheels", "At full traction, do the front wheels stay on the ground or lift off?",
+                   (("stay", "They stay on the ground"), ("lift", "They lift off (a wheelie)")), _front_wheels),
 )

@@ -54,3 +54,16 @@ class Variants:
     angles_deg: Mapping[str, tuple[float, float] | None] = field(default_factory=dict)  # None: the textbook's value
     fixed: tuple[str, ...] = ("g",)  # parameters never varied
     derived: Mapping[str, Callable[[dict], float]] = field(default_factory=dict)  # set from the drawn ones
+
+
+@dataclass(frozen=True)
+class RegimeQuestion:
+    """A question of which motion happens, put to a lecture hall before it is shown ("does the disk stick
+    or slide at the wall?"): a problem declares its own in ``ROOM_QUESTIONS`` (optional; every problem's
+    answers can be asked besides). ``regime(params)`` is what the model says happens at the parameters
+    (every one, in SI), one of the ``choices``' words."""
+
+    key: str  # short, unique among the problem's: the question's name in the records ("stick_or_slide")
+    prompt: str
+    choices: tuple[tuple[str, str], ...]  # (word, as the room reads it), in the order shown
+    regime: Callable[[dict], str]

@@ -18,7 +18,7 @@ from viz import diagram, on_request
 from viz.catalog import drawings
 from edge import widget_values
 from edge.streamlit_dom import KEYS
-from ui import assignments, figure, live, results, takehome
+from ui import assignments, figure, live, results, room, takehome
 from ui.figure import show as show_figure
 from ui.params import (MAX_URL_VALUE, check_in_range, fixed_parameters, lesson_parameters, mirror_to_url,
                        more_parameters, parameter_panel, refused_values_notice, unknown_in_link)
@@ -253,6 +253,8 @@ def problem_page(problem_id: str) -> None:
         st.sidebar.markdown("### Parameters")
         warnings = more_parameters(problem, system, None, st.sidebar)
         _heading(problem, heading, (seed_warning, unknown, *warnings), print_link=False)  # (the fragment's)
+        if lecture and instructor and room.projector(problem, system):
+            return  # a question put to the room keeps the motion hidden until its reveal
         _lesson(problem.id, system, lecture)
         return
     head = st.container()  # the title, filled once the state is known

@@ -4,7 +4,6 @@ solution on request. The instructor's side (the variant export, and Study or Lec
 link) needs the instructor key. Nothing a student types is evaluated or rendered as Markdown."""
 from __future__ import annotations
 
-import base64
 import html
 import re
 
@@ -13,16 +12,14 @@ import streamlit as st
 from practice.judge import RELATIVE_TOLERANCE, Judge, tolerance_text
 from practice.method import exercise_steps
 from practice.variants import MAX_SEED
-from solvers.core import Choice, Derivation, Solution
+from solvers.core import Derivation, Solution
 from solvers.solution import PARTS
-from solvers import units
 from solvers.catalog import Problem
 from ui.diagram_exercise import diagram_right, draw_exercise
+from ui.exercise import answer_choice, statement
 from ui.equations import PHONE_WIDTH_EM, broken
 from edge.inline_scripts import TAKE_FOCUS
 from ui.results import literal, plain, plain_with_math
-from viz.catalog import drawings
-from viz.diagram import svg
 from ui.session import Recording
 
 def seed_from_url() -> tuple[int | None, str | None]:
@@ -33,53 +30,6 @@ def seed_from_url() -> tuple[int | None, str | None]:
         return int(raw), None
     return None, f"The link's variant number “{literal(raw[:20])}” is not a whole number from 0 to {MAX_SEED}; " \
                  "showing the textbook's numbers."
-
-
-def read_in(answer, system: str) -> str:
-    """The unit a number typed alone is read in, in words for degrees; "" for a number without one."""
-    unit = units.unit(answer.dimension, system) if answer.dimension in units.DIMENSIONS else ""
-    return "degrees" if unit == "°" else unit
-
-
-def answer_choice(answer, system: str) -> str:
-    """An answer as the answer box offers it: its label and the unit a number typed alone is read in
-    ("Angular velocity just after impact, in rad/s")."""
-    return answer.heading + (f", in {unit}" if (unit := read_in(answer, system)) else "")
-
-
-def statement(problem: Problem, solution: Solution, answers, system: str, judge: Judge) -> str:
-    """The problem as an exercise: its sketch above its table, as the worked solutions open (an image with its
-    text alternative: an SVG in the page's Markdown is taken out by Streamlit's sanitiser), every given with
-    its value, then what to find."""
-    rows = ["| given | symbol, typed as | value |", "|---|---|---|"]
-    for p in problem.solver.PARAMS:
-        value = solution.params[p.name]
-        if isinstance(p, Choice):
-            rows.append(f"| {plain(p.label)} | | {plain(p.label_of(value))} |")
-        else:
-            sym = judge.givens.get(p.name)
-            typed = f"`{judge.typed_name(sym)}`" if sym is not None else ""
-            rows.append(f"| {plain(p.label)} | ${p.symbol}$ {typed} | {units.format_quantity(value, p.dimension, system)} |")
-    find = "\n".join(f"- {plain(a.heading)}, ${a.symbol}$" + (f", in {plain(u)}" if (u := read_in(a, system)) else "")
-                     for a in answers)
-    return "\n\n".join(["### The problem", sketch_image(problem, solution), "\n".join(rows),
-                        "**Find**", find])
-
-
-_SKETCHES: dict[tuple[str, str], str] = {}  # (problem, its numbers) -> the sketch as Markdown: each Check reruns the page
-
-
-def sketch_image(problem: Problem, solution: Solution) -> str:
-    """The problem's sketch (viz/sketch.py) as a Markdown image: its SVG in a data: URI, its words as the alt text."""
-    key = (problem.id, repr(sorted(solution.params.items())))
-    kept = _SKETCHES.get(key)
-    if kept is None:
-        drawing = drawings(problem.id).sketch(solution.params)
-        data = base64.b64encode(svg(drawing, "dl-sketch").encode()).decode()
-        if len(_SKETCHES) > 512:
-            _SKETCHES.clear()
-        kept = _SKETCHES[key] = f"![{plain(drawing.text)}](data:image/svg+xml;base64,{data})"
-    return kept
 
 
 def method(steps, derivation: Derivation, parts=(1, 2, 3, 4)) -> str:
@@ -121,7 +71,7 @@ def practice_panel(problem: Problem, solution: Solution, answers, system: str,
         if recording is None:  # an assignment's banner says what holds for it instead
             st.info("Practice, not a proctored assessment: work the problem with these numbers, then check "
                     "your answers. The solution stays hidden until you ask for it.", icon=":material/school:")
-        st.markdown(statement(problem, solution, answers, system, judge))
+        st.markdown(statement(problem, solution.params, answers, system, judge))
         # the course's order: the diagram first, then the balance laws written from it and the analysis (whose
         # steps name its loads: they appear once the diagram is right, or with the solution)
         steps = solution.steps[: solution.symbolic_steps]

@@ -35,6 +35,10 @@ LECTURE_CSS = css("""
   $stageControls $slider $widgetLabel { margin-bottom: 1.1rem; }  /* the value above the thumb clears it */
   /* the free-body diagram's labels in projector type too (the SVG scales with its width) */
   .dl-text figure.dl-fbd-figure { width: min(100%, 44rem); }
+  /* a question put to the room (ui/room.py): its code read from the back row, its QR code a phone's reach */
+  $mainBlock p.dl-room-code { font-size: 4.2rem; font-weight: 700; letter-spacing: 0.35em; line-height: 1.1;
+    font-family: ui-monospace, "DejaVu Sans Mono", monospace; margin: 0; }
+  $mainBlock img[alt^="A QR code"] { width: min(100%, 17rem); image-rendering: pixelated; }
 </style>
 """)
 
@@ -115,7 +119,7 @@ RUN_CSS = css("""
 PRINT_CSS = css("""
 <style>
   .dl-print-only { display: none; }
-  /* the problem's sketch (a Markdown image: ui/practice.sketch_image, the handouts): whole; on paper beside the
+  /* the problem's sketch (a Markdown image: ui/exercise.sketch_image, the handouts): whole; on paper beside the
      givens' table, so that a student's sheet keeps its statement and room to work on one page */
   $markdown img[src^="data:image/svg+xml"] { max-width: 100%; height: auto; }
   @media print {

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-LOWER = ("solvers", "practice", "assignments", "migrations")
+LOWER = ("solvers", "practice", "assignments", "migrations", "room")
 FORBIDDEN = {"ui", "viz", "streamlit", "plotly"}
 
 
@@ -92,8 +92,8 @@ def test_each_form_of_import_is_caught(source, found):
 # composer; the composer (one problem page from the features) and the entry points (app.py, app_pages/) above
 # them all. The server's edge (edge/) and the LMS (lti/) import nothing from the pages or the drawings.
 KIT = {"ui", "ui.equations", "ui.figure", "ui.live", "ui.params", "ui.results", "ui.session",
-       "ui.stylesheet", "ui.documents", "ui.notebook", "ui.thumbnails", "ui.diagram_exercise"}
-FEATURES = {"ui.practice", "ui.assignments", "ui.takehome", "ui.handouts", "ui.home", "ui.variants"}
+       "ui.stylesheet", "ui.documents", "ui.notebook", "ui.thumbnails", "ui.diagram_exercise", "ui.exercise"}
+FEATURES = {"ui.practice", "ui.assignments", "ui.takehome", "ui.handouts", "ui.home", "ui.variants", "ui.room"}
 COMPOSER = {"ui.page"}
 APART_FROM_THE_PAGES = ("edge", "lti")
 SKIPPED = {".venv", "tests", "bench", "scripts", "node_modules", "migrations"}

@@ -234,9 +234,12 @@ def test_what_a_problem_lacks_is_named():
 
 def test_every_registered_problem_has_its_page_and_every_page_is_registered():
     pages = {p.stem for p in (ROOT / "app_pages").glob("*.py")}
-    NOT_PROBLEMS = {"gradebook", "handouts"}  # the instructors' pages (not named "assignments": a page
-    # script's folder is on sys.path, and app_pages/assignments.py would shadow the assignments package)
+    NOT_PROBLEMS = {"gradebook", "handouts", "lecture_question"}  # the instructors' pages and the room's
     assert pages - NOT_PROBLEMS == set(registry.PROBLEM_IDS)
+    # A page script's folder is on sys.path: app_pages/room.py would shadow the room package for every
+    # page that imports it (app_pages/assignments.py the assignments package), so no page bears a package's name.
+    packages = {p.parent.name for p in ROOT.glob("*/__init__.py")} | {p.stem for p in ROOT.glob("*.py")}
+    assert pages & packages == set()
     assert len(set(registry.PROBLEM_IDS)) == len(registry.PROBLEM_IDS)
 
 

@@ -1,0 +1,336 @@
+"""Ask the room: the instructor puts a question to the lecture hall from a problem's Lecture view, the
+room answers on its phones at /room with a code (no account), the projector counts the answers live,
+then the instructor closes the question, reveals the answer and plays the motion; asked again after a
+discussion, both votes stand side by side. A feature: the records are room/store.py, what an answer
+counts as room/questions.py (the Practice judge), the histogram viz/room.py."""
+from __future__ import annotations
+
+import time
+import urllib.parse
+
+import segno
+import streamlit as st
+
+from room import questions, store
+from room.store import RecordingUnavailable
+from solvers.catalog import BY_ID, Problem
+from ui.exercise import read_in, statement
+from ui.figure import show as show_figure
+from practice.judge import Judge
+from ui.results import plain
+from ui.session import client
+from viz.room import histogram, round_name
+
+PATH = "room"  # the students' page (app.py), and the address the projector gives
+CODE_FLAG = "c"  # /room?c=CODE: the QR code's link opens the question at once
+PROJECTOR_EVERY = 1.5  # s: the projector's count follows the room at most this far behind
+PHONE_EVERY = 2.5  # s: a phone learns the question closed, revealed or asked again
+SEND_EVERY = 1.0  # s: a phone's answers are taken at most this often (a flood changes nothing)
+MAX_TYPED = 400  # characters of an answer read at most (the judge's own limit is lower, and says so)
+
+STATUS_WORDS = {"open": "Answers are open", "closed": "Answers are closed", "revealed": "The answer is revealed",
+                "ended": "This question has ended"}
+
+
+def _asked_key(problem: Problem) -> str:
+    return f"{problem.id}__room_code"
+
+
+# -- the projector ------------------------------------------------------------------------------------
+
+def projector(problem: Problem, system: str) -> bool:
+    """The instructor's side, in a problem's Lecture view: "Ask the room" in the sidebar, and while a
+    question is asked the join code, its QR code and the room's answers above the stage. True while the
+    motion is to stay hidden (asked so, and not yet revealed): the page then leaves the stage out."""
+    _ask_controls(problem, system)
+    code = st.session_state.get(_asked_key(problem))
+    if not code:
+        return False
+    try:
+        last = store.latest(code)
+    except RecordingUnavailable as error:
+        st.error(str(error), icon=":material/cloud_off:")
+        return False
+    if last is None or last.status == "ended":
+        st.session_state.pop(_asked_key(problem), None)
+        return False
+    _live(problem.id, code)
+    return last.hide_motion and last.status != "revealed"
+
+
+def _ask_controls(problem: Problem, system: str) -> None:
+    params = st.session_state.get(f"{problem.id}__si") or dict(problem.solver.solve().params)
+    asked = questions.questions(problem.id, params)
+    with st.sidebar:
+        if st.session_state.get(f"{problem.id}__room_error"):
+            st.error(st.session_state.pop(f"{problem.id}__room_error"), icon=":material/cloud_off:")
+        st.markdown("### Ask the room", help="The room answers on its phones (no account); you close the "
+                    "question, reveal the answer, then play the motion. The room sees the parameters the "
+                    "stage has now.")
+        if not asked:
+            st.markdown("Nothing can be asked at these parameters.")
+            return
+        chosen = st.selectbox("Question", asked, format_func=lambda q: q.prompt, key=f"{problem.id}__room_question")
+        hide = st.toggle("Hide the motion until the reveal", value=True, key=f"{problem.id}__room_hide")
+        st.button("Ask the room", key=f"{problem.id}__room_ask", on_click=_ask,
+                  args=(problem, chosen.key, hide, system), icon=":material/how_to_vote:")
+
+
+def _ask(problem: Problem, key: str, hide: bool, system: str) -> None:
+    params = st.session_state.get(f"{problem.id}__si") or dict(problem.solver.solve().params)
+    try:
+        asked = store.ask(problem.id, key, params, system, hide)
+    except RecordingUnavailable as error:
+        st.session_state[f"{problem.id}__room_error"] = str(error)
+        return
+    st.session_state[_asked_key(problem)] = asked.code
+
+
+def join_address(code: str = "") -> tuple[str, str]:
+    """(the link the QR code holds, the short address the projector shows): the students' page on the
+    server this browser reached, from its own address (st.context.url)."""
+    here = urllib.parse.urlsplit(st.context.url or "")
+    if here.scheme not in ("http", "https") or not here.netloc:
+        return f"/{PATH}" + (f"?{CODE_FLAG}={code}" if code else ""), f"/{PATH}"
+    base = here.path.rsplit("/", 1)[0]
+    short = f"{here.netloc}{base}/{PATH}"
+    return f"{here.scheme}://{short}" + (f"?{CODE_FLAG}={code}" if code else ""), short
+
+
+def qr_image(link: str) -> str:
+    """The link as a QR code (segno, drawn here: no outside service), a Markdown image with its words."""
+    uri = segno.make(link, error="m").svg_data_uri(scale=8, border=3, dark="#000", light="#fff")
+    return f"![A QR code that opens {plain(link)}]({uri})"
+
+
+@st.fragment(run_every=PROJECTOR_EVERY)
+def _live(problem_id: str, code: str) -> None:
+    """The question on the projector, followed every PROJECTOR_EVERY s (reading every process's answers
+    from the database): the join code, the count, the histogram, and the instructor's next step."""
+    try:
+        rounds = store.rounds(code)
+        counts = store.counts(code)
+    except RecordingUnavailable as error:
+        st.error(str(error), icon=":material/cloud_off:")
+        return
+    last = rounds[-1]
+    asked = questions.question(problem_id, last.params, last.question)
+    if asked is None:
+        st.error("This question cannot be asked at its parameters any more.", icon=":material/error:")
+        return
+    right = questions.right_category(problem_id, last.params, last.question) if last.status == "revealed" else None
+    link, short = join_address(code)
+    with st.container(key="dl_room", border=True):
+        join, answers = st.columns([2, 3], gap="large")
+        with join:
+            st.markdown(f"**{plain(asked.prompt)}**" + (f" ({_unit_said(asked.answer, last.system)})" if asked.answer else "")
+                        + (f"  \n{round_name(last.round)}" if last.round > 1 else ""))
+            st.markdown(f"Answer at **{plain(short)}** with the code")
+            st.markdown(f"<p class='dl-room-code' aria-label='code {' '.join(code)}'>{code}</p>", unsafe_allow_html=True)
+            if last.status == "open":
+                st.markdown(qr_image(link))
+        with answers:
+            total = sum(counts.get(last.round, {}).values())
+            st.markdown(f"**{total} answer{'s' * (total != 1)}** · {STATUS_WORDS[last.status]}")
+            _next_steps(last)  # above the histogram: in a projector's first screen
+            if right is not None:
+                st.success(f"The answer: {plain(questions.right_answer(problem_id, last.params, last.system, last.question))}",
+                           icon=":material/check_circle:")
+            show_figure(histogram(questions.categories(problem_id, last.params, last.question), counts, right),
+                        lecture=True)
+
+
+def _unit_said(answer, system: str) -> str:
+    unit = read_in(answer, system)
+    return f"in {unit}" if unit else "a number"
+
+
+def _next_steps(last: store.Round) -> None:
+    """The instructor's buttons in one row: close the answers, reveal, ask again, end; the answers as CSV."""
+    row = st.container(horizontal=True, gap="small")
+    if last.status == "open":
+        row.button("Close answers", key="room__close", type="primary", on_click=_set, args=(last.id, "closed"))
+    elif last.status == "closed":
+        # the stage comes back with the reveal: the whole page runs again, not this fragment alone
+        if row.button("Reveal", key="room__reveal", type="primary"):
+            _set(last.id, "revealed")
+            st.rerun()
+    if last.status != "open":
+        row.button("Ask again", key="room__again", on_click=_again, args=(last.code,),
+                   help="The same question, a new vote (after a discussion): both votes are shown side by side.")
+    if row.button("End", key="room__end", help="Back to the lesson; the answers stay in the records."):
+        _set(last.id, "ended")
+        st.rerun()
+    try:
+        row.download_button("CSV", store.responses_csv(last.code), file_name=f"room-{last.code}.csv",
+                            mime="text/csv", key="room__csv", on_click="ignore", help="The answers, for a spreadsheet")
+    except RecordingUnavailable:
+        pass
+
+
+def _set(round_id: int, status: str) -> None:
+    try:
+        store.set_status(round_id, status)
+    except (RecordingUnavailable, LookupError) as error:
+        st.toast(str(error) or "That question is gone.")
+
+
+def _again(code: str) -> None:
+    try:
+        store.ask_again(code)
+    except (RecordingUnavailable, LookupError) as error:
+        st.toast(str(error) or "That question is gone.")
+
+
+# -- a student's phone --------------------------------------------------------------------------------
+
+JOINED = "room__joined"  # session: the code this browser session answers
+TRIED_LINK = "room__tried_link"  # session: the ?c= code already tried (a rerun does not try it again)
+LAST_SEND = "room__last_send"
+
+
+def student_page() -> None:
+    """/room: the code (from the QR code's link, or typed), then the question with its givens, the answer
+    box, and what the instructor has done since (followed every PHONE_EVERY s)."""
+    st.markdown("# Your lecture's question")
+    linked = st.query_params.get(CODE_FLAG, "")[:20]
+    if linked and st.session_state.get(TRIED_LINK) != linked:
+        st.session_state[TRIED_LINK] = linked
+        _join(linked)
+    code = st.session_state.get(JOINED)
+    if not code:
+        _code_box(linked)
+        return
+    try:
+        last = store.latest(code)
+    except RecordingUnavailable as error:
+        st.error(str(error), icon=":material/cloud_off:")
+        return
+    if last is None:  # (deleted after its keeping time)
+        st.session_state.pop(JOINED, None)
+        _code_box("")
+        return
+    _watch(code, (last.id, last.status))
+    _question(last)
+
+
+def _code_box(typed: str) -> None:
+    if st.session_state.get("room__join_error"):
+        st.error(st.session_state["room__join_error"], icon=":material/pin:")
+    with st.form("room__join"):
+        st.text_input("The code on the screen", value=typed, key="room__code_typed", placeholder="e.g. K7QPX",
+                      autocomplete="off")
+        if st.form_submit_button("Join", type="primary"):
+            _join(st.session_state.get("room__code_typed") or "")
+            st.rerun()
+
+
+def _join(typed: str) -> None:
+    try:
+        found, why = store.join(typed[:20], *client())
+    except RecordingUnavailable as error:
+        found, why = None, str(error)
+    st.session_state.pop("room__join_error", None)
+    if found is None:
+        st.session_state["room__join_error"] = why
+        return
+    st.session_state[JOINED] = found.code
+    st.query_params[CODE_FLAG] = found.code
+
+
+@st.fragment(run_every=PHONE_EVERY)
+def _watch(code: str, seen: tuple[int, str]) -> None:
+    """Nothing on the page: reruns the page once the instructor closes, reveals, asks again or ends."""
+    try:
+        last = store.latest(code)
+    except RecordingUnavailable:
+        return
+    if last is not None and (last.id, last.status) != seen:
+        st.rerun()
+
+
+def _question(last: store.Round) -> None:
+    problem = BY_ID[last.problem]
+    asked = questions.question(problem.id, last.params, last.question)
+    if asked is None:
+        st.error("This question cannot be answered any more.", icon=":material/error:")
+        return
+    solution = questions.solved(problem.id, last.params)  # (None past a physical limit: no names to type)
+    judge = Judge(solution, problem.solver.derivation_of(solution), ()) if solution is not None else None
+    heading = f"### {plain(problem.title)}" + (f" · {round_name(last.round).lower()}" if last.round > 1 else "")
+    st.markdown(statement(problem, last.params, (), last.system, judge, heading=heading))
+    st.markdown(f"**{plain(asked.prompt)}**")
+    who = store.responder(client()[0])
+    if last.status == "open":
+        _answer_box(last, asked, who)
+    elif last.status == "closed":
+        st.info("The instructor has closed the answers. The answer comes next.", icon=":material/hourglass_top:")
+    elif last.status == "revealed":
+        _revealed(last, who)
+    else:
+        st.info("This question has ended. Thank you!", icon=":material/done_all:")
+
+
+def _answer_box(last: store.Round, asked, who: str) -> None:
+    try:
+        mine = store.answer_of(last.id, who)
+    except RecordingUnavailable:
+        mine = None
+    with st.form(f"room__answer_{last.id}"):
+        if asked.answer is None:
+            words = [w for w, _ in asked.choices]
+            picked = st.radio("Your answer", words, format_func=dict(asked.choices).get,
+                              index=words.index(mine) if mine in words else None, key=f"room__pick_{last.id}")
+        else:
+            picked = st.text_input(f"Your answer ({_unit_said(asked.answer, last.system)}, or an expression)",
+                                   key=f"room__typed_{last.id}", placeholder="e.g. 2.5, or 2/3*V")
+        sent = st.form_submit_button("Send my answer", type="primary")
+    if sent:
+        _send(last, asked, who, picked)
+    elif mine is not None:
+        st.success("Your answer is in. You may change it until the instructor closes the answers.",
+                   icon=":material/how_to_vote:")
+
+
+def _send(last: store.Round, asked, who: str, picked) -> None:
+    now = time.monotonic()
+    if now - st.session_state.get(LAST_SEND, -SEND_EVERY) < SEND_EVERY:
+        st.warning("Sent a moment ago: wait a second before sending again.", icon=":material/timer:")
+        return
+    st.session_state[LAST_SEND] = now
+    response = questions.respond(last.problem, last.params, last.system, last.question, str(picked or "")[:MAX_TYPED])
+    if response.understood:
+        st.markdown("Read as:")
+        st.latex(response.understood)
+    if not response.counted:
+        st.warning(plain(response.message) + " Nothing was counted: correct it and send again.",
+                   icon=":material/edit_note:")
+        return
+    try:
+        said = store.answer(last.id, who, response.category)
+    except RecordingUnavailable as error:
+        st.error(str(error), icon=":material/cloud_off:")
+        return
+    if said in ("counted", "changed", "same"):
+        st.success({"counted": "Your answer is in.", "changed": "Your answer is changed.",
+                    "same": "That is your answer already."}[said]
+                   + " You may change it until the instructor closes the answers.", icon=":material/how_to_vote:")
+    else:
+        st.warning("The answers are closed: this one was not counted.", icon=":material/block:")
+
+
+def _revealed(last: store.Round, who: str) -> None:
+    right = questions.right_answer(last.problem, last.params, last.system, last.question)
+    st.success(f"The answer: {plain(right)}", icon=":material/check_circle:")
+    try:
+        mine = store.answer_of(last.id, who)
+    except RecordingUnavailable:
+        return
+    if mine is None:
+        st.markdown("You did not answer this round.")
+        return
+    if mine == questions.right_category(last.problem, last.params, last.question):
+        st.markdown("**You had it right.**")
+        return
+    hint = questions.feedback(last.problem, last.params, last.question, mine)
+    st.markdown("**Yours was not right.**" + (f" {plain(hint)}" if hint else ""))
