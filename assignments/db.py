@@ -16,7 +16,7 @@ import os
 import sqlite3
 from pathlib import Path
 
-from sqlalchemy import (JSON, Boolean, DateTime, Float, ForeignKey, Index, Integer, String, UniqueConstraint,
+from sqlalchemy import (JSON, Boolean, DateTime, Float, ForeignKey, Index, Integer, String, Text, UniqueConstraint,
                         create_engine, event, make_url)
 from sqlalchemy.engine import Engine
 from sqlalchemy.pool import QueuePool
@@ -187,7 +187,8 @@ class RoomQuestion(Base):
     round: Mapped[int] = mapped_column(Integer)  # 1, then 2 after a discussion, ...
     problem: Mapped[str] = mapped_column(String(40))
     question: Mapped[str] = mapped_column(String(60))  # room.questions.Question.key
-    params: Mapped[dict] = mapped_column(JSON)  # every given, in SI
+    # Every given, in SI, as JSON text: μ = ∞ is a given (Infinity), which PostgreSQL's JSON type refuses.
+    params: Mapped[str] = mapped_column(Text)
     system: Mapped[str] = mapped_column(String(4))  # the units the room reads: si or us
     hide_motion: Mapped[bool] = mapped_column(Boolean)  # the motion stays off the projector until the reveal
     status: Mapped[str] = mapped_column(String(12))  # open, closed, revealed, ended

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import datetime as dt
 import hashlib
+import json
 import os
 import secrets
 from collections import Counter
@@ -45,7 +46,7 @@ class Round:
 
 
 def _round(row: db.RoomQuestion) -> Round:
-    return Round(row.id, row.code, row.round, row.problem, row.question, dict(row.params), row.system,
+    return Round(row.id, row.code, row.round, row.problem, row.question, json.loads(row.params), row.system,
                  row.hide_motion, row.status, row.opened)
 
 
@@ -56,7 +57,7 @@ def normal_code(typed: str) -> str:
 
 
 def responder(session_id: str) -> str:
-    """What the records keep of a browser session: a hash of its random id (never the id itself)."""
+    """What the records keep of a browser session: a hash of its random token (never the token itself)."""
     return hashlib.sha256(f"room|{session_id}".encode()).hexdigest()[:32]
 
 
@@ -105,7 +106,7 @@ def ask(problem: str, question: str, params: dict, system: str, hide_motion: boo
             code = "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_LENGTH))
             if s.scalar(select(func.count()).where(db.RoomQuestion.code == code)) == 0:
                 break
-        row = db.RoomQuestion(code=code, round=1, problem=problem, question=question, params=dict(params),
+        row = db.RoomQuestion(code=code, round=1, problem=problem, question=question, params=json.dumps(params),
                               system=system, hide_motion=hide_motion, status="open", opened=when, course=course[:600])
         s.add(row)
         s.flush()
@@ -123,7 +124,7 @@ def ask_again(code: str, bound: Engine | None = None, when: dt.datetime | None =
         if last.status == "open":
             last.status = "closed"
         row = db.RoomQuestion(code=code, round=last.round + 1, problem=last.problem, question=last.question,
-                              params=dict(last.params), system=last.system, hide_motion=last.hide_motion,
+                              params=last.params, system=last.system, hide_motion=last.hide_motion,
                               status="open", opened=when or now(), course=last.course)
         s.add(row)
         s.flush()

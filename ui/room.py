@@ -5,6 +5,7 @@ discussion, both votes stand side by side. A feature: the records are room/store
 counts as room/questions.py (the Practice judge), the histogram viz/room.py."""
 from __future__ import annotations
 
+import secrets
 import time
 import urllib.parse
 
@@ -18,7 +19,7 @@ from ui.exercise import read_in, statement
 from ui.figure import show as show_figure
 from practice.judge import Judge
 from ui.results import plain
-from ui.session import client
+from ui.session import client, schema_ready
 from viz.room import histogram, round_name
 
 PATH = "room"  # the students' page (app.py), and the address the projector gives
@@ -46,6 +47,7 @@ def projector(problem: Problem, system: str) -> bool:
     code = st.session_state.get(_asked_key(problem))
     if not code:
         return False
+    schema_ready()  # (serve.py brought the schema up before listening; this covers `streamlit run`)
     try:
         last = store.latest(code)
     except RecordingUnavailable as error:
@@ -70,14 +72,22 @@ def _ask_controls(problem: Problem, system: str) -> None:
         if not asked:
             st.markdown("Nothing can be asked at these parameters.")
             return
-        chosen = st.selectbox("Question", asked, format_func=lambda q: q.prompt, key=f"{problem.id}__room_question")
-        hide = st.toggle("Hide the motion until the reveal", value=True, key=f"{problem.id}__room_hide")
-        st.button("Ask the room", key=f"{problem.id}__room_ask", on_click=_ask,
-                  args=(problem, chosen.key, hide, system), icon=":material/how_to_vote:")
+        st.selectbox("Question", asked, format_func=lambda q: q.prompt, key=f"{problem.id}__room_question")
+        st.toggle("Hide the motion until the reveal", value=True, key=f"{problem.id}__room_hide")
+        st.button("Ask the room", key=f"{problem.id}__room_ask", on_click=_ask, args=(problem, system),
+                  icon=":material/how_to_vote:")
 
 
-def _ask(problem: Problem, key: str, hide: bool, system: str) -> None:
+def _ask(problem: Problem, system: str) -> None:
+    """The button's press: the question and the switch as they are now (read here, not when the button was
+    drawn), at the parameters the stage has."""
     params = st.session_state.get(f"{problem.id}__si") or dict(problem.solver.solve().params)
+    chosen = st.session_state.get(f"{problem.id}__room_question")
+    key = chosen.key if isinstance(chosen, questions.Question) else ""
+    hide = bool(st.session_state.get(f"{problem.id}__room_hide", True))
+    if questions.question(problem.id, params, key) is None:
+        return
+    schema_ready()
     try:
         asked = store.ask(problem.id, key, params, system, hide)
     except RecordingUnavailable as error:
@@ -193,6 +203,7 @@ def student_page() -> None:
     """/room: the code (from the QR code's link, or typed), then the question with its givens, the answer
     box, and what the instructor has done since (followed every PHONE_EVERY s)."""
     st.markdown("# Your lecture's question")
+    schema_ready()
     linked = st.query_params.get(CODE_FLAG, "")[:20]
     if linked and st.session_state.get(TRIED_LINK) != linked:
         st.session_state[TRIED_LINK] = linked
@@ -214,13 +225,20 @@ def student_page() -> None:
     _question(last)
 
 
+def _me() -> str:
+    """This browser session, as the room's records know it: a random token it keeps (one answer per session)."""
+    if "room__me" not in st.session_state:
+        st.session_state["room__me"] = secrets.token_hex(16)
+    return st.session_state["room__me"]
+
+
 def _code_box(typed: str) -> None:
     if st.session_state.get("room__join_error"):
         st.error(st.session_state["room__join_error"], icon=":material/pin:")
     with st.form("room__join"):
         st.text_input("The code on the screen", value=typed, key="room__code_typed", placeholder="e.g. K7QPX",
                       autocomplete="off")
-        if st.form_submit_button("Join", type="primary"):
+        if st.form_submit_button("Join", type="primary", key="room__join_button"):
             _join(st.session_state.get("room__code_typed") or "")
             st.rerun()
 
@@ -260,10 +278,13 @@ def _question(last: store.Round) -> None:
     heading = f"### {plain(problem.title)}" + (f" · {round_name(last.round).lower()}" if last.round > 1 else "")
     st.markdown(statement(problem, last.params, (), last.system, judge, heading=heading))
     st.markdown(f"**{plain(asked.prompt)}**")
-    who = store.responder(client()[0])
+    who = store.responder(_me())
     if last.status == "open":
         _answer_box(last, asked, who)
-    elif last.status == "closed":
+        return
+    if st.session_state.get(f"room__send_{last.id}"):  # sent from a page drawn before the close
+        st.warning("The answers are closed: this one was not counted.", icon=":material/block:")
+    if last.status == "closed":
         st.info("The instructor has closed the answers. The answer comes next.", icon=":material/hourglass_top:")
     elif last.status == "revealed":
         _revealed(last, who)
@@ -284,7 +305,7 @@ def _answer_box(last: store.Round, asked, who: str) -> None:
         else:
             picked = st.text_input(f"Your answer ({_unit_said(asked.answer, last.system)}, or an expression)",
                                    key=f"room__typed_{last.id}", placeholder="e.g. 2.5, or 2/3*V")
-        sent = st.form_submit_button("Send my answer", type="primary")
+        sent = st.form_submit_button("Send my answer", type="primary", key=f"room__send_{last.id}")
     if sent:
         _send(last, asked, who, picked)
     elif mine is not None:
@@ -313,7 +334,7 @@ def _send(last: store.Round, asked, who: str, picked) -> None:
         return
     if said in ("counted", "changed", "same"):
         st.success({"counted": "Your answer is in.", "changed": "Your answer is changed.",
-                    "same": "That is your answer already."}[said]
+                    "same": "Your answer is in."}[said]  # (counted as the one before: nothing to change)
                    + " You may change it until the instructor closes the answers.", icon=":material/how_to_vote:")
     else:
         st.warning("The answers are closed: this one was not counted.", icon=":material/block:")

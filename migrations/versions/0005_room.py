@@ -23,7 +23,7 @@ def upgrade() -> None:
         sa.Column("round", sa.Integer, nullable=False),
         sa.Column("problem", sa.String(40), nullable=False),
         sa.Column("question", sa.String(60), nullable=False),
-        sa.Column("params", sa.JSON, nullable=False),
+        sa.Column("params", sa.Text, nullable=False),
         sa.Column("system", sa.String(4), nullable=False),
         sa.Column("hide_motion", sa.Boolean, nullable=False),
         sa.Column("status", sa.String(12), nullable=False),
