@@ -179,7 +179,7 @@ class Client:
     async def full_run(self, widgets: list[WidgetState]) -> tuple[float, float, list[ForwardMsg]]:
         """Send a full rerun and wait for the next full run to end (fragment runs in between are the
         timers'): (seconds, when it ended, its messages)."""
-        seen = len(self.finished)
+        seen = first = len(self.finished)
         started = time.perf_counter()
         await self.send(widgets)
         deadline = started + TIMEOUT
@@ -193,16 +193,52 @@ class Client:
             self.changed.clear()
             remaining = deadline - time.perf_counter()
             if remaining <= 0:
-                raise TimeoutError(f"no end of the run in {TIMEOUT:g} s")
+                raise TimeoutError(f"no end of the run in {TIMEOUT:g} s; since the send: {self.story(first, started)}")
             try:
                 await asyncio.wait_for(self.changed.wait(), remaining)
             except asyncio.TimeoutError:
                 pass
 
+    def story(self, first: int, started: float) -> str:
+        """The runs that ended since ``first`` (for a report of a run that did not end)."""
+        names = {ForwardMsg.FINISHED_SUCCESSFULLY: "full", ForwardMsg.FINISHED_FRAGMENT_RUN_SUCCESSFULLY: "fragment",
+                 ForwardMsg.FINISHED_EARLY_FOR_RERUN: "stopped early", ForwardMsg.FINISHED_WITH_COMPILE_ERROR: "compile error"}
+        runs = [f"{'fragment ' if fragment else ''}{names.get(status, status)} at +{when - started:.1f} s"
+                for fragment, status, when, _ in self.finished[first:]]
+        pending = collections.Counter(m.WhichOneof("type") for m in self.current)
+        told = [verdict(messages) for *_, messages in self.finished[first:]] + [verdict(self.current)]
+        return (f"{runs[:6]}{' …' if len(runs) > 6 else ''}, {len(runs)} in all; unfinished: {dict(pending)}; "
+                f"verdicts seen: {[t for t in told if t != 'none']}")
+
     async def close(self) -> None:
         self._stop_timers()
         await self.ws.close()
         self.reader.cancel()
+
+
+def family(pid: int) -> list[int]:
+    """A server's process and its descendants (the practice judge's worker, the figure worker)."""
+    found, todo = [], [pid]
+    while todo:
+        current = todo.pop()
+        found.append(current)
+        for task in Path(f"/proc/{current}/task").glob("*/children"):
+            try:
+                todo += [int(c) for c in task.read_text().split()]
+            except OSError:
+                pass
+    return found
+
+
+def machine_busy() -> float:
+    """CPU seconds all cores have been busy (not idle, not waiting on I/O) since boot."""
+    fields = [int(v) for v in Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:]]
+    return (sum(fields[:8]) - fields[3] - fields[4]) / os.sysconf("SC_CLK_TCK")
+
+
+def own_cpu() -> float:
+    times = os.times()
+    return times.user + times.system
 
 
 def elements(messages):
@@ -281,7 +317,7 @@ async def student(url: str, code: str, i: int, join_at: float, answer_at: float,
         if client.closed:
             stats.errors.append(client.closed)
     except Exception as error:  # noqa: BLE001 - every failure is counted, none is fatal
-        stats.errors.append(f"{type(error).__name__}: {error}"[:200])
+        stats.errors.append(f"session {i}: {type(error).__name__}: {error}"[:700])
         stats.settled += not answered
         if client is not None and client.closed:
             stats.errors.append(client.closed)
@@ -345,7 +381,9 @@ async def scenario(room_url: str, empty_url: str, code: str, room_pids: list[int
     moments = [(rng.uniform(0, args.join), args.join + rng.uniform(0, args.window)) for _ in range(args.sessions)]
     room, empty = Stats(), Stats()
     room_done, empty_done, stop = asyncio.Event(), asyncio.Event(), asyncio.Event()
+    room_pids, empty_pids = family(room_pids[0]), family(empty_pids[0])
     cpu_before = (cpu_seconds(room_pids), cpu_seconds(empty_pids))
+    machine_before, own_before = machine_busy(), own_cpu()
     rss_before = rss_mb(room_pids)
     start = time.perf_counter()
     reads_task = asyncio.create_task(projector(code, stop))
@@ -362,6 +400,9 @@ async def scenario(room_url: str, empty_url: str, code: str, room_pids: list[int
     await asyncio.gather(settled(room), settled(empty))
     answered = time.perf_counter() - start
     cpu_burst = (cpu_seconds(room_pids) - cpu_before[0], cpu_seconds(empty_pids) - cpu_before[1])
+    machine = {"seconds": answered, "busy": machine_busy() - machine_before, "room server": cpu_burst[0],
+               "empty server": cpu_burst[1], "load generator": own_cpu() - own_before}
+    machine["others"] = machine["busy"] - machine["room server"] - machine["empty server"] - machine["load generator"]
     runs_burst = (sum(room.runs.values()), sum(empty.runs.values()))
     rss_burst = rss_mb(room_pids) - rss_before
     empty_done.set()
@@ -378,7 +419,7 @@ async def scenario(room_url: str, empty_url: str, code: str, room_pids: list[int
     reads = await reads_task
     return {"room": room, "empty": empty, "reads": reads, "answered after": answered,
             "cpu burst": cpu_burst, "runs burst": runs_burst, "rss burst": rss_burst,
-            "tail": (args.tail, tail_runs, tail_cpu, tail_poll_times), "start": start}
+            "tail": (args.tail, tail_runs, tail_cpu, tail_poll_times), "start": start, "machine": machine}
 
 
 def histogram_lags(answers, reads) -> tuple[list[float], int]:
@@ -469,6 +510,10 @@ def main() -> None:
         out = asyncio.run(scenario(ws(room_server.url), ws(empty_server.url), asked.code, [room_server.pid],
                                    [empty_server.pid], args))
         final = store.counts(asked.code).get(1, collections.Counter())
+        timed = time.perf_counter()
+        for _ in range(200):
+            store.latest(asked.code)
+        latest_ms = (time.perf_counter() - timed) / 200 * 1000
     finally:
         for label, server in zip(("room", "empty"), servers):
             kept = LOGS / f"room_burst-{label}-server.log"  # the last run's, kept for reading
@@ -521,6 +566,11 @@ def main() -> None:
     print(f"database: {sum(final.values())} answers counted {dict(final)}; expected from the phones "
           f"{sum(expected.values())} {dict(expected)}: {'the same' if recorded_ok else 'DIFFERENT'}")
     print(f"server memory growth during the burst: {out['rss burst']:.0f} MB")
+    m = out["machine"]
+    print(f"the machine ({os.cpu_count()} cores) over the {m['seconds']:.0f} s of the burst: {m['busy']:.0f} CPU s busy: "
+          f"room server {m['room server']:.0f}, empty server {m['empty server']:.0f}, this load generator "
+          f"{m['load generator']:.0f}, other processes {m['others']:.0f}; store.latest (a poll's database read) "
+          f"in this process: {latest_ms:.2f} ms")
     for label, stats in (("room", room), ("empty", empty)):
         if stats.errors:
             print(f"{label} errors ({len(stats.errors)}), first ones: {collections.Counter(stats.errors).most_common(5)}")
@@ -533,7 +583,8 @@ def main() -> None:
                               "max": max(lags, default=None), "unseen": unseen},
             "reads": {"p95": percentile(read_times, 95), "max": max(read_times, default=None)},
             "told": dict(told), "database": dict(final), "expected": dict(expected), "recorded ok": recorded_ok,
-            "tail": {"seconds": tail_seconds, "runs": tail_runs, "cpu": tail_cpu},
+            "tail": {"seconds": tail_seconds, "runs": tail_runs, "cpu": tail_cpu}, "machine": out["machine"],
+            "store.latest ms": latest_ms,
             "errors": {"room": room.errors, "empty": empty.errors}, "server log": logs,
         }, indent=1, default=str))
 

@@ -135,7 +135,7 @@ def _live(problem_id: str, code: str) -> None:
         with join:
             st.markdown(f"**{plain(asked.prompt)}**" + (f" ({_unit_said(asked.answer, last.system)})" if asked.answer else "")
                         + (f"  \n{round_name(last.round)}" if last.round > 1 else ""))
-            st.markdown(f"Answer at **{plain(short)}** with the code")
+            st.markdown(f"Answer at **{plain(short)}**")
             st.markdown(f"<p class='dl-room-code' aria-label='code {' '.join(code)}'>{code}</p>", unsafe_allow_html=True)
             if last.status == "open":
                 st.markdown(qr_image(link))
@@ -202,7 +202,6 @@ LAST_SEND = "room__last_send"
 def student_page() -> None:
     """/room: the code (from the QR code's link, or typed), then the question with its givens, the answer
     box, and what the instructor has done since (followed every PHONE_EVERY s)."""
-    st.markdown("# Your lecture's question")
     schema_ready()
     linked = st.query_params.get(CODE_FLAG, "")[:20]
     if linked and st.session_state.get(TRIED_LINK) != linked:
@@ -233,6 +232,7 @@ def _me() -> str:
 
 
 def _code_box(typed: str) -> None:
+    st.markdown("# Your lecture's question")
     if st.session_state.get("room__join_error"):
         st.error(st.session_state["room__join_error"], icon=":material/pin:")
     with st.form("room__join"):
@@ -275,9 +275,10 @@ def _question(last: store.Round) -> None:
         return
     solution = questions.solved(problem.id, last.params)  # (None past a physical limit: no names to type)
     judge = Judge(solution, problem.solver.derivation_of(solution), ()) if solution is not None else None
-    heading = f"### {plain(problem.title)}" + (f" · {round_name(last.round).lower()}" if last.round > 1 else "")
-    st.markdown(statement(problem, last.params, (), last.system, judge, heading=heading))
-    st.markdown(f"**{plain(asked.prompt)}**")
+    st.markdown(f"## {plain(problem.title)}\n:gray[Your lecture's question"
+                + (f", {round_name(last.round).lower()}" if last.round > 1 else "") + "]"
+                + f"\n\n**{plain(asked.prompt)}**")  # what is asked first, then what is given
+    st.markdown(statement(problem, last.params, (), last.system, judge, heading="**Given**"))
     who = store.responder(_me())
     if last.status == "open":
         _answer_box(last, asked, who)

@@ -36,9 +36,9 @@ LECTURE_CSS = css("""
   /* the free-body diagram's labels in projector type too (the SVG scales with its width) */
   .dl-text figure.dl-fbd-figure { width: min(100%, 44rem); }
   /* a question put to the room (ui/room.py): its code read from the back row, its QR code a phone's reach */
-  $mainBlock p.dl-room-code { font-size: 4.2rem; font-weight: 700; letter-spacing: 0.35em; line-height: 1.1;
+  $mainBlock p.dl-room-code { font-size: 3.6rem; font-weight: 700; letter-spacing: 0.3em; line-height: 1.1;
     font-family: ui-monospace, "DejaVu Sans Mono", monospace; margin: 0; }
-  $mainBlock img[alt^="A QR code"] { width: min(100%, 17rem); image-rendering: pixelated; }
+  $mainBlock img[alt^="A QR code"] { width: min(100%, 13rem); image-rendering: pixelated; }
 </style>
 """)
 
