@@ -14,7 +14,8 @@ import pytest
 from solvers import registry
 from solvers.core import Answer, Choice, Number
 from solvers.diagram import Diagram, DiagramSlip
-from solvers.protocol import About, Mistake, Variants
+from solvers.protocol import About, Mistake, RegimeQuestion, Variants
+from solvers.specs import validate_params
 from viz.catalog import OnRequest
 from viz.common import thumbnail
 
@@ -79,6 +80,14 @@ def solver_lacks(pid: str, solver) -> list[str]:
     labels = getattr(solver, "LIMIT_LABELS", None)
     if not isinstance(labels, dict) or not all(isinstance(v, tuple) and len(v) == 2 for v in labels.values()):
         missing.append(f"{pid}: no LIMIT_LABELS (a dict: attribute -> (label, dimension), empty if no limit)")
+    room = getattr(solver, "ROOM_QUESTIONS", ())  # optional: what the room may be asked besides the answers
+    if not _tuple_of(room, RegimeQuestion) or len({q.key for q in room}) != len(room):
+        missing.append(f"{pid}: ROOM_QUESTIONS is not a tuple of solvers.protocol.RegimeQuestion with distinct keys")
+    elif callable(getattr(solver, "solve", None)):
+        default = dict(validate_params(params, {}))
+        for q in room:
+            if q.regime(default) not in dict(q.choices):
+                missing.append(f"{pid}: ROOM_QUESTIONS {q.key!r} says {q.regime(default)!r}, none of its choices")
     warm = getattr(solver, "WARM", None)
     if not _tuple_of(warm, dict):
         missing.append(f"{pid}: no WARM (a tuple of parameter dicts, may be empty)")
@@ -213,6 +222,10 @@ def test_what_a_problem_lacks_is_named():
         "sliding_ladder: MISTAKES name what is not an answer: ['no_such_answer']"]
     assert "not a parameter" in solver_lacks("sliding_ladder", copied(solver, VARIANTS=Variants(
         derived={"no_such_parameter": lambda p: 1.0})))[0]
+    twice = RegimeQuestion("k", "?", (("a", "A"),), lambda p: "a")
+    assert "distinct keys" in solver_lacks("sliding_ladder", copied(solver, ROOM_QUESTIONS=(twice, twice)))[0]
+    assert solver_lacks("sliding_ladder", copied(solver, ROOM_QUESTIONS=(RegimeQuestion("k", "?", (("a", "A"),), lambda p: "b"),))) == [
+        "sliding_ladder: ROOM_QUESTIONS 'k' says 'b', none of its choices"]
     assert solver_lacks("sliding_ladder", None) == ["sliding_ladder: no solver module solvers/sliding_ladder.py"]
 
     assert viz_lacks("sliding_ladder", copied(viz, without=("THUMBNAIL",))) == ["sliding_ladder: viz has no THUMBNAIL"]
