@@ -193,12 +193,14 @@ def install_middleware() -> None:
     plotly bundles gzipped once and cached by browsers for a year; Streamlit's own component route
     would send them with a bare ``Cache-Control: public`` and no validator, so every visit
     downloaded plotly.js again, gzipped anew on every request), and ``ui.takehome.DownloadServer``
-    (the lesson page's download links: /download/<problem>/<file>?<the page's query>)."""
+    (the lesson page's download links: /download/<problem>/<file>?<the page's query>), and
+    ``edge.room_status.RoomStatus`` (what a phone waiting on a question put to the room asks: /room-status)."""
     from starlette.middleware import Middleware
     from streamlit.web.server.starlette import starlette_app
 
     from edge.fair_share import FairShare
     from edge.headers import SecurityHeaders
+    from edge.room_status import RoomStatus
     from lti.routes import LtiRoutes
     from ui.figure import BundleServer
     from ui.takehome import DownloadServer
@@ -208,7 +210,7 @@ def install_middleware() -> None:
     def with_ours():
         stack = streamlit_middleware()
         stack[1:1] = [Middleware(SecurityHeaders), Middleware(LtiRoutes), Middleware(FairShare), Middleware(StaticGzip),
-                      Middleware(BundleServer), Middleware(DownloadServer)]
+                      Middleware(BundleServer), Middleware(DownloadServer), Middleware(RoomStatus)]
         return stack
 
     starlette_app.create_streamlit_middleware = with_ours

@@ -1,6 +1,7 @@
 """Benchmark 6, Ask the room: a lecture hall's phones answer the instructor's question within 30 s.
 
-    python bench/room_burst.py [--sessions 200] [--join 20] [--window 30] [--tail 5] [--one-address] [--json OUT]
+    python bench/room_burst.py [--sessions 200] [--join 20] [--window 30] [--tail 5] [--one-address]
+                               [--no-polling] [--json OUT]
 
 Speaks Streamlit's websocket protocol, as bench/lecture_load.py does. One server (serve.py, as shipped,
 with its own data directory, DL_DATA_DIR, and an instructor key), and the empty one-slider page
@@ -16,10 +17,14 @@ the expression), slips and wrong ones (1.25, 0.5, 2) and unreadable ones (abc, 1
 counted). Every session also does what the page's ``_watch`` fragment makes a browser do: it reruns that
 fragment (BackMsg rerun_script with its fragment_id, ``is_auto_rerun``) every 2.5 s, as the ForwardMsg
 ``auto_rerun`` of each full run asks, with the timers cleared at each full run's start (as Streamlit's
-frontend does); those polls run all the time, from each session's first load to the end.
+frontend does, App.handleNewSession and handleAutoRerun); those polls run all the time, from each
+session's first load to the end, and the poll's time runs from its send to the end of its fragment run
+(``--no-polling``: none, to see what the polls cost the answers). An answer whose run's end never comes
+(60 s) is an error, reported with the runs that did end after it.
 
 Meanwhile a projector reads ``room.store.counts(code)`` from the database every 0.25 s in this process
-(as the instructor's page reads it, but not through a Streamlit run): the histogram's lag of an answer is
+(as the instructor's page reads it, but not through a Streamlit run, and in a thread of this busy
+process: a read's time includes waits for this process's interpreter): the histogram's lag of an answer is
 the time from its script run's end at the phone to the end of the first read, begun after it, that
 counts at least as many answers as the phones had been told were in. The instructor's page adds its
 own polling on top (every 1.5 s, and its fragment's run under the same load). At the end: every answer
@@ -29,8 +34,9 @@ log's tracebacks. Then ``--tail`` seconds of polls alone (no one answers), for t
 
 The empty page: the same sessions (same addresses, same moments) open it and move its slider once in
 the answer window. Reports first-load and answer (slider change) p50/p95/p99, the ratio of the p95s,
-and server CPU seconds per script run (first loads, answers and fragment polls together). Loopback only,
-bounded in time (every wait 60 s at most).
+and server CPU seconds per script run (first loads, answers and fragment polls together), with what the
+rest of the machine used meanwhile (it is shared). The servers' logs of the last run are kept in
+$TMPDIR/room_burst-{room,empty}-server.log. Loopback only, bounded in time (every wait 60 s at most).
 """
 from __future__ import annotations
 
@@ -94,6 +100,7 @@ class Client:
         self.finished: list[tuple[bool, int, float, list[ForwardMsg]]] = []  # (fragment?, status, when, messages)
         self.changed = asyncio.Event()
         self.timers: dict[str, asyncio.Task] = {}
+        self.intervals: dict[str, float] = {}
         self.fragment_sent: collections.deque[float] = collections.deque()
         self.closed: str | None = None
         self.reader = asyncio.create_task(self._read())
@@ -148,6 +155,9 @@ class Client:
     def _start_timer(self, fragment_id: str, interval: float) -> None:
         if not self.polling or not fragment_id:
             return
+        if fragment_id in self.timers and self.intervals.get(fragment_id) == interval:
+            return  # as the frontend's handleAutoRerun: a timer of the same period runs on
+        self.intervals[fragment_id] = interval
         if fragment_id in self.timers:
             self.timers.pop(fragment_id).cancel()
         self.timers[fragment_id] = asyncio.create_task(self._every(fragment_id, interval))
@@ -315,12 +325,10 @@ async def student(url: str, code: str, i: int, join_at: float, answer_at: float,
             stats.errors.append(f"{text!r} was told {said!r}, not {expected!r}")
         await done.wait()  # the page stays open (and polls) until the hall is done
         if client.closed:
-            stats.errors.append(client.closed)
+            stats.errors.append(f"session {i}, after its answer: {client.closed}")
     except Exception as error:  # noqa: BLE001 - every failure is counted, none is fatal
         stats.errors.append(f"session {i}: {type(error).__name__}: {error}"[:700])
         stats.settled += not answered
-        if client is not None and client.closed:
-            stats.errors.append(client.closed)
     finally:
         if client is not None:
             try:
@@ -573,7 +581,10 @@ def main() -> None:
           f"in this process: {latest_ms:.2f} ms")
     for label, stats in (("room", room), ("empty", empty)):
         if stats.errors:
-            print(f"{label} errors ({len(stats.errors)}), first ones: {collections.Counter(stats.errors).most_common(5)}")
+            kinds = collections.Counter(re.sub(r"^session \d+(, )?", "", e)[:160] for e in stats.errors)
+            print(f"{label} errors ({len(stats.errors)}, by kind): {kinds.most_common(6)}")
+            for e in stats.errors[:3]:
+                print(f"    {e}")
     for label, found in logs.items():
         print(f"{label} server log ({LOGS / f'room_burst-{label}-server.log'}): {len(found)} problem lines" + "".join(f"\n    {line}" for line in found[:15]))
     if args.json:

@@ -11,9 +11,12 @@ from __future__ import annotations
 
 import datetime as dt
 import hashlib
+import hmac
 import json
 import os
 import secrets
+import threading
+import time
 from collections import Counter
 from dataclasses import dataclass
 
@@ -219,5 +222,50 @@ def responses_csv(code: str, bound: Engine | None = None) -> str:
                      for opened, problem, question, number, category, at in rows))
 
 
+# -- what a phone's watch asks (edge/room_status.py): a few bytes, not a run of the page
+
+_PROCESS_KEY = secrets.token_bytes(32)  # where no course secret is set: a token holds on this process only
+STATUS_FRESH = 1.0  # s: one database read per code per process at most this often, however many phones ask
+_STATUS: dict[str, tuple[float, str | None]] = {}
+_STATUS_LOCK = threading.Lock()
+STATUS_KEPT = 1024  # codes remembered at most
+
+
+def _status_key() -> bytes:
+    secret = os.environ.get("DL_COURSE_SECRET", "")
+    return hashlib.sha256(b"room-status|" + secret.encode()).digest() if len(secret) >= 16 else _PROCESS_KEY
+
+
+def status_token(code: str) -> str:
+    """What a phone that joined ``code`` shows the status route: only a page that let it join can make it
+    (the route cannot be used to guess codes past the join throttle)."""
+    return hmac.new(_status_key(), f"room|{code}".encode(), hashlib.sha256).hexdigest()[:32]
+
+
+def status_token_valid(code: str, token: str) -> bool:
+    return bool(code) and hmac.compare_digest(status_token(code).encode(), token.encode()[:64])
+
+
+def version(found: Round | None) -> str | None:
+    """A round's state as the phone compares it: the round and its status; None for a code gone."""
+    return f"{found.id}:{found.status}" if found is not None else None
+
+
+def status_version(code: str, bound: Engine | None = None, clock=time.monotonic) -> str | None:
+    """``version`` of the code's last round, read at most every STATUS_FRESH s per process."""
+    now = clock()
+    with _STATUS_LOCK:
+        kept = _STATUS.get(code)
+        if kept is not None and now - kept[0] < STATUS_FRESH:
+            return kept[1]
+    said = version(latest(code, bound))
+    with _STATUS_LOCK:
+        if len(_STATUS) >= STATUS_KEPT:
+            _STATUS.clear()
+        _STATUS[code] = (now, said)
+    return said
+
+
 __all__ = ["CODE_ALPHABET", "Round", "RecordingUnavailable", "answer", "answer_of", "ask", "ask_again", "counts",
-           "join", "latest", "normal_code", "responder", "responses_csv", "rounds", "set_status"]
+           "join", "latest", "normal_code", "responder", "responses_csv", "rounds", "set_status", "status_token",
+           "status_token_valid", "status_version", "version"]

@@ -74,11 +74,13 @@ DERIVATION = "dynamics_lab_derivation"
 ANSWERS = "dynamics_lab_answers"
 LESSON = "dynamics_lab_lesson"
 DRAW = "dynamics_lab_draw"
+WATCH = "dynamics_lab_watch"
 # Each component's name and the module that draws it (plotly_component/<file>): this file's figure,
 # the answers and the derivation that ui/results.py shows (one module, text.js, for both), and the
-# lesson's parts below its stage together in one element (``together``), and the drawing exercise's
-# free-body diagram (ui/diagram_exercise.py).
-COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js", LESSON: "lesson.js", DRAW: "draw.js"}
+# lesson's parts below its stage together in one element (``together``), the drawing exercise's
+# free-body diagram (ui/diagram_exercise.py), and a phone's watch on a question put to the room (ui/room.py).
+COMPONENTS = {NAME: "figure.js", ANSWERS: "text.js", DERIVATION: "text.js", LESSON: "lesson.js", DRAW: "draw.js",
+              WATCH: "watch.js"}
 # Modules the components import: the live values while a lesson control is dragged (ui/live.py),
 # which ride with the answers they follow (an element of their own cost every run two widgets' work).
 IMPORTED = ("live.js",)

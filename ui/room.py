@@ -9,6 +9,7 @@ import secrets
 import time
 import urllib.parse
 
+import orjson
 import segno
 import streamlit as st
 
@@ -16,6 +17,9 @@ from room import questions, store
 from room.store import RecordingUnavailable
 from solvers.catalog import BY_ID, Problem
 from ui.exercise import read_in, statement
+from edge import base_path
+from edge.room_status import PATH as STATUS_PATH
+from ui import figure
 from ui.figure import show as show_figure
 from practice.judge import Judge
 from ui.results import plain
@@ -25,7 +29,7 @@ from viz.room import histogram, round_name
 PATH = "room"  # the students' page (app.py), and the address the projector gives
 CODE_FLAG = "c"  # /room?c=CODE: the QR code's link opens the question at once
 PROJECTOR_EVERY = 1.5  # s: the projector's count follows the room at most this far behind
-PHONE_EVERY = 2.5  # s: a phone learns the question closed, revealed or asked again
+PHONE_EVERY = 3.0  # s: a phone learns the question closed, revealed or asked again (a few bytes a time)
 SEND_EVERY = 1.0  # s: a phone's answers are taken at most this often (a flood changes nothing)
 MAX_TYPED = 400  # characters of an answer read at most (the judge's own limit is lower, and says so)
 
@@ -220,7 +224,7 @@ def student_page() -> None:
         st.session_state.pop(JOINED, None)
         _code_box("")
         return
-    _watch(code, (last.id, last.status))
+    _watch(last)
     _question(last)
 
 
@@ -256,15 +260,12 @@ def _join(typed: str) -> None:
     st.query_params[CODE_FLAG] = found.code
 
 
-@st.fragment(run_every=PHONE_EVERY)
-def _watch(code: str, seen: tuple[int, str]) -> None:
-    """Nothing on the page: reruns the page once the instructor closes, reveals, asks again or ends."""
-    try:
-        last = store.latest(code)
-    except RecordingUnavailable:
-        return
-    if last is not None and (last.id, last.status) != seen:
-        st.rerun()
+def _watch(last: store.Round) -> None:
+    """The phone's watch (plotly_component/watch.js): it asks the status route every PHONE_EVERY s and runs
+    the page again once the instructor closes, reveals, asks again or ends; nothing drawn."""
+    data = orjson.dumps({"url": f"{base_path()}{STATUS_PATH}?{CODE_FLAG}={last.code}&t={store.status_token(last.code)}",
+                         "seen": store.version(last), "every": PHONE_EVERY})
+    figure.declared(figure.WATCH)(data=data, key="room_watch", on_changed_change=lambda: None)
 
 
 def _question(last: store.Round) -> None:
@@ -281,7 +282,7 @@ def _question(last: store.Round) -> None:
     st.markdown(statement(problem, last.params, (), last.system, judge, heading="**Given**"))
     who = store.responder(_me())
     if last.status == "open":
-        _answer_box(last, asked, who)
+        _answer_box(last, asked, who)  # a fragment: a send runs the box alone, not the givens and the sketch
         return
     if st.session_state.get(f"room__send_{last.id}"):  # sent from a page drawn before the close
         st.warning("The answers are closed: this one was not counted.", icon=":material/block:")
@@ -293,6 +294,7 @@ def _question(last: store.Round) -> None:
         st.info("This question has ended. Thank you!", icon=":material/done_all:")
 
 
+@st.fragment
 def _answer_box(last: store.Round, asked, who: str) -> None:
     try:
         mine = store.answer_of(last.id, who)
