@@ -5,6 +5,7 @@ discussion, both votes stand side by side. A feature: the records are room/store
 counts as room/questions.py (the Practice judge), the histogram viz/room.py."""
 from __future__ import annotations
 
+import functools
 import secrets
 import time
 import urllib.parse
@@ -175,11 +176,16 @@ def _next_steps(last: store.Round) -> None:
     if row.button("End", key="room__end", help="Back to the lesson; the answers stay in the records."):
         _set(last.id, "ended")
         st.rerun()
+    # made when pressed, not on each of the projector's runs (every PROJECTOR_EVERY s)
+    row.download_button("CSV", functools.partial(_csv, last.code), file_name=f"room-{last.code}.csv",
+                        mime="text/csv", key="room__csv", on_click="ignore", help="The answers, for a spreadsheet")
+
+
+def _csv(code: str) -> str:
     try:
-        row.download_button("CSV", store.responses_csv(last.code), file_name=f"room-{last.code}.csv",
-                            mime="text/csv", key="room__csv", on_click="ignore", help="The answers, for a spreadsheet")
-    except RecordingUnavailable:
-        pass
+        return store.responses_csv(code)
+    except RecordingUnavailable as error:
+        return f"{error}\n"
 
 
 def _set(round_id: int, status: str) -> None:

@@ -84,6 +84,11 @@ def test_the_room_answers_on_phones_and_the_projector_counts_within_two_seconds(
         assert max(lag for _, lag in answered) <= 2.0, [lag for _, lag in answered]
         shot(answered[0][0], "phone-answered")
         shot(projector, "histogram")
+        with projector.expect_download() as download:
+            projector.get_by_role("button", name="CSV").click()
+        rows = Path(download.value.path()).read_text().splitlines()
+        assert rows[0].startswith("lecture (UTC),problem,question,round,answer counted as") and len(rows) == 4
+        assert sorted(r.split(",")[4] for r in rows[1:]) == ["other", "right", "right"]
 
         projector.get_by_role("button", name="Close answers").click()
         projector.get_by_role("button", name="Reveal").click()
