@@ -6,6 +6,7 @@ counts as room/questions.py (the Practice judge), the histogram viz/room.py."""
 from __future__ import annotations
 
 import functools
+import re
 import secrets
 import time
 import urllib.parse
@@ -234,10 +235,16 @@ def student_page() -> None:
     _question(last)
 
 
+ME_COOKIE = "dl_room"  # a random token the browser keeps for the room (watch.js sets it): no name, no fingerprint
+ME_HOURS = 12  # a day's lectures: a reload, a reconnect or a restarted server is the same phone
+
+
 def _me() -> str:
-    """This browser session, as the room's records know it: a random token it keeps (one answer per session)."""
+    """This browser, as the room's records know it: the random token its cookie keeps (a reload, a new tab or
+    a restarted server is the same phone, so nothing is counted twice), else a new one (the watch sets it)."""
     if "room__me" not in st.session_state:
-        st.session_state["room__me"] = secrets.token_hex(16)
+        kept = st.context.cookies.get(ME_COOKIE) or ""
+        st.session_state["room__me"] = kept if re.fullmatch(r"[0-9a-f]{32}", kept) else secrets.token_hex(16)
     return st.session_state["room__me"]
 
 
@@ -269,8 +276,9 @@ def _join(typed: str) -> None:
 def _watch(last: store.Round) -> None:
     """The phone's watch (plotly_component/watch.js): it asks the status route every PHONE_EVERY s and runs
     the page again once the instructor closes, reveals, asks again or ends; nothing drawn."""
+    cookie = f"{ME_COOKIE}={_me()}; path={base_path() or '/'}; max-age={ME_HOURS * 3600}; samesite=lax"
     data = orjson.dumps({"url": f"{base_path()}{STATUS_PATH}?{CODE_FLAG}={last.code}&t={store.status_token(last.code)}",
-                         "seen": store.version(last), "every": PHONE_EVERY})
+                         "seen": store.version(last), "every": PHONE_EVERY, "cookie": cookie})
     figure.declared(figure.WATCH)(data=data, key="room_watch", on_changed_change=lambda: None)
 
 

@@ -1,13 +1,16 @@
 // A phone's watch on the question put to the room it answers (ui/room.py). It draws nothing: every few
 // seconds it asks the server's status route (edge/room_status.py, a few bytes) how the question stands,
 // and once the instructor has closed it, revealed it, asked again or ended it, it asks Streamlit for one
-// run of the page (a trigger). A token the server no longer knows (a restart, another replica) asks for
+// run of the page (a trigger). A status token the server no longer knows (a restart, another replica) asks for
 // that run too, which brings a new one. Polling stops when the element leaves the page.
 const decoder = new TextDecoder();
 const watches = new WeakMap();
 
 export function render({data, parentElement, setTriggerValue}) {
-  const {url, seen, every} = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
+  const {url, seen, every, cookie} = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
+  // The phone's random token for the room (ui/room.py ME_COOKIE): kept by the browser, so that a reload, a
+  // new tab or a restarted server still knows this phone's answer (and counts it once).
+  if (cookie) document.cookie = cookie + (location.protocol === "https:" ? "; secure" : "");
   const old = watches.get(parentElement);
   if (old) clearTimeout(old.timer);
   const watch = {timer: null, fired: false};
