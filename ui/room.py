@@ -243,8 +243,9 @@ def _me() -> str:
     """This browser, as the room's records know it: the random token its cookie keeps (a reload, a new tab or
     a restarted server is the same phone, so nothing is counted twice), else a new one (the watch sets it)."""
     if "room__me" not in st.session_state:
-        kept = st.context.cookies.get(ME_COOKIE) or ""
-        st.session_state["room__me"] = kept if re.fullmatch(r"[0-9a-f]{32}", kept) else secrets.token_hex(16)
+        kept = st.context.cookies.get(ME_COOKIE)
+        st.session_state["room__me"] = (kept if isinstance(kept, str) and re.fullmatch(r"[0-9a-f]{32}", kept)
+                                        else secrets.token_hex(16))
     return st.session_state["room__me"]
 
 
