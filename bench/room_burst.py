@@ -22,14 +22,17 @@ confirmation). The texts: right ones (0.8333, 0.8333 m/s, the expression), slips
 
 Every phone also does what the page's watch (ui/plotly_component/watch.js, a components-v2 element drawing
 nothing) makes a browser do, from its first load to the end: ``GET <base>/room-status?c=CODE&t=TOKEN`` (the
-URL from the element's data in the run, over HTTP keep-alive; one httpx client per source address, its
-connections bound to that address as the websocket is, so the route's budget per address sees what a
-hall's phones would be; with ``--one-address`` one shared client), the first after ``every`` × U(0.5, 1.5)
-s, then every ``every`` × U(0.8, 1.2) s (``every`` = ui/room.py PHONE_EVERY, 3 s; after a 429, 2 ×; after a
-failed request, 2 ×). When the answer's ``v`` differs from the ``seen`` of the data, or on 403/404, the
-watch asks for ONE full run of the page (the element's trigger, a ``json_trigger_value``) and stops until
-a run draws it with new data. The requests' latencies and status codes are counted (``--no-polling``:
-none). A ForwardMsg ``auto_rerun`` (a polling fragment) is counted too: the phone's page has none now.
+URL from the element's data in the run, with the phone's cookies, over HTTP keep-alive; one httpx client per
+source address, its connections bound to that address as the websocket is, so the route's budget per address
+sees what a hall's phones would be; with ``--one-address`` one shared client), the first after ``every`` ×
+U(0.5, 1.5) s, then every ``every`` × U(0.8, 1.2) s (``every`` = ui/room.py PHONE_EVERY, 3 s; after a 429, 2
+×; after a failed request, 2 ×). When the answer's ``v`` differs from the ``seen`` of the data, or on 403/404,
+the watch asks for ONE full run of the page (the element's trigger, a ``json_trigger_value``) and stops until
+a run draws it with new data. The requests' latencies and status codes are counted (``--no-polling``: none). A
+ForwardMsg ``auto_rerun`` (a polling fragment) is counted too: the phone's page has none now. Like the
+browser's ``document.cookie`` in watch.js, each drawing of the element keeps the ``cookie`` of its data
+(``dl_room=<token>``, ui/room.py ME_COOKIE) as the phone's cookie, which every later websocket handshake (a
+reconnect) and status request sends (``Cookie: dl_room=…``, with nginx's dl_route).
 
 Meanwhile a projector reads ``room.store.counts(code)`` from the database every 0.25 s in this process
 (as the instructor's page reads it, but not through a Streamlit run, and in a thread of this busy
@@ -41,16 +44,18 @@ in is in the database exactly once, by the category the judge gives its text, an
 errors (exceptions, error alerts, lost connections, time-outs, lost confirmations) and the server logs'
 tracebacks. Then ``--tail`` seconds of status polls alone (no one answers), for their own CPU cost.
 
-``--restart-at S``: S seconds after the start, the room's server is stopped (SIGTERM; SIGKILL after 15 s)
-and started again on the same port with the same database (it warms before it listens). A phone whose
-websocket dropped reconnects (after 0.5–1 s, then backing off to every 5 s, for 180 s at most, roughly as
-a browser's Streamlit does), runs the page again with the widget states it had (its typed text once sent) and, if its answer
-had not been confirmed, sends it again (at once, or at its moment if that is still to come). The new
-server has no sessions: a phone whose answer was in comes back as a new session, so the report says how
-many reopened pages still said "Your answer is in" (none can: the room knows a phone by its session) and
-how many sends were cut by the restart (their answer may be in the database without the phone knowing: a
-second send from the new session then counts it twice). Drops and refused connections while the server is
-down are counted, not errors. With ``--processes 2``, the first replica is the one restarted.
+``--restart-at S``: S seconds after the start, the room's server is stopped (SIGTERM; SIGKILL after 15 s) and
+started again on the same port with the same database (it warms before it listens). A phone whose websocket
+dropped reconnects (after 0.5–1 s, then backing off to every 5 s, for 180 s at most, roughly as a browser's
+Streamlit does), runs the page again with the widget states it had (its typed text once sent) and, if its
+answer had not been confirmed, sends it again (at once, or at its moment if that is still to come). The new
+server has no sessions: a phone whose answer was in comes back as a new session, so the report says how many
+reopened pages said "Your answer is in" (all should: the reconnect's handshake carries the phone's dl_room
+cookie, so the page is the same responder; a page that sets another token is an error) and how many sends were
+cut by the restart (their answer may be in the database without the phone knowing: the re-send from the new
+session, the same responder, changes it rather than adding one, which the database check at the end sees).
+Drops and refused connections while the server is down are counted, not errors. With ``--processes 2``, the
+first replica is the one restarted.
 
 ``--processes 2``: two room processes behind Debian's nginx with deploy/nginx.conf.template (as
 bench/lecture_load.py's ``start_servers``: DL_TRUSTED_PROXIES=*, sticky per browser by its dl_route cookie,
@@ -144,6 +149,9 @@ class Stats:
     interrupted: int = 0  # sends whose connection dropped before their run's end
     remembered: int = 0  # confirmed phones whose reconnected page said "Your answer is in"
     forgotten: int = 0  # ... and those whose page did not
+    cut_found: int = 0  # phones whose send was cut and whose reconnected page said "Your answer is in"
+    kept: int = 0  # reconnect handshakes that carried the phone's dl_room cookie
+    new_token: int = 0  # ... after which the page's watch set another token (the cookie not used)
     auto_reruns: int = 0  # ForwardMsg.auto_rerun seen (a polling fragment)
     counted_by: collections.Counter = field(default_factory=collections.Counter)  # confirmed answers per replica
     elsewhere: int = 0  # status requests nginx sent to another replica than the phone's websocket
@@ -253,29 +261,41 @@ class Client:
         self.reader.cancel()
 
 
+def cookie_header(jar: dict[str, str]) -> str:
+    """A phone's cookies as its browser sends them: ``Cookie: dl_room=…; dl_route=…`` ("" when none)."""
+    return "; ".join(f"{name}={value}" for name, value in jar.items())
+
+
 class Watch:
     """A phone's watch.js: one per phone, for the whole run (its timer outlives a dropped websocket, as the
-    page in the browser does). ``render`` is the element drawn with data it did not have."""
+    page in the browser does). ``render`` is the element drawn with data it did not have; every drawing sets
+    the phone's dl_room cookie (``document.cookie``) in ``jar``, the phone's cookies (its dl_route too)."""
 
-    def __init__(self, base: str, http: httpx.AsyncClient | None, stats: Stats, done: asyncio.Event):
-        self.base, self.http, self.stats, self.done = base, http, stats, done
+    def __init__(self, base: str, http: httpx.AsyncClient | None, stats: Stats, done: asyncio.Event,
+                 jar: dict[str, str]):
+        self.base, self.http, self.stats, self.done, self.jar = base, http, stats, done, jar
         self.data: dict | None = None
         self.trigger = ""  # the element's trigger widget id
         self.client: Client | None = None
-        self.cookie = self.replica = ""
+        self.replica = ""
         self.rendered = asyncio.Event()
         self.task = asyncio.create_task(self._loop()) if http is not None else None
 
-    def render(self, element, client: Client, cookie: str, replica: str) -> None:
-        self.client, self.cookie, self.replica = client, cookie, replica
+    def render(self, element, client: Client, replica: str) -> str:
+        """Take the drawn element; return the dl_room token its data sets ("" if none)."""
+        self.client, self.replica = client, replica
         if element is None:
-            return
+            return ""
         raw = element.bytes or element.json.encode()
         data = json.loads(raw)
+        name, _, value = str(data.get("cookie") or "").split(";", 1)[0].strip().partition("=")
+        if name and value:  # watch.js: document.cookie = data.cookie (a first-party cookie, path=/, 12 h)
+            self.jar[name] = value
         if data != self.data:
             from streamlit.components.v2.bidi_component.main import _make_trigger_id
             self.data, self.trigger = data, _make_trigger_id(element.id, "events")
             self.rendered.set()
+        return value if name == "dl_room" else ""
 
     async def _loop(self) -> None:
         rng = random.Random()
@@ -300,7 +320,8 @@ class Watch:
         sent = time.perf_counter()
         said = None
         try:
-            answer = await self.http.get(self.base + url, headers={"Cookie": self.cookie} if self.cookie else None)
+            cookie = cookie_header(self.jar)  # credentials: "same-origin": the browser sends its cookies
+            answer = await self.http.get(self.base + url, headers={"Cookie": cookie} if cookie else None)
             code = str(answer.status_code)
             if self.replica and answer.headers.get("x-replica", self.replica) != self.replica:
                 self.stats.elsewhere += 1
@@ -503,24 +524,26 @@ def verdict(messages) -> str:
     return "none"
 
 
-async def connect(url: str, source: str, cookie: str) -> tuple[object, str, str]:
-    """A websocket from ``source`` (with the browser's dl_route cookie, behind nginx): (it, the cookie, the
-    replica nginx chose: its X-Replica header, "" without nginx)."""
+async def connect(url: str, source: str, jar: dict[str, str]) -> tuple[object, str]:
+    """A websocket from ``source`` with the browser's cookies in its handshake (``jar``: the room's dl_room once
+    the watch has set it, nginx's dl_route behind nginx; websockets >= 14's ``additional_headers``); keeps
+    the dl_route nginx sets in ``jar``: (it, the replica nginx chose: its X-Replica header, "" without nginx)."""
+    cookie = cookie_header(jar)
     ws = await websockets.connect(url, subprotocols=["streamlit"], max_size=None, open_timeout=TIMEOUT,
                                   ping_interval=None, local_addr=(source, 0),
                                   additional_headers={"Cookie": cookie} if cookie else None)
     for said in ws.response.headers.get_all("Set-Cookie"):
         if said.startswith("dl_route="):
-            cookie = said.split(";", 1)[0]
-    return ws, cookie, ws.response.headers.get("X-Replica", "")
+            jar["dl_route"] = said.split(";", 1)[0].partition("=")[2]
+    return ws, ws.response.headers.get("X-Replica", "")
 
 
-async def connect_retrying(url: str, source: str, cookie: str, stats: Stats, outage: Outage, who: str):
+async def connect_retrying(url: str, source: str, jar: dict[str, str], stats: Stats, outage: Outage, who: str):
     """``connect``, again and again (0.5 s, backing off to 5 s) for RECONNECT_FOR s, as the browser does."""
     began, wait = time.perf_counter(), 0.5
     while True:
         try:
-            return await connect(url, source, cookie)
+            return await connect(url, source, jar)
         except (OSError, websockets.InvalidHandshake, asyncio.TimeoutError) as error:
             now = time.perf_counter()
             said = f"connect failed: {type(error).__name__}: {error}"[:160]
@@ -547,12 +570,15 @@ async def student(base: str, code: str, i: int, join_at: float, answer_at: float
     text, who = TEXTS[i % len(TEXTS)], f"session {i}"
     expected = "unreadable" if text in UNREADABLE else "counted"
     source = source_address(i)
-    watch = Watch(base, http, stats, done)
+    jar: dict[str, str] = {}  # the phone's cookies: dl_room (the watch sets it), dl_route (nginx's)
+    watch = Watch(base, http, stats, done, jar)
     client: Client | None = None
-    told, cookie, dropped_at, settled = None, "", None, False
+    told, dropped_at, settled, cut = None, None, False, False
     try:
         while not done.is_set():
-            ws, cookie, replica = await connect_retrying(ws_url, source, cookie, stats, outage, who)
+            token = jar.get("dl_room", "")  # the handshake carries it: the page is this phone again
+            ws, replica = await connect_retrying(ws_url, source, jar, stats, outage, who)
+            stats.kept += bool(token and dropped_at is not None)
             client = Client(ws, PAGE, f"c={code}", stats)
             try:
                 seconds, when, messages = await client.run(list(client.committed))
@@ -562,7 +588,10 @@ async def student(base: str, code: str, i: int, join_at: float, answer_at: float
                 else:
                     stats.reloads.append(seconds)
                     stats.reconnects.append(when - dropped_at)
-                watch.render(element, client, cookie, replica)
+                drawn = watch.render(element, client, replica)
+                if token and drawn and drawn != token:
+                    stats.new_token += 1
+                    stats.errors.append(f"{who}: the page set a new dl_room token despite the cookie it was sent")
                 if not fragment:
                     stats.errors.append(f"{who}: the answer box is not in a fragment")
                 if told == "counted":  # the page this new session draws: does it know the answer is in?
@@ -570,6 +599,8 @@ async def student(base: str, code: str, i: int, join_at: float, answer_at: float
                         stats.remembered += 1
                     else:
                         stats.forgotten += 1
+                elif told is None and cut and verdict(messages) == "counted":
+                    stats.cut_found += 1  # the cut send had landed: the re-send below is told "in" again, once
                 if told is None:
                     await until(start + answer_at, client.ended)
                     if client.closed:
@@ -581,7 +612,7 @@ async def student(base: str, code: str, i: int, join_at: float, answer_at: float
                     try:
                         seconds, when, messages = await client.run([typed, pressed], fragment)
                     except ConnectionError:
-                        stats.interrupted += 1
+                        stats.interrupted, cut = stats.interrupted + 1, True
                         raise
                     told = verdict(messages)
                     stats.answers.append((text, told, seconds, when))
@@ -633,7 +664,7 @@ async def empty_session(base: str, i: int, join_at: float, answer_at: float, sta
     await asyncio.sleep(max(0.0, start + join_at - time.perf_counter()))
     client, answered = None, False
     try:
-        ws, *_ = await connect(base.replace("http://", "ws://") + "/_stcore/stream", source_address(i), "")
+        ws, _ = await connect(base.replace("http://", "ws://") + "/_stcore/stream", source_address(i), {})
         client = Client(ws, EMPTY, "", stats)
         seconds, _, messages = await client.run([])
         stats.first_load.append(seconds)
@@ -981,8 +1012,10 @@ def report(args, code: str, out: dict, final, logs: dict, took: float, status_re
               f"expected: {dict(room.expected)}; sends cut by it {room.interrupted}; reconnected pages "
               f"{len(room.reloads)}: reload p50 {ms(percentile(room.reloads, 50))} / p95 {ms(percentile(room.reloads, 95))} ms, "
               f"drop to page p50 {percentile(room.reconnects, 50):.1f} / p95 {percentile(room.reconnects, 95):.1f} / "
-              f"max {max(room.reconnects, default=float('nan')):.1f} s; confirmed phones whose new page said "
-              f"'Your answer is in': {room.remembered}, did not: {room.forgotten}; verdicts past their planned "
+              f"max {max(room.reconnects, default=float('nan')):.1f} s; reconnects with the phone's dl_room cookie "
+              f"{room.kept} (a new token set after one: {room.new_token}); confirmed phones whose reopened page said "
+              f"'Your answer is in': {room.remembered}, did not: {room.forgotten}; cut sends whose reopened page "
+              f"said it: {room.cut_found}; verdicts past their planned "
               f"moment: p95 {percentile(room.late, 95):.1f} s, max {max(room.late, default=float('nan')):.1f} s")
     print(f"server memory growth during the burst: {out['rss burst']:.0f} MB")
     m = out["machine"]
@@ -1014,6 +1047,7 @@ def report(args, code: str, out: dict, final, logs: dict, took: float, status_re
             "restart": None if outage.began is None else {
                 "down s": outage.up - outage.began, "warm cpu": outage.warm_cpu, "expected": dict(room.expected),
                 "interrupted": room.interrupted, "remembered": room.remembered, "forgotten": room.forgotten,
+                "cut found": room.cut_found, "cookie reconnects": room.kept, "new token": room.new_token,
                 "reconnect p95": percentile(room.reconnects, 95), "late p95": percentile(room.late, 95)},
             "errors": {"room": room.errors, "empty": empty.errors}, "server log": logs,
         }, indent=1, default=str))
