@@ -213,7 +213,9 @@ class SessionBudget:
                 return await self._drop("too many messages waiting")
 
     def _hold(self, message: dict, runs: bool, merges: bool) -> None:
-        if not self.slowed:
+        # Said once, and only of a session past its own budget: one that waits for its address's turn (a
+        # hall behind one NAT, each phone sending a message in a while) is no flood of its own.
+        if not self.slowed and self.buckets[0].wait() > 0:
             self.slowed = True
             log.warning("session from %s sends more than %g messages a second: slowed", self.who, RATE)
         if self.over_since is None:

@@ -324,7 +324,8 @@ def test_a_person_who_waits_the_address_s_turn_is_never_dropped(monkeypatch):
         feeding = asyncio.ensure_future(person())
         got = await drain(mine, 1.0)
         await feeding
-        return got
+        return got, mine
 
-    got = asyncio.run(scenario())
+    got, mine = asyncio.run(scenario())
     assert [m["type"] for m in got] == ["websocket.receive"] * 8, got
+    assert not mine.slowed  # nor logged as a flood ("sends more than 10 messages a second": it sent 8 in 0.8 s)
