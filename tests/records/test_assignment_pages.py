@@ -19,27 +19,17 @@ from assignments import db, records, signing
 from assignments.identity import StudentIdentity, link_query, parameters
 from solvers import pendulum_rebound
 from solvers import units
+from tests.conftest import INSTRUCTOR_KEY
+from tests.records.conftest import reset_database_caches
 
 ROOT = Path(__file__).resolve().parents[2]
-KEY, SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
+KEY, SECRET = INSTRUCTOR_KEY, "course-secret-for-the-tests-0018"
 INSTRUCTOR_PAGE = str(ROOT / "app_pages" / "gradebook.py")
 
 
-def reset_database_caches():
-    from ui.session import schema_ready
-
-    db.engine.cache_clear()
-    schema_ready.clear()
-
-
 @pytest.fixture
-def course(monkeypatch, tmp_path):
-    monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
+def course(course_database, monkeypatch):
     monkeypatch.setenv(signing.SECRET_ENV, SECRET)
-    monkeypatch.setenv(db.URL_ENV, f"sqlite:///{tmp_path / 'course.sqlite'}")
-    reset_database_caches()
-    yield
-    reset_database_caches()
 
 
 def instructor(*, key: bool = True) -> AppTest:

@@ -15,28 +15,19 @@ from assignments import db
 from room import store
 from solvers import units
 from solvers.catalog import BY_ID
+from tests.conftest import INSTRUCTOR_KEY
+from tests.records.conftest import reset_database_caches
 
 ROOT = Path(__file__).resolve().parents[2]
-KEY = "instructor-key-0018"
+KEY = INSTRUCTOR_KEY
 PID = "disk_wall"
 
 
-def reset_database_caches():
-    from ui.session import schema_ready
-
-    db.engine.cache_clear()
-    schema_ready.clear()
-
-
 @pytest.fixture
-def course(monkeypatch, tmp_path):
-    monkeypatch.setenv("DL_INSTRUCTOR_KEY", KEY)
-    monkeypatch.setenv(db.URL_ENV, f"sqlite:///{tmp_path / 'course.sqlite'}")
+def course(course_database, monkeypatch):
     monkeypatch.setattr("ui.room.SEND_EVERY", 0.0)  # (a test's sends come faster than a thumb's)
     store.CODE_THROTTLE.records.clear()
-    reset_database_caches()
     yield
-    reset_database_caches()
     store.CODE_THROTTLE.records.clear()
 
 
