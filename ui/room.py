@@ -66,8 +66,13 @@ def projector(problem: Problem, system: str) -> bool:
     return last.hide_motion and last.status != "revealed"
 
 
+def _stage_params(problem: Problem) -> dict:
+    """The parameters the stage has now (the lesson's last run keeps them in SI), or the problem's own."""
+    return st.session_state.get(f"{problem.id}__si") or dict(problem.solver.solve().params)
+
+
 def _ask_controls(problem: Problem, system: str) -> None:
-    params = st.session_state.get(f"{problem.id}__si") or dict(problem.solver.solve().params)
+    params = _stage_params(problem)
     asked = questions.questions(problem.id, params)
     with st.sidebar:
         if st.session_state.get(f"{problem.id}__room_error"):
@@ -87,7 +92,7 @@ def _ask_controls(problem: Problem, system: str) -> None:
 def _ask(problem: Problem, system: str) -> None:
     """The button's press: the question and the switch as they are now (read here, not when the button was
     drawn), at the parameters the stage has."""
-    params = st.session_state.get(f"{problem.id}__si") or dict(problem.solver.solve().params)
+    params = _stage_params(problem)
     chosen = st.session_state.get(f"{problem.id}__room_question")
     key = chosen.key if isinstance(chosen, questions.Question) else ""
     hide = bool(st.session_state.get(f"{problem.id}__room_hide", True))
@@ -165,17 +170,18 @@ def _next_steps(last: store.Round) -> None:
     """The instructor's buttons in one row: close the answers, reveal, ask again, end; the answers as CSV."""
     row = st.container(horizontal=True, gap="small")
     if last.status == "open":
-        row.button("Close answers", key="room__close", type="primary", on_click=_set, args=(last.id, "closed"))
+        row.button("Close answers", key="room__close", type="primary", on_click=_step,
+                   args=(store.set_status, last.id, "closed"))
     elif last.status == "closed":
         # the stage comes back with the reveal: the whole page runs again, not this fragment alone
         if row.button("Reveal", key="room__reveal", type="primary"):
-            _set(last.id, "revealed")
+            _step(store.set_status, last.id, "revealed")
             st.rerun()
     if last.status != "open":
-        row.button("Ask again", key="room__again", on_click=_again, args=(last.code,),
+        row.button("Ask again", key="room__again", on_click=_step, args=(store.ask_again, last.code),
                    help="The same question, a new vote (after a discussion): both votes are shown side by side.")
     if row.button("End", key="room__end", help="Back to the lesson; the answers stay in the records."):
-        _set(last.id, "ended")
+        _step(store.set_status, last.id, "ended")
         st.rerun()
     # made when pressed, not on each of the projector's runs (every PROJECTOR_EVERY s)
     row.download_button("CSV", functools.partial(_csv, last.code), file_name=f"room-{last.code}.csv",
@@ -189,16 +195,11 @@ def _csv(code: str) -> str:
         return f"{error}\n"
 
 
-def _set(round_id: int, status: str) -> None:
+def _step(do, *args) -> None:
+    """One of the instructor's steps on the records (``store.set_status``, ``store.ask_again``); a failure is
+    said in a toast, never a traceback."""
     try:
-        store.set_status(round_id, status)
-    except (RecordingUnavailable, LookupError) as error:
-        st.toast(str(error) or "That question is gone.")
-
-
-def _again(code: str) -> None:
-    try:
-        store.ask_again(code)
+        do(*args)
     except (RecordingUnavailable, LookupError) as error:
         st.toast(str(error) or "That question is gone.")
 
