@@ -76,7 +76,7 @@ def _ask_controls(problem: Problem, system: str) -> None:
     asked = questions.questions(problem.id, params)
     with st.sidebar:
         if st.session_state.get(f"{problem.id}__room_error"):
-            st.error(st.session_state.pop(f"{problem.id}__room_error"), icon=":material/cloud_off:")
+            st.error(st.session_state.pop(f"{problem.id}__room_error"), icon=":material/error:")
         st.markdown("### Ask the room", help="The room answers on its phones (no account); you close the "
                     "question, reveal the answer, then play the motion. The room sees the parameters the "
                     "stage has now.")
@@ -96,7 +96,9 @@ def _ask(problem: Problem, system: str) -> None:
     chosen = st.session_state.get(f"{problem.id}__room_question")
     key = chosen.key if isinstance(chosen, questions.Question) else ""
     hide = bool(st.session_state.get(f"{problem.id}__room_hide", True))
-    if questions.question(problem.id, params, key) is None:
+    if questions.question(problem.id, params, key) is None:  # (the list was drawn before the stage last changed)
+        st.session_state[f"{problem.id}__room_error"] = ("That question cannot be asked at the stage's parameters "
+                                                         "now: choose it again from the list.")
         return
     schema_ready()
     try:

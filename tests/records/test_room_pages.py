@@ -177,3 +177,16 @@ def test_with_the_database_down_each_side_says_so(course, monkeypatch):
     assert not at.exception
     at.sidebar.button(key=f"{PID}__room_ask").click().run()
     assert not at.exception and any("cannot be reached" in e.value for e in at.sidebar.error)
+
+
+def test_a_question_the_stage_has_moved_past_is_said_not_asked(course):
+    """The sidebar's list is drawn on the page's run; a lesson control reruns the stage alone. An answer asked
+    after the cart was driven past its wheelie (the model refuses: no answers) is said, and nothing asked."""
+    at = AppTest.from_file(str(ROOT / "app_pages" / "driven_cart.py"), default_timeout=60)
+    at.query_params.update({"lecture": "1", "instructor": KEY})
+    at.run()
+    at.sidebar.selectbox(key="driven_cart__room_question").select_index(0)  # the acceleration
+    at.session_state["driven_cart__si"] = {**BY_ID["driven_cart"].solver.solve().params, "drive": "rear", "mu": 3.0}
+    at.sidebar.button(key="driven_cart__room_ask").click().run()
+    assert not at.exception and "driven_cart__room_code" not in at.session_state
+    assert any("cannot be asked at the stage's parameters now" in e.value for e in at.sidebar.error)
