@@ -8,12 +8,13 @@ Skipped when Chromium is missing on a workstation; in CI (CI set) a missing brow
 from __future__ import annotations
 
 import re
+import time
 from pathlib import Path
 
 import pytest
 
 from edge.streamlit_dom import SELECTORS
-from scripts.live_app import IDLE_WATCH, wait_until_idle
+from scripts.live_app import IDLE_WATCH, settle, wait_until_idle
 from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
@@ -29,6 +30,15 @@ def open_page(browser, url: str, width: int = 1400, height: int = 1000, phone: b
     return (lease, *open_in(lease, url))
 
 
+def watched_context(browser, **options):
+    """A new browser context (``browser.new_context``'s options) whose pages keep the records ``wait_until_idle``
+    and ``csp_violations`` read (``IDLE_WATCH``, ``CSP_WATCH``), for a test that needs a context of its own."""
+    context = browser.new_context(**options)
+    context.add_init_script(CSP_WATCH)
+    context.add_init_script(IDLE_WATCH)
+    return context
+
+
 def kept_context(browser, width: int = 1400, height: int = 1000, phone: bool = False, zone: str | None = None):
     """The module's context for this viewport (a phone: mobile, touch, 2× pixels) and time zone, as a ``Lease``
     (``close()`` when done)."""
@@ -38,10 +48,7 @@ def kept_context(browser, width: int = 1400, height: int = 1000, phone: bool = F
     key = (width, height, phone, zone)
     kept = _KEPT.setdefault(browser, {})
     if key not in kept or kept[key].closed:
-        context = browser.new_context(viewport={"width": width, "height": height}, **extra)
-        context.add_init_script(CSP_WATCH)
-        context.add_init_script(IDLE_WATCH)
-        kept[key] = Kept(context)
+        kept[key] = Kept(watched_context(browser, viewport={"width": width, "height": height}, **extra))
     return Lease(kept[key])
 
 
@@ -151,6 +158,17 @@ CSP_WATCH = ("window.__csp = []; document.addEventListener('securitypolicyviolat
              " WebSocket.prototype.send = function (data) { window.__sent++; return send.call(this, data); };")
 
 
+def wait_moved(graph, snapshot: str, start: str, timeout: float = 10) -> str:
+    """``graph``'s ``snapshot`` (an expression of the element) once it differs from ``start`` (a Play has moved the
+    animation), or as it is after ``timeout`` seconds (the caller asserts it moved)."""
+    deadline = time.monotonic() + timeout
+    now = graph.evaluate(snapshot)
+    while now == start and time.monotonic() < deadline:
+        graph.page.wait_for_timeout(50)
+        now = graph.evaluate(snapshot)
+    return now
+
+
 def csp_violations(page) -> list[str]:
     return page.evaluate("window.__csp")
 
@@ -183,7 +201,7 @@ def test_a_deep_link_on_a_fresh_server_gets_the_app(browser, fresh_server):
 def test_without_katex_the_answers_still_show_their_values(browser, app_url):
     """KaTeX's script lost on the way (a network dropping mid-visit): the answers' numbers, the
     ledger and the checks still show, the symbols and equations as their TeX."""
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     context.route("**/katex.*.min.js", lambda route: route.abort())
     page = context.new_page()
     errors: list[str] = []
@@ -225,7 +243,7 @@ def test_every_request_stays_on_the_app_s_own_server(browser, app_url):
     """A lecture hall's network, or a course site's policy, may reach nothing but the app: no font,
     icon or script from anywhere else (the tab's icon too: a Material icon there was fetched from
     fonts.gstatic.com)."""
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     elsewhere: list[str] = []
     context.on("request", lambda r: None if r.url.startswith((app_url, "data:", "blob:")) else elsewhere.append(r.url))
     page = context.new_page()
@@ -233,7 +251,7 @@ def test_every_request_stays_on_the_app_s_own_server(browser, app_url):
         page.goto(app_url + path)
         wait_until_idle(page)
     page.locator("[data-testid='stMain'] .js-plotly-plot").first.wait_for(timeout=30_000)  # really drawn
-    page.wait_for_timeout(500)  # and what it asks for after drawing
+    settle(page, 500)  # and what it asks for after drawing
     assert not elsewhere, elsewhere
     context.close()
 
@@ -289,8 +307,7 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
                 "t.y && Array.from(t.y).slice(0, 4)]))")
     start = graph.evaluate(snapshot)
     figure.get_by_role("button", name="Play the animation").click()
-    page.wait_for_timeout(1500)
-    assert graph.evaluate(snapshot) != start, "Play did not move the animation"
+    assert wait_moved(graph, snapshot, start) != start, "Play did not move the animation"
     figure.get_by_role("button", name="Pause the animation").click()
     page.wait_for_timeout(300)
     paused = graph.evaluate(snapshot)
@@ -382,7 +399,7 @@ def test_a_revisit_downloads_no_plotly_again_and_a_page_compiles_one(browser, ap
     """What can be counted of issue 13: a second visit in the same browser moves ≤ 100 KB over
     HTTP (the figure's plotly.js bundle comes from the cache: serve.py gives it a year's lifetime),
     and a page with two figures loads one plotly.js, in the page itself (no frame per figure)."""
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     visits = []
     for _ in range(2):
         page = context.new_page()
@@ -396,7 +413,7 @@ def test_a_revisit_downloads_no_plotly_again_and_a_page_compiles_one(browser, ap
         page.goto(f"{app_url}/driven_cart")  # two figures
         wait_until_idle(page)
         page.locator(".dl-figure").last.locator(".main-svg").first.wait_for()
-        page.wait_for_timeout(500)
+        settle(page, 500)
         assert page.locator(".dl-graph.js-plotly-plot").count() == 2 and page.locator("iframe").count() == 0
         assert page.evaluate("document.querySelectorAll('script[src*=\"/plotly-\"]').length") == 1
         visits.append(received)
@@ -423,7 +440,7 @@ def test_the_browser_rebuilds_the_frames_the_server_means(browser, app_url):
 
     from viz.common import expanded
 
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     page = context.new_page()
     for problem in PROBLEMS:
         figure = importlib.import_module(f"viz.{problem.id}").figures(problem.solver.solve(), "si")[0]
@@ -761,7 +778,7 @@ def test_a_posed_figure_is_drawn_as_plotly_draws_it(browser, app_url):
       return {written, before, after: drawn()};
     }"""
     points = lambda path: np.array([[float(v) for v in xy.split(",")] for xy in re.findall(r"-?[\d.]+,-?[\d.]+", path or "")]).reshape(-1, 2)  # noqa: E731
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     page = context.new_page()
     for problem in PROBLEMS:
         if problem.id == "eulers_disk":  # a 3-D scene: its pose is set on its WebGL objects (sceneUpdate)
@@ -1019,7 +1036,7 @@ def test_keyboard_focus_is_seen_on_a_switch_and_on_the_main_area(browser, app_ur
     """Tabbing onto "No slip at the contact" showed only a label background 1.1:1 against the page, and the main
     area (the skip link's target, a tab stop) showed nothing: both are outlined, 2 px, in the text's colour. In a
     context of its own: a page opened beside others in a kept one did not show the main area's :focus-visible."""
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     page, errors = open_in(context, f"{app_url}/disk_wall")
     seen = {}
     for _ in range(60):

@@ -12,7 +12,7 @@ import pytest
 
 from practice.diagram_judge import exercise_diagram
 from solvers import registry
-from tests.browser.test_browser import open_page
+from tests.browser.test_browser import open_page, watched_context
 
 pytestmark = pytest.mark.browser
 
@@ -158,7 +158,7 @@ def test_nothing_of_the_diagram_reaches_the_browser_before_the_solution(browser,
     diagram = exercise_diagram(solver, solver.solve())
     bodies = {b.name for b in diagram.bodies}
     telling = [load.name for load in diagram.loads if load.name not in bodies] + ['class="dl-fbd"', "isolated. "]
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     page = context.new_page()
     received: list[bytes] = []
     page.on("websocket", lambda ws: ws.on("framereceived", lambda f: received.append(

@@ -21,6 +21,7 @@ from lti import launch as lti
 from practice.variants import ASSIGNMENT, variant
 from scripts.live_app import free_port, launch_browser, start_app, wait_healthy, wait_until_idle
 from solvers import disk_wall, units
+from tests.browser.test_browser import watched_context
 from tests.lti_platform import INSTRUCTOR, ISSUER, LEARNER, LmsEmulator
 
 pytestmark = pytest.mark.browser
@@ -78,7 +79,7 @@ def test_deep_link_learner_launch_and_grade_passback_in_an_lms_frame(browser, da
         proc = start_app(port, env=env)
         try:
             wait_healthy(tool_url, proc=proc)
-            context = browser.new_context(viewport={"width": 1400, "height": 1000})
+            context = watched_context(browser, viewport={"width": 1400, "height": 1000})
             page = context.new_page()
             errors: list[str] = []
             page.on("pageerror", lambda exc: errors.append(str(exc)))

@@ -16,7 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from scripts.live_app import CHROMIUM, wait_until_idle
+from scripts.live_app import CHROMIUM, settle, wait_until_idle
+from tests.browser.test_browser import watched_context
 from tests.conftest import INSTRUCTOR_KEY as KEY
 from solvers.catalog import PROBLEMS
 
@@ -89,7 +90,7 @@ def check_printout(browser, url: str, name: str, tmp_path: Path, wait_for: tuple
                    links: tuple[str, ...] | None = None) -> str:
     """Print ``url`` once ``wait_for`` (selectors) are drawn, and check it; returns the printed text.
     ``links``: the links it must print (by default the page's own address)."""
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     page = context.new_page()
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))
@@ -98,7 +99,7 @@ def check_printout(browser, url: str, name: str, tmp_path: Path, wait_for: tuple
     for drawn in wait_for:  # the page's own elements draw after the run (KaTeX, plotly.js load first)
         page.locator(drawn).first.wait_for(timeout=30_000)
     page.wait_for_load_state("networkidle")
-    page.wait_for_timeout(300)
+    settle(page, 300)
     chrome = screen_chrome(page)
     assert chrome, "the screen shows controls"
     link = page.evaluate("location.href")
@@ -183,7 +184,7 @@ def test_a_handout_prints_each_student_from_a_new_sheet(browser, app_url, what, 
 
 def test_the_handouts_address_keeps_the_answer_key(browser, app_url):
     """Issue 54: choosing Answer key left what=statements in the address; the link now reopens the key."""
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     page = context.new_page()
     page.goto(f"{app_url}/handouts?instructor={KEY}&problem=stick_ball&first=3&last=4")
     wait_until_idle(page)
@@ -255,7 +256,7 @@ def headings_left_at_a_foot(page, path: Path) -> list[str]:
 def test_a_handouts_answer_key_keeps_each_heading_with_what_follows(browser, app_url, problem, tmp_path):
     """Issue 54: the answer key left a step's title at the foot of one page and its equation on the next
     (and may a heading). On paper each stays with what follows it."""
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000})
     page = context.new_page()
     page.goto(f"{app_url}/handouts?instructor={KEY}&problem={problem.id}&first=1&last=3&what=key")
     wait_until_idle(page)

@@ -10,8 +10,8 @@ import time
 
 import pytest
 
-from scripts.live_app import wait_until_idle
-from tests.browser.test_browser import open_page, visit
+from scripts.live_app import settle, wait_until_idle
+from tests.browser.test_browser import open_page, visit, watched_context
 from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
@@ -137,7 +137,7 @@ def test_on_a_phone_no_value_unit_or_word_breaks_inside(browser, app_url, size):
         visit(page, app_url, path)  # from the navigation where it can be, as a student goes from page to page
         if path:
             page.locator(".dl-answers table, [data-testid='stMain'] table").first.wait_for(timeout=30_000)
-        page.wait_for_timeout(500)
+        settle(page, 500)
         broken = page.evaluate(BROKEN)
         if broken:
             found[path] = broken
@@ -154,7 +154,7 @@ def test_on_a_phone_no_value_unit_or_word_breaks_inside(browser, app_url, size):
 def first_figure(page):
     figure = page.locator(".dl-figure").first
     figure.locator(".dl-graph .main-svg").first.wait_for(timeout=30_000)
-    page.wait_for_timeout(500)
+    settle(page, 500)
     return figure
 
 
@@ -181,7 +181,7 @@ def test_play_keeps_the_stated_duration_without_a_gpu(browser, app_url, problem)
     stated = (frames - 1) * frame_ms
     context, page, errors = open_page(browser, f"{app_url}/{problem.id}", 1400, 1000)
     figure = first_figure(page)
-    page.wait_for_timeout(1000)
+    settle(page, 1000)
     figure.evaluate(RECORD_PLAY)
     figure.get_by_role("button", name="Play the animation").click()
     page.wait_for_function(f"() => window.dlShown.length && window.dlShown.at(-1)[1] === {frames - 1}",
@@ -220,7 +220,7 @@ def test_euler_s_disk_s_axis_titles_are_inside_its_figure(browser, app_url, size
     absent, "y (mm" cut): they are the scene's own annotations, kept inside the graph."""
     context, page, errors = open_sized(browser, f"{app_url}/eulers_disk", size)
     figure = first_figure(page)
-    page.wait_for_timeout(1000)
+    settle(page, 1000)
     graph = figure.locator(".dl-graph").bounding_box()
     titles = {}
     for text in figure.locator(".dl-graph svg text").all():
@@ -257,7 +257,7 @@ def test_a_navigation_link_reached_by_the_keyboard_shows_its_focus(browser, app_
     """Tab onto the navigation's links (the current page's among them): each shows a solid outline in
     a colour that stands out from the sidebar (Streamlit tinted it a faint grey, rgba(…, 0.15), the same
     as the current page's background: there focus could not be seen)."""
-    context = browser.new_context(viewport={"width": 1400, "height": 1000}, color_scheme=theme)  # the OS's theme
+    context = watched_context(browser, viewport={"width": 1400, "height": 1000}, color_scheme=theme)  # the OS's theme
     page = context.new_page()
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import pytest
 
-from scripts.live_app import wait_until_idle
-from tests.browser.test_browser import kept_context, open_page, tour, visit
+from scripts.live_app import settle, wait_until_idle
+from tests.browser.test_browser import kept_context, open_page, tour, visit, wait_moved, watched_context
 from tests.browser.test_stage import MOTION_SCALE, overlaps, stage_faults, stage_graph
 from solvers.catalog import PROBLEMS
 from ui.params import is_slider
@@ -44,7 +44,7 @@ def graph_of(page):
     """The first figure, once its graph is drawn."""
     figure = page.locator(FIGURE).first
     figure.locator(".dl-graph .main-svg").first.wait_for()
-    page.wait_for_timeout(300)
+    settle(page, 300)
     return figure
 
 
@@ -226,8 +226,7 @@ def test_on_a_phone(browser, app_url, size):
         graph = frame.locator(".dl-graph")
         start = graph.evaluate(SNAPSHOT)
         frame.get_by_role("button", name="Play the animation").tap()
-        page.wait_for_timeout(1200)
-        assert graph.evaluate(SNAPSHOT) != start, f"{where}: a tap on Play did not move the animation"
+        assert wait_moved(graph, SNAPSHOT, start) != start, f"{where}: a tap on Play did not move the animation"
         frame.get_by_role("button", name="Pause the animation").tap()
         if width == 360:
             assert serious_violations(page) == [], where
@@ -264,7 +263,7 @@ VIEWS = [("", "home")] + [(f"{p.id}{q}", f"{p.id}{q or '-study'}") for p in PROB
 
 def test_no_serious_accessibility_violations_in_study_and_practice_and_home(browser, app_url):
     """The lecture view is audited in the projector test, the study view again on a phone."""
-    context = browser.new_context(viewport={"width": 1280, "height": 720})
+    context = watched_context(browser, viewport={"width": 1280, "height": 720})
     page = context.new_page()
     found = {}
     for path, name in VIEWS:
