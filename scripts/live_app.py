@@ -132,23 +132,27 @@ for (const type of ['keydown', 'keyup', 'pointerdown', 'pointerup', 'touchend', 
   window.addEventListener(type, () => {{ window.__dlIdle.input = performance.now(); }}, true);
 new MutationObserver(() => {{ window.__dlIdle.mutated = performance.now(); }})
   .observe(document, {{subtree: true, childList: true, attributes: true, characterData: true}});"""
-# How long the page is left alone before it counts as idle: after a run ends, after the page last sent and after
-# the call (for a run still to be asked), ``QUIET_MS``; after a person's last input, ``INPUT_QUIET_MS``: a slider
-# sends its value 200 ms after the key (Streamlit's debounce), a page link or a typed value at once. Without
-# IDLE_WATCH, ``QUIET_MS_BLIND`` before and after the run.
-QUIET_MS, INPUT_QUIET_MS, QUIET_MS_BLIND = 150, 400, 300
-IDLE_NOW = f"""([from, quiet, afterInput]) => {{ const s = window.__dlIdle, app = document.querySelector("{SELECTORS['app']}"),
-  now = performance.now();
+# How long the page is left alone before it counts as idle: ``QUIET_MS`` after a run ends, after the page last
+# sent and after the call (for a run still to be asked), with nothing in the document changed for
+# ``DRAWN_MS`` (the run's output drawn: an element that asks for a run of its own once drawn has asked);
+# where the document keeps changing (an animation playing), ``BUSY_QUIET_MS`` instead. And
+# ``INPUT_QUIET_MS`` after a person's last input: a slider sends its value 200 ms after its key (Streamlit's
+# debounce), a page link or a typed value at once. Without IDLE_WATCH, ``QUIET_MS_BLIND`` before and after
+# the run.
+QUIET_MS, DRAWN_MS, BUSY_QUIET_MS, INPUT_QUIET_MS, QUIET_MS_BLIND = 150, 100, 300, 400, 300
+IDLE_NOW = f"""([from, quiet, drawn, busy, afterInput]) => {{ const s = window.__dlIdle, now = performance.now(),
+  app = document.querySelector("{SELECTORS['app']}"), ran = now - Math.max(s.changed, s.sent, from);
   return !!app && app.getAttribute('{ATTRIBUTES["scriptState"]}') === '{SCRIPT_IDLE}' && s.runs > 0
-         && now - Math.max(s.changed, s.sent, from) >= quiet && now - s.input >= afterInput; }}"""
+         && ran >= quiet && (now - s.mutated >= drawn || ran >= busy) && now - s.input >= afterInput; }}"""
 
 
-SETTLED = """([from, quiet]) => performance.now() - Math.max(window.__dlIdle.mutated, from) >= quiet"""
+SETTLED = """([from, quiet]) => performance.now() - Math.max(window.__dlIdle.mutated, from) >= quiet
+  && !document.getAnimations().some((a) => a.playState === 'running' && isFinite(a.effect.getComputedTiming().endTime))"""
 
 
 def settle(page, at_most: float, quiet: float = 150) -> None:
     """Wait for what the page draws to settle (a figure's redraw, a pose, a refit): nothing in its document
-    changed for ``quiet`` ms, checked on each animation frame; at most ``at_most`` ms, then go on, as the fixed
+    changed for ``quiet`` ms and no CSS transition under way (a control's fade), checked on each animation frame; at most ``at_most`` ms, then go on, as the fixed
     wait of that length it replaces did (a page still animating is left to the caller's check). Where the page
     has no ``IDLE_WATCH``, the fixed wait."""
     from playwright.sync_api import TimeoutError as Timeout
@@ -165,14 +169,15 @@ def settle(page, at_most: float, quiet: float = 150) -> None:
 
 def wait_until_idle(page, timeout: float = 30_000) -> None:
     """Wait for the script run to finish (and for Streamlit to have started one at all), then for the page
-    to be quiet: no run state changed and nothing sent for ``QUIET_MS``, no input for ``INPUT_QUIET_MS`` (a
-    control's change may be sent a moment after the key or the pointer). In a page with ``IDLE_WATCH``, a
+    to be quiet: no run state changed and nothing sent for ``QUIET_MS``, the run's output drawn, no input for
+    ``INPUT_QUIET_MS`` (a control's change may be sent a moment after the key or the pointer). In a page with ``IDLE_WATCH``, a
     page's first run is waited for and a run's end is seen as it happens; elsewhere, fixed times before and
     after."""
     app = SELECTORS["app"]
     page.wait_for_selector(app, timeout=timeout)
     if page.evaluate("() => !!window.__dlIdle"):
-        page.wait_for_function(IDLE_NOW, arg=[page.evaluate("performance.now()"), QUIET_MS, INPUT_QUIET_MS],
+        page.wait_for_function(IDLE_NOW, arg=[page.evaluate("performance.now()"), QUIET_MS, DRAWN_MS, BUSY_QUIET_MS,
+                                                      INPUT_QUIET_MS],
                                timeout=timeout)
         return
     page.wait_for_timeout(QUIET_MS_BLIND)

@@ -49,7 +49,9 @@ def graph_of(page):
 
 
 def serious_violations(page) -> list[str]:
-    """axe-core's serious and critical WCAG 2.1 A/AA findings, in the page and in every frame."""
+    """axe-core's serious and critical WCAG 2.1 A/AA findings, in the page and in every frame, once what it
+    draws has settled (a colour fading in is measured at its end)."""
+    settle(page, 1000)
     axe = axe_playwright.Axe()
     found = []
     for frame in page.frames:
