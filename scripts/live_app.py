@@ -116,11 +116,10 @@ def launch_browser(playwright):
 
 
 # A page's record of its script runs, installed before its own scripts (``context.add_init_script(IDLE_WATCH)``):
-# how many runs have ended, when the run state last changed, when the page last sent on its websocket (a
-# widget's change, a page link: each a run asked for), when a person's input last reached it (a key, the
-# pointer, a finger, a typed value) and when anything in the document last changed (``settle``).
-# ``wait_until_idle`` then waits on what happened.
-IDLE_WATCH = f"""window.__dlIdle = {{runs: 0, changed: 0, sent: 0, input: 0, mutated: 0}};
+# how many runs have ended, when the run state last changed and when the page last sent on its websocket (a
+# widget's change, a page link: each a run asked for), for ``wait_until_idle``; and when anything in the
+# document last changed, for ``settle``.
+IDLE_WATCH = f"""window.__dlIdle = {{runs: 0, changed: 0, sent: 0, mutated: 0}};
 new MutationObserver((records) => {{ for (const r of records) {{
   window.__dlIdle.changed = performance.now();
   if (r.target.getAttribute(r.attributeName) === '{SCRIPT_IDLE}' && r.oldValue !== '{SCRIPT_IDLE}') window.__dlIdle.runs++;
@@ -128,22 +127,15 @@ new MutationObserver((records) => {{ for (const r of records) {{
                           attributeFilter: ['{ATTRIBUTES["scriptState"]}']}});
 const dlIdleSend = WebSocket.prototype.send;
 WebSocket.prototype.send = function (data) {{ window.__dlIdle.sent = performance.now(); return dlIdleSend.call(this, data); }};
-for (const type of ['keydown', 'keyup', 'pointerdown', 'pointerup', 'touchend', 'input', 'change', 'click'])
-  window.addEventListener(type, () => {{ window.__dlIdle.input = performance.now(); }}, true);
 new MutationObserver(() => {{ window.__dlIdle.mutated = performance.now(); }})
   .observe(document, {{subtree: true, childList: true, attributes: true, characterData: true}});"""
-# How long the page is left alone before it counts as idle: ``QUIET_MS`` after a run ends, after the page last
-# sent and after the call (for a run still to be asked), with nothing in the document changed for
-# ``DRAWN_MS`` (the run's output drawn: an element that asks for a run of its own once drawn has asked);
-# where the document keeps changing (an animation playing), ``BUSY_QUIET_MS`` instead. And
-# ``INPUT_QUIET_MS`` after a person's last input: a slider sends its value 200 ms after its key (Streamlit's
-# debounce), a page link or a typed value at once. Without IDLE_WATCH, ``QUIET_MS_BLIND`` before and after
-# the run.
-QUIET_MS, DRAWN_MS, BUSY_QUIET_MS, INPUT_QUIET_MS, QUIET_MS_BLIND = 150, 100, 300, 400, 300
-IDLE_NOW = f"""([from, quiet, drawn, busy, afterInput]) => {{ const s = window.__dlIdle, now = performance.now(),
-  app = document.querySelector("{SELECTORS['app']}"), ran = now - Math.max(s.changed, s.sent, from);
+# How long the page is left alone after a run ends (or after the call, for a run still to be asked). 150 ms, with
+# a person's input waited out for 400 ms, let a run asked 200-300 ms after the last one's end through (the
+# gradebook's choice typed into a list being redrawn, in two of 186 tests).
+QUIET_MS = 300
+IDLE_NOW = f"""([from, quiet]) => {{ const s = window.__dlIdle, app = document.querySelector("{SELECTORS['app']}");
   return !!app && app.getAttribute('{ATTRIBUTES["scriptState"]}') === '{SCRIPT_IDLE}' && s.runs > 0
-         && ran >= quiet && (now - s.mutated >= drawn || ran >= busy) && now - s.input >= afterInput; }}"""
+         && performance.now() - Math.max(s.changed, s.sent, from) >= quiet; }}"""
 
 
 SETTLED = """([from, quiet]) => performance.now() - Math.max(window.__dlIdle.mutated, from) >= quiet
@@ -152,9 +144,9 @@ SETTLED = """([from, quiet]) => performance.now() - Math.max(window.__dlIdle.mut
 
 def settle(page, at_most: float, quiet: float = 150) -> None:
     """Wait for what the page draws to settle (a figure's redraw, a pose, a refit): nothing in its document
-    changed for ``quiet`` ms and no CSS transition under way (a control's fade), checked on each animation frame; at most ``at_most`` ms, then go on, as the fixed
-    wait of that length it replaces did (a page still animating is left to the caller's check). Where the page
-    has no ``IDLE_WATCH``, the fixed wait."""
+    changed for ``quiet`` ms and no CSS transition under way (a control's fade), checked on each animation
+    frame; at most ``at_most`` ms, then go on, as the fixed wait of that length it replaces did (a page still
+    animating is left to the caller's check). Where the page has no ``IDLE_WATCH``, the fixed wait."""
     from playwright.sync_api import TimeoutError as Timeout
 
     if not page.evaluate("() => !!window.__dlIdle"):
@@ -169,17 +161,14 @@ def settle(page, at_most: float, quiet: float = 150) -> None:
 
 def wait_until_idle(page, timeout: float = 30_000) -> None:
     """Wait for the script run to finish (and for Streamlit to have started one at all), then for the page
-    to be quiet: no run state changed and nothing sent for ``QUIET_MS``, the run's output drawn, no input for
-    ``INPUT_QUIET_MS`` (a control's change may be sent a moment after the key or the pointer). In a page with ``IDLE_WATCH``, a
-    page's first run is waited for and a run's end is seen as it happens; elsewhere, fixed times before and
-    after."""
+    to be quiet for ``QUIET_MS``: no run state changed and nothing sent (a control's change may be sent a
+    moment after the key or the pointer). In a page with ``IDLE_WATCH``, a page's first run is waited for
+    and a run's end is seen as it happens; elsewhere, fixed times before and after."""
     app = SELECTORS["app"]
     page.wait_for_selector(app, timeout=timeout)
     if page.evaluate("() => !!window.__dlIdle"):
-        page.wait_for_function(IDLE_NOW, arg=[page.evaluate("performance.now()"), QUIET_MS, DRAWN_MS, BUSY_QUIET_MS,
-                                                      INPUT_QUIET_MS],
-                               timeout=timeout)
+        page.wait_for_function(IDLE_NOW, arg=[page.evaluate("performance.now()"), QUIET_MS], timeout=timeout)
         return
-    page.wait_for_timeout(QUIET_MS_BLIND)
+    page.wait_for_timeout(QUIET_MS)
     page.wait_for_selector(f"{app}[{ATTRIBUTES['scriptState']}='{SCRIPT_IDLE}']", timeout=timeout)
-    page.wait_for_timeout(QUIET_MS_BLIND)
+    page.wait_for_timeout(QUIET_MS)

@@ -256,9 +256,19 @@ def test_every_request_stays_on_the_app_s_own_server(browser, app_url):
     context.close()
 
 
-@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
-def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser, app_url, problem):
+def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser, app_url, subtests):
+    """From the home page, each problem page in turn by its link in the navigation, in one tab as a student
+    goes through them (each page's checks reported on their own: ``subtests``)."""
     context, page, errors = open_page(browser, app_url)
+    for problem in PROBLEMS:
+        with subtests.test(page=problem.id):
+            _follows_its_controls_and_animates(page, errors, problem)
+    context.close()
+
+
+def _follows_its_controls_and_animates(page, errors, problem) -> None:
+    """One problem's page opened from the navigation: a number box and a slider changed from the keyboard move
+    the answers and the derivation, Play and the arrow keys move the animation."""
     page.locator("[data-testid='stSidebarNav']").get_by_text(problem.title, exact=True).click()
     page.wait_for_url(f"**/{problem.id}")
     wait_until_idle(page)
@@ -319,7 +329,6 @@ def test_each_page_from_the_navigation_follows_its_controls_and_animates(browser
 
     SHOTS.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(SHOTS / f"{problem.id}.png"))
-    context.close()
 
 
 def test_a_bad_link_shows_a_warning_not_a_traceback(browser, app_url):
