@@ -117,46 +117,19 @@ def launch_browser(playwright):
 
 # A page's record of its script runs, installed before its own scripts (``context.add_init_script(IDLE_WATCH)``):
 # how many runs have ended, when the run state last changed and when the page last sent on its websocket (a
-# widget's change, a page link: each a run asked for), for ``wait_until_idle``; and when anything in the
-# document last changed, for ``settle``.
-IDLE_WATCH = f"""window.__dlIdle = {{runs: 0, changed: 0, sent: 0, mutated: 0}};
+# widget's change, a page link: each a run asked for). ``wait_until_idle`` then waits on what happened.
+IDLE_WATCH = f"""window.__dlIdle = {{runs: 0, changed: 0, sent: 0}};
 new MutationObserver((records) => {{ for (const r of records) {{
   window.__dlIdle.changed = performance.now();
   if (r.target.getAttribute(r.attributeName) === '{SCRIPT_IDLE}' && r.oldValue !== '{SCRIPT_IDLE}') window.__dlIdle.runs++;
 }} }}).observe(document, {{subtree: true, attributes: true, attributeOldValue: true,
                           attributeFilter: ['{ATTRIBUTES["scriptState"]}']}});
 const dlIdleSend = WebSocket.prototype.send;
-WebSocket.prototype.send = function (data) {{ window.__dlIdle.sent = performance.now(); return dlIdleSend.call(this, data); }};
-new MutationObserver(() => {{ window.__dlIdle.mutated = performance.now(); }})
-  .observe(document, {{subtree: true, childList: true, attributes: true, characterData: true}});"""
-# How long the page is left alone after a run ends (or after the call, for a run still to be asked). 150 ms, with
-# a person's input waited out for 400 ms, let a run asked 200-300 ms after the last one's end through (the
-# gradebook's choice typed into a list being redrawn, in two of 186 tests).
-QUIET_MS = 300
+WebSocket.prototype.send = function (data) {{ window.__dlIdle.sent = performance.now(); return dlIdleSend.call(this, data); }};"""
+QUIET_MS = 300  # how long the page is left alone after a run ends (or after the call, for a run still to be asked)
 IDLE_NOW = f"""([from, quiet]) => {{ const s = window.__dlIdle, app = document.querySelector("{SELECTORS['app']}");
   return !!app && app.getAttribute('{ATTRIBUTES["scriptState"]}') === '{SCRIPT_IDLE}' && s.runs > 0
          && performance.now() - Math.max(s.changed, s.sent, from) >= quiet; }}"""
-
-
-SETTLED = """([from, quiet]) => performance.now() - Math.max(window.__dlIdle.mutated, from) >= quiet
-  && !document.getAnimations().some((a) => a.playState === 'running' && isFinite(a.effect.getComputedTiming().endTime))"""
-
-
-def settle(page, at_most: float, quiet: float = 150) -> None:
-    """Wait for what the page draws to settle (a figure's redraw, a pose, a refit): nothing in its document
-    changed for ``quiet`` ms and no CSS transition under way (a control's fade), checked on each animation
-    frame; at most ``at_most`` ms, then go on, as the fixed wait of that length it replaces did (a page still
-    animating is left to the caller's check). Where the page has no ``IDLE_WATCH``, the fixed wait."""
-    from playwright.sync_api import TimeoutError as Timeout
-
-    if not page.evaluate("() => !!window.__dlIdle"):
-        page.wait_for_timeout(at_most)
-        return
-    try:
-        page.wait_for_function(SETTLED, arg=[page.evaluate("performance.now()"), quiet], polling="raf",
-                               timeout=at_most)
-    except Timeout:
-        pass
 
 
 def wait_until_idle(page, timeout: float = 30_000) -> None:

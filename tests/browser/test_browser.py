@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from edge.streamlit_dom import SELECTORS
-from scripts.live_app import IDLE_WATCH, settle, wait_until_idle
+from scripts.live_app import IDLE_WATCH, wait_until_idle
 from solvers.catalog import PROBLEMS
 
 pytestmark = pytest.mark.browser
@@ -251,7 +251,7 @@ def test_every_request_stays_on_the_app_s_own_server(browser, app_url):
         page.goto(app_url + path)
         wait_until_idle(page)
     page.locator("[data-testid='stMain'] .js-plotly-plot").first.wait_for(timeout=30_000)  # really drawn
-    settle(page, 500)  # and what it asks for after drawing
+    page.wait_for_timeout(500)  # and what it asks for after drawing
     assert not elsewhere, elsewhere
     context.close()
 
@@ -422,7 +422,7 @@ def test_a_revisit_downloads_no_plotly_again_and_a_page_compiles_one(browser, ap
         page.goto(f"{app_url}/driven_cart")  # two figures
         wait_until_idle(page)
         page.locator(".dl-figure").last.locator(".main-svg").first.wait_for()
-        settle(page, 500)
+        page.wait_for_timeout(500)
         assert page.locator(".dl-graph.js-plotly-plot").count() == 2 and page.locator("iframe").count() == 0
         assert page.evaluate("document.querySelectorAll('script[src*=\"/plotly-\"]').length") == 1
         visits.append(received)

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import pytest
 
-from scripts.live_app import settle
 from solvers import registry
 from tests.browser.test_browser import open_page, visit
 
@@ -89,7 +88,7 @@ def test_every_page_draws_its_diagrams_legibly_and_its_equations_whole(browser, 
 def _equations_whole(page, pid: str, size: str) -> None:
     page.locator(".dl-math .katex-display").first.wait_for(timeout=30_000)
     page.evaluate("document.fonts.ready.then(() => new Promise(requestAnimationFrame))")  # KaTeX's own widths
-    settle(page, 300)
+    page.wait_for_timeout(300)
     drawn = page.evaluate(EQUATIONS_DRAWN)
     assert drawn, (pid, size)
     cut = [e for e in drawn if e["above"] > 0.5 or e["below"] > 0.5]
@@ -140,7 +139,7 @@ def test_the_stage_s_forces_switch_is_pressed_by_keyboard_and_its_arrows_follow_
         hold_drag(page, control.locator(TRACK).bounding_box(), 0.45, 0.6)
         page.wait_for_function("() => document.querySelector('.st-key-dl_stage .dl-graph.dl-live-stale') === null"
                                " && !!document.querySelector('.dl-live-value')", timeout=10_000)
-        settle(page, 300)
+        page.wait_for_timeout(300)
         held = page.evaluate(OVERLAY)["traces"]
         arrows = [(name, points, opacity) for name, forces, points, opacity in held if forces]
         assert any(points for _, points, _ in arrows), arrows  # drawn at the key instant

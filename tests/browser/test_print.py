@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from scripts.live_app import CHROMIUM, settle, wait_until_idle
+from scripts.live_app import CHROMIUM, wait_until_idle
 from tests.browser.test_browser import watched_context
 from tests.conftest import INSTRUCTOR_KEY as KEY
 from solvers.catalog import PROBLEMS
@@ -99,7 +99,7 @@ def check_printout(browser, url: str, name: str, tmp_path: Path, wait_for: tuple
     for drawn in wait_for:  # the page's own elements draw after the run (KaTeX, plotly.js load first)
         page.locator(drawn).first.wait_for(timeout=30_000)
     page.wait_for_load_state("networkidle")
-    settle(page, 300)
+    page.wait_for_timeout(300)
     chrome = screen_chrome(page)
     assert chrome, "the screen shows controls"
     link = page.evaluate("location.href")

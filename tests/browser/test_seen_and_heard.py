@@ -10,7 +10,7 @@ import time
 
 import pytest
 
-from scripts.live_app import settle, wait_until_idle
+from scripts.live_app import wait_until_idle
 from tests.browser.test_browser import open_page, visit, watched_context
 from solvers.catalog import PROBLEMS
 
@@ -137,7 +137,7 @@ def test_on_a_phone_no_value_unit_or_word_breaks_inside(browser, app_url, size):
         visit(page, app_url, path)  # from the navigation where it can be, as a student goes from page to page
         if path:
             page.locator(".dl-answers table, [data-testid='stMain'] table").first.wait_for(timeout=30_000)
-        settle(page, 500)
+        page.wait_for_timeout(500)
         broken = page.evaluate(BROKEN)
         if broken:
             found[path] = broken
@@ -154,7 +154,7 @@ def test_on_a_phone_no_value_unit_or_word_breaks_inside(browser, app_url, size):
 def first_figure(page):
     figure = page.locator(".dl-figure").first
     figure.locator(".dl-graph .main-svg").first.wait_for(timeout=30_000)
-    settle(page, 500)
+    page.wait_for_timeout(500)
     return figure
 
 
@@ -189,7 +189,7 @@ def _play_keeps_its_duration(page, errors, problem) -> None:
     frames, frame_ms = len(spec["animation"]["times"]), spec["animation"]["frame_ms"]
     stated = (frames - 1) * frame_ms
     figure = first_figure(page)
-    settle(page, 1000)
+    page.wait_for_timeout(1000)
     figure.evaluate(RECORD_PLAY)
     figure.get_by_role("button", name="Play the animation").click()
     page.wait_for_function(f"() => window.dlShown.length && window.dlShown.at(-1)[1] === {frames - 1}",
@@ -227,7 +227,7 @@ def test_euler_s_disk_s_axis_titles_are_inside_its_figure(browser, app_url, size
     absent, "y (mm" cut): they are the scene's own annotations, kept inside the graph."""
     context, page, errors = open_sized(browser, f"{app_url}/eulers_disk", size)
     figure = first_figure(page)
-    settle(page, 1000)
+    page.wait_for_timeout(1000)
     graph = figure.locator(".dl-graph").bounding_box()
     titles = {}
     for text in figure.locator(".dl-graph svg text").all():

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import pytest
 
-from scripts.live_app import settle, wait_until_idle
+from scripts.live_app import wait_until_idle
 from tests.browser.test_browser import hold_drag, open_page, visit  # which skips (or, in CI, fails) without Chromium and Playwright
 from solvers.catalog import PROBLEMS
 
@@ -121,7 +121,7 @@ def stage_faults(page, problem, height: int) -> list[str]:
     """What is wrong with ``problem``'s stage as the page (idle, ``height`` px tall) shows it."""
     figure = page.locator(f"{STAGE} .dl-figure").first
     figure.locator(".dl-graph .main-svg").first.wait_for(timeout=30_000)
-    settle(page, 300)  # the figure fits the screen again once the controls beside it are drawn
+    page.wait_for_timeout(300)  # the figure fits the screen again once the controls beside it are drawn
     graph, play = box(figure.locator(".dl-graph")), box(figure.get_by_role("button", name="Play the animation"))
     controls = box(page.locator(CONTROLS))
     faults = []
@@ -319,7 +319,7 @@ def test_the_motion_refits_when_what_is_above_the_stage_grows(browser, app_url):
     assert stage_faults(page, problem, height) == []
     page.evaluate("""() => { const h = document.querySelector("[data-testid='stMain'] h1");
                             h.style.paddingBottom = '90px'; }""")
-    settle(page, 600)
+    page.wait_for_timeout(600)
     assert stage_faults(page, problem, height) == []
     assert not errors, errors
     context.close()
@@ -362,7 +362,7 @@ def finger_drag(page, touch, slider, travel: float, moves: int, said: list | Non
             said.append(heard(touch, slider))
     page.evaluate("window.__sentBeforeLift = window.__sent")
     touch.send("Input.dispatchTouchEvent", {"type": ending, "touchPoints": []})
-    settle(page, 800)
+    page.wait_for_timeout(800)
     wait_until_idle(page)
     return shown
 
@@ -371,7 +371,7 @@ def test_a_finger_drags_a_stage_slider_along_its_track_on_a_phone(browser, app_u
     """On a phone (390×844, touch) a finger moved along V's track (the −/+ under it, the track the slider's
     width): the thumb follows while the finger moves, one run after it lifts, and the link keeps the value."""
     context, page, errors = open_page(browser, f"{app_url}/disk_wall", 390, 844, phone=True)
-    settle(page, 300)
+    page.wait_for_timeout(300)
     slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").first
     sent = page.evaluate("window.__sent")
     shown = [float(v) for v in finger_drag(page, context.new_cdp_session(page), slider, 75, 15)]
@@ -401,7 +401,7 @@ def test_a_screen_reader_hears_the_value_a_dragged_thumb_shows(browser, app_url)
     not the value before the drag; a drag the browser cancels puts it back, a finished one says where it
     landed."""
     context, page, errors = open_page(browser, f"{app_url}/disk_wall", 390, 844, phone=True)
-    settle(page, 300)
+    page.wait_for_timeout(300)
     slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").first
     touch = context.new_cdp_session(page)
     touch.send("Accessibility.enable")
@@ -425,7 +425,7 @@ def test_a_drag_lands_on_the_value_its_thumb_showed(browser, app_url):
     react-aria commits the release from its own arithmetic, which at half a step could round the other way
     (the ladder's θ₀ showed 28° and became 29°: 60 px left of 60° on a 160 px track of 84 steps is 28.5°)."""
     context, page, errors = open_page(browser, f"{app_url}/sliding_ladder", 390, 844, phone=True)
-    settle(page, 300)
+    page.wait_for_timeout(300)
     slider = page.locator(f"{CONTROLS} [data-testid='stSlider']").nth(1)  # θ₀
     touch = context.new_cdp_session(page)
     landed = []
@@ -462,7 +462,7 @@ def test_a_body_dragged_larger_stays_inside_the_axes(browser, app_url, pid, key)
     thumb = control.locator("input[type='range']")
     low, high, value = (float(thumb.get_attribute(a)) for a in ("min", "max", "value"))
     hold_drag(page, control.locator("[role='group'] > [data-orientation]").first.bounding_box(), (value - low) / (high - low), 1.0, 15)
-    settle(page, 800)  # the last pose drawn
+    page.wait_for_timeout(800)  # the last pose drawn
     held = graph.evaluate(POSED_REACH, None)
     for (lo, hi), (a, b) in zip(held["reach"], held["ranges"]):
         assert a <= lo and hi <= b, held  # the body whole inside the axes
@@ -470,7 +470,7 @@ def test_a_body_dragged_larger_stays_inside_the_axes(browser, app_url, pid, key)
     page.mouse.up()
     page.wait_for_function(f"() => new URL(location.href).searchParams.get('{key}') === '{high:g}'", timeout=30_000)
     wait_until_idle(page)
-    settle(page, 800)
+    page.wait_for_timeout(800)
     after = graph.evaluate(POSED_REACH, held["posed"])  # the same bodies, at their first frame
     for (lo, hi), (a, b) in zip(after["reach"], after["ranges"]):
         assert a <= lo and hi <= b, after
@@ -500,14 +500,14 @@ def test_a_3d_body_dragged_larger_stays_inside_its_scene(browser, app_url):
     thumb = control.locator("input[type='range']")
     low, high, value = (float(thumb.get_attribute(a)) for a in ("min", "max", "value"))
     hold_drag(page, control.locator("[role='group'] > [data-orientation]").first.bounding_box(), (value - low) / (high - low), 1.0, 15)
-    settle(page, 1500)  # the last pose drawn (a 3-D redraw in software)
+    page.wait_for_timeout(1500)  # the last pose drawn (a 3-D redraw in software)
     held = graph.evaluate(SCENE_REACH)
     assert held["posed"] >= 2 and held["outside"] == 0, held  # the rim and the radius, whole inside the box
     assert held["ranges"][0][1] > 5 * before["ranges"][0][1], (held, before)  # (0.5 m against 37.5 mm: widened)
     page.mouse.up()
     page.wait_for_function(f"() => new URL(location.href).searchParams.get('r') === '{high:g}'", timeout=30_000)
     wait_until_idle(page)
-    settle(page, 1500)
+    page.wait_for_timeout(1500)
     after = graph.evaluate(SCENE_REACH)
     assert after["posed"] == 0 and after["ranges"] == after["given"], after  # the run's figure, its own box
     assert not errors, errors
@@ -525,7 +525,7 @@ def test_the_companion_figures_keep_their_size_when_the_view_puts_them_first(bro
     page.locator("[data-testid='stSidebar']").get_by_role("radio", name="Lecture").click()
     page.wait_for_url("**lecture=1**", timeout=30_000)
     wait_until_idle(page)
-    settle(page, 1000)
+    page.wait_for_timeout(1000)
     drawn = page.evaluate("""() => {
       const answers = document.querySelector('.dl-text.dl-answers').getBoundingClientRect();
       return [...document.querySelectorAll('.dl-part .dl-figure')].map((f) => {
@@ -555,7 +555,7 @@ def test_practice_s_solution_draws_the_motion_at_its_own_height(browser, app_url
     page.get_by_role("button", name="Show the solution").click()
     page.locator(".dl-figure .main-svg").first.wait_for(timeout=30_000)
     wait_until_idle(page)
-    settle(page, 500)
+    page.wait_for_timeout(500)
     heights = page.evaluate("() => [...document.querySelectorAll('.dl-figure .dl-graph')].map(g => g.getBoundingClientRect().height)")
     assert len(heights) == len(own), (heights, own)
     for height, expected in zip(heights, own):
@@ -573,7 +573,7 @@ def test_euler_s_disk_on_a_phone_has_no_empty_bands_round_its_scene(browser, app
     (where plotly.js's round-off once hid two of the three labels)."""
     context, page, errors = open_page(browser, f"{app_url}/eulers_disk?{query}", 390, 844, phone=True)
     wait_until_idle(page)
-    settle(page, 1000)
+    page.wait_for_timeout(1000)
     graph, labels = page.evaluate("""() => {
       const g = document.querySelector('.st-key-dl_stage .dl-graph'), box = g.getBoundingClientRect();
       const labels = Object.fromEntries([...g.querySelectorAll('text')].filter(t => /^[xyz] \\(mm\\)$/.test(t.textContent))
@@ -598,7 +598,7 @@ def test_a_still_picture_to_scale_has_no_empty_band_round_it(browser, app_url, s
     slider, 85 px were left empty under its x axis's title)."""
     context, page, errors = open_page(browser, f"{app_url}/pendulum_rebound?theta0=-40", *size, phone=size[0] < 500)
     wait_until_idle(page)
-    settle(page, 800)
+    page.wait_for_timeout(800)
     graph, plot, title, legend = page.evaluate("""() => {
       const g = document.querySelector('.st-key-dl_stage .dl-graph'), box = (el) => el ? el.getBoundingClientRect().toJSON() : null;
       return [box(g), box(g.querySelector('.nsewdrag')), box(g.querySelector('.xtitle')), box(g.querySelector('.legend'))];
@@ -615,7 +615,7 @@ def test_a_plot_on_a_phone_s_stage_keeps_its_legend(browser, app_url):
     motion there drops its legend, its caption naming the bodies; the three drives' curves had no names)."""
     context, page, errors = open_page(browser, f"{app_url}/driven_cart?drive=rear&mu=3", 390, 844, phone=True)
     wait_until_idle(page)
-    settle(page, 800)
+    page.wait_for_timeout(800)
     names = page.evaluate(f"() => [...document.querySelectorAll(\"{STAGE} .dl-graph .legend .legendtext\")].map(t => t.textContent)")
     assert {"front-wheel drive", "rear-wheel drive", "all-wheel drive"} <= set(names), names
     assert not errors, errors
@@ -724,7 +724,7 @@ def test_a_control_released_past_a_limit_stays_where_it_was_on_a_phone(browser, 
         page.mouse.up()
         wait_until_idle(page)
         page.locator("[data-testid='stAlert']").first.wait_for(timeout=30_000)
-        settle(page, 800)
+        page.wait_for_timeout(800)
         after = control.bounding_box()
         assert abs(after["y"] - before) < 4 and 0 <= after["y"] and after["y"] + after["height"] <= 844, (before, after)
         refusal = page.locator("[data-testid='stAlert']").first.inner_text()

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import pytest
 
-from scripts.live_app import settle, wait_until_idle
+from scripts.live_app import wait_until_idle
 from tests.browser.test_browser import kept_context, open_page, tour, visit, wait_moved, watched_context
 from tests.browser.test_stage import MOTION_SCALE, overlaps, stage_faults, stage_graph
 from solvers.catalog import PROBLEMS
@@ -44,14 +44,12 @@ def graph_of(page):
     """The first figure, once its graph is drawn."""
     figure = page.locator(FIGURE).first
     figure.locator(".dl-graph .main-svg").first.wait_for()
-    settle(page, 300)
+    page.wait_for_timeout(300)
     return figure
 
 
 def serious_violations(page) -> list[str]:
-    """axe-core's serious and critical WCAG 2.1 A/AA findings, in the page and in every frame, once what it
-    draws has settled (a colour fading in is measured at its end)."""
-    settle(page, 1000)
+    """axe-core's serious and critical WCAG 2.1 A/AA findings, in the page and in every frame."""
     axe = axe_playwright.Axe()
     found = []
     for frame in page.frames:
