@@ -84,23 +84,30 @@ def enter_key(page) -> None:
     wait_until_idle(page)
 
 
-def choose(page, label: str, option: str) -> None:
-    """Pick an option of a Streamlit selectbox or multiselect by typing it."""
-    page.get_by_role("combobox", name=label).first.click()
-    page.keyboard.type(option)
-    # By keyboard, as a person would: a click on the list can wait on an option that the typed
-    # filter keeps redrawing (CI timed out on "element is not stable").
+def choose(page, label: str, option: str, tries: int = 3) -> None:
+    """Pick an option of a Streamlit selectbox or multiselect by typing it, as a person would by keyboard: a
+    click on the list can wait on an option that the typed filter keeps redrawing (CI timed out on "element is
+    not stable"). On a busy machine the list may still be redrawing when the keys come (the option never took
+    the focus, or a run redrew the list under them): the list is closed and the choice typed again, up to
+    ``tries`` times."""
+    box = page.get_by_role("combobox", name=label).first
     target = page.get_by_role("option", name=option, exact=True).first
-    target.wait_for()
-    for _ in range(40):
-        if target.get_attribute("data-focused") == "true":
-            break
-        page.keyboard.press("ArrowDown")
-    else:
-        raise AssertionError(f"the option {option!r} of {label!r} never took the keyboard's focus")
-    page.keyboard.press("Enter")
-    page.keyboard.press("Escape")
-    wait_until_idle(page)
+    for attempt in range(tries):
+        box.click()
+        page.keyboard.press("Control+a")  # (a try before may have left its text)
+        page.keyboard.type(option)
+        target.wait_for()
+        for _ in range(40):
+            if target.get_attribute("data-focused") == "true":
+                page.keyboard.press("Enter")
+                page.keyboard.press("Escape")
+                wait_until_idle(page)
+                return
+            page.keyboard.press("ArrowDown")
+            page.wait_for_timeout(25)
+        page.keyboard.press("Escape")
+        wait_until_idle(page)
+    raise AssertionError(f"the option {option!r} of {label!r} never took the keyboard's focus ({tries} tries)")
 
 
 def segment(scope, label: str, digits: str) -> None:
