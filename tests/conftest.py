@@ -45,6 +45,29 @@ def browser():
 INSTRUCTOR_KEY, COURSE_SECRET = "instructor-key-0018", "course-secret-for-the-tests-0018"
 
 
+def reset_database_caches() -> None:
+    """The process's database engine and schema check forgotten (AppTest: after a test points the app at
+    another database)."""
+    from assignments import db
+    from ui.session import schema_ready
+
+    db.engine.cache_clear()
+    schema_ready.clear()
+
+
+@pytest.fixture
+def course_database(monkeypatch, tmp_path):
+    """The record pages' setting (AppTest): the instructor key and a SQLite file of the test's own, the
+    process's engine and schema check forgotten before and after."""
+    from assignments import db
+
+    monkeypatch.setenv("DL_INSTRUCTOR_KEY", INSTRUCTOR_KEY)
+    monkeypatch.setenv(db.URL_ENV, f"sqlite:///{tmp_path / 'course.sqlite'}")
+    reset_database_caches()
+    yield
+    reset_database_caches()
+
+
 _DATA_DIRS: list[str] = []  # the shared servers' data directories, removed when the session ends
 
 

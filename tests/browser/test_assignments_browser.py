@@ -92,7 +92,7 @@ def choose(page, label: str, option: str, tries: int = 3) -> None:
     ``tries`` times."""
     box = page.get_by_role("combobox", name=label).first
     target = page.get_by_role("option", name=option, exact=True).first
-    for attempt in range(tries):
+    for _ in range(tries):
         box.click()
         page.keyboard.press("Control+a")  # (a try before may have left its text)
         page.keyboard.type(option)

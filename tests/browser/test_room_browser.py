@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from scripts.live_app import IDLE_WATCH, wait_until_idle
-from tests.browser.test_browser import kept_context, open_in
+from scripts.live_app import wait_until_idle
+from tests.browser.test_browser import kept_context, open_in, watched_context
 from tests.conftest import INSTRUCTOR_KEY
 
 pytestmark = pytest.mark.served
@@ -33,9 +33,8 @@ def in_first_screen(page, locator) -> bool:
 
 def own_phone(browser, opened: list):
     """A phone of its own (its own cookies: a browser the room counts once), 390×844."""
-    context = browser.new_context(viewport={"width": 390, "height": 844}, is_mobile=True, has_touch=True,
-                                  device_scale_factor=2)
-    context.add_init_script(IDLE_WATCH)
+    context = watched_context(browser, viewport={"width": 390, "height": 844}, is_mobile=True, has_touch=True,
+                              device_scale_factor=2)
     opened.append(context)
     return context
 

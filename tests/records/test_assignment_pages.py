@@ -19,8 +19,7 @@ from assignments import db, records, signing
 from assignments.identity import StudentIdentity, link_query, parameters
 from solvers import pendulum_rebound
 from solvers import units
-from tests.conftest import INSTRUCTOR_KEY
-from tests.records.conftest import reset_database_caches
+from tests.conftest import INSTRUCTOR_KEY, reset_database_caches
 
 ROOT = Path(__file__).resolve().parents[2]
 KEY, SECRET = INSTRUCTOR_KEY, "course-secret-for-the-tests-0018"

@@ -15,8 +15,7 @@ from assignments import db
 from room import store
 from solvers import units
 from solvers.catalog import BY_ID
-from tests.conftest import INSTRUCTOR_KEY
-from tests.records.conftest import reset_database_caches
+from tests.conftest import INSTRUCTOR_KEY, reset_database_caches
 
 ROOT = Path(__file__).resolve().parents[2]
 KEY = INSTRUCTOR_KEY
