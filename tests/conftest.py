@@ -68,13 +68,22 @@ def course_database(monkeypatch, tmp_path):
     reset_database_caches()
 
 
-_DATA_DIRS: list[str] = []  # the shared servers' data directories, removed when the session ends
+_DATA_DIRS: list[str] = []  # the servers' data directories, removed when the session ends
+
+
+def _data_dir() -> str:
+    _DATA_DIRS.append(tempfile.mkdtemp(prefix="dl-app-data-"))
+    return _DATA_DIRS[-1]
 
 
 def _shipped_env() -> dict:
-    _DATA_DIRS.append(tempfile.mkdtemp(prefix="dl-app-data-"))
     return {"DL_INSTRUCTOR_KEY": INSTRUCTOR_KEY, "DL_COURSE_SECRET": COURSE_SECRET,
-            "DL_DATA_DIR": _DATA_DIRS[-1], "DL_DATABASE_URL": ""}
+            "DL_DATA_DIR": _data_dir(), "DL_DATABASE_URL": ""}
+
+
+def _fresh_env() -> dict:
+    """A server as shipped: no instructor key or course secret, its data in a temp directory (never the checkout's)."""
+    return {"DL_DATA_DIR": _data_dir(), "DL_DATABASE_URL": ""}
 
 
 # Servers the collected tests will need, started as soon as they are collected: each warms for some
@@ -83,7 +92,7 @@ def _shipped_env() -> dict:
 _EARLY: dict = {}
 _USES: dict[str, int] = {}  # how many collected tests still need a server of that name (each its own: "fresh")
 _AFTER_SHIPPED: list[str] = []  # servers to start once the shared one is ready
-_SETTINGS = {"shipped": _shipped_env, "fresh": dict}
+_SETTINGS = {"shipped": _shipped_env, "fresh": _fresh_env}
 SERVED = {"shipped_server", "app_url", "fresh_server", "browser"}
 
 
