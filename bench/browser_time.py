@@ -1,6 +1,7 @@
 """Where the browser tests' wall time goes: a pytest plugin that times each Playwright call made by a test
 (the outermost only: a wait inside ``wait_until_idle`` counts once, as ``wait_until_idle``) and axe-core's
-audits, and writes the totals by call, with counts, to ``browser-time.json`` beside the summary it prints.
+audits, and writes the totals by call, with counts, to ``browser-time.json`` beside the summary it prints, with the
+test lines that spent the most.
 
     CI=true .venv/bin/python -m pytest -m served -p bench.browser_time
 
@@ -17,6 +18,7 @@ import time
 
 TOTAL: collections.Counter = collections.Counter()
 CALLS: collections.Counter = collections.Counter()
+SITES: collections.Counter = collections.Counter()  # (label, the test's line that made the call) -> seconds
 _depth = threading.local()
 
 
@@ -33,7 +35,19 @@ def _timed(function, label: str):
             if depth == 0:
                 TOTAL[label] += time.monotonic() - started
                 CALLS[label] += 1
+                SITES[label, _test_line()] += time.monotonic() - started
     return timed
+
+
+def _test_line() -> str:
+    """The innermost line of a test module (or of its helpers under tests/) on the stack."""
+    frame = sys._getframe(2)
+    while frame is not None:
+        name = frame.f_code.co_filename
+        if "/tests/" in name:
+            return f"{name.rsplit('/tests/', 1)[1]}:{frame.f_lineno}"
+        frame = frame.f_back
+    return "?"
 
 
 def _time_methods(owner, names, prefix: str) -> None:
@@ -77,3 +91,6 @@ def pytest_terminal_summary(terminalreporter):
     terminalreporter.write_sep("=", "wall time by browser call (outermost; bench/browser_time.py)")
     for label, seconds in rows[:15]:
         terminalreporter.write_line(f"{seconds:8.1f} s {CALLS[label]:6d} calls {seconds / CALLS[label] * 1000:7.0f} ms  {label}")
+    terminalreporter.write_sep("-", "where in the tests (the 15 lines that spent the most)")
+    for (label, line), seconds in SITES.most_common(15):
+        terminalreporter.write_line(f"{seconds:8.1f} s  {label:24s} {line}")

@@ -116,31 +116,57 @@ def launch_browser(playwright):
 
 
 # A page's record of its script runs, installed before its own scripts (``context.add_init_script(IDLE_WATCH)``):
-# how many runs have ended, when the run state last changed and when the page last sent on its websocket (a
-# widget's change, a page link: each a run asked for). ``wait_until_idle`` then waits on what happened.
-IDLE_WATCH = f"""window.__dlIdle = {{runs: 0, changed: 0, sent: 0}};
+# how many runs have ended, when the run state last changed, when the page last sent on its websocket (a
+# widget's change, a page link: each a run asked for) and when a person last touched it (a key, the pointer,
+# typed text, the window's size: what may ask for a run a moment later). ``wait_until_idle`` then waits on
+# what happened.
+IDLE_WATCH = f"""window.__dlIdle = {{runs: 0, changed: 0, sent: 0, touched: 0}};
 new MutationObserver((records) => {{ for (const r of records) {{
   window.__dlIdle.changed = performance.now();
   if (r.target.getAttribute(r.attributeName) === '{SCRIPT_IDLE}' && r.oldValue !== '{SCRIPT_IDLE}') window.__dlIdle.runs++;
 }} }}).observe(document, {{subtree: true, attributes: true, attributeOldValue: true,
                           attributeFilter: ['{ATTRIBUTES["scriptState"]}']}});
 const dlIdleSend = WebSocket.prototype.send;
-WebSocket.prototype.send = function (data) {{ window.__dlIdle.sent = performance.now(); return dlIdleSend.call(this, data); }};"""
-QUIET_MS = 300  # how long the page is left alone after a run ends (or after the call, for a run still to be asked)
-IDLE_NOW = f"""([from, quiet]) => {{ const s = window.__dlIdle, app = document.querySelector("{SELECTORS['app']}");
+WebSocket.prototype.send = function (data) {{ window.__dlIdle.sent = performance.now(); return dlIdleSend.call(this, data); }};
+for (const type of ['keydown', 'keyup', 'pointerdown', 'pointermove', 'pointerup', 'click', 'input', 'change',
+                    'wheel', 'touchend', 'resize']) {{
+  window.addEventListener(type, () => {{ window.__dlIdle.touched = performance.now(); }}, {{capture: true, passive: true}});
+}}"""
+QUIET_MS = 300  # how long the page is left alone after a run ends, something is sent or a person touches it
+IDLE_NOW = f"""(quiet) => {{ const s = window.__dlIdle, app = document.querySelector("{SELECTORS['app']}");
   return !!app && app.getAttribute('{ATTRIBUTES["scriptState"]}') === '{SCRIPT_IDLE}' && s.runs > 0
-         && performance.now() - Math.max(s.changed, s.sent, from) >= quiet; }}"""
+         && performance.now() - Math.max(s.changed, s.sent, s.touched) >= quiet; }}"""
+
+
+# Resolves once no finite animation or CSS transition has run for ``calm`` ms (at most 3 s): what is still moving
+# (the sidebar folding away in the lecture view, a slider's min and max fading out once the pointer leaves it)
+# is measured, and audited, as it stands at that instant.
+SETTLED = """(calm) => new Promise((resolve) => {
+  let since = null;
+  const moving = () => document.getAnimations().some((a) => a.playState === 'running'
+    && a.effect && a.effect.getComputedTiming().endTime !== Infinity);
+  const tick = (now) => {
+    since = moving() ? null : (since ?? now);
+    if (since !== null && now - since >= calm) resolve(true); else requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+  setTimeout(() => resolve(false), 3000);
+})"""
 
 
 def wait_until_idle(page, timeout: float = 30_000) -> None:
     """Wait for the script run to finish (and for Streamlit to have started one at all), then for the page
-    to be quiet for ``QUIET_MS``: no run state changed and nothing sent (a control's change may be sent a
-    moment after the key or the pointer). In a page with ``IDLE_WATCH``, a page's first run is waited for
-    and a run's end is seen as it happens; elsewhere, fixed times before and after."""
+    to be quiet for ``QUIET_MS``: no run state changed, nothing sent, and no key, pointer or typing (a
+    control's change may be sent a moment after the key or the pointer); and for its transitions to end
+    (``SETTLED``). A page left alone since its last run is idle at once: the quiet counts from what the page
+    did, not from the call. In a page with
+    ``IDLE_WATCH``, a page's first run is waited for and a run's end is seen as it happens; elsewhere, fixed
+    times before and after."""
     app = SELECTORS["app"]
     page.wait_for_selector(app, timeout=timeout)
     if page.evaluate("() => !!window.__dlIdle"):
-        page.wait_for_function(IDLE_NOW, arg=[page.evaluate("performance.now()"), QUIET_MS], timeout=timeout)
+        page.wait_for_function(IDLE_NOW, arg=QUIET_MS, timeout=timeout)
+        page.evaluate(SETTLED, 0)
         return
     page.wait_for_timeout(QUIET_MS)
     page.wait_for_selector(f"{app}[{ATTRIBUTES['scriptState']}='{SCRIPT_IDLE}']", timeout=timeout)

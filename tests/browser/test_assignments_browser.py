@@ -210,9 +210,8 @@ def test_an_assignment_end_to_end(browser, course_url):
     assert tpage.get_by_role("button", name="Check", exact=True).count() == 0
     tctx.close()
 
-    # The instructor moves the due time to that minute, once it has begun (after Ann's answer, before
-    # Bea's right one), and gives Cem an extension of two days.
-    page.wait_for_timeout(max(0, (moment - dt.datetime.now(dt.timezone.utc)).total_seconds() + 1) * 1000)
+    # The instructor moves the due time to that minute (after Ann's answer, before Bea's right one), and gives
+    # Cem an extension of two days; then the minute begins.
     page.get_by_text("Edit: due time, attempts").click()
     edit = page.locator("[data-testid='stExpander']").filter(has_text="Save the changes")
     for part, value in (("year", "%Y"), ("month", "%m"), ("day", "%d")):
@@ -226,6 +225,7 @@ def test_an_assignment_end_to_end(browser, course_url):
     page.get_by_text("An extension: a later due time for this student").click()
     page.get_by_role("button", name="Save for this student").click()
     wait_for_text(page, "Saved: s03")
+    page.wait_for_timeout(max(0, (moment - dt.datetime.now(dt.timezone.utc)).total_seconds() + 1) * 1000)
 
     # Bea: right, late: 80 % (one started day, 20 %).
     bpage.reload()

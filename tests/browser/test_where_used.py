@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import pytest
 
-from scripts.live_app import wait_until_idle
+from scripts.live_app import SETTLED, wait_until_idle
 from tests.browser.test_browser import kept_context, open_page, tour, visit, wait_moved, watched_context
 from tests.browser.test_stage import MOTION_SCALE, overlaps, stage_faults, stage_graph
 from solvers.catalog import PROBLEMS
@@ -49,10 +49,12 @@ def graph_of(page):
 
 
 def serious_violations(page) -> list[str]:
-    """axe-core's serious and critical WCAG 2.1 A/AA findings, in the page and in every frame."""
+    """axe-core's serious and critical WCAG 2.1 A/AA findings, in the page and in every frame, each audited
+    once its transitions have ended (``SETTLED``)."""
     axe = axe_playwright.Axe()
     found = []
     for frame in page.frames:
+        frame.evaluate(SETTLED, 150)  # (150 ms: a fade may begin a few frames late, once hover is looked at again)
         context = STREAMLIT_OWN if frame == page.main_frame else None
         for v in axe.run(frame, context=context, options=WCAG).response["violations"]:
             if v["impact"] in ("serious", "critical"):
