@@ -139,8 +139,9 @@ IDLE_NOW = f"""(quiet) => {{ const s = window.__dlIdle, app = document.querySele
 
 
 # Resolves once no finite animation or CSS transition has run for ``calm`` ms (at most 3 s): what is still moving
-# (the sidebar folding away in the lecture view, a slider's min and max fading out once the pointer leaves it)
-# is measured, and audited, as it stands at that instant.
+# (the sidebar folding away as the lecture view opens, a slider's min and max fading out once the pointer leaves
+# it) would be measured, or audited, as it stands at that instant. Not part of ``wait_until_idle``: a wait for
+# every transition after every run cost the browser tests more than the checks that need it (docs/benchmarks-log.md).
 SETTLED = """(calm) => new Promise((resolve) => {
   let since = null;
   const moving = () => document.getAnimations().some((a) => a.playState === 'running'
@@ -157,16 +158,15 @@ SETTLED = """(calm) => new Promise((resolve) => {
 def wait_until_idle(page, timeout: float = 30_000) -> None:
     """Wait for the script run to finish (and for Streamlit to have started one at all), then for the page
     to be quiet for ``QUIET_MS``: no run state changed, nothing sent, and no key, pointer or typing (a
-    control's change may be sent a moment after the key or the pointer); and for its transitions to end
-    (``SETTLED``). A page left alone since its last run is idle at once: the quiet counts from what the page
-    did, not from the call. In a page with
+    control's change may be sent a moment after the key or the pointer). A page left alone since its last run
+    is idle at once: the quiet counts from what the page did, not from the call. (A check that measures
+    what may still be moving waits for ``SETTLED`` too.) In a page with
     ``IDLE_WATCH``, a page's first run is waited for and a run's end is seen as it happens; elsewhere, fixed
     times before and after."""
     app = SELECTORS["app"]
     page.wait_for_selector(app, timeout=timeout)
     if page.evaluate("() => !!window.__dlIdle"):
         page.wait_for_function(IDLE_NOW, arg=QUIET_MS, timeout=timeout)
-        page.evaluate(SETTLED, 0)
         return
     page.wait_for_timeout(QUIET_MS)
     page.wait_for_selector(f"{app}[{ATTRIBUTES['scriptState']}='{SCRIPT_IDLE}']", timeout=timeout)

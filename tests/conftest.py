@@ -68,6 +68,15 @@ def course_database(monkeypatch, tmp_path):
     reset_database_caches()
 
 
+@pytest.fixture
+def course(course_database, monkeypatch):
+    """``course_database`` and the course secret that signs the students' links (assignments, handouts, LTI,
+    take-home)."""
+    from assignments import signing
+
+    monkeypatch.setenv(signing.SECRET_ENV, COURSE_SECRET)
+
+
 _DATA_DIRS: list[str] = []  # the servers' data directories, removed when the session ends
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import pytest
 
-from scripts.live_app import wait_until_idle
+from scripts.live_app import SETTLED, wait_until_idle
 from tests.browser.test_browser import hold_drag, open_page, visit  # which skips (or, in CI, fails) without Chromium and Playwright
 from solvers.catalog import PROBLEMS
 
@@ -122,6 +122,7 @@ def stage_faults(page, problem, height: int) -> list[str]:
     figure = page.locator(f"{STAGE} .dl-figure").first
     figure.locator(".dl-graph .main-svg").first.wait_for(timeout=30_000)
     page.wait_for_timeout(300)  # the figure fits the screen again once the controls beside it are drawn
+    page.evaluate(SETTLED, 0)  # and the sidebar has folded away (the lecture view, a phone)
     graph, play = box(figure.locator(".dl-graph")), box(figure.get_by_role("button", name="Play the animation"))
     controls = box(page.locator(CONTROLS))
     faults = []

@@ -54,7 +54,7 @@ def serious_violations(page) -> list[str]:
     axe = axe_playwright.Axe()
     found = []
     for frame in page.frames:
-        frame.evaluate(SETTLED, 150)  # (150 ms: a fade may begin a few frames late, once hover is looked at again)
+        frame.evaluate(SETTLED, 50)  # (50 ms: a fade may begin a few frames late, once hover is looked at again)
         context = STREAMLIT_OWN if frame == page.main_frame else None
         for v in axe.run(frame, context=context, options=WCAG).response["violations"]:
             if v["impact"] in ("serious", "critical"):

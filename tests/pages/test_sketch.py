@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 from solvers import registry
 from tests.strategies import valid
 from viz.catalog import drawings
-from viz.diagram import plain_label, svg
+from viz.diagram import svg
 
 IDS = registry.PROBLEM_IDS
 VALID = {pid: valid(pid) for pid in IDS}

@@ -19,7 +19,6 @@ from hypothesis import given, settings, strategies as hst
 
 from practice.variants import MAX_SEED, variant
 from solvers.core import Choice
-from tests.records.test_assignment_pages import course  # noqa: F401  (the fixture: a course with its database)
 from tests.pages.test_pages import assert_clean, downloads_shown, run_page
 from ui import documents, notebook
 from solvers.catalog import BY_ID, PROBLEMS

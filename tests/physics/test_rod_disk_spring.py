@@ -1,6 +1,5 @@
 """rod_disk_spring against the seed's numbers and an independent integration of the motion."""
 import math
-import re
 
 import numpy as np
 import pytest

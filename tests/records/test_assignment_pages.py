@@ -15,20 +15,15 @@ from pathlib import Path
 import pytest
 from streamlit.testing.v1 import AppTest
 
-from assignments import db, records, signing
+from assignments import db, records
 from assignments.identity import StudentIdentity, link_query, parameters
 from solvers import pendulum_rebound
 from solvers import units
-from tests.conftest import INSTRUCTOR_KEY, reset_database_caches
+from tests.conftest import COURSE_SECRET, INSTRUCTOR_KEY, reset_database_caches
 
 ROOT = Path(__file__).resolve().parents[2]
-KEY, SECRET = INSTRUCTOR_KEY, "course-secret-for-the-tests-0018"
+KEY, SECRET = INSTRUCTOR_KEY, COURSE_SECRET
 INSTRUCTOR_PAGE = str(ROOT / "app_pages" / "gradebook.py")
-
-
-@pytest.fixture
-def course(course_database, monkeypatch):
-    monkeypatch.setenv(signing.SECRET_ENV, SECRET)
 
 
 def instructor(*, key: bool = True) -> AppTest:

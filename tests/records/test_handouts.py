@@ -15,7 +15,7 @@ from assignments import records
 from assignments.identity import parameters
 from practice.variants import variant
 from solvers import units
-from tests.records.test_assignment_pages import KEY, course, create, instructor  # noqa: F401  (course: the fixture)
+from tests.records.test_assignment_pages import KEY, create, instructor
 from tests.pages.test_pages import assert_clean, downloads_shown
 from tests.practice.test_practice import leaks, setup
 from tests.pages.test_takehome import DEFINED, PDFLATEX, macros, unbalanced

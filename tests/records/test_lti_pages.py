@@ -5,13 +5,11 @@ from __future__ import annotations
 
 import datetime as dt
 
-import pytest
-
 from assignments import db, migrate, records
 from lti import launch as lti
 from assignments.identity import parameters
 from solvers import pendulum_rebound
-from tests.records.test_assignment_pages import INSTRUCTOR_PAGE, ROOT, answer, course, student  # noqa: F401 (fixture)
+from tests.records.test_assignment_pages import INSTRUCTOR_PAGE, ROOT, answer, student
 
 from streamlit.testing.v1 import AppTest
 
