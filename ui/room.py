@@ -63,6 +63,11 @@ def projector(problem: Problem, system: str) -> bool:
         st.session_state.pop(_asked_key(problem), None)
         return False
     _live(problem.id, code)
+    # Below the projector's fragment, not in it: Streamlit registers a download button's file anew on each run
+    # and drops the last, so a press while the fragment ran (every PROJECTOR_EVERY s) fetched nothing. The
+    # file is made when pressed.
+    st.download_button("The answers as CSV", functools.partial(_csv, code), file_name=f"room-{code}.csv",
+                       mime="text/csv", key="room__csv", on_click="ignore", help="For a spreadsheet; no one is named")
     return last.hide_motion and last.status != "revealed"
 
 
@@ -169,7 +174,7 @@ def _unit_said(answer, system: str) -> str:
 
 
 def _next_steps(last: store.Round) -> None:
-    """The instructor's buttons in one row: close the answers, reveal, ask again, end; the answers as CSV."""
+    """The instructor's buttons in one row: close the answers, reveal, ask again, end."""
     row = st.container(horizontal=True, gap="small")
     if last.status == "open":
         row.button("Close answers", key="room__close", type="primary", on_click=_step,
@@ -185,9 +190,6 @@ def _next_steps(last: store.Round) -> None:
     if row.button("End", key="room__end", help="Back to the lesson; the answers stay in the records."):
         _step(store.set_status, last.id, "ended")
         st.rerun()
-    # made when pressed, not on each of the projector's runs (every PROJECTOR_EVERY s)
-    row.download_button("CSV", functools.partial(_csv, last.code), file_name=f"room-{last.code}.csv",
-                        mime="text/csv", key="room__csv", on_click="ignore", help="The answers, for a spreadsheet")
 
 
 def _csv(code: str) -> str:
