@@ -33,9 +33,10 @@ def _timed(function, label: str):
         finally:
             _depth.n = depth
             if depth == 0:
-                TOTAL[label] += time.monotonic() - started
+                took = time.monotonic() - started
+                TOTAL[label] += took
                 CALLS[label] += 1
-                SITES[label, _test_line()] += time.monotonic() - started
+                SITES[label, _test_line()] += took
     return timed
 
 

@@ -160,9 +160,8 @@ def wait_until_idle(page, timeout: float = 30_000) -> None:
     to be quiet for ``QUIET_MS``: no run state changed, nothing sent, and no key, pointer or typing (a
     control's change may be sent a moment after the key or the pointer). A page left alone since its last run
     is idle at once: the quiet counts from what the page did, not from the call. (A check that measures
-    what may still be moving waits for ``SETTLED`` too.) In a page with
-    ``IDLE_WATCH``, a page's first run is waited for and a run's end is seen as it happens; elsewhere, fixed
-    times before and after."""
+    what may still be moving waits for ``SETTLED`` too.) In a page with ``IDLE_WATCH``, a page's first run
+    is waited for and a run's end is seen as it happens; elsewhere, fixed times before and after."""
     app = SELECTORS["app"]
     page.wait_for_selector(app, timeout=timeout)
     if page.evaluate("() => !!window.__dlIdle"):

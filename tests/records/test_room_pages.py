@@ -23,7 +23,8 @@ PID = "disk_wall"
 
 
 @pytest.fixture
-def course(course_database, monkeypatch):
+def course(course, monkeypatch):
+    """The course (tests/conftest.py), with the room's pace and its code throttle fresh."""
     monkeypatch.setattr("ui.room.SEND_EVERY", 0.0)  # (a test's sends come faster than a thumb's)
     store.CODE_THROTTLE.records.clear()
     yield
