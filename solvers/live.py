@@ -205,7 +205,8 @@ def options_of(pid: str, params: Mapping[str, object]) -> tuple[tuple[str, str],
 
 
 def payload(pid: str, params: Mapping[str, object], answers, system: str, control_keys: Mapping[str, str]) -> dict:
-    """What the page's live module needs: the generated function, the parameters now (SI), the
+    """What the page's live module needs besides the generated function (``function_source``, which
+    ui/live.py serves as a module of its own): the parameters now (SI), the
     followed controls (their Streamlit keys and the factor from what they show to SI), the answers'
     rows (name, unit shown, factor from SI, angle?) and the regimes' words. Units come from
     ``solvers.units`` and the number format's constants from ``solvers.formatting``."""
@@ -218,7 +219,7 @@ def payload(pid: str, params: Mapping[str, object], answers, system: str, contro
     rows = [[a.name, units.unit(a.dimension, system), units.to_display(1.0, a.dimension, system),
              a.dimension == "angle", a.label] for a in answers]
     said = {case.regime: case.said for case in cases(pid, options)}
-    return {"source": function_source(pid, options), "params": dict(params), "follows": follows,
+    return {"params": dict(params), "follows": follows,
             "answers": rows, "said": said, "grouped_below": GROUPED_BELOW}
 
 

@@ -46,6 +46,18 @@ def _pose_file(pid: str, options: tuple[tuple[str, str], ...], system: str, forc
     return None if pose is None else figure.generated_file("pose", f"export default {pose};\n")
 
 
+@functools.lru_cache(maxsize=64)
+def _values_file(pid: str, options: tuple[tuple[str, str], ...]) -> str:
+    return figure.generated_file("values", f"export default {live.function_source(pid, options)};\n")
+
+
+def values_module(pid: str, options: tuple[tuple[str, str], ...]) -> str:
+    """The path of the live values' module (solvers.live.function_source, generated once and served under
+    its content's key like the pose's): the browser fetches it once, where a run carried its 2–6 kB of
+    source every time."""
+    return figure.url(_values_file(pid, options))
+
+
 def pose_module(pid: str, options: tuple[tuple[str, str], ...], system: str, forces: bool = False) -> str | None:
     """The path of the pose's module (generated once, served under its content's key), or None: under
     the server's base path as it is now (serve.py warms before the command line sets it)."""
@@ -59,7 +71,7 @@ def warm(pid: str, params, system: str) -> None:
     browser may fetch it from another replica than the one whose page named it."""
     if live.declared(pid) is not None:
         options = live.options_of(pid, params)
-        live.function_source(pid, options)
+        values_module(pid, options)
         pose_module(pid, options, system)
 
 
@@ -72,6 +84,7 @@ def payload(problem: Problem, solution: Solution, answers, system: str, stage: F
         return None
     keys = {name: control_key(problem, system, name) for name in problem.primary}
     data = live.payload(problem.id, solution.params, answers, system, keys)
+    data["values"] = values_module(problem.id, live.options_of(problem.id, solution.params))
     numbers = {p.name: p for p in problem.solver.PARAMS}
     for follow in data["follows"]:  # how the control writes its value (printf), for a thumb live.js draws
         follow.append(display_format(numbers[follow[0]]))

@@ -106,7 +106,7 @@ def test_answers_shown_after_show_the_solution_carry_no_live_view(query):
 
 
 def test_the_live_view_s_modules_follow_the_base_path_set_after_warming():
-    """serve.py warms (every state's pose module generated) before the command line sets
+    """serve.py warms (every state's values and pose modules generated) before the command line sets
     ``server.baseUrlPath``: the paths a run sends are made with the base path as it is then."""
     from streamlit import config
 
@@ -126,3 +126,5 @@ def test_the_live_view_s_modules_follow_the_base_path_set_after_warming():
     assert not at_root["module"].startswith("/dynamics-lab/") and not at_root["data"]["pose"]["url"].startswith("/dynamics-lab/")
     assert prefixed["module"].startswith("/dynamics-lab/component/")
     assert prefixed["data"]["pose"]["url"] == "/dynamics-lab" + at_root["data"]["pose"]["url"]
+    assert not at_root["data"]["values"].startswith("/dynamics-lab/")
+    assert prefixed["data"]["values"] == "/dynamics-lab" + at_root["data"]["values"]

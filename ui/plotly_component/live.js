@@ -174,7 +174,7 @@ export function load(source) {
   return fn;
 }
 
-// A generated module served by the app (ui/figure.generated_module: a figure's pose), by its path.
+// A generated module served by the app (ui/live.py: the live values' function, a figure's pose), by its path.
 const loadedModules = new Map();
 function loadModule(path) {
   let fn = loadedModules.get(path);
@@ -885,7 +885,7 @@ export function follow(d, parentElement) {
   performance.clearMeasures("dl-live-draw");  // one drag's worth kept, not a session's
   state = {data: d, parent: parentElement, params, regime: d.regime, live: false, fn: null, caption: null, pose: null, poseFn: null};
   const mine = state;
-  load(d.source).then((fn) => { mine.fn = fn; });
+  loadModule(d.values).then((fn) => { mine.fn = fn; });
   if (d.pose) loadModule(d.pose.url).then((fn) => { mine.poseFn = fn; }, () => {});  // (none: the figure stays dimmed)
   if (wasLive) requestAnimationFrame(announce);
   watch();
