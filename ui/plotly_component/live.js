@@ -159,16 +159,14 @@ export function poseOf(fn, p, values, digits) {
   return out;
 }
 
-// The generated function from its source (made by solvers/live.py on the server, never from anything
-// typed), loaded as a module: in the page from a blob (the app's Content-Security-Policy allows blob:
-// scripts, not eval), in node (tests/test_live.py) from a data: URL.
+// A generated function from its source (solvers/live.py), loaded as a module from a data: URL: how
+// node evaluates the generated code against the server's numbers (tests/pages/test_live.py). The page
+// imports the same code as the modules ui/live.py serves (loadModule).
 const loadedFunctions = new Map();
 export function load(source) {
   let fn = loadedFunctions.get(source);
   if (!fn) {
-    const text = `export default ${source};`;
-    const url = typeof document !== "undefined" ? URL.createObjectURL(new Blob([text], {type: "text/javascript"}))
-      : "data:text/javascript," + encodeURIComponent(text);
+    const url = "data:text/javascript," + encodeURIComponent(`export default ${source};`);
     loadedFunctions.set(source, fn = import(url).then((m) => m.default));
   }
   return fn;
