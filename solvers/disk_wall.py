@@ -22,7 +22,6 @@ from .core import (
     plain_number,
     Answer,
     Check,
-    Choice,
     Derivation,
     LedgerRow,
     Number,
@@ -312,24 +311,34 @@ def _notes(p, a, regime, slip_before) -> tuple[str, ...]:
     return (note,)
 
 
+def frame_times(p, a, frames: int = 40, xp=np) -> list:
+    """The motion's instants: ``frames`` of them, evenly spaced over the time the centre takes to move 3R
+    before the impact (t = 0, exactly, the last of the first half) and 3R after it (at least a quarter
+    of V: a disk that barely leaves still leaves the view slowly). ``xp``: numpy, or solvers.live's
+    namespace for expressions (the browser's motion, generated from this)."""
+    t_in = 3.0 * p["R"] / p["V"]
+    t_out = 3.0 * p["R"] / xp.maximum(a["speed1"], 0.25 * p["V"])
+    n_in, n_out = frames // 2, frames - frames // 2 - 1
+    return [*(-t_in + t_in * i / n_in for i in range(n_in)), 0.0, *(t_out * j / n_out for j in range(1, n_out + 1))]
+
+
+def state_at(p, a, t, xp=np) -> dict:
+    """The centre's position and velocity and the disk's turn at time ``t`` (the impact at t = 0 with the
+    centre at the origin, the wall at y = R): straight lines at the velocities before and after."""
+    vx0, vy0 = p["V"] * xp.sin(p["theta"]), p["V"] * xp.cos(p["theta"])
+    after = xp.less(0, t)
+
+    def pick(later, before):
+        return xp.where(after, later, before)
+    return {"x": pick(a["v1x"] * t, vx0 * t), "y": pick(a["v1y"] * t, vy0 * t),
+            "angle": pick(a["omega1"] * t, p["omega"] * t), "vx": pick(a["v1x"], vx0), "vy": pick(a["v1y"], vy0)}
+
+
 def motion(solution: Solution, frames: int = 40) -> dict:
-    """Centre path and rotation through the impact (the impact at t = 0, the centre then at the
-    origin and the wall at y = R): straight lines at the velocities before and after."""
+    """The motion through the impact, frame by frame (``frame_times``, ``state_at``)."""
     p, a = solution.params, solution.answers
-    R_, V_ = p["R"], p["V"]
-    vx0, vy0 = V_ * math.sin(p["theta"]), V_ * math.cos(p["theta"])
-    t_in = 3.0 * R_ / V_
-    t_out = 3.0 * R_ / max(a["speed1"], 0.25 * V_)
-    n_in = frames // 2
-    t = np.concatenate([np.linspace(-t_in, 0.0, n_in + 1), np.linspace(0.0, t_out, frames - n_in)[1:]])
-    after = t > 0
-    x = np.where(after, a["v1x"] * t, vx0 * t)
-    y = np.where(after, a["v1y"] * t, vy0 * t)
-    angle = np.where(after, a["omega1"] * t, p["omega"] * t)
-    vx = np.where(after, a["v1x"], vx0)
-    vy = np.where(after, a["v1y"], vy0)
-    return {"t": t, "x": x, "y": y, "angle": angle, "vx": vx, "vy": vy, "impact_index": n_in,
-            "wall_y": R_}
+    t = np.array(frame_times(p, a, frames))
+    return {"t": t, **state_at(p, a, t), "impact_index": frames // 2, "wall_y": p["R"]}
 
 
 def derivation_of(solution: Solution) -> Derivation:

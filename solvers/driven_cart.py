@@ -12,7 +12,6 @@ longer applies (a wheelie) and ``solve`` refuses.
 from __future__ import annotations
 
 import functools
-import math
 
 import numpy as np
 import sympy as sp
@@ -341,13 +340,26 @@ def _numeric_system(drive: str):
     return sp.lambdify(args, A, modules="numpy"), sp.lambdify(args, rhs, modules="numpy")
 
 
+def frame_times(p, a, frames: int = 40, duration: float = 1.5, wheelbases: float = 3.0, xp=np) -> list:
+    """The motion's instants, evenly spaced from the start: for ``duration`` or until the cart has gone
+    ``wheelbases`` wheelbases, whichever is first (a hard-driven cart would leave the view). ``xp``:
+    numpy, or solvers.live's namespace for expressions (the browser's motion, generated from this)."""
+    reach = wheelbases * 2 * p["b"]
+    end = xp.where(xp.less(0, a["accel"]), xp.minimum(duration, (2 * reach / xp.maximum(a["accel"], 1e-300)) ** 0.5),
+                   duration)
+    return [0.0, *(end * i / (frames - 1) for i in range(1, frames))]
+
+
+def state_at(p, a, t, xp=np) -> dict:
+    """From rest at constant acceleration: x(t) = ½ ẍ t², v = ẍ t."""
+    return {"x": 0.5 * a["accel"] * t**2, "v": a["accel"] * t}
+
+
 def motion(solution: Solution, frames: int = 40, duration: float = 1.5, wheelbases: float = 3.0) -> dict:
-    """From rest at constant acceleration: x(t) = ½ ẍ t², for ``duration`` or until the cart has
-    gone ``wheelbases`` wheelbases, whichever is first (a hard-driven cart would leave the view)."""
-    accel = solution.answers["accel"]
-    reach = wheelbases * 2 * solution.params["b"]
-    t = np.linspace(0.0, min(duration, math.sqrt(2 * reach / accel)) if accel > 0 else duration, frames)
-    return {"t": t, "x": 0.5 * accel * t**2, "v": accel * t}
+    """The motion frame by frame (``frame_times``, ``state_at``)."""
+    p, a = solution.params, solution.answers
+    t = np.array(frame_times(p, a, frames, duration, wheelbases))
+    return {"t": t, **state_at(p, a, t)}
 
 
 @swept("mu", SYMBOLS)

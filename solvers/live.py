@@ -64,6 +64,37 @@ class Case:
 
 
 @dataclass(frozen=True)
+class Event:
+    """A time a motion's frames depend on that no closed form gives (the stick swinging round into the
+    bounced ball): the first instant in (0, ``until``] where ``crossing(p, a, t, xp)`` is below 0, on a
+    grid of ``points`` steps, then to 1e-12 s; infinite where it never is, or where ``applies(p)`` (the
+    options) is false. ``first_crossing`` finds it on the server (numpy, brentq), live.js's
+    ``firstCrossing`` in the browser from the same functions generated (ui/live.py: motion_source)."""
+
+    name: str
+    crossing: Callable
+    until: Callable
+    points: int
+    applies: Callable = lambda p: True
+
+
+def first_crossing(event: Event, p: Mapping, a: Mapping) -> float:
+    """``event``'s time for parameters ``p`` and answers ``a`` (numpy on the grid, brentq between its points)."""
+    from scipy.optimize import brentq
+
+    if not event.applies(p):
+        return float("inf")
+    t = np.linspace(0.0, float(event.until(p, a, np)), event.points + 1)[1:]
+    below = np.nonzero(np.asarray(event.crossing(p, a, t, np)) < 0)[0]
+    if not len(below):
+        return float("inf")
+    i = below[0]
+    if i == 0:
+        return float(t[0])
+    return float(brentq(lambda q: float(np.ravel(event.crossing(p, a, q, np))[0]), t[i - 1], t[i], xtol=1e-12))
+
+
+@dataclass(frozen=True)
 class Live:
     follows: tuple[str, ...]
     cases: Callable[..., tuple[Case, ...]]
@@ -274,15 +305,21 @@ class _Values(dict):
         return sym
 
 
-def pose_source(key_pose: Callable, params: Mapping[str, object], system: str) -> str:
+TIME = sp.Symbol("t", real=True)  # a pose at a time: the generated function's argument ``t``
+
+
+def pose_source(key_pose: Callable, params: Mapping[str, object], system: str, at_time: bool = False,
+                unbounded: tuple[str, ...] = ()) -> str:
     """The JavaScript of ``key_pose`` (a viz module's) for these options: ``(p, v, round) => ({trace:
     [xs, ys]}) | null`` (``p``: the parameters in SI, ``v``: the live function's values; null if one
     it uses is not a finite number; ``round``: the figure's rounding, for a shape drawn from rounded
-    numbers, a spring's turns). Numbers in ``params`` are symbols, options (strings) as given."""
+    numbers, a spring's turns). Numbers in ``params`` are symbols, options (strings) as given. With
+    ``at_time``, a pose at any time (a viz module's ``pose_at``, called with ``TIME`` last):
+    ``(p, v, round, t) => ...``. ``unbounded``: values that may be infinite (an ``Event`` never reached)."""
     symbols = {name: sp.Symbol(_safe("p_", name)) if not isinstance(value, str) else value
                for name, value in params.items()}
     values = _Values()
-    drawn = key_pose(symbols, values, system, SYMBOLIC)
+    drawn = key_pose(symbols, values, system, SYMBOLIC, *((TIME,) if at_time else ()))
     cells = []  # every coordinate: an expression, or a number (a gap is NaN)
     shapes = {}
     for name, coords in drawn.items():
@@ -296,7 +333,9 @@ def pose_source(key_pose: Callable, params: Mapping[str, object], system: str) -
               + [(sym, f"v[{name!r}]") for name, sym in values.items() if sym in used])
     lines = [f"const {sym} = {source};" for sym, source in inputs]
     if inputs:
-        lines.append(f"if (!({' && '.join(f'Number.isFinite({sym})' for sym, _ in inputs)})) return null;")
+        finite = [f"!Number.isNaN({sym})" if str(sym) in {_safe("v_", n) for n in unbounded} else f"Number.isFinite({sym})"
+                  for sym, _ in inputs]
+        lines.append(f"if (!({' && '.join(finite)})) return null;")
     lines += [f"const {s} = {_js(e)};" for s, e in replacements]
 
     def cell(e) -> str:
@@ -305,4 +344,4 @@ def pose_source(key_pose: Callable, params: Mapping[str, object], system: str) -
     body = ", ".join(f"{name!r}: [" + ", ".join("[" + ", ".join(cell(reduced[i]) for i in range(start, start + n)) + "]"
                                             for start, n in parts) + "]" for name, parts in shapes.items())
     lines.append(f"return {{{body}}};")
-    return "(p, v, round) => {\n" + "\n".join("  " + line for line in lines) + "\n}"
+    return f"(p, v, round{', t' if at_time else ''}) => {{\n" + "\n".join("  " + line for line in lines) + "\n}"

@@ -15,7 +15,6 @@ import math
 
 import numpy as np
 import sympy as sp
-from scipy.optimize import brentq
 
 from .core import (
     within_model_range,
@@ -35,7 +34,7 @@ from .core import (
     validate_params,
 )
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
-from .live import Case, Live
+from .live import Case, Event, Live, first_crossing
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -398,77 +397,92 @@ def _checks(p, a) -> tuple[Check, ...]:
 BALL_RADIUS = 0.06  # the ball's drawn radius, as a fraction of l (the model's ball is a point)
 
 
-def motion(solution: Solution, frames: int = 45) -> dict:
-    """Top view (stick along y at x = 0, ball approaching along +x with its surface at y = s; impact
-    at t = 0). After the impact the stick turns clockwise (the ball's angular momentum is −z).
+def frame_times(p, a, frames: int = 45, xp=np) -> list:
+    """The motion's instants: a fifth of ``frames`` (at least 8) over the ball's last 0.6 l before the impact
+    (t = 0, exactly), the rest evenly after it, for one turn of the stick (at most the time the ball takes
+    over 12 l), or until the stick reaches the bounced ball again (``a["second_contact"]``, infinite if
+    never: ``SECOND_CONTACT``). ``xp``: numpy, or solvers.live's namespace for expressions (the browser's
+    motion, generated from this)."""
+    t_in = 0.6 * p["l"] / p["v"]
+    t_out = xp.minimum(_turn_or_passing(p, a, xp), a["second_contact"])
+    n_in = max(frames // 5, 8)
+    n_out = frames - n_in - 1
+    return [*(-t_in + t_in * i / n_in for i in range(n_in)), 0.0, *(t_out * j / n_out for j in range(1, n_out + 1))]
 
-    The ball is drawn as a disk of radius ``BALL_RADIUS`` l whose front touches the stick at the
-    impact. When it bounces, the two then move freely until the stick swings round into it again:
-    a second impact, which this model does not treat, so the motion ends there
-    (``second_contact``, the time, else None)."""
-    p, a = solution.params, solution.answers
+
+def state_at(p, a, t, xp=np) -> dict:
+    """Where the stick's ends and midpoint, the ball's centre and the combined centre of mass are at time
+    ``t`` (top view: the stick along y at x = 0 and the ball approaching along +x with its surface at
+    y = s; the impact at t = 0, after which the stick turns clockwise: the ball's angular momentum is −z).
+    The ball is drawn as a disk of radius ``BALL_RADIUS`` l whose front touches the stick at the impact."""
     l_, v_, s_ = p["l"], p["v"], p["s"]
     rho = BALL_RADIUS * l_
-    t_in = 0.6 * l_ / v_
-    t_out = min(2 * math.pi / a["omega"], 12 * l_ / v_)
-    second = _second_contact(p, a, rho, t_out) if p["mode"] == "bounce" else None
-    if second is not None:
-        t_out = second
-    n_in = max(frames // 5, 8)
-    t = np.concatenate([np.linspace(-t_in, 0.0, n_in + 1), np.linspace(0.0, t_out, frames - n_in)[1:]])
-    tp = np.clip(t, 0.0, None)
+    tp = xp.maximum(t, 0.0)
     phi = -a["omega"] * tp
-    normal = (np.cos(phi), np.sin(phi))  # the stick's normal, +x at the impact
+    before = xp.less(t, 0)
+    normal = (xp.cos(phi), xp.sin(phi))  # the stick's normal, +x at the impact
     if p["mode"] == "stick":
         d_ = a["d_cm"]
-        centre_x, centre_y = a["v_cm"] * tp, np.full_like(t, d_)
+        centre_x, centre_y = a["v_cm"] * tp, d_
 
         def body(arm):  # a point at arm y (from the midpoint) along the stick
-            return centre_x - (arm - d_) * np.sin(phi), centre_y + (arm - d_) * np.cos(phi)
+            return centre_x - (arm - d_) * xp.sin(phi), centre_y + (arm - d_) * xp.cos(phi)
         on_stick = body(s_)
-        ball = (np.where(t < 0, v_ * t, on_stick[0]) - rho * normal[0], np.where(t < 0, s_, on_stick[1] - rho * normal[1]))
+        ball = (xp.where(before, v_ * t, on_stick[0]) - rho * normal[0], xp.where(before, s_, on_stick[1] - rho * normal[1]))
         cm = (centre_x, centre_y)
     else:
         def body(arm):
-            return _stick_point(a, arm, tp)
-        ball = (np.where(t < 0, v_ * t, a["v_ball"] * tp) - rho, np.full_like(t, s_))
+            return _stick_point(a, arm, tp, xp)
+        ball = (xp.where(before, v_ * t, a["v_ball"] * tp) - rho, s_)
         total = p["m_ball"] + p["m_stick"]
         # the combined CM of the model (the ball a point at its contact side), for the straight path
         cm = ((p["m_ball"] * (ball[0] + rho) + p["m_stick"] * body(0.0)[0]) / total,
               (p["m_ball"] * ball[1] + p["m_stick"] * body(0.0)[1]) / total)
-    top, bottom, mid = body(l_ / 2), body(-l_ / 2), body(0.0)
-    return {"t": t, "impact_index": n_in, "top": top, "bottom": bottom, "mid": mid, "ball": ball, "cm": cm,
-            "ball_radius": rho, "second_contact": second}
+    return {"top": body(l_ / 2), "bottom": body(-l_ / 2), "mid": body(0.0), "ball": ball, "cm": cm}
 
 
-def _stick_point(a, arm, t):
+def _turn_or_passing(p, a, xp=np):
+    """How long the motion after the impact runs at most: one turn of the stick, or the ball's 12 l."""
+    return xp.minimum(2 * math.pi / a["omega"], 12 * p["l"] / p["v"])
+
+
+# After a bounce, the stick swinging round into the ball again: a second impact, which this model does not
+# treat, so the motion ends there. Closer than 1e-9 l is the bounce's own contact, or rounding.
+SECOND_CONTACT = Event("second_contact", lambda p, a, t, xp: gap(p, a, BALL_RADIUS * p["l"], t, xp) + 1e-9 * p["l"],
+                       _turn_or_passing, 4000, lambda p: p["mode"] == "bounce")
+MOTION_EVENTS = (SECOND_CONTACT,)
+
+
+def motion(solution: Solution, frames: int = 45) -> dict:
+    """The motion frame by frame (``frame_times``, ``state_at``); when the ball bounces, the two move
+    freely until the stick swings round into it again: a second impact, which this model does not
+    treat, so the motion ends there (``SECOND_CONTACT``: the time, else None)."""
+    p, a = solution.params, solution.answers
+    second = first_crossing(SECOND_CONTACT, p, a)
+    t = np.array(frame_times(p, a | {"second_contact": second}, frames))
+    s = state_at(p, a, t)
+    n = len(t)
+    s = {k: tuple(np.broadcast_to(np.asarray(c, dtype=float), (n,)).copy() for c in xy) for k, xy in s.items()}
+    return {"t": t, "impact_index": max(frames // 5, 8), **s, "ball_radius": BALL_RADIUS * p["l"],
+            "second_contact": None if math.isinf(second) else second}
+
+
+def _stick_point(a, arm, t, xp=np):
     """Where the point at ``arm`` along the bounced stick is at time t ≥ 0."""
     phi = -a["omega"] * t
-    return a["v_stick"] * t - arm * np.sin(phi), arm * np.cos(phi)
+    return a["v_stick"] * t - arm * xp.sin(phi), arm * xp.cos(phi)
 
 
-def gap(p, a, rho: float, t) -> np.ndarray:
+def gap(p, a, rho: float, t, xp=np) -> np.ndarray:
     """Distance from the bounced ball's surface to the stick (a segment) at times t ≥ 0: negative
     means they overlap."""
-    t = np.atleast_1d(np.asarray(t, dtype=float))
-    (x0, y0), (x1, y1) = _stick_point(a, -p["l"] / 2, t), _stick_point(a, p["l"] / 2, t)
-    bx, by = a["v_ball"] * t - rho, np.full_like(t, p["s"])
+    if xp is np:
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+    (x0, y0), (x1, y1) = _stick_point(a, -p["l"] / 2, t, xp), _stick_point(a, p["l"] / 2, t, xp)
+    bx, by = a["v_ball"] * t - rho, p["s"]
     dx, dy = x1 - x0, y1 - y0
-    along = np.clip(((bx - x0) * dx + (by - y0) * dy) / (dx**2 + dy**2), 0.0, 1.0)
-    return np.hypot(bx - x0 - along * dx, by - y0 - along * dy) - rho
-
-
-def _second_contact(p, a, rho: float, t_end: float) -> float | None:
-    """The first time after the bounce that the stick reaches the ball again, if before t_end."""
-    slack = 1e-9 * p["l"]  # a touch closer than this is the bounce's own contact, or rounding
-    t = np.linspace(0.0, t_end, 4001)[1:]
-    touching = np.nonzero(gap(p, a, rho, t) < -slack)[0]
-    if not len(touching):
-        return None
-    i = touching[0]
-    if i == 0:
-        return float(t[0])
-    return float(brentq(lambda q: float(gap(p, a, rho, q)[0]) + slack, t[i - 1], t[i], xtol=1e-12))
+    along = xp.minimum(xp.maximum(((bx - x0) * dx + (by - y0) * dy) / (dx**2 + dy**2), 0.0), 1.0)
+    return xp.hypot(bx - x0 - along * dx, by - y0 - along * dy) - rho
 
 
 def derivation_of(solution: Solution) -> Derivation:

@@ -29,7 +29,7 @@ import streamlit as st
 import streamlit.components.v1 as components_v1
 
 from edge import base_path, streamlit_dom
-from viz.common import Figure
+from viz.common import DIGITS, Figure
 
 NAME = "dynamics_lab_figure"
 _HERE = Path(__file__).resolve().parent
@@ -203,34 +203,39 @@ LECTURE = {"min_font": 18, "title_font": 22, "line_scale": 1.8, "marker_scale": 
 
 
 def payload(figure: Figure, bundle: str, style: dict | None, fit_screen: bool = False,
-            forces: bool | None = None) -> bytes:
+            forces: bool | None = None, motion: str | None = None) -> bytes:
     """What a run sends for one figure: one JSON object as bytes, the figure's cached JSON spliced
     in as it is (no second encoding of it). ``forces``: the stage's Forces switch, on or off (None: the
-    figure has none)."""
+    figure has none); ``motion``: the generated module its frames are computed from, for an animation the
+    browser computes (viz.common.animated_in_browser; ui.live.motion_module)."""
     head = orjson.dumps({"height": figure.height, "title": figure.title, "description": figure.description,
                          "bundle": bundle, "style": style, "fit_screen": fit_screen, "key_frame": figure.key_frame,
-                         "key_caption": figure.key_caption, **({} if forces is None else {"forces": forces})})
+                         "key_caption": figure.key_caption, **({} if forces is None else {"forces": forces}),
+                         **({} if motion is None else {"motion": {"module": motion, "live": module_url("live.js"),
+                                                                  "digits": DIGITS}})})
     return head[:-1] + b',"spec":' + figure.json_bytes() + b"}"
 
 
-def data(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False, forces: bool | None = None) -> bytes:
+def data(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False, forces: bool | None = None,
+         motion: str | None = None) -> bytes:
     """What a figure's element is sent; ``page``: every figure of the page, so that all of them share
     one plotly.js bundle."""
-    return payload(figure, url(bundles()[kind_of(figure, page)][0]), LECTURE if lecture else None, fit_screen, forces)
+    return payload(figure, url(bundles()[kind_of(figure, page)][0]), LECTURE if lecture else None, fit_screen, forces,
+                   motion)
 
 
 def show(figure: Figure, page=(), lecture: bool = False, fit_screen: bool = False, forces: bool | None = None,
-         on_forces=None) -> None:
+         on_forces=None, motion: str | None = None) -> None:
     """The figure in an element of its own (``data``); with ``forces`` (on or off), its Forces switch,
     whose press calls ``on_forces(wanted: bool)`` before the rerun it starts."""
     if on_forces is None:
-        declared()(data=data(figure, page, lecture, fit_screen), key=figure.key)
+        declared()(data=data(figure, page, lecture, fit_screen, motion=motion), key=figure.key)
         return
     key = figure.key
 
     def pressed():
         on_forces(st.session_state[key]["forces"] is True)
-    declared()(data=data(figure, page, lecture, fit_screen, forces), key=key, on_forces_change=pressed)
+    declared()(data=data(figure, page, lecture, fit_screen, forces, motion), key=key, on_forces_change=pressed)
 
 
 LINKS = "links"

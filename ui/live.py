@@ -9,6 +9,8 @@ from __future__ import annotations
 import functools
 import math
 
+import numpy as np
+
 from solvers import live, registry, units
 from solvers.core import Solution
 from ui import figure
@@ -65,6 +67,52 @@ def pose_module(pid: str, options: tuple[tuple[str, str], ...], system: str, for
     return None if name is None else figure.url(name)
 
 
+def in_browser(pid: str) -> bool:
+    """Whether the browser computes problem ``pid``'s motion on the lesson page (issue 51): its viz module
+    draws the stage at any time (``pose_at``) and its solver gives the frames' times (``frame_times``)."""
+    return (live.declared(pid) is not None and drawings(pid).pose_at is not None
+            and hasattr(registry.solver(pid), "frame_times"))
+
+
+@functools.lru_cache(maxsize=64)
+def motion_source(pid: str, options: tuple[tuple[str, str], ...], system: str) -> str:
+    """The browser's motion for problem ``pid`` (``in_browser``), as a JavaScript module: ``values``, the
+    live values from the parameters (solvers.live.function_source); ``events``, the times no closed form
+    gives (the solver's ``MOTION_EVENTS``: solvers.live.Event, each its ``crossing`` and ``until``); ``times``, ``(p, v, round) => ({t:
+    [times]})`` (the solver's ``frame_times``); ``pose``, ``(p, v, round, t) => ({shape: [xs, ys]})``
+    (the viz module's ``pose_at``). All of it generated from the code that draws the figure on the
+    server, which stays the reference (tests/pages/test_browser_motion.py)."""
+    solver, pose_at = registry.solver(pid), drawings(pid).pose_at
+    params = {p.name: p.default for p in solver.PARAMS} | dict(options)
+    events = getattr(solver, "MOTION_EVENTS", ())
+    found = tuple(e.name for e in events)  # (infinite where never reached)
+
+    def one(name, expr):
+        return {name: (np.array([expr], dtype=object),)}
+    pose = live.pose_source(lambda p, a, system, xp, t: pose_at(p, a, t, system, xp), params, system, True, found)
+    times = live.pose_source(lambda p, a, system, xp: {"t": (np.array(solver.frame_times(p, a, xp=xp), dtype=object),)},
+                             params, system, unbounded=found)
+    sought = ", ".join(f"{{name: {e.name!r}, points: {e.points}, applies: {str(bool(e.applies(params))).lower()}, "
+                       f"crossing: {live.pose_source(lambda p, a, system, xp, t, e=e: one('f', e.crossing(p, a, t, xp)), params, system, True)}, "
+                       f"until: {live.pose_source(lambda p, a, system, xp, e=e: one('t', e.until(p, a, xp)), params, system)}}}"
+                       for e in events)
+    return (f"export const values = {live.function_source(pid, options)};\n"
+            f"export const events = [{sought}];\n"
+            f"export const times = {times};\n"
+            f"export const pose = {pose};\n")
+
+
+@functools.lru_cache(maxsize=64)
+def _motion_file(pid: str, options: tuple[tuple[str, str], ...], system: str) -> str:
+    return figure.generated_file("motion", motion_source(pid, options, system))
+
+
+def motion_module(pid: str, params, system: str) -> str | None:
+    """The path of the browser's motion module for this state's options (None where the server draws
+    the frames)."""
+    return figure.url(_motion_file(pid, live.options_of(pid, params), system)) if in_browser(pid) else None
+
+
 def warm(pid: str, params, system: str) -> None:
     """Generate what the live view of this state sends, before anyone asks (serve.py): the values'
     function, and the pose's module, which every replica must serve under the same name, since a
@@ -73,6 +121,7 @@ def warm(pid: str, params, system: str) -> None:
         options = live.options_of(pid, params)
         values_module(pid, options)
         pose_module(pid, options, system)
+        motion_module(pid, params, system)
 
 
 def payload(problem: Problem, solution: Solution, answers, system: str, stage: Figure | None = None) -> dict | None:

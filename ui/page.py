@@ -115,28 +115,29 @@ def _page_flags(problem: Problem, practice_only: bool = False) -> tuple[str, str
 
 @functools.lru_cache(maxsize=256)
 @within_model_range  # the drawing too: scales like b / (m g) overflow where the answers did not
-def _computed(problem_id: str, key: tuple, system: str, forces: bool = False):
+def _computed(problem_id: str, key: tuple, system: str, forces: bool = False, in_browser: bool = False):
     """Solution and figures for one state, shared by every session of this process: in a lecture
     many students ask for the same numbers. Refusals (ValueError) are not cached. ``forces``: the
-    stage figure with the free-body diagram's forces on the motion (viz.diagram.overlay)."""
+    stage figure with the free-body diagram's forces on the motion (viz.diagram.overlay);
+    ``in_browser``: the stage's frames left to the browser (ui.live.in_browser)."""
     solver = BY_ID[problem_id].solver
     solution = solver.solve(**dict(key))
-    figures = tuple(drawings(problem_id).figures(solution, system))
+    figures = tuple(drawings(problem_id).figures(solution, system, **({"in_browser": True} if in_browser else {})))
     if forces:
         stage = figures[0]
         x_range = stage.spec["layout"]["xaxis"]["range"]
         traces, scales = diagram.overlay(solver, solution, solver.motion(solution), float(x_range[1] - x_range[0]),
                                          units.to_display(1.0, "length", system))
         figures = (diagram.with_overlay(stage, traces, scales), *figures[1:])
-    for figure in figures:
-        figure.json_bytes()  # serialise once, here
+    for drawn in figures:
+        drawn.json_bytes()  # serialise once, here
     return solution, figures
 
 
-def _solve_and_draw(problem: Problem, params: dict, system: str, forces: bool = False):
+def _solve_and_draw(problem: Problem, params: dict, system: str, forces: bool = False, in_browser: bool = False):
     if any(isinstance(v, float) and math.isnan(v) for v in params.values()):
         return problem.solver.solve(**params), ()  # refused with the solver's message
-    return _computed(problem.id, tuple(sorted(params.items())), system, forces)
+    return _computed(problem.id, tuple(sorted(params.items())), system, forces, in_browser)
 
 
 def _on_request(problem: Problem, solution, figures) -> None:
@@ -179,13 +180,13 @@ def _figures(figures) -> None:
 
 
 def _solved_or_refused(problem: Problem, params: dict, system: str, refused_in=None, practice: bool = False,
-                       lecture: bool = False, forces: bool = False):
+                       lecture: bool = False, forces: bool = False, in_browser: bool = False):
     """(solution, figures) for ``params``; or None, once the refusal is said (in ``refused_in``, the
     stage's motion column, if given, with the figures a physical limit keeps, where the motion would
     be) with the method a physical limit keeps below it."""
     try:
         check_in_range(problem, params, system)
-        return _solve_and_draw(problem, params, system, forces)
+        return _solve_and_draw(problem, params, system, forces, in_browser)
     except ValueError as error:
         limit = isinstance(error, PhysicalLimitError)
         with refused_in or contextlib.nullcontext():
@@ -307,7 +308,11 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     motion_column = stage.container(key=KEYS["motion"])
     params = lesson_parameters(problem, system, None, stage.container(key=KEYS["stageControls"]))
     _mirror(problem, params, system, lecture, False, None, {}, bool(forces))
-    solved = _solved_or_refused(problem, params, system, motion_column, lecture=lecture, forces=bool(forces))
+    # the stage's frames computed by the browser where the problem's motion is generated for it (not under
+    # the Forces overlay, whose arrows the server draws); the lesson page only: the generated code carries the answers
+    in_browser = not forces and live.in_browser(problem.id)
+    solved = _solved_or_refused(problem, params, system, motion_column, lecture=lecture, forces=bool(forces),
+                                in_browser=in_browser)
     if solved is None:
         takehome.lesson_links(problem, downloads=False)
         return
@@ -315,7 +320,8 @@ def _lesson(problem_id: str, system: str, lecture: bool) -> None:
     answers = problem.answers_of(solution)
     with motion_column:  # the motion on the stage, fitted to the first screen; its companions below
         show_figure(figures[0], page=figures, lecture=lecture, fit_screen=True, forces=forces,
-                    on_forces=None if forces is None else functools.partial(_set_forces, problem))
+                    on_forces=None if forces is None else functools.partial(_set_forces, problem),
+                    motion=live.motion_module(problem.id, solution.params, system) if in_browser else None)
     # the answers follow a dragged control (never in Practice)
     _results(problem, solution, answers, system, figures[1:], figures, lecture,
              live_view=live.payload(problem, solution, answers, system, figures[0]),

@@ -23,6 +23,7 @@ class Drawings:
     thumbnail: str  # the home page's sketch (viz.common.thumbnail)
     at_limit: Callable | None  # (params, system) -> the figures that show why a physical limit stops the model
     key_pose: Callable | None  # the stage figure's bodies at its key instant, for the browser's live pose
+    pose_at: Callable | None  # (params, answers, t, system, xp) -> its bodies at any time: the browser draws the frames
     on_request: OnRequest | None
     sketch: Callable  # params -> the problem's sketch (viz/sketch.py): its bodies at the start, the givens marked
 
@@ -32,4 +33,5 @@ def drawings(pid: str) -> Drawings:
     """The drawings of the registered problem ``pid``."""
     module = importlib.import_module(f"viz.{pid}")
     return Drawings(module.figures, module.THUMBNAIL, getattr(module, "at_limit", None),
-                    getattr(module, "key_pose", None), getattr(module, "ON_REQUEST", None), module.sketch)
+                    getattr(module, "key_pose", None), getattr(module, "pose_at", None), getattr(module, "ON_REQUEST", None),
+                    module.sketch)

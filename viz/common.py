@@ -255,6 +255,19 @@ def moving(style: dict, x=None, y=None, z=None) -> Moving:
     return Moving(style, per_frame)
 
 
+def _with_time_slider(layout: dict, time_label: str, time_unit: str) -> dict:
+    return {
+        **layout,
+        "sliders": [{
+            "active": 0, "x": 0.0, "len": 1.0, "y": -0.1, "yanchor": "top", "pad": {"t": 30, "b": 0},
+            "currentvalue": {"prefix": time_label, "suffix": time_unit, "visible": True, "xanchor": "right",
+                             "font": {"size": 14, "color": "#888888"}},
+            # Every step keeps its label for the readout, but the row of tick labels is hidden.
+            "font": {"color": "rgba(0,0,0,0)", "size": 8}, "tickcolor": "rgba(136,136,136,0.5)", "ticklen": 3,
+        }],
+    }
+
+
 def animated(
     static: Sequence[dict],
     traces: Sequence[Moving],
@@ -271,21 +284,38 @@ def animated(
     frames (each carries only the moving traces' coordinates; plotly merges them into the traces'
     style) and the time slider's steps, as ``expanded`` does here: the server builds a few arrays,
     not a few hundred dicts per change. Nothing plays by itself: Play starts the motion."""
-    layout = {
-        **layout,
-        "sliders": [{
-            "active": 0, "x": 0.0, "len": 1.0, "y": -0.1, "yanchor": "top", "pad": {"t": 30, "b": 0},
-            "currentvalue": {"prefix": time_label, "suffix": time_unit, "visible": True, "xanchor": "right",
-                             "font": {"size": 14, "color": "#888888"}},
-            # Every step keeps its label for the readout, but the row of tick labels is hidden.
-            "font": {"color": "rgba(0,0,0,0)", "size": 8}, "tickcolor": "rgba(136,136,136,0.5)", "ticklen": 3,
-        }],
-    }
     return {
         "data": [*static, *(t.first() for t in traces)],
-        "layout": layout,
+        "layout": _with_time_slider(layout, time_label, time_unit),
         "animation": {"traces": list(range(len(static), len(static) + len(traces))), "times": _instants(times),
                       "coords": [t.per_frame for t in traces], "frame_ms": frame_ms, "redraw": redraw},
+    }
+
+
+@dataclass(frozen=True)
+class Posed:
+    """A moving trace whose frames the browser computes: its style, and the name of its shape in the
+    viz module's ``pose_at`` (generated for the browser by ui/live.py); with ``trail``, the path so far
+    of the point of that name instead (as ``trails`` draws it)."""
+
+    style: dict
+    name: str
+    trail: bool = False
+
+
+def animated_in_browser(static: Sequence[dict], traces: Sequence[Posed], layout: dict, params: dict,
+                        hold: float | None = 0.03, frame_ms: int = 60, redraw: bool = False) -> dict:
+    """An animation whose frames the browser computes (issue 51): the static traces, the moving ones'
+    styles and the pose names they are drawn from, the parameters (SI) the browser's generated motion
+    starts from, and ``hold``: the axes widened where the frames reach past them, as ``holding`` widens
+    them here. The server sends no frame (``animated``'s ``coords`` and ``times`` are the browser's)."""
+    return {
+        "data": [*static, *(t.style for t in traces)],
+        "layout": _with_time_slider(layout, "t = ", " s"),
+        "animation": {"traces": list(range(len(static), len(static) + len(traces))),
+                      "posed": [[t.name, t.trail] for t in traces], "hold": hold,
+                      "params": {k: ("inf" if isinstance(v, float) and math.isinf(v) else v) for k, v in params.items()},
+                      "frame_ms": frame_ms, "redraw": redraw},
     }
 
 
@@ -354,7 +384,7 @@ def _compact(coords: dict) -> dict:
 
 def compacted(spec: dict) -> dict:
     """The figure as sent: an animation's rows compacted (``_compact``), everything else as it is."""
-    if "animation" not in spec:
+    if "animation" not in spec or "posed" in spec["animation"]:  # (frames computed in the browser: none here)
         return spec
     anim = spec["animation"]
     return {**spec, "animation": {**anim, "coords": [_compact(c) for c in anim["coords"]]}}

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import importlib
 
+import orjson
 import pytest
 
 from tests.pages.test_pages import IDS, assert_clean, first_number_control, run_page, sent
@@ -38,11 +39,12 @@ def test_a_run_sends_the_heading_the_answers_the_derivation_and_each_figure_once
     """In two elements of ours (three where a figure on request's switch stands between the companion
     figures and the derivation): the motion on the stage, and the rest below it together
     (ui/figure.together), each part carrying what its own element would."""
-    import orjson
+    from ui.live import in_browser
 
     at = run_page(pid)
     solution = importlib.import_module(f"solvers.{pid}").solve()
-    shown = importlib.import_module(f"viz.{pid}").figures(solution)
+    # (the stage's frames left to the browser where its motion is generated for it)
+    shown = importlib.import_module(f"viz.{pid}").figures(solution, **({"in_browser": True} if in_browser(pid) else {}))
     text_module = f"/text.{component.module('text.js')[0].split('.')[1]}.js"
     live_module = f"/live.{component.module('live.js')[0].split('.')[1]}.js"
     figure_module = f"/figure.{component.module()[0].split('.')[1]}.js"
@@ -80,8 +82,6 @@ def test_a_run_sends_the_heading_the_answers_the_derivation_and_each_figure_once
 
 
 def test_the_payload_is_one_json_object_around_the_figure():
-    import orjson
-
     solution = importlib.import_module("solvers.disk_wall").solve()
     figure = importlib.import_module("viz.disk_wall").figures(solution)[0]
     sent = orjson.loads(component.payload(figure, "/b.js", component.LECTURE))
@@ -128,3 +128,19 @@ def test_the_live_view_s_modules_follow_the_base_path_set_after_warming():
     assert prefixed["data"]["pose"]["url"] == "/dynamics-lab" + at_root["data"]["pose"]["url"]
     assert not at_root["data"]["values"].startswith("/dynamics-lab/")
     assert prefixed["data"]["values"] == "/dynamics-lab" + at_root["data"]["values"]
+
+
+@pytest.mark.parametrize("query", [{"practice": "1"}, {"seed": "7"}], ids=["practice", "variant"])
+def test_only_the_lesson_page_s_motion_is_computed_in_the_browser(query):
+    """The browser's motion is generated with the live values (ui/live.py: motion_source), which would
+    give the answers away: the lesson page's stage names its module and carries no frame; Practice and
+    a variant link, after "Show the solution" too, get the server's frames and no module."""
+    from tests.pages.test_pages import shown
+
+    lesson = shown(run_page("disk_wall"), component.NAME)
+    assert lesson[0]["motion"]["module"].startswith("/component/") and "coords" not in lesson[0]["spec"]["animation"]
+    at = run_page("disk_wall", query)
+    assert_clean(at)
+    at.button(key="disk_wall__reveal").click().run()
+    figures = shown(at, component.NAME)
+    assert figures and all("motion" not in f and "coords" in f["spec"]["animation"] for f in figures)

@@ -552,6 +552,8 @@ class Figure {
     if (this.Plotly && this.Plotly !== Plotly) Plotly.purge(this.graph);  // drawn by the other bundle
     this.Plotly = Plotly;
     const spec = args.spec, style = args.style;
+    if (spec.animation && spec.animation.posed && !(await this.computeMotion(spec, args.motion))) return;
+    if (seq !== this.seq) return;  // a newer run came while the motion's modules loaded
     const layout = themeLayout(spec.layout || {}, theme);
     const slider = (layout.sliders || [])[0];
     if (slider) {  // drawn as the range input above the graph; its room below the axes is not needed
@@ -642,6 +644,24 @@ class Figure {
     this.outlineWidths = outlineWidths;
     await this.fitDrawn();
     if (this.fitHeight) this.watchStage();
+  }
+
+  // An animation whose frames the browser computes (viz/common.py: animated_in_browser, issue 51): its
+  // times, rows and held axes from the generated motion (live.js: motionOf), put where the server's
+  // would be. False (nothing drawn) where the motion has no value for these parameters.
+  async computeMotion(spec, motion) {
+    const [live, gen] = await Promise.all([import(new URL(motion.live, location.href).href),
+                                           import(new URL(motion.module, location.href).href)]);
+    const m = live.motionOf(gen, spec.animation, spec.layout, motion.digits);
+    if (!m) return false;
+    spec.animation.times = m.times;
+    spec.animation.coords = m.coords;
+    spec.animation.traces.forEach((j, n) => Object.assign(spec.data[j], {x: m.coords[n].x[0], y: m.coords[n].y[0]}));
+    if (m.ranges) {
+      spec.layout.xaxis = Object.assign({}, spec.layout.xaxis, {range: m.ranges.x});
+      spec.layout.yaxis = Object.assign({}, spec.layout.yaxis, {range: m.ranges.y});
+    }
+    return true;
   }
 
   // What follows the size the graph is drawn at, after every change of it (a new figure, the screen

@@ -159,6 +159,69 @@ export function poseOf(fn, p, values, digits) {
   return out;
 }
 
+// A motion whose frames the browser computes (viz/common.py: animated_in_browser), from the module
+// generated for it (ui/live.py: motion_source: the live values, the frames' times and the bodies'
+// pose at a time): the times (to the microsecond, as the server writes them) and each moving trace's
+// rows, one per frame, rounded as the server rounds its own; a trail as the path so far of its point.
+// ``ranges``: the axes widened where the frames reach past them (viz/common.py: holding, to ``hold``
+// of the larger span). Null where the generated code has no value for these parameters.
+export function motionOf(gen, anim, layout, digits) {
+  const p = fromJSON(anim.params), live = gen.values(p);
+  if (!live || !live.values) return null;
+  const v = Object.assign({}, live.values), round = (x) => roundedLike(x, digits);
+  for (const e of gen.events || []) v[e.name] = e.applies ? firstCrossing(e, p, v, round) : Infinity;
+  const drawn = gen.times(p, v, round);
+  if (!drawn) return null;
+  const times = drawn.t[0], coords = anim.posed.map(() => ({x: [], y: []})), paths = anim.posed.map(() => ({x: [], y: []}));
+  for (const t of times) {
+    const pose = gen.pose(p, v, round, t);
+    if (!pose) return null;
+    anim.posed.forEach(([name, trail], n) => {
+      const [xs, ys] = pose[name].map((row) => row.map(round));
+      if (trail) {
+        paths[n].x.push(xs[0]);
+        paths[n].y.push(ys[0]);
+      }
+      coords[n].x.push(trail ? paths[n].x.slice() : xs);
+      coords[n].y.push(trail ? paths[n].y.slice() : ys);
+    });
+  }
+  return {times: times.map((t) => roundedLike(t, 6)), coords, ranges: anim.hold == null ? null : holding(coords, layout, anim.hold, digits)};
+}
+
+// An event's time (solvers/live.py: Event, first_crossing): the first point of the grid of ``points`` steps
+// over (0, until] where the crossing is below 0, then halved between it and the point before to 1e-13 of
+// it (the server's brentq: to 1e-12 s); Infinity where it never is.
+function firstCrossing(e, p, v, round) {
+  const value = (t) => e.crossing(p, v, round, t).f[0][0], until = e.until(p, v, round).t[0][0];
+  let before = 0;
+  for (let i = 1; i <= e.points; i++) {
+    const t = i === e.points ? until : i * (until / e.points);  // numpy.linspace's points
+    if (value(t) < 0) {
+      if (i === 1) return t;
+      let lo = before, hi = t;
+      while (hi - lo > 1e-13 * hi) {
+        const mid = 0.5 * (lo + hi);
+        if (value(mid) < 0) hi = mid; else lo = mid;
+      }
+      return hi;
+    }
+    before = t;
+  }
+  return Infinity;
+}
+
+function holding(coords, layout, pad, digits) {
+  const reach = (key) => {
+    const all = coords.flatMap((c) => c[key].flat()).filter((x) => x !== null && Number.isFinite(x));
+    return [Math.min(...all), Math.max(...all)];
+  };
+  const [x, y] = [reach("x"), reach("y")];
+  const margin = pad * Math.max(x[1] - x[0], y[1] - y[0], 1e-9);
+  const held = (range, [lo, hi]) => [roundedLike(Math.min(range[0], lo - margin), digits), roundedLike(Math.max(range[1], hi + margin), digits)];
+  return {x: held(layout.xaxis.range, x), y: held(layout.yaxis.range, y)};
+}
+
 // A generated function from its source (solvers/live.py), loaded as a module from a data: URL: how
 // node evaluates the generated code against the server's numbers (tests/pages/test_live.py). The page
 // imports the same code as the modules ui/live.py serves (loadModule).
