@@ -15,6 +15,8 @@ the server process's CPU time (user + system, read from /proc before and after; 
 /proc counts in 10 ms ticks). Prints a Markdown table: the wall time's median, the CPU's mean, and the ratio to the empty page's in the same run.
 ``--revisit`` moves the control back and forth between two values instead (each seen once, untimed,
 first), so every cache answers: what the page's elements and messages cost with no new numbers.
+The page's session goes through a relay (``Wire``) that counts a change's bytes on the wire (the websocket's
+compression on, as Chromium asks for it) beside the bytes decoded: the median of each.
 """
 from __future__ import annotations
 
@@ -25,6 +27,7 @@ import statistics
 import sys
 import time
 from pathlib import Path
+from urllib.parse import urlparse
 
 import websockets
 
@@ -42,6 +45,41 @@ from solvers import registry  # noqa: E402
 # BURST, then RATE a second) would hold them back and the wait would count as cost. So each tab
 # sends fewer than a burst, and the next changes come from a new tab.
 PER_SESSION = BURST - 5
+
+
+class Wire:
+    """A TCP relay in front of a server that counts the bytes it sends back: what a change costs on the wire,
+    after the websocket's compression (``permessage-deflate``, which the client offers as a browser does),
+    where ``run_script`` counts the messages as decoded."""
+
+    def __init__(self, url: str):
+        self.target = urlparse(url)
+        self.sent = 0
+
+    async def _pipe(self, reader, writer, counted: bool):
+        try:
+            while data := await reader.read(65536):
+                if counted:
+                    self.sent += len(data)
+                writer.write(data)
+                await writer.drain()
+        except ConnectionError:
+            pass
+        finally:
+            writer.close()
+
+    async def _relay(self, reader, writer):
+        upstream_reader, upstream_writer = await asyncio.open_connection(self.target.hostname, self.target.port)
+        await asyncio.gather(self._pipe(reader, upstream_writer, False), self._pipe(upstream_reader, writer, True))
+
+    async def __aenter__(self):
+        self.server = await asyncio.start_server(self._relay, "127.0.0.1", 0)
+        port = self.server.sockets[0].getsockname()[1]
+        self.url = self.target._replace(netloc=f"127.0.0.1:{port}").geturl()
+        return self
+
+    async def __aexit__(self, *exc):
+        self.server.close()
 
 
 class Session:
@@ -63,17 +101,19 @@ class Session:
     async def __aexit__(self, *exc):
         await self.ws.close()
 
-    async def change(self, value: float) -> tuple[float, float]:
-        """(wall seconds, server CPU seconds) of one change to ``value``; an exception element
-        (a traceback on the page) fails the run."""
+    async def change(self, value: float, wire: Wire | None = None) -> tuple[float, float, int, int]:
+        """(wall seconds, server CPU seconds, bytes decoded, bytes on the ``wire``) of one change to
+        ``value``; an exception element (a traceback on the page) fails the run."""
         cpu = cpu_seconds([self.pid])
+        on_wire = wire.sent if wire else 0
         began = time.perf_counter()
-        _, _, messages = await run_script(self.ws, self.page, [widget_state(self.wid, self.kind, value)], self.fragment)
+        _, decoded, messages = await run_script(self.ws, self.page, [widget_state(self.wid, self.kind, value)], self.fragment)
         wall = time.perf_counter() - began
         for m in messages:
             if m.HasField("delta") and m.delta.HasField("new_element") and m.delta.new_element.WhichOneof("type") == "exception":
                 raise SystemExit(f"{self.page}: exception after a change to {value}")
-        return wall, cpu_seconds([self.pid]) - cpu
+        await asyncio.sleep(0.01)  # the relay's last write counted
+        return wall, cpu_seconds([self.pid]) - cpu, decoded, (wire.sent if wire else 0) - on_wire
 
 
 async def measure(page: str, changes: int, empty_url: str, empty_pid: int, page_url: str, page_pid: int,
@@ -81,20 +121,22 @@ async def measure(page: str, changes: int, empty_url: str, empty_pid: int, page_
     key, _, _, _ = lesson_control(page)
     values = (changes_of(page, 2) * changes)[:changes] if revisit else changes_of(page, changes)
     rows = []
-    for start in range(0, len(values), PER_SESSION):  # a new tab every PER_SESSION changes: see PER_SESSION
-        async with Session(page_url, page, key, page_pid) as p, Session(empty_url, "", "x", empty_pid) as e:
-            if revisit and start == 0:  # both values seen once, untimed: every timed change is a cache's answer
-                for value in values[:2]:
-                    await p.change(value)
-            for i, value in enumerate(values[start:start + PER_SESSION], start=start + 1):
-                rows.append((*await p.change(value), *await e.change(round(0.9 - 0.5 * i / len(values), 6))))
-    walls, cpus, ewalls, ecpus = zip(*rows)
+    async with Wire(page_url) as wire:
+        for start in range(0, len(values), PER_SESSION):  # a new tab every PER_SESSION changes: see PER_SESSION
+            async with Session(wire.url, page, key, page_pid) as p, Session(empty_url, "", "x", empty_pid) as e:
+                if revisit and start == 0:  # both values seen once, untimed: every timed change is a cache's answer
+                    for value in values[:2]:
+                        await p.change(value)
+                for i, value in enumerate(values[start:start + PER_SESSION], start=start + 1):
+                    rows.append((*await p.change(value, wire), *await e.change(round(0.9 - 0.5 * i / len(values), 6))))
+    walls, cpus, decoded, on_wire, ewalls, ecpus, _, _ = zip(*rows)
     # the wall time's median; the CPU's mean (/proc counts it in 10 ms ticks: one change's reading is
     # 0 or 10 ms, and only their sum over many changes has the resolution)
     wall, ewall, cpu, ecpu = statistics.median(walls), statistics.median(ewalls), statistics.mean(cpus), statistics.mean(ecpus)
     return {"page": page, "fragment": bool(p.fragment), "changes": len(rows),
             "wall ms": wall * 1e3, "empty wall ms": ewall * 1e3, "wall x empty": wall / ewall,
-            "cpu ms": cpu * 1e3, "empty cpu ms": ecpu * 1e3, "cpu x empty": cpu / ecpu if ecpu else float("nan")}
+            "cpu ms": cpu * 1e3, "empty cpu ms": ecpu * 1e3, "cpu x empty": cpu / ecpu if ecpu else float("nan"),
+            "KB decoded": statistics.median(decoded) / 1024, "KB on the wire": statistics.median(on_wire) / 1024}
 
 
 def main() -> None:
@@ -117,11 +159,13 @@ def main() -> None:
         stop_servers(*empty[:1], empty[2], empty[3])
     print(f"\nOne change of the lesson control, as the browser sends it; median of {args.changes} changes, "
           "each beside one on the empty page\n")
-    print("| page | fragment rerun | wall per change (empty) | × empty | server CPU per change (empty) | × empty |")
-    print("|---|---|---|---|---|---|")
+    print("| page | fragment rerun | wall per change (empty) | × empty | server CPU per change (empty) | × empty "
+          "| KB on the wire (decoded) |")
+    print("|---|---|---|---|---|---|---|")
     for r in rows:
         print(f"| {r['page']} | {'yes' if r['fragment'] else 'no'} | {r['wall ms']:.1f} ms ({r['empty wall ms']:.1f}) | "
-              f"{r['wall x empty']:.2f} | {r['cpu ms']:.1f} ms ({r['empty cpu ms']:.1f}) | {r['cpu x empty']:.2f} |")
+              f"{r['wall x empty']:.2f} | {r['cpu ms']:.1f} ms ({r['empty cpu ms']:.1f}) | {r['cpu x empty']:.2f} | "
+              f"{r['KB on the wire']:.1f} ({r['KB decoded']:.1f}) |")
     if args.json:
         args.json.write_text(json.dumps(rows, indent=1))
 
