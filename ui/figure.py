@@ -19,6 +19,7 @@ from __future__ import annotations
 import gzip
 import hashlib
 import os
+import re
 import tempfile
 import threading
 from functools import cache
@@ -104,8 +105,9 @@ def kind_of(figure: Figure, page=()) -> str:
 
 class BundleServer:
     """ASGI middleware (installed by serve.py): the plotly bundles and the component's module,
-    gzipped once at start-up rather than on every request, with a year's immutable cache lifetime
-    (their names change with their content). Everything else passes through to Streamlit."""
+    gzipped once at start-up rather than on every request, and the generated modules (``generated_file``)
+    gzipped once when first asked for, with a year's immutable cache lifetime (their names change with
+    their content). Everything else passes through to Streamlit."""
 
     def __init__(self, app):
         self.app = app
@@ -119,7 +121,22 @@ class BundleServer:
             for suffix, (raw, packed) in self.files.items():
                 if scope["path"].endswith(suffix) and "/component/" in scope["path"]:
                     return await self._send(scope, send, raw, packed)
+            generated = _GENERATED.search(scope["path"]) if "/component/" in scope["path"] else None
+            if generated and (files := self._generated(generated.group(1))):
+                return await self._send(scope, send, *files)
         await self.app(scope, receive, send)
+
+    def _generated(self, name: str) -> tuple[bytes, bytes] | None:
+        """A generated module (``generated_file``: the live values, a pose, a motion), read from the asset
+        directory the first time it is asked for and kept, gzipped: named by its content, it never changes."""
+        key = f".{NAME}/{name}"
+        if key not in self.files:
+            try:
+                data = (assets() / name).read_bytes()
+            except OSError:
+                return None
+            self.files[key] = (data, gzip.compress(data, 9))
+        return self.files[key]
 
     @staticmethod
     async def _send(scope, send, raw: bytes, packed: bytes):
@@ -142,6 +159,10 @@ def url(name: str) -> str:
 def module_url(file: str) -> str:
     """The served path of a component's module or one it imports (plotly_component/<file>)."""
     return url(module(file)[0])
+
+
+# A generated module's name as ``generated_file`` makes it (the only names ``BundleServer`` reads from disk).
+_GENERATED = re.compile(rf"/component/{re.escape(__name__)}\.{NAME}/((?:values|pose|motion)\.[0-9a-f]{{16}}\.js)$")
 
 
 def generated_file(stem: str, text: str) -> str:

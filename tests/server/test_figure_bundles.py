@@ -109,3 +109,20 @@ def test_anything_else_goes_to_streamlit():
     for path in ("/component/ui.figure.dynamics_lab_figure/index.html", f"/static/{name}",
                  "/component/ui.figure.dynamics_lab_figure/plotly-basic.0000000000000000.min.js"):
         assert request(path)[2], path
+
+
+def test_a_generated_module_is_served_gzipped_and_immutable_and_nothing_else_from_its_directory():
+    """The live values', the poses' and the motions' modules (ui/live.py), named by their content, are
+    served like the bundles (a year's cache, gzipped once), read from the asset directory on first asking;
+    a name of another form, or one never generated, goes to Streamlit (which answers 404)."""
+    from ui import live
+
+    name = live._values_file("disk_wall", ())
+    data = (component.assets() / name).read_bytes()
+    headers, body, passed = request(f"/dynamics-lab/component/ui.figure.{component.NAME}/{name}")
+    assert not passed and headers["cache-control"] == "public, max-age=31536000, immutable"
+    assert gzip.decompress(body) == data and len(body) < len(data) / 2
+    for path in (f"/component/ui.figure.{component.NAME}/values.0000000000000000.js",
+                 f"/component/ui.figure.{component.NAME}/../{name}", f"/component/ui.figure.{component.NAME}/x{name}",
+                 f"/static/{name}"):
+        assert request(path)[2], path
