@@ -547,13 +547,15 @@ class Figure {
     // The text a screen reader gets, at once: it does not wait for plotly.js.
     this.graph.setAttribute("aria-label", (args.title ? args.title + ". " : "") + (args.description || ""));
     this.description.textContent = args.description || "";
+    const spec = args.spec, style = args.style;
+    // (a motion the browser computes: its modules fetched beside plotly.js, not after it)
+    const motion = spec.animation && spec.animation.posed ? this.computeMotion(spec, args.motion) : null;
     const Plotly = await plotlyFor(args.bundle);
     if (seq !== this.seq) return;  // a newer run came while plotly.js loaded
+    if (motion && !(await motion)) return;
+    if (seq !== this.seq) return;  // a newer run came while the motion's modules loaded
     if (this.Plotly && this.Plotly !== Plotly) Plotly.purge(this.graph);  // drawn by the other bundle
     this.Plotly = Plotly;
-    const spec = args.spec, style = args.style;
-    if (spec.animation && spec.animation.posed && !(await this.computeMotion(spec, args.motion))) return;
-    if (seq !== this.seq) return;  // a newer run came while the motion's modules loaded
     const layout = themeLayout(spec.layout || {}, theme);
     const slider = (layout.sliders || [])[0];
     if (slider) {  // drawn as the range input above the graph; its room below the axes is not needed
