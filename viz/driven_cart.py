@@ -31,8 +31,10 @@ def _animation(solution, in_browser: bool = False) -> Figure:
     b = p["b"]
     wheel, body_top, force_scale, driven, traction_per_axle = _sizes(p, a)
     x_end = m["x"][-1]
-    ground = line(r([min(-b, min(driven) - traction_per_axle * force_scale) - 1.5 * wheel, x_end + b + 1.5 * wheel]),
-                  [0, 0], "ground", COLORS["ground"], width=4)
+    # the ground runs on beyond the view, however the equal axes widen it (a tall cart's view is wide)
+    near = (min(-b, min(driven) - traction_per_axle * force_scale) - 1.5 * wheel, x_end + b + 1.5 * wheel)
+    far = 10 * (near[1] - near[0] + max(b, p["a"]))
+    ground = line(r([near[0] - far, near[1] + far]), [0, 0], "ground", COLORS["ground"], width=4)
     styles = {"cart body": line(None, None, "cart body", COLORS["body"], width=3, fill="toself"),
               "wheels": line(None, None, "wheels", COLORS["ink"], width=3),
               "marked spokes": line(None, None, "marked spokes", COLORS["accent"], width=3),
