@@ -853,6 +853,13 @@ def with_overlay(figure, traces: list, scales: dict | None = None):
     anim["traces"] = list(anim["traces"]) + list(range(start, start + len(traces)))
     anim["coords"] = list(anim["coords"]) + [t.per_frame for t in traces]
     spec["data"], spec["animation"] = data, anim
+    layout = spec.get("layout", {})
+    if "range" in layout.get("xaxis", {}) and "range" in layout.get("yaxis", {}):  # the arrows and their names held inside the axes
+        from viz.common import holding, r
+
+        x_range, y_range = holding(tuple(layout["xaxis"]["range"]), tuple(layout["yaxis"]["range"]), traces)
+        spec["layout"] = {**layout, "xaxis": {**layout["xaxis"], "range": r(x_range)},
+                          "yaxis": {**layout["yaxis"], "range": r(y_range)}}
     words = " Red arrows: the forces of the free-body diagram, each drawn to its size in that frame."
     return _replace(figure, spec=spec, description=figure.description + words,
                     extra={**figure.extra, "overlay_scales": dict(scales or {})})
