@@ -756,6 +756,21 @@ def _drawn(kind: str, symbol: str, geometry, scale, length_scale: float, xp) -> 
     return xs, ys, tail_x + dx * beyond, tail_y + dy * beyond
 
 
+def _label_side(away_x, away_y) -> str:
+    """Where a label's text stands from its point: on the side away from its arrow (``away``: from the
+    arrow's first point to the label's, per frame; the first frame that draws it decides), so that a
+    name beside a short horizontal arrow is not written over its head ("2μN" under the traction's)."""
+    import numpy as np
+
+    drawn = np.flatnonzero(np.isfinite(away_x) & np.isfinite(away_y))
+    if not len(drawn):
+        return "middle center"
+    ax, ay = away_x[drawn[0]], away_y[drawn[0]]
+    if abs(ax) > abs(ay):
+        return "middle right" if ax > 0 else "middle left"
+    return "top center" if ay > 0 else "bottom center"
+
+
 def _names(tracks) -> list[tuple[str, str]]:
     """(arrow's trace name, label's trace name) per track, each its own (a pose finds a trace by its
     name; a pair's two halves share a symbol): the first arrow carries the legend's entry."""
@@ -801,7 +816,8 @@ def overlay(solver, solution, motion: dict, width: float, length_scale: float = 
         traces.append(moving(style, xs, ys))
         label = {"type": "scatter", "mode": "text", "x": None, "y": None, "text": [_html_label(symbol)],
                  "textfont": {"color": OVERLAY_COLOR, "size": 15}, "hoverinfo": "skip", "showlegend": False,
-                 "legendgroup": "forces", "name": label_name, "cliponaxis": False}
+                 "legendgroup": "forces", "name": label_name, "cliponaxis": False,
+                 "textposition": _label_side(label_x - xs[:, 0], label_y - ys[:, 0])}
         traces.append(moving(label, r(label_x)[:, None], r(label_y)[:, None]))
     return traces, scales
 
