@@ -766,8 +766,8 @@ def _label_side(away_x, away_y) -> str:
     if not len(drawn):
         return "middle center"
     ax, ay = away_x[drawn[0]], away_y[drawn[0]]
-    if abs(ax) > abs(ay):
-        return "middle right" if ax > 0 else "middle left"
+    if abs(ax) > abs(ay):  # (raised off the line the arrow lies on)
+        return "top right" if ax > 0 else "top left"
     return "top center" if ay > 0 else "bottom center"
 
 
@@ -873,7 +873,10 @@ def with_overlay(figure, traces: list, scales: dict | None = None):
     if "range" in layout.get("xaxis", {}) and "range" in layout.get("yaxis", {}):  # the arrows and their names held inside the axes
         from viz.common import holding, r
 
-        x_range, y_range = holding(tuple(layout["xaxis"]["range"]), tuple(layout["yaxis"]["range"]), traces)
+        labels = [t for t in traces if t.style.get("mode") == "text"]  # a name's text runs on past its point
+        x_range, y_range = holding(tuple(layout["xaxis"]["range"]), tuple(layout["yaxis"]["range"]),
+                                   [t for t in traces if t not in labels])
+        x_range, y_range = holding(x_range, y_range, labels, pad=0.12)
         spec["layout"] = {**layout, "xaxis": {**layout["xaxis"], "range": r(x_range)},
                           "yaxis": {**layout["yaxis"], "range": r(y_range)}}
     words = " Red arrows: the forces of the free-body diagram, each drawn to its size in that frame."
