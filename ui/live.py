@@ -77,7 +77,7 @@ def in_browser(pid: str) -> bool:
 @functools.lru_cache(maxsize=64)
 def motion_source(pid: str, options: tuple[tuple[str, str], ...], system: str) -> str:
     """The browser's motion for problem ``pid`` (``in_browser``), as a JavaScript module: ``values``, the
-    live values from the parameters (solvers.live.function_source); ``events``, the times no closed form
+    live values from the parameters (re-exported from the values' module, ``values_module``); ``events``, the times no closed form
     gives (the solver's ``MOTION_EVENTS``: solvers.live.Event, each its ``crossing`` and ``until``); ``times``, ``(p, v, round) => ({t:
     [times]})`` (the solver's ``frame_times``); ``pose``, ``(p, v, round, t) => ({shape: [xs, ys]})``
     (the viz module's ``pose_at``). All of it generated from the code that draws the figure on the
@@ -96,7 +96,8 @@ def motion_source(pid: str, options: tuple[tuple[str, str], ...], system: str) -
                        f"crossing: {live.pose_source(lambda p, a, system, xp, t, e=e: one('f', e.crossing(p, a, t, xp)), params, system, True)}, "
                        f"until: {live.pose_source(lambda p, a, system, xp, e=e: one('t', e.until(p, a, xp)), params, system)}}}"
                        for e in events)
-    return (f"export const values = {live.function_source(pid, options)};\n"
+    # the live values' module itself, beside this one in the asset directory: its code is not sent twice
+    return (f"export {{default as values}} from \"./{_values_file(pid, options)}\";\n"
             f"export const events = [{sought}];\n"
             f"export const times = {times};\n"
             f"export const pose = {pose};\n")

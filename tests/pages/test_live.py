@@ -429,7 +429,7 @@ def test_the_stage_s_headline_shows_an_answer_the_dragged_control_changes(pid):
 
 
 # ------------------------------------------------------------------ the motion the browser computes (issue 51)
-MOTION = ("const gens = await Promise.all(input.map(([source]) => import('data:text/javascript,' + encodeURIComponent(source))));\n"
+MOTION = ("const gens = await Promise.all(input.map(([file]) => import('./' + file)));\n"
           "console.log(JSON.stringify(input.map(([, anim, layout, digits], i) => live.motionOf(gens[i], anim, layout, digits))));")
 # States each motion computed in the browser is tried at besides the drawn ones: where an event ends it
 # (the stick swinging round into the bounced ball, 1.41 s after the impact).
@@ -462,16 +462,19 @@ def test_the_browser_s_motion_is_the_server_s(pid, tmp_path_factory, monkeypatch
     @given(st.lists(dragged(pid), min_size=12, max_size=12), st.sampled_from(["si", "us"]))
     @example([{**_defaults(pid), **state} for state in MOTION_EXAMPLES.get(pid, ())] or [_defaults(pid)], "si")
     def check(samples, system):
-        cases, layout_of = [], {}
+        cases, served = [], tmp_path_factory.mktemp("motion")
+        (served / "package.json").write_text('{"type": "module"}')  # the generated files as the page imports them
         for solution in solved(pid, samples):
             spec = json.loads(viz.figures(solution, system, in_browser=True)[0].json())  # as sent
-            layout_of[id(solution)] = spec["layout"]
-            source = ui_live.motion_source(pid, live.options_of(pid, solution.params), system)
-            cases.append((solution, [source, spec["animation"], spec["layout"], 12]))
+            options = live.options_of(pid, solution.params)
+            name = ui_live._motion_file(pid, options, system)
+            for file in (name, ui_live._values_file(pid, options)):  # (the motion imports the values beside it)
+                shutil.copy(component.assets() / file, served / file)
+            cases.append((solution, spec["layout"], [name, spec["animation"], spec["layout"], 12]))
         if not cases:
             return
-        got = node(tmp_path_factory.mktemp("motion"), MOTION, [c for _, c in cases])
-        for (solution, _), motion in zip(cases, got):
+        got = node(served, MOTION, [c for _, _, c in cases])
+        for (solution, sent, _), motion in zip(cases, got):
             assert motion is not None, solution.params
             reference = viz.figures(solution, system)[0].spec  # frame by frame on the server, as the figure always was
             anim = reference["animation"]
@@ -489,7 +492,7 @@ def test_the_browser_s_motion_is_the_server_s(pid, tmp_path_factory, monkeypatch
                         h = np.array([np.nan if v is None else v for v in h], dtype=float)
                         assert w.shape == h.shape and np.allclose(h, w, rtol=0, atol=1e-6 * size, equal_nan=True), (
                             solution.params, name, axis, frame)
-            sent = layout_of[id(solution)]  # the axes as sent, where the browser has none to widen
+            # the axes as sent, where the browser has none to widen
             ranges = motion["ranges"] or {"x": sent["xaxis"]["range"], "y": sent["yaxis"]["range"]}
             for axis, key in (("x", "xaxis"), ("y", "yaxis")):
                 assert np.allclose(ranges[axis], reference["layout"][key]["range"], rtol=0, atol=1e-6 * size), (
