@@ -8,7 +8,7 @@ The pieces live in their own modules:
 - ``errors``: ParameterError, PhysicalLimitError, OutOfModelRangeError, ``require``,
   ``within_model_range``
 - ``specs``: the parameter and answer specs (Number, Choice, Answer) and ``validate_params``
-- ``solution``: the Solution record (Step, Check, LedgerRow, Solution)
+- ``solution``: the Solution record (Step, Check, LedgerRow, Solution), ``per_solution``
 - ``derivation``: the derivation chain (Result, Derivation, ``latex_eq``, ``presentable``,
   ``root_with_sign``)
 - ``formatting`` and ``units``: numbers as plain text and LaTeX, and quantities with their units
@@ -19,13 +19,13 @@ from .derivation import Derivation, Result, latex_eq, presentable, root_with_sig
 from .errors import (ARITHMETIC_FAILURES, OutOfModelRangeError, ParameterError, PhysicalLimitError, require,
                      within_model_range)
 from .formatting import latex_number, plain_fixed, plain_number
-from .solution import Check, LedgerRow, Solution, Step, relative_tolerance
+from .solution import Check, LedgerRow, Solution, Step, per_solution, relative_tolerance
 from .specs import Answer, Choice, Number, Param, validate_params
 from .units import latex_quantity
 
 __all__ = [
     "ARITHMETIC_FAILURES", "Answer", "Check", "Choice", "Derivation", "LedgerRow", "Number",
     "OutOfModelRangeError", "Param", "ParameterError", "PhysicalLimitError", "Result", "Solution", "Step",
-    "latex_eq", "latex_number", "latex_quantity", "plain_fixed", "plain_number", "presentable", "relative_tolerance",
+    "latex_eq", "latex_number", "latex_quantity", "per_solution", "plain_fixed", "plain_number", "presentable", "relative_tolerance",
     "require", "root_with_sign", "validate_params", "within_model_range",
 ]

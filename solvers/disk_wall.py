@@ -31,6 +31,7 @@ from .core import (
     latex_eq,
     relative_tolerance,
     validate_params,
+    per_solution,
 )
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, balance, balance_steps, fbd_steps
 from .live import Case, Live
@@ -334,6 +335,7 @@ def state_at(p, a, t, xp=np) -> dict:
             "angle": pick(a["omega1"] * t, p["omega"] * t), "vx": pick(a["v1x"], vx0), "vy": pick(a["v1y"], vy0)}
 
 
+@per_solution
 def motion(solution: Solution, frames: int = 40) -> dict:
     """The motion through the impact, frame by frame (``frame_times``, ``state_at``)."""
     p, a = solution.params, solution.answers

@@ -31,6 +31,7 @@ from .core import (
     latex_eq,
     relative_tolerance,
     validate_params,
+    per_solution,
 )
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Outline, balance, balance_steps, fbd_steps
 from .live import Case, Live
@@ -355,6 +356,7 @@ def state_at(p, a, t, xp=np) -> dict:
     return {"x": 0.5 * a["accel"] * t**2, "v": a["accel"] * t}
 
 
+@per_solution
 def motion(solution: Solution, frames: int = 40, duration: float = 1.5, wheelbases: float = 3.0) -> dict:
     """The motion frame by frame (``frame_times``, ``state_at``)."""
     p, a = solution.params, solution.answers

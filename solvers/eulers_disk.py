@@ -31,6 +31,7 @@ from .core import (
     relative_tolerance,
     root_with_sign,
     validate_params,
+    per_solution,
 )
 from .diagram import Body, DiagramSlip, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
@@ -300,6 +301,7 @@ def orientations(p, answers, t) -> np.ndarray:
     return rz(-answers["omega_p"] * t) @ rx @ rz(answers["omega_s"] * t)
 
 
+@per_solution
 def motion(solution: Solution, frames: int = 48, rim_points: int = 36) -> dict:
     """One precession: the rim, a marked radius and the contact point, in the table frame, with G
     fixed at height r sin θ above the origin."""

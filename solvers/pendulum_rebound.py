@@ -34,6 +34,7 @@ from .core import (
     root_with_sign,
     require,
     validate_params,
+    per_solution,
 )
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live
@@ -558,6 +559,7 @@ def _checks(p, a) -> tuple[Check, ...]:
     return tuple(checks)
 
 
+@per_solution
 def motion(solution: Solution, frames: int = 60, bounces: int = 3, curve_points: int = 400) -> dict:
     """θ(t) and θ̇(t) through several bounces, integrated, at frames even in time plus one at each
     impact (so the animation shows the sphere touching), and θ(t) densely for its plot. Between

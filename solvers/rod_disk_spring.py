@@ -33,6 +33,7 @@ from .core import (
     relative_tolerance,
     require,
     validate_params,
+    per_solution,
 )
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Live, Stops
@@ -444,6 +445,7 @@ MAX_FRAME_TURN = math.radians(10.0)  # the most the rod may turn between two fra
 FRAME_RANGE = (45, 150)
 
 
+@per_solution
 def motion(solution: Solution) -> dict:
     """The swing a student can see, with the energy split per frame: kinetic, gravitational (zero
     with the assembly hanging straight down) and spring. The fall is integrated once; the system

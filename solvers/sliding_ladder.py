@@ -37,6 +37,7 @@ from .core import (
     relative_tolerance,
     validate_params,
     within_model_range,
+    per_solution,
 )
 from . import units
 from .diagram import Body, DiagramSlip, Diagram, Load, Rod, balance, balance_steps, fbd_steps
@@ -232,7 +233,6 @@ def derivation() -> tuple[Derivation, dict]:
     rate_sq = sp.solve(energy1.subs(thetadot**2, W), W)[0]
     accel = sp.simplify(sp.diff(rate_sq, theta) / 2)  # d(θ̇²)/dt = 2 θ̇ θ̈ = (d θ̇²/dθ) θ̇
     x_acc, y_acc = as_symbols(x_G.diff(t, 2)), as_symbols(y_G.diff(t, 2))
-    on_path = {thetaddot: accel, thetadot**2: rate_sq}
     # The reactions and θ̈ from the balance laws written from the diagram (Step 3), G on its circle;
     # θ̈ from them must be the energy method's.
     at_G, acc_x, acc_y = _G_SYMBOLS
@@ -519,6 +519,7 @@ FRAMES = 90
 CURVE_POINTS = 240
 
 
+@per_solution
 def motion(solution: Solution) -> dict:
     """Both phases from the integration, scaled to SI: frames evenly in time (one exactly at the
     leaving), the contacts' positions, and the reactions on a finer grid for their plot."""

@@ -2,9 +2,13 @@
 method, the ledger across an impact."""
 from __future__ import annotations
 
+import functools
+import weakref
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
+
+import numpy as np
 
 
 # The course's four steps (the worked solutions' method): every derivation step belongs to one.
@@ -85,3 +89,25 @@ class Solution:
 def relative_tolerance(value: float, rel: float = 1e-9, floor: float = 1e-12) -> float:
     """An absolute tolerance scaled to ``value``, never zero."""
     return max(abs(value) * rel, floor)
+
+
+def per_solution(fn: Callable) -> Callable:
+    """``fn(solution, ...)`` computed once per Solution object and arguments, while the solution lives: a
+    run asks for a motion up to three times (the stage's figure, a free-body diagram drawn at one of its
+    frames, the Forces overlay), and each student's own values make a new solution every change, which a
+    cache keyed by values would only fill. The result is shared, so its arrays are made read-only."""
+    results: dict[tuple, tuple[weakref.ref, Any]] = {}
+
+    @functools.wraps(fn)
+    def once(solution, *args, **kwargs):
+        key = (id(solution), args, tuple(sorted(kwargs.items())))
+        hit = results.get(key)
+        if hit is not None and hit[0]() is solution:
+            return hit[1]
+        value = fn(solution, *args, **kwargs)
+        for array in (value.values() if isinstance(value, dict) else ()):
+            if isinstance(array, np.ndarray):
+                array.flags.writeable = False
+        results[key] = (weakref.ref(solution, lambda _, key=key: results.pop(key, None)), value)
+        return value
+    return once

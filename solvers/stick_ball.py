@@ -32,6 +32,7 @@ from .core import (
     relative_tolerance,
     require,
     validate_params,
+    per_solution,
 )
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Event, Live, first_crossing
@@ -453,6 +454,7 @@ SECOND_CONTACT = Event("second_contact", lambda p, a, t, xp: gap(p, a, BALL_RADI
 MOTION_EVENTS = (SECOND_CONTACT,)
 
 
+@per_solution
 def motion(solution: Solution, frames: int = 45) -> dict:
     """The motion frame by frame (``frame_times``, ``state_at``); when the ball bounces, the two move
     freely until the stick swings round into it again: a second impact, which this model does not

@@ -14,6 +14,7 @@ picture's box holds them all.
 """
 from __future__ import annotations
 
+import functools
 import html
 import math
 import re
@@ -147,9 +148,11 @@ _GREEK = {r"\theta": "θ", r"\omega": "ω", r"\mu": "μ", r"\tau": "τ", r"\alph
 _LATEX_TOKEN = re.compile(r"\\[a-zA-Z]+|\\.|[{}_^]|[^\\{}_^\s]|\s+")
 
 
-def runs(tex: str) -> list[tuple[str, str]]:
+@functools.lru_cache(maxsize=512)
+def runs(tex: str) -> tuple[tuple[str, str], ...]:
     """A label's LaTeX as (text, "" | "sub" | "sup") runs: enough for the symbols the solvers
-    declare (N_A, m_s g, O_x, \\mu N_f, M_{k})."""
+    declare (N_A, m_s g, O_x, \\mu N_f, M_{k}). Kept per label: a diagram measures each label at
+    every spot it tries."""
     tokens = _LATEX_TOKEN.findall(tex)
     out: list[tuple[str, str]] = []
     i, mode = 0, ""
@@ -188,7 +191,7 @@ def runs(tex: str) -> list[tuple[str, str]]:
             continue
         add(_GREEK.get(t, t.lstrip("\\") if t.startswith("\\") and len(t) > 2 else t), "")
         i += 1
-    return [(text, where) for text, where in out if text]
+    return tuple((text, where) for text, where in out if text)
 
 
 def plain_label(tex: str) -> str:
@@ -200,6 +203,12 @@ def plain_label(tex: str) -> str:
         else:
             out += f"_{t}" if w == "sub" else f"^{t}"
     return out
+
+
+@functools.lru_cache(maxsize=512)
+def _tex(symbol: sp.Basic) -> str:
+    """A declared component's LaTeX (O_x), printed once per symbol rather than on every drawing."""
+    return sp.latex(symbol)
 
 
 def label_width(tex: str, size: float = FONT) -> float:
@@ -223,7 +232,11 @@ def _unit(x: float, y: float) -> tuple[float, float]:
 
 
 def _segment_hits_box(a, b, box: Box) -> bool:
-    """Whether segment ab passes through the box (sampled: boxes are small against arrows)."""
+    """Whether segment ab passes through the box (sampled: boxes are small against arrows). A segment
+    whose own bounds miss the box has no sample in it: answered without sampling (most are)."""
+    if (max(a[0], b[0]) <= box.x0 or min(a[0], b[0]) >= box.x1
+            or max(a[1], b[1]) <= box.y0 or min(a[1], b[1]) >= box.y1):
+        return False
     for k in range(41):
         t = k / 40
         x, y = a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t
@@ -300,7 +313,7 @@ def layout(diagram: Diagram, values, every_point: bool = False) -> Drawing:
                 head, tail = at, (at[0] - d[0] * ARROW, at[1] - d[1] * ARROW)
             else:  # tail at the point
                 tail, head = at, (at[0] + d[0] * ARROW, at[1] + d[1] * ARROW)
-            arrow = Arrow(tail, head, load.kind, Label(symbol if isinstance(symbol, str) else sp.latex(symbol), 0, 0),
+            arrow = Arrow(tail, head, load.kind, Label(symbol if isinstance(symbol, str) else _tex(symbol), 0, 0),
                           load.symbol)
             drawing.arrows.append(arrow)
             free, outward = (tail, (-d[0], -d[1])) if pushes else (head, d)
@@ -372,15 +385,9 @@ def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item,
     where the label overlaps no placed label or point, crosses no arrow (its own included) and no
     body's outline; the first candidate otherwise."""
     w, h = label_width(label.tex, label.size), label.size * 1.15
-    perp = (-d[1], d[0])
     reach = near + max(w, h) / 2
-    candidates = [(free[0] + d[0] * reach, free[1] + d[1] * reach)]
-    for k in range(16):
-        a = 2 * math.pi * k / 16
-        for r in (reach, reach * 1.6, reach * 2.3):
-            candidates.append((free[0] + math.cos(a) * r, free[1] + math.sin(a) * r))
-    candidates.insert(1, (free[0] + perp[0] * (w / 2 + 6), free[1] + perp[1] * (h / 2 + 6)))
-    for x, y in candidates:
+    first = (free[0] + d[0] * reach, free[1] + d[1] * reach)
+    for x, y in _spots(free, d, reach, w, h):
         box = Box(x - w / 2, y - h / 2, x + w / 2, y + h / 2)
         if any(box.overlaps(b, 2) for b in labels) or any(box.overlaps(o) for o in obstacles):
             continue
@@ -389,7 +396,20 @@ def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item,
                 _segment_hits_box(a.tail, a.head, grown) for a in drawing.arrows)):
             continue
         return x, y
-    return candidates[0]
+    return first
+
+
+_AROUND = tuple((math.cos(2 * math.pi * k / 16), math.sin(2 * math.pi * k / 16)) for k in range(16))
+
+
+def _spots(free, d, reach: float, w: float, h: float):
+    """Where ``_place`` tries a label of ``w`` × ``h``, in order: beyond the free end along ``d``, beside it
+    (across ``d``), then around it at three distances; generated as tried (the first usually serves)."""
+    yield free[0] + d[0] * reach, free[1] + d[1] * reach
+    yield free[0] - d[1] * (w / 2 + 6), free[1] + d[0] * (h / 2 + 6)
+    for c, s in _AROUND:
+        for r in (reach, reach * 1.6, reach * 2.3):
+            yield free[0] + c * r, free[1] + s * r
 
 
 def _basis(drawing: Drawing, diagram: Diagram, labels: list[Box], obstacles: list[Box]) -> None:
@@ -420,7 +440,7 @@ def text_alternative(diagram: Diagram, values) -> str:
                 way = "counter-clockwise" if value >= 0 else "clockwise"
                 parts.append(f"{load.name} {plain_label(load.symbol)}{where}, {way}")
             elif load.direction is None:
-                c = [plain_label(sp.latex(x)) for x in load.components]
+                c = [plain_label(_tex(x)) for x in load.components]
                 parts.append(f"{load.name}{where}, direction unknown, drawn as its components {c[0]} along x "
                              f"and {c[1]} along y")
             else:

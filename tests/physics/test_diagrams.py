@@ -153,9 +153,9 @@ def test_an_unknown_reaction_is_drawn_as_its_two_components_and_an_impulse_with_
 
 
 def test_labels_are_written_as_subscripts():
-    assert fbd.runs("N_A") == [("N", ""), ("A", "sub")]
-    assert fbd.runs(r"m_{s} g") == [("m", ""), ("s", "sub"), ("g", "")]
-    assert fbd.runs(r"\mu N_{f}") == [("μN", ""), ("f", "sub")]
+    assert fbd.runs("N_A") == (("N", ""), ("A", "sub"))
+    assert fbd.runs(r"m_{s} g") == (("m", ""), ("s", "sub"), ("g", ""))
+    assert fbd.runs(r"\mu N_{f}") == (("μN", ""), ("f", "sub"))
     assert fbd.plain_label(r"O_{x}") == "O_x"
 
 

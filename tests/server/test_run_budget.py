@@ -144,3 +144,49 @@ def test_only_the_lesson_page_s_motion_is_computed_in_the_browser(query):
     at.button(key="disk_wall__reveal").click().run()
     figures = shown(at, component.NAME)
     assert figures and all("motion" not in f and "coords" in f["spec"]["animation"] for f in figures)
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_a_run_computes_its_motion_at_most_once(pid, monkeypatch):
+    """The stage's figure, a free-body diagram drawn at one of the motion's frames and the Forces overlay
+    all read one motion (solvers.solution.per_solution): a change costs the server one motion at most,
+    whichever of them the page shows. Counted at the solver's own computation, for new values each run."""
+    from solvers import registry
+    from solvers.solution import per_solution
+
+    module = importlib.import_module(registry.solver(pid).__name__)
+    computed, compute = [], module.motion.__wrapped__
+
+    def counted_motion(solution, *args, **kwargs):
+        computed.append(solution)
+        return compute(solution, *args, **kwargs)
+    monkeypatch.setattr(module, "motion", per_solution(counted_motion))
+    at = run_page(pid, {"forces": "1"})
+    assert_clean(at)
+    for change in range(2):
+        computed.clear()
+        control, _ = first_number_control(at, pid)
+        control.set_value(control.value * (1.02 if change else 0.98)).run()
+        assert_clean(at)
+        assert len(computed) <= 1, f"{len(computed)} motions computed for one change"
+
+
+def test_a_motion_is_kept_with_its_solution_and_shared_read_only():
+    """per_solution keeps a result while its solution lives, and no longer; another solution of the same
+    values computes its own; the shared arrays cannot be written through."""
+    import gc
+
+    from solvers import pendulum_rebound as solver
+
+    first = solver.solve()
+    motion = solver.motion(first)
+    assert solver.motion(first) is motion
+    assert solver.motion(solver.solve()) is not motion
+    with pytest.raises(ValueError):
+        motion["theta"][0] = 0.0
+    kept = solver.motion.__closure__  # the results dict, found by the solution's id
+    results = next(c.cell_contents for c in kept if isinstance(c.cell_contents, dict))
+    key = next(k for k in results if k[0] == id(first))
+    del first, motion
+    gc.collect()
+    assert key not in results
