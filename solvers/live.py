@@ -95,6 +95,41 @@ def first_crossing(event: Event, p: Mapping, a: Mapping) -> float:
 
 
 @dataclass(frozen=True)
+class Leg:
+    """One leg of a motion integrated in the browser (``Integrated``): it ends where ``ends(p, a, y, xp)``
+    (``y``: the state, by the names ``Integrated.state`` gives) falls through zero from above; ``then``,
+    the state the next leg starts from (an impact: ``(p, a, y, xp) -> y``), else the same; ``framed``, its
+    end a frame of its own (an impact the animation must show); ``last(p, a, y, xp)``, true where the motion
+    ends with it, ``y`` its end (e = 0: the sphere stays against the floor)."""
+
+    name: str
+    ends: Callable
+    then: Callable | None = None
+    framed: bool = False
+    last: Callable = lambda p, a, y, xp: False
+
+
+@dataclass(frozen=True)
+class Integrated:
+    """A motion no closed form gives, integrated in the browser from the solver's own equation of motion
+    (issue 51): the state's names, ``start(p, a, xp)`` and ``rates(p, a, y, xp)`` (dy/dt), the legs in
+    order, each at most ``horizon(p, a, xp)`` long, by an adaptive Dormand–Prince step to ``tolerances``
+    (rtol, atol) with each leg's end located on the step's cubic interpolant (live.js: ``integrated``).
+    The frames: ``frames`` instants evenly over the motion, and each framed leg's end; a dense curve of
+    ``curve`` such instants for a plot against time. The solver's own Python motion stays the reference
+    (tests/pages/test_live.py compares the two)."""
+
+    state: tuple[str, ...]
+    start: Callable
+    rates: Callable
+    legs: tuple[Leg, ...]
+    horizon: Callable
+    frames: int
+    curve: int = 0
+    tolerances: tuple[float, float] = (1e-10, 1e-12)
+
+
+@dataclass(frozen=True)
 class Live:
     follows: tuple[str, ...]
     cases: Callable[..., tuple[Case, ...]]
@@ -269,6 +304,8 @@ class _Symbolic:
     of sympy expressions."""
 
     cos = staticmethod(_elementwise(sp.cos, 1))
+    sqrt = staticmethod(_elementwise(sp.sqrt, 1))
+    degrees = staticmethod(_elementwise(lambda a: a * 180 / sp.pi, 1))
     sin = staticmethod(_elementwise(sp.sin, 1))
     abs = staticmethod(_elementwise(sp.Abs, 1))
     hypot = staticmethod(_elementwise(lambda a, b: sp.sqrt(a**2 + b**2), 2))
@@ -345,3 +382,30 @@ def pose_source(key_pose: Callable, params: Mapping[str, object], system: str, a
                                             for start, n in parts) + "]" for name, parts in shapes.items())
     lines.append(f"return {{{body}}};")
     return f"(p, v, round{', t' if at_time else ''}) => {{\n" + "\n".join("  " + line for line in lines) + "\n}"
+
+
+def integrated_source(spec: Integrated, params: Mapping[str, object], system: str) -> str:
+    """``spec`` as the JavaScript object live.js's ``integrated`` reads: each of its functions generated as
+    a pose is (``pose_source``: ``(p, v, round) => ({y: [[numbers]]})``), the state among the values by its
+    names (``v.theta``); a leg that appears more than once, defined once."""
+    def generated(fn, of_state: bool = True) -> str:
+        def rows(p, a, system, xp):
+            out = fn(p, a, {name: a[name] for name in spec.state}, xp) if of_state else fn(p, a, xp)
+            out = [out[name] for name in spec.state] if isinstance(out, Mapping) else [out]
+            return {"y": (np.array(out, dtype=object),)}
+        return pose_source(rows, params, system)
+
+    def last(p, a, y, xp):
+        return sp.Piecewise((1, sp.sympify(spec_leg.last(p, a, y, xp))), (0, True))
+    legs = list(dict.fromkeys(spec.legs))  # each once, in order
+    defined = []
+    for n, spec_leg in enumerate(legs):
+        then = generated(spec_leg.then) if spec_leg.then is not None else "null"
+        defined.append(f"{{name: {spec_leg.name!r}, framed: {str(spec_leg.framed).lower()}, ends: {generated(spec_leg.ends)}, "
+                       f"then: {then}, last: {generated(last)}}}")
+    return (f"(() => {{\n  const legs = [{', '.join(defined)}];\n"
+            f"  return {{state: {list(spec.state)!r}, frames: {spec.frames}, curve: {spec.curve}, "
+            f"tolerances: [{spec.tolerances[0]!r}, {spec.tolerances[1]!r}],\n"
+            f"    start: {generated(spec.start, of_state=False)},\n    rates: {generated(spec.rates)},\n"
+            f"    horizon: {generated(spec.horizon, of_state=False)},\n"
+            f"    legs: [{', '.join(f'legs[{legs.index(leg)}]' for leg in spec.legs)}]}};\n}})()")

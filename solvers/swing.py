@@ -58,16 +58,29 @@ def _hermite(t0, t1, y0, y1, d0, d1):
     return value
 
 
-def hermite_on_knots(t: np.ndarray, y: np.ndarray, dy: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def hermite_on_knots(t: np.ndarray, y: np.ndarray, dy: np.ndarray, times: np.ndarray,
+                     ddy: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The piecewise cubic Hermite curve through the knots (t, y, y') (t increasing) and its
     derivative at ``times`` (within [t[0], t[-1]]): each time on the interval it falls in, the
     last one closed; ``_hermite`` on every interval at once. What scipy's CubicHermiteSpline gives,
     evaluated in a few whole-array steps (its construction costs more than a new state's whole
-    drawing on the pendulum's page)."""
+    drawing on the pendulum's page). With ``ddy`` (y'' at the knots: the equation of motion gives it),
+    the quintic through (y, y', y'') instead: a drawn frame then agrees with the integration to its
+    tolerance, where the cubic was 2e-6 rad off between knots a tenth of a second apart."""
     i = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 2)
     h = t[i + 1] - t[i]
     s = (times - t[i]) / h
     y0, y1, d0, d1 = y[i], y[i + 1], dy[i], dy[i + 1]
+    if ddy is not None:
+        a0, a1 = ddy[i] * h**2, ddy[i + 1] * h**2
+        s2, s3, s4, s5 = s**2, s**3, s**4, s**5
+        value = ((1 - 10 * s3 + 15 * s4 - 6 * s5) * y0 + (s - 6 * s3 + 8 * s4 - 3 * s5) * h * d0
+                 + (s2 - 3 * s3 + 3 * s4 - s5) / 2 * a0 + (s3 - 2 * s4 + s5) / 2 * a1
+                 + (-4 * s3 + 7 * s4 - 3 * s5) * h * d1 + (10 * s3 - 15 * s4 + 6 * s5) * y1)
+        rate = ((-30 * s2 + 60 * s3 - 30 * s4) * (y0 - y1) / h + (1 - 18 * s2 + 32 * s3 - 15 * s4) * d0
+                + (2 * s - 9 * s2 + 12 * s3 - 5 * s4) / 2 * a0 / h + (3 * s2 - 8 * s3 + 5 * s4) / 2 * a1 / h
+                + (-12 * s2 + 28 * s3 - 15 * s4) * d1)
+        return value, rate
     h00, h10, h01, h11 = _hermite_basis(s)
     value = h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1
     rate = (6 * s**2 - 6 * s) * (y0 - y1) / h + (3 * s**2 - 4 * s + 1) * d0 + (3 * s**2 - 2 * s) * d1  # d/dt of value

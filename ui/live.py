@@ -70,8 +70,9 @@ def pose_module(pid: str, options: tuple[tuple[str, str], ...], system: str, for
 def in_browser(pid: str) -> bool:
     """Whether the browser computes problem ``pid``'s motion on the lesson page (issue 51): its viz module
     draws the stage at any time (``pose_at``) and its solver gives the frames' times (``frame_times``)."""
+    solver = registry.solver(pid)
     return (live.declared(pid) is not None and drawings(pid).pose_at is not None
-            and hasattr(registry.solver(pid), "frame_times"))
+            and (hasattr(solver, "frame_times") or hasattr(solver, "INTEGRATED")))
 
 
 @functools.lru_cache(maxsize=64)
@@ -80,7 +81,8 @@ def motion_source(pid: str, options: tuple[tuple[str, str], ...], system: str) -
     live values from the parameters (re-exported from the values' module, ``values_module``); ``events``, the times no closed form
     gives (the solver's ``MOTION_EVENTS``: solvers.live.Event, each its ``crossing`` and ``until``); ``times``, ``(p, v, round) => ({t:
     [times]})`` (the solver's ``frame_times``); ``pose``, ``(p, v, round, t) => ({shape: [xs, ys]})``
-    (the viz module's ``pose_at``). All of it generated from the code that draws the figure on the
+    (the viz module's ``pose_at``). A motion no closed form gives (the solver's ``INTEGRATED``) has
+    ``integrated`` instead of ``events`` and ``times`` (solvers.live.integrated_source). All of it generated from the code that draws the figure on the
     server, which stays the reference (tests/pages/test_browser_motion.py)."""
     solver, pose_at = registry.solver(pid), drawings(pid).pose_at
     params = {p.name: p.default for p in solver.PARAMS} | dict(options)
@@ -90,6 +92,11 @@ def motion_source(pid: str, options: tuple[tuple[str, str], ...], system: str) -
     def one(name, expr):
         return {name: (np.array([expr], dtype=object),)}
     pose = live.pose_source(lambda p, a, system, xp, t: pose_at(p, a, t, system, xp), params, system, True, found)
+    integrated = getattr(solver, "INTEGRATED", None)
+    if integrated is not None:  # no closed form: integrated in the browser, its state among the values
+        return (f"export {{default as values}} from \"./{_values_file(pid, options)}\";\n"
+                f"export const integrated = {live.integrated_source(integrated, params, system)};\n"
+                f"export const pose = {pose};\n")
     times = live.pose_source(lambda p, a, system, xp: {"t": (np.array(solver.frame_times(p, a, xp=xp), dtype=object),)},
                              params, system, unbounded=found)
     sought = ", ".join(f"{{name: {e.name!r}, points: {e.points}, applies: {str(bool(e.applies(params))).lower()}, "

@@ -301,19 +301,24 @@ class Posed:
     style: dict
     name: str
     trail: bool = False
+    keep: int | None = None  # a trail's last points (``trails``' keep)
 
 
 def animated_in_browser(static: Sequence[dict], traces: Sequence[Posed], layout: dict, params: dict,
-                        hold: float | None = 0.03, frame_ms: int = 60, redraw: bool = False) -> dict:
+                        hold: float | None = 0.03, frame_ms: int = 60, redraw: bool = False,
+                        traced: Sequence[tuple[int, str]] = ()) -> dict:
     """An animation whose frames the browser computes (issue 51): the static traces, the moving ones'
     styles and the pose names they are drawn from, the parameters (SI) the browser's generated motion
     starts from, and ``hold``: the axes widened where the frames reach past them, as ``holding`` widens
-    them here. The server sends no frame (``animated``'s ``coords`` and ``times`` are the browser's)."""
+    them here. The server sends no frame (``animated``'s ``coords`` and ``times`` are the browser's).
+    ``traced``: static traces the browser draws from an integrated motion's dense instants, each (its index
+    among ``static``, the pose's point drawn at each instant): a plot against time."""
     return {
         "data": [*static, *(t.style for t in traces)],
         "layout": _with_time_slider(layout, "t = ", " s"),
         "animation": {"traces": list(range(len(static), len(static) + len(traces))),
-                      "posed": [[t.name, t.trail] for t in traces], "hold": hold,
+                      "posed": [[t.name, t.trail, t.keep] for t in traces], "hold": hold,
+                      **({"traced": [[index, name] for index, name in traced]} if traced else {}),
                       "params": {k: ("inf" if isinstance(v, float) and math.isinf(v) else v) for k, v in params.items()},
                       "frame_ms": frame_ms, "redraw": redraw},
     }

@@ -26,11 +26,12 @@ pytestmark = pytest.mark.browser
 IN_BROWSER = [pid for pid in registry.PROBLEM_IDS if in_browser(pid)]
 # A state off the defaults where a page has regimes, options or events: the disk sliding along the wall, front
 # drive, the bounced stick swinging round into the ball.
-QUERIES = {"disk_wall": "?mu=0.05&omega=40", "driven_cart": "?drive=front&mu=0.3", "stick_ball": "?mode=bounce&s=0.25"}
+QUERIES = {"disk_wall": "?mu=0.05&omega=40", "driven_cart": "?drive=front&mu=0.3", "stick_ball": "?mode=bounce&s=0.25",
+           "pendulum_rebound": "?surface=wall&e=0.6"}
 DRAWN = """() => { const f = document.querySelector('.dl-figure.dl-staged');
   return f && f.dlFigure && f.dlFigure.frames && f.dlFigure.frames.length ? f.dlFigure : null; }"""
 FRAMES = ("() => { const f = (" + DRAWN + ")(); return {frames: f.frames.map((fr) => fr.data.map((d) => [d.x, d.y])),"
-          " times: f.times, key: f.keyFrame}; }")
+          " times: f.times, key: f.keyFrame, data: f.graph.data.map((d) => [d.x, d.y])}; }")
 ROUNDING = 10.0 ** -DIGITS
 
 
@@ -44,7 +45,7 @@ def assert_the_server_s_figure(page, pid: str) -> dict:
     want = expanded(reference.spec)
     drawn = page.evaluate(FRAMES)
     assert drawn["key"] == reference.key_frame
-    assert np.allclose(drawn["times"], reference.spec["animation"]["times"], rtol=0, atol=1e-6)
+    assert np.allclose(drawn["times"], reference.spec["animation"]["times"], rtol=0, atol=1.001e-6)  # (a unit apart at a boundary)
     assert len(drawn["frames"]) == len(want["frames"])
     for n, (have, frame) in enumerate(zip(drawn["frames"], want["frames"])):
         for trace, (hx, hy) in zip(frame["data"], have):
@@ -54,6 +55,17 @@ def assert_the_server_s_figure(page, pid: str) -> dict:
                 # both rounded to DIGITS from values equal to ~1e-12: equal, or one unit apart at a boundary
                 assert w.shape == h.shape and np.allclose(h, w, rtol=0, atol=1.001 * ROUNDING, equal_nan=True), (
                     pid, query, n, axis)
+    # and every trace that does not move, as drawn: a plot against time the browser draws from the motion
+    # it integrates (θ(t) below the pendulum) among them
+    moving = set(reference.spec["animation"]["traces"])
+    for j, trace in enumerate(reference.spec["data"]):
+        if j in moving:
+            continue
+        for axis, h in zip(("x", "y"), drawn["data"][j]):
+            w = np.array([np.nan if v is None else v for v in np.ravel(np.asarray(trace[axis], dtype=object))], dtype=float)
+            h = np.array([np.nan if v is None else v for v in np.ravel(np.asarray(h, dtype=object))], dtype=float)
+            assert w.shape == h.shape and np.allclose(h, w, rtol=0, atol=1.001 * ROUNDING, equal_nan=True), (
+                pid, query, trace.get("name"), axis)
     return query
 
 

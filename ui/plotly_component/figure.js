@@ -659,6 +659,7 @@ class Figure {
     spec.animation.times = m.times;
     spec.animation.coords = m.coords;
     spec.animation.traces.forEach((j, n) => Object.assign(spec.data[j], {x: m.coords[n].x[0], y: m.coords[n].y[0]}));
+    for (const line of m.traced) Object.assign(spec.data[line.trace], {x: line.x, y: line.y});  // a plot against time
     if (m.ranges) {
       spec.layout.xaxis = Object.assign({}, spec.layout.xaxis, {range: m.ranges.x});
       spec.layout.yaxis = Object.assign({}, spec.layout.yaxis, {range: m.ranges.y});
