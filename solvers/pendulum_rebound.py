@@ -604,28 +604,33 @@ def _checks(p, a) -> tuple[Check, ...]:
     return tuple(checks)
 
 
-@per_solution
-def motion(solution: Solution, frames: int = INTEGRATED.frames, bounces: int = BOUNCES,
-           curve_points: int = INTEGRATED.curve) -> dict:
-    """θ(t) and θ̇(t) through several bounces, integrated, at frames even in time plus one at each
-    impact (so the animation shows the sphere touching), and θ(t) densely for its plot. Between
-    the integrator's samples each leg is a cubic Hermite curve through (θ, θ̇), which the equation
-    of motion makes smooth; the legs meet at the impacts, where θ̇ jumps (the cusps on θ_I)."""
+def _drawn_legs(solution: Solution, bounces: int = BOUNCES) -> list:
+    """The legs the animation draws: ``simulate``'s, up to the impact the sphere stays at (``stays``)."""
     *_, legs = simulate(solution.params, solution.answers, bounces=bounces)
     seen = next((k + 1 for k in range(0, len(legs), 2) if stays(solution.params, legs[k].end[2], legs[0].end[2])), len(legs))
-    legs = legs[:seen]  # up to the impact the sphere stays at, if it does (``stays``)
+    return legs[:seen]
+
+
+@per_solution
+def motion(solution: Solution, frames: int = INTEGRATED.frames, bounces: int = BOUNCES) -> dict:
+    """θ(t) and θ̇(t) through several bounces, integrated, at frames even in time plus one at each
+    impact (so the animation shows the sphere touching). Between the integrator's samples each leg is
+    the quintic through θ, θ̇ and θ̈ (the equation of motion gives θ̈); the legs meet at the impacts,
+    where θ̇ jumps. The browser integrates the same frames itself on the lesson page (``INTEGRATED``)."""
+    legs = _drawn_legs(solution, bounces)
     impact_times = [leg.end[0] for leg in legs[0::2]]
-    start, end = legs[0].t[0], legs[-1].end[0]
-    t_frames = np.union1d(np.linspace(start, end, frames), impact_times)
-    t_curve = np.union1d(np.linspace(start, end, curve_points), impact_times)
-    # Both sets of times in one pass over the legs; each time gets the value it would get on its own.
-    both = np.concatenate([t_frames, t_curve])
-    order = np.argsort(both, kind="stable")
-    theta_both, omega_both = np.empty_like(both), np.empty_like(both)
-    theta_both[order], omega_both[order] = _on_legs(legs, both[order], solution.params, solution.answers)
-    n = len(t_frames)
-    return {"t": t_frames, "theta": theta_both[:n], "omega": omega_both[:n], "t_curve": t_curve,
-            "theta_curve": theta_both[n:], "impact_times": impact_times}
+    t = np.union1d(np.linspace(legs[0].t[0], legs[-1].end[0], frames), impact_times)
+    theta, omega = _on_legs(legs, t, solution.params, solution.answers)
+    return {"t": t, "theta": theta, "omega": omega, "impact_times": impact_times}
+
+
+@per_solution
+def curve(solution: Solution, points: int = INTEGRATED.curve, bounces: int = BOUNCES) -> tuple[np.ndarray, np.ndarray]:
+    """θ(t) densely for its plot below the motion, ``points`` instants even in time and each impact (the
+    cusps land on θ_I): (t, θ)."""
+    legs = _drawn_legs(solution, bounces)
+    t = np.union1d(np.linspace(legs[0].t[0], legs[-1].end[0], points), [leg.end[0] for leg in legs[0::2]])
+    return t, _on_legs(legs, t, solution.params, solution.answers)[0]
 
 
 def _on_legs(legs, times: np.ndarray, p, a) -> tuple[np.ndarray, np.ndarray]:

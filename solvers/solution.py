@@ -105,7 +105,7 @@ def per_solution(fn: Callable) -> Callable:
         if hit is not None and hit[0]() is solution:
             return hit[1]
         value = fn(solution, *args, **kwargs)
-        for array in (value.values() if isinstance(value, dict) else ()):
+        for array in (value.values() if isinstance(value, dict) else value if isinstance(value, tuple) else ()):
             if isinstance(array, np.ndarray):
                 array.flags.writeable = False
         results[key] = (weakref.ref(solution, lambda _, key=key: results.pop(key, None)), value)

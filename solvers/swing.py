@@ -73,7 +73,10 @@ def hermite_on_knots(t: np.ndarray, y: np.ndarray, dy: np.ndarray, times: np.nda
     y0, y1, d0, d1 = y[i], y[i + 1], dy[i], dy[i + 1]
     if ddy is not None:
         a0, a1 = ddy[i] * h**2, ddy[i + 1] * h**2
-        s2, s3, s4, s5 = s**2, s**3, s**4, s**5
+        s2 = s * s
+        s3 = s2 * s
+        s4 = s3 * s
+        s5 = s4 * s
         value = ((1 - 10 * s3 + 15 * s4 - 6 * s5) * y0 + (s - 6 * s3 + 8 * s4 - 3 * s5) * h * d0
                  + (s2 - 3 * s3 + 3 * s4 - s5) / 2 * a0 + (s3 - 2 * s4 + s5) / 2 * a1
                  + (-4 * s3 + 7 * s4 - 3 * s5) * h * d1 + (10 * s3 - 15 * s4 + 6 * s5) * y1)

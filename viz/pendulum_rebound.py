@@ -36,8 +36,10 @@ def figures(solution, system: str = "si", in_browser: bool = False) -> list[Figu
     contact = ({"x": [0.0], "y": [-p["d"] * k]} if floor else {"x": [-rad], "y": [0.0]})  # where the surface is
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
     theta_deg = np.degrees(m["theta"])
-    curve = line(r(m["t_curve"]), r(np.degrees(m["theta_curve"])), "θ(t)", COLORS["body"], width=2,
-                 xaxis="x2", yaxis="y2")  # dense, with a point at each impact: the cusps land on θ_I
+    # dense, with a point at each impact (the cusps land on θ_I); the browser draws it where it integrates
+    t_curve, theta_curve = solver.curve(solution) if not in_browser else (None, None)
+    curve = line(r(t_curve) if not in_browser else None, r(np.degrees(theta_curve)) if not in_browser else None,
+                 "θ(t)", COLORS["body"], width=2, xaxis="x2", yaxis="y2")
     impact_line = line(r([m["t"][0], m["t"][-1]]), r([math.degrees(a["theta_impact"])] * 2),
                        "impact angle θ<sub>I</sub>", COLORS["ground"], width=1, dash="dash", xaxis="x2", yaxis="y2")
     first_impact = int(np.argmin(np.abs(m["t"] - m["impact_times"][0]))) if m["impact_times"] else 0
@@ -71,7 +73,7 @@ def figures(solution, system: str = "si", in_browser: bool = False) -> list[Figu
     layout["height"] = 700
     if in_browser:
         posed = [Posed(styles["centre"], "centre", trail=True, keep=TRAIL), *(Posed(styles[name], name) for name in list(styles)[1:])]
-        spec = animated_in_browser([ground, pivot, {**curve, "x": None, "y": None}, impact_line], posed, layout, p,
+        spec = animated_in_browser([ground, pivot, curve, impact_line], posed, layout, p,
                                    hold=None, traced=[(2, "now")])
     else:
         spec = animated([ground, pivot, curve, impact_line], moving_traces, m["t"], layout)
