@@ -19,6 +19,7 @@ value the solver would refuse gives the regime ``"refused"`` and no values.
 from __future__ import annotations
 
 import functools
+import math
 import re
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
@@ -114,10 +115,10 @@ class Integrated:
     """A motion no closed form gives, integrated in the browser from the solver's own equation of motion
     (issue 51): the state's names, ``start(p, a, xp)`` and ``rates(p, a, y, xp)`` (dy/dt), the legs in
     order, each at most ``horizon(p, a, xp)`` long, by an adaptive Dormand–Prince step to ``tolerances``
-    (rtol, atol) with each leg's end located on the step's cubic interpolant (live.js: ``integrated``).
-    The frames: ``frames`` instants evenly over the motion, and each framed leg's end; a dense curve of
-    ``curve`` such instants for a plot against time. The solver's own Python motion stays the reference
-    (tests/pages/test_live.py compares the two)."""
+    (rtol, atol) with each leg's end found by bisection on the step (live.js: ``integrated``).
+    The frames: instants evenly over the motion (``frame_count``), and each framed leg's end; a dense
+    curve of ``curve`` such instants for a plot against time. The solver's own Python motion stays the
+    reference (tests/pages/test_live.py compares the two)."""
 
     state: tuple[str, ...]
     start: Callable
@@ -127,6 +128,16 @@ class Integrated:
     frames: int
     curve: int = 0
     tolerances: tuple[float, float] = (1e-10, 1e-12)
+    fastest: Callable | None = None  # (p, a, xp): the drawn angle's largest rate, |θ̇| (rad/s)
+    turn: float = math.radians(8.0)  # the most that angle may turn from one frame to the next
+    most: int = 300  # frames at most
+
+    def frame_count(self, p, a, duration: float) -> int:
+        """``frames``, or more where the angle would turn more than ``turn`` between two (a long swing
+        from near upright: 60 frames over 11 s jumped 67° at a time), up to ``most``; live.js counts alike."""
+        if self.fastest is None:
+            return self.frames
+        return int(max(self.frames, min(self.most, math.ceil(duration * float(self.fastest(p, a, np)) / self.turn) + 1)))
 
 
 @dataclass(frozen=True)
@@ -404,7 +415,9 @@ def integrated_source(spec: Integrated, params: Mapping[str, object], system: st
         defined.append(f"{{name: {spec_leg.name!r}, framed: {str(spec_leg.framed).lower()}, ends: {generated(spec_leg.ends)}, "
                        f"then: {then}, last: {generated(last)}}}")
     return (f"(() => {{\n  const legs = [{', '.join(defined)}];\n"
-            f"  return {{state: {list(spec.state)!r}, frames: {spec.frames}, curve: {spec.curve}, "
+            f"  return {{state: {list(spec.state)!r}, frames: {spec.frames}, curve: {spec.curve}, turn: {spec.turn!r}, "
+            f"most: {spec.most}, fastest: {generated(spec.fastest, of_state=False) if spec.fastest else 'null'},\n"
+            f"    "
             f"tolerances: [{spec.tolerances[0]!r}, {spec.tolerances[1]!r}],\n"
             f"    start: {generated(spec.start, of_state=False)},\n    rates: {generated(spec.rates)},\n"
             f"    horizon: {generated(spec.horizon, of_state=False)},\n"

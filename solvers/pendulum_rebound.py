@@ -463,23 +463,26 @@ def bounce_sequence(p, answers, count: int = 4) -> list[float]:
 
 
 def simulate(p, answers, bounces: int = 3):
-    """θ(t) through ``bounces`` impacts by direct integration of I_O θ̈ = −Q cos θ.
+    """θ(t) through ``bounces`` impacts, as drawn: the fall from rest integrated (I_O θ̈ = −Q cos θ), then
+    after each impact the rise to the peak and the fall back.
 
-    Returns (t, θ, θ̇, impacts, legs) with the legs in order: the fall from rest, then after each
-    impact the rise to the peak and the fall back. The first fall and the first rise are
-    integrated from their start states (the second method for the closed-form impact speed and
-    rebound angle); later rises, only drawn, come from the energy integral (swing.drawn_to_turn);
-    each fall after a bounce is the rise mirrored in time (the swing is conservative). The legs
-    are cached, so the checks and the animation share one integration.
+    Returns (t, θ, θ̇, impacts, legs) with the legs in order. The fall is integrated from rest (the
+    second method for the closed-form impact speed); each rise is drawn from the energy integral
+    (swing.drawn_to_turn: its turn to 1e-8 of its time, where an integration's peak near a slow turn is
+    some 1e-7 s off), or integrated tightly where that cannot draw it; each fall after a bounce is the
+    rise mirrored in time (the swing is conservative). The legs are cached, so the checks and the
+    animation share them; the checks' rise is integrated on its own (``first_rise``).
     """
-    key = tuple(sorted((k, v) for k, v in p.items())) + (("I_O", answers["I_O"]),
-                                                           ("theta_impact", answers["theta_impact"]))
-    legs = _legs(key, bounces)
+    legs = _legs(_key(p, answers), bounces)
     impacts = [(leg.end[0], leg.end[2]) for leg in legs[0::2]]
     t = np.concatenate([leg.t for leg in legs])
     q = np.concatenate([leg.theta for leg in legs])
     w = np.concatenate([leg.omega for leg in legs])
     return t, q, w, impacts, list(legs)
+
+
+def _key(p, answers) -> tuple:
+    return tuple(sorted((k, v) for k, v in p.items())) + (("I_O", answers["I_O"]), ("theta_impact", answers["theta_impact"]))
 
 
 @functools.lru_cache(maxsize=256)
@@ -492,22 +495,35 @@ def _legs(key: tuple, bounces: int):
         if p["e"] == 0:
             break
         speed = -p["e"] * w_hit  # the floor reverses and scales the angular velocity
-        drawn = _rise_drawn(p, acc, speed, t_hit)
-        if bounce == 0 or drawn is None:
-            # The first rise checks θ_f, so it is integrated (tight tolerances), in one chunk sized
-            # by the drawn rise's duration; later rises are only drawn. One the energy integral cannot
-            # draw (a swing too small to settle its sum) is integrated tightly too: DRAWING's atol is
-            # no longer far below a swing of 1e-4 rad (its peak 5e-7 s late, where the browser's
-            # integration, the reference's check, is right: tests/pages/test_live.py).
-            rise = integrate_leg(acc, p["theta_impact"], speed, t_hit, _horizon(p), stop_at_rest=True,
-                                 expected=drawn.t[-1] - t_hit if drawn is not None else None,
-                                 tolerances=(RTOL, ATOL))
-        else:
-            rise = drawn
+        rise = _rise_drawn(p, acc, speed, t_hit) or _rise_integrated(p, speed, t_hit, None)
         peak = rise.end[0]
         back = type(rise)(2 * peak - rise.t[::-1], rise.theta[::-1].copy(), -rise.omega[::-1], True)
         legs += [rise, back]
     return tuple(legs)
+
+
+def _rise_integrated(p, speed: float, t_hit: float, expected: float | None):
+    """A rise from θ_I at θ̇ = ``speed`` to its peak, integrated tightly (RTOL, ATOL: a swing too small for
+    the energy integral to draw is too small for DRAWING's atol too), in one chunk sized by ``expected``."""
+    return integrate_leg(_acceleration(p), p["theta_impact"], speed, t_hit, _horizon(p), stop_at_rest=True,
+                         expected=expected, tolerances=(RTOL, ATOL))
+
+
+def first_rise(p, answers):
+    """The first rise after the impact, integrated from its start (θ_I, −e θ̇⁻ of the integrated fall): the
+    second method for the rebound angle θ_f. None at e = 0."""
+    return _first_rise(_key(p, answers))
+
+
+@functools.lru_cache(maxsize=256)
+def _first_rise(key: tuple):
+    p = dict(key)
+    fall = _fall(tuple((k, v) for k, v in key if k != "e"))
+    if p["e"] == 0:
+        return None
+    t_hit, _, w_hit = fall.end
+    drawn = _rise_drawn(p, _acceleration(p), -p["e"] * w_hit, t_hit)
+    return _rise_integrated(p, -p["e"] * w_hit, t_hit, drawn.t[-1] - t_hit if drawn is not None else None)
 
 
 def _rise_drawn(p, acc, speed: float, t_hit: float):
@@ -577,26 +593,37 @@ _FALL = Leg("impact", ends=lambda p, a, y, xp: y["theta"] - a["theta_impact"],
             then=lambda p, a, y, xp: {"theta": a["theta_impact"], "omega": -p["e"] * y["omega"]}, framed=True,
             last=lambda p, a, y, xp: stays(p, y["omega"], a["omega_impact"], xp))
 _RISE = Leg("peak", ends=lambda p, a, y, xp: y["omega"])
+
+
+def fastest(p, a, xp=np):
+    """The swing's largest |θ̇|: at the lowest point of the first fall, θ = −90° where the fall passes it
+    (to a wall beyond the bottom), else the impact (energy only leaves after it)."""
+    low = xp.where(xp.less(a["theta_impact"], -math.pi / 2), -1.0, xp.sin(a["theta_impact"]))
+    return xp.sqrt(2 * moment_coefficient(p) * xp.maximum(xp.sin(p["theta0"]) - low, 0.0) / a["I_O"])
+
+
 INTEGRATED = Integrated(
     state=("theta", "omega"), start=lambda p, a, xp: {"theta": p["theta0"], "omega": 0.0},
     rates=lambda p, a, y, xp: {"theta": y["omega"], "omega": acceleration(p, a, y["theta"], xp)},
-    legs=(_FALL, *(_RISE, _FALL) * BOUNCES), horizon=horizon, frames=60, curve=400)
+    legs=(_FALL, *(_RISE, _FALL) * BOUNCES), horizon=horizon, frames=60, curve=400, fastest=fastest,
+    tolerances=(1e-12, 1e-12))  # (a release near upright turns slowly: its period is sensitive to the energy)
 
 
 def _checks(p, a) -> tuple[Check, ...]:
-    t, q, w, impacts, legs = simulate(p, a, bounces=BOUNCES)
+    _, _, _, impacts, _ = simulate(p, a, bounces=BOUNCES)  # (the animation's legs: cached)
+    rise = first_rise(p, a)
     checks = [Check("impact speed θ̇⁻ (energy vs. integrating θ̈)", a["omega_impact"], impacts[0][1],
                     relative_tolerance(a["omega_impact"], 1e-7),
                     "the fall conserves energy: the pivot does no work")]
-    if len(legs) > 1:
+    if rise is not None:
         checks.append(Check(r"rebound angle $\theta_f$ (energy vs. integrating $\ddot\theta$)", a["theta_rebound"],
-                            legs[1].end[1], 1e-7,
+                            rise.end[1], 1e-7,
                             "after the bounce energy is again conserved up to the peak"))
     # Not (1 − e²) ½ I θ̇⁻²: that is energy_loss's own definition rearranged. Here the kinetic energy
     # at impact comes from the integrated θ̇⁻, and what is left after it from the integrated peak
     # θ_f (the rise turns it all into Q (sin θ_f − sin θ_I)); with e = 0 nothing is left.
     T_before = 0.5 * a["I_O"] * impacts[0][1] ** 2
-    T_after = moment_coefficient(p) * (math.sin(legs[1].end[1]) - math.sin(a["theta_impact"])) if len(legs) > 1 else 0.0
+    T_after = moment_coefficient(p) * (math.sin(rise.end[1]) - math.sin(a["theta_impact"])) if rise is not None else 0.0
     checks.append(Check(r"energy lost: $\tfrac12 I_O (\dot\theta^-)^2 - Q (\sin\theta_f - \sin\theta_I)$, $\dot\theta^-$ and $\theta_f$ integrated",
                         a["energy_loss"], T_before - T_after,
                         relative_tolerance(T_before, 1e-6) + moment_coefficient(p) * 1e-7,
@@ -612,14 +639,17 @@ def _drawn_legs(solution: Solution, bounces: int = BOUNCES) -> list:
 
 
 @per_solution
-def motion(solution: Solution, frames: int = INTEGRATED.frames, bounces: int = BOUNCES) -> dict:
-    """θ(t) and θ̇(t) through several bounces, integrated, at frames even in time plus one at each
-    impact (so the animation shows the sphere touching). Between the integrator's samples each leg is
+def motion(solution: Solution, frames: int | None = None, bounces: int = BOUNCES) -> dict:
+    """θ(t) and θ̇(t) through several bounces, integrated, at ``frames`` even in time (by default as many as
+    keep each frame's turn small: Integrated.frame_count) plus one at each impact (so the animation shows
+    the sphere touching). Between the integrator's samples each leg is
     the quintic through θ, θ̇ and θ̈ (the equation of motion gives θ̈); the legs meet at the impacts,
     where θ̇ jumps. The browser integrates the same frames itself on the lesson page (``INTEGRATED``)."""
     legs = _drawn_legs(solution, bounces)
     impact_times = [leg.end[0] for leg in legs[0::2]]
-    t = np.union1d(np.linspace(legs[0].t[0], legs[-1].end[0], frames), impact_times)
+    start, end = legs[0].t[0], legs[-1].end[0]
+    count = frames or INTEGRATED.frame_count(solution.params, solution.answers, end - start)
+    t = np.union1d(np.linspace(start, end, count), impact_times)
     theta, omega = _on_legs(legs, t, solution.params, solution.answers)
     return {"t": t, "theta": theta, "omega": omega, "impact_times": impact_times}
 

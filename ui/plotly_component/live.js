@@ -177,7 +177,7 @@ export function motionOf(gen, anim, layout, digits) {
   for (const e of gen.events || []) v[e.name] = e.applies ? firstCrossing(e, p, v, round) : Infinity;
   const run = gen.integrated ? integrated(gen.integrated, p, v, round) : null;
   if (gen.integrated && !run) return null;
-  const drawn = run ? {t: [run.instants(gen.integrated.frames)]} : gen.times(p, v, round);
+  const drawn = run ? {t: [run.instants(run.frames)]} : gen.times(p, v, round);
   if (!drawn) return null;
   const at = (t) => gen.pose(p, run ? Object.assign({}, v, run.stateAt(t)) : v, round, t);
   const times = drawn.t[0], coords = anim.posed.map(() => ({x: [], y: []})), paths = anim.posed.map(() => ({x: [], y: []}));
@@ -216,8 +216,8 @@ export function motionOf(gen, anim, layout, digits) {
 // error estimate, step control and first step of scipy's RK45) to the declared rtol and atol, until its
 // ``ends`` falls through zero; a leg that does not end within ``horizon`` ends the motion there. The
 // state between two steps is one step of the method from the earlier (to the step's own accuracy: a
-// cubic through the two would be off by 1e-7 rad on a step of 0.1 s), and a leg's end is found by
-// bisection on it, to 1e-15 of the time. Null where a generated function has no value (an input not finite).
+// cubic through the two would be off by 1e-7 rad on a step of 0.1 s), and a leg's end is found on it
+// by the Illinois method (regula falsi, the stale end's value halved), to 1e-15 of the time or g = 0. Null where a generated function has no value (an input not finite).
 const DP_A = [[], [1 / 5], [3 / 40, 9 / 40], [44 / 45, -56 / 15, 32 / 9],
   [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729], [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656]];
 const DP_B = [35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84];
@@ -226,8 +226,10 @@ const DP_E = [-71 / 57600, 0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525,
 export function integrated(spec, p, v, round) {
   const names = spec.state, [rtol, atol] = spec.tolerances;
   const named = (y) => Object.fromEntries(names.map((n, i) => [n, y[i]]));
+  const scope = Object.assign({}, v);  // the values and the state, set in place before each call
   const call = (fn, y) => {
-    const out = fn(p, Object.assign({}, v, y ? named(y) : {}), round);
+    if (y) for (let i = 0; i < names.length; i++) scope[names[i]] = y[i];
+    const out = fn(p, scope, round);
     return out ? out.y[0] : null;
   };
   const f = (y) => call(spec.rates, y), horizon = call(spec.horizon)?.[0];
@@ -250,8 +252,11 @@ export function integrated(spec, p, v, round) {
       if (!y) return null;
     }
   }
-  const end = t;
+  const end = t, fastest = spec.fastest ? call(spec.fastest)?.[0] : null;
+  if (spec.fastest && !Number.isFinite(fastest)) return null;
   return {
+    // how many even instants the frames take (solvers/live.py: Integrated.frame_count)
+    frames: fastest == null ? spec.frames : Math.max(spec.frames, Math.min(spec.most, Math.ceil(end * fastest / spec.turn) + 1)),
     // ``count`` instants evenly from 0 to the end (numpy.linspace's), and the framed ends, in order, each once
     instants(count) {
       const even = Array.from({length: count}, (_, i) => (i === count - 1 ? end : (i * end) / (count - 1)));
@@ -322,17 +327,26 @@ function integrateLeg(f, ends, t0, y0, until, rtol, atol) {
     }
     const tNew = t + h, gNew = ends(yNew);
     if (!Number.isFinite(gNew)) return null;
-    if (gNew <= 0) {  // the leg ends in this step: where, by bisection on the step from t
-      let lo = t, hi = tNew, yEnd = yNew, kEnd = kNew;
-      while (hi - lo > 1e-15 * Math.max(1, Math.abs(hi))) {
-        const mid = 0.5 * (lo + hi);
+    if (gNew <= 0) {  // the leg ends in this step: where, by the Illinois method on the step from t
+      let lo = t, hi = tNew, gLo = ends(y), gHi = gNew, yEnd = yNew, kEnd = kNew, side = 0;
+      for (let i = 0; i < 200 && hi - lo > 1e-15 * Math.max(1, Math.abs(hi)); i++) {
+        let mid = (lo * gHi - hi * gLo) / (gHi - gLo);  // where the chord crosses zero
+        if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
         if (mid <= lo || mid >= hi) break;  // no double between them
         const at = dpStep(f, y, k0, mid - t);
         if (!at) return null;
         const g = ends(at.y);
         if (!Number.isFinite(g)) return null;
-        if (g > 0) lo = mid;
-        else [hi, yEnd, kEnd] = [mid, at.y, at.K[6]];
+        if (g > 0) {
+          [lo, gLo] = [mid, g];
+          if (side === 1) gHi /= 2;  // the same end twice: halve the other's weight
+          side = 1;
+        } else {
+          [hi, gHi, yEnd, kEnd] = [mid, g, at.y, at.K[6]];
+          if (side === -1) gLo /= 2;
+          side = -1;
+        }
+        if (g === 0) break;
       }
       ts.push(hi); ys.push(yEnd); dys.push(kEnd);
       return {t: ts, y: ys, dy: dys, ended: true};
