@@ -46,7 +46,7 @@ const CSS = `
 .dl-text .dl-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }
 `;
 
-let katexPromise = null;
+let katexPromise = null, katexFailures = 0;
 const typeset = new Map();  // (display?) + TeX -> KaTeX's HTML, kept across runs and pages
 
 // Should KaTeX's script not load (a network that drops mid-visit), the formulas show as their TeX
@@ -278,9 +278,12 @@ const decoder = new TextDecoder();
 export async function render({data, parentElement}) {
   const d = JSON.parse(typeof data === "string" ? data : decoder.decode(data));
   const liveModule = d.live ? import(new URL(d.live.module, location.href).href) : null;  // beside KaTeX's
-  // KaTeX's script (UMD) sets window.katex when it runs; loaded once per page.
-  katexPromise ??= import(new URL(d.katex, location.href).href).then(() => window.katex)
-    .catch(() => { katexPromise = null; return asTeX; });
+  // KaTeX's script (UMD) sets window.katex when it runs; loaded once per page. Tried again on the next run
+  // where it failed, under a URL of its own: the browser keeps a failed module's import as failed (Chromium 150).
+  const katexURL = new URL(d.katex, location.href);
+  if (katexFailures) katexURL.searchParams.set("retry", String(katexFailures));
+  katexPromise ??= import(katexURL.href).then(() => window.katex)
+    .catch(() => { katexPromise = null; katexFailures++; return asTeX; });
   const katex = await katexPromise;
   let view = views.get(parentElement);
   if (!view) {
