@@ -115,7 +115,7 @@ class Integrated:
     """A motion no closed form gives, integrated in the browser from the solver's own equation of motion
     (issue 51): the state's names, ``start(p, a, xp)`` and ``rates(p, a, y, xp)`` (dy/dt), the legs in
     order, each at most ``horizon(p, a, xp)`` long, by an adaptive Dormand–Prince step to ``tolerances``
-    (rtol, atol) with each leg's end found by bisection on the step (live.js: ``integrated``).
+    (rtol, atol) with each leg's end found on the step by the Illinois method (live.js: ``integrated``).
     The frames: instants evenly over the motion (``frame_count``), and each framed leg's end; a dense
     curve of ``curve`` such instants for a plot against time. The solver's own Python motion stays the
     reference (tests/pages/test_live.py compares the two)."""
@@ -406,14 +406,14 @@ def integrated_source(spec: Integrated, params: Mapping[str, object], system: st
             return {"y": (np.array(out, dtype=object),)}
         return pose_source(rows, params, system)
 
-    def last(p, a, y, xp):
-        return sp.Piecewise((1, sp.sympify(spec_leg.last(p, a, y, xp))), (0, True))
+    def ends_there(leg):  # the leg's ``last`` as a number the printer writes: 1 where the motion ends
+        return lambda p, a, y, xp: sp.Piecewise((1, sp.sympify(leg.last(p, a, y, xp))), (0, True))
     legs = list(dict.fromkeys(spec.legs))  # each once, in order
     defined = []
-    for n, spec_leg in enumerate(legs):
-        then = generated(spec_leg.then) if spec_leg.then is not None else "null"
-        defined.append(f"{{name: {spec_leg.name!r}, framed: {str(spec_leg.framed).lower()}, ends: {generated(spec_leg.ends)}, "
-                       f"then: {then}, last: {generated(last)}}}")
+    for leg in legs:
+        then = generated(leg.then) if leg.then is not None else "null"
+        defined.append(f"{{name: {leg.name!r}, framed: {str(leg.framed).lower()}, ends: {generated(leg.ends)}, "
+                       f"then: {then}, last: {generated(ends_there(leg))}}}")
     return (f"(() => {{\n  const legs = [{', '.join(defined)}];\n"
             f"  return {{state: {list(spec.state)!r}, frames: {spec.frames}, curve: {spec.curve}, turn: {spec.turn!r}, "
             f"most: {spec.most}, fastest: {generated(spec.fastest, of_state=False) if spec.fastest else 'null'},\n"
