@@ -28,6 +28,8 @@ TEST_IDS = MappingProxyType({
     # elements
     "markdown": "stMarkdownContainer", "heading": "stHeadingWithActionElements", "metricLabel": "stMetricLabel",
     "alert": "stAlert", "table": "stTable",
+    # the placeholder an element shows while its code (loaded on first use: st.html's, KaTeX's) is on its way
+    "skeleton": "stSkeleton",
     # widgets
     "form": "stForm", "button": "stButton", "downloadButton": "stDownloadButton", "expander": "stExpander",
     "numberInput": "stNumberInput", "textInput": "stTextInput", "selectbox": "stSelectbox", "checkbox": "stCheckbox",

@@ -135,6 +135,7 @@ for (const type of ['keydown', 'keyup', 'pointerdown', 'pointermove', 'pointerup
 QUIET_MS = 300  # how long the page is left alone after a run ends, something is sent or a person touches it
 IDLE_NOW = f"""(quiet) => {{ const s = window.__dlIdle, app = document.querySelector("{SELECTORS['app']}");
   return !!app && app.getAttribute('{ATTRIBUTES["scriptState"]}') === '{SCRIPT_IDLE}' && s.runs > 0
+         && !document.querySelector("{SELECTORS['skeleton']}")
          && performance.now() - Math.max(s.changed, s.sent, s.touched) >= quiet; }}"""
 
 
@@ -161,7 +162,11 @@ def wait_until_idle(page, timeout: float = 30_000) -> None:
     control's change may be sent a moment after the key or the pointer). A page left alone since its last run
     is idle at once: the quiet counts from what the page did, not from the call. (A check that measures
     what may still be moving waits for ``SETTLED`` too.) In a page with ``IDLE_WATCH``, a page's first run
-    is waited for and a run's end is seen as it happens; elsewhere, fixed times before and after."""
+    is waited for and a run's end is seen as it happens; elsewhere, fixed times before and after. Either way
+    no element may still show Streamlit's placeholder: an element whose code loads on first use (``st.html``,
+    which carries the app's stylesheets; Markdown's math) is drawn a moment after the run ends, up to two
+    seconds later on a busy 2-core machine, and a page printed or tabbed through before then had none of
+    the app's styles."""
     app = SELECTORS["app"]
     page.wait_for_selector(app, timeout=timeout)
     if page.evaluate("() => !!window.__dlIdle"):
@@ -169,4 +174,5 @@ def wait_until_idle(page, timeout: float = 30_000) -> None:
         return
     page.wait_for_timeout(QUIET_MS)
     page.wait_for_selector(f"{app}[{ATTRIBUTES['scriptState']}='{SCRIPT_IDLE}']", timeout=timeout)
+    page.wait_for_function(f"() => !document.querySelector(\"{SELECTORS['skeleton']}\")", timeout=timeout)
     page.wait_for_timeout(QUIET_MS)
