@@ -316,6 +316,7 @@ class _Symbolic:
 
     cos = staticmethod(_elementwise(sp.cos, 1))
     sqrt = staticmethod(_elementwise(sp.sqrt, 1))
+    log = staticmethod(_elementwise(sp.log, 1))
     degrees = staticmethod(_elementwise(lambda a: a * 180 / sp.pi, 1))
     sin = staticmethod(_elementwise(sp.sin, 1))
     abs = staticmethod(_elementwise(sp.Abs, 1))

@@ -41,7 +41,7 @@ from .core import (
 )
 from . import units
 from .diagram import Body, DiagramSlip, Diagram, Load, Rod, balance, balance_steps, fbd_steps
-from .live import Case, Live
+from .live import Case, Integrated, Leg, Live
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -160,7 +160,7 @@ def _leaving_values(solution) -> dict:
 def _frames(wall: bool):
     def per_frame(solution, motion) -> dict:
         """Each frame's symbols while this phase lasts (NaN in the other's frames)."""
-        frames, states, _, _, _, t1 = _sampled(solution.params["theta0"])
+        frames, states, _, _, _, t1, _, _ = _sampled(solution.params["theta0"])
         mine = frames <= t1 if wall else frames > t1
         here = _newton_euler_at(solution.params, states[mine], wall)
         out = {}
@@ -389,13 +389,34 @@ def reactions_and_accelerations(state, wall: bool) -> np.ndarray:
 
 
 @functools.cache
-def _solved_in_closed_form(wall: bool):
-    """The same linear system solved once by sympy (Gaussian elimination on the symbols), as a plain
-    function of (θ, θ̇): the integrator calls it a few hundred times per release angle, where
-    solving the 5 × 5 system numerically each time cost most of the integration."""
+def _newton_euler_solved(wall: bool) -> tuple[tuple[sp.Symbol, sp.Symbol], list]:
+    """The same linear system solved once by sympy (Gaussian elimination on the symbols): (θ, θ̇) and
+    [ẍ_G, ÿ_G, θ̈, N_B, N_A] as expressions in them (units m = g = L = 1)."""
     th, w = sp.symbols("theta omega")
     rows, rhs = _newton_euler(sp.sin(th), sp.cos(th), w, sp.Integer(1), sp.Integer(0), wall)
-    return sp.lambdify((th, w), list(sp.Matrix(rows).LUsolve(sp.Matrix(rhs))), "math", cse=True)
+    return (th, w), [sp.simplify(e) for e in sp.Matrix(rows).LUsolve(sp.Matrix(rhs))]
+
+
+@functools.cache
+def _solved_in_closed_form(wall: bool, xp=math):
+    """``_newton_euler_solved`` as a plain function of (θ, θ̇): the integrator calls it a few hundred
+    times per release angle, where solving the 5 × 5 system numerically each time cost most of the
+    integration. ``xp``: the functions it is written with (math here; numpy, or solvers.live's symbols for
+    the browser's integration)."""
+    symbols, solved = _newton_euler_solved(wall)
+    if xp is math:
+        return sp.lambdify(symbols, solved, "math", cse=True)
+    return sp.lambdify(symbols, solved, [{"sin": xp.sin, "cos": xp.cos}])
+
+
+def newton_euler_at(p, y, xp=np) -> list:
+    """[ẍ_G, ÿ_G, θ̈, N_B, N_A] in SI at the state ``y`` (by ``INTEGRATED``'s names): against the wall
+    while ``y["wall"]`` is 1, on the floor alone once it is 0 (N_A then 0)."""
+    rate, g, L = xp.sqrt(p["g"] / p["L"]), p["g"], p["L"]
+    held = _solved_in_closed_form(True, xp)(y["theta"], y["omega"] / rate)
+    free = [*_solved_in_closed_form(False, xp)(y["theta"], y["omega"] / rate), 0.0]
+    scales = (g, g, g / L, p["m"] * g, p["m"] * g)
+    return [(y["wall"] * a + (1 - y["wall"]) * b) * k for a, b, k in zip(held, free, scales)]
 
 
 def _rates(wall: bool):
@@ -438,6 +459,25 @@ def integrated(theta_0: float) -> dict:
     first = reactions_and_accelerations(start, True)
     return {"t_leave": t1, "leave": y1, "t_floor": t2, "floor": y2, "N_wall0": first[4], "N_floor0": first[3],
             "phase1": one.sol, "phase2": two.sol}
+
+
+# The same two phases integrated in the browser (ui/live.py), in SI, the state (G, θ, their rates) and
+# whether the top is still against the wall (1, then 0: the rates and reactions of that phase).
+_LEAVES = Leg("leave", ends=lambda p, a, y, xp: newton_euler_at(p, y, xp)[4], framed=True,
+              then=lambda p, a, y, xp: {**y, "wall": 0.0})
+_LANDS = Leg("land", ends=lambda p, a, y, xp: y["theta"])
+
+
+def _horizon(p, a, xp=np):
+    """Each phase's longest time (``integrated``'s horizon, in s)."""
+    closest = xp.minimum(p["theta0"], math.pi / 2 - p["theta0"])
+    return (100.0 + 10 * xp.log(1 / closest)) * xp.sqrt(p["L"] / p["g"])
+
+
+def _rates_of_state(p, a, y, xp):
+    ddx, ddy, ddth = newton_euler_at(p, y, xp)[:3]
+    return {"x_G": y["vx_G"], "y_G": y["vy_G"], "theta": y["omega"], "vx_G": ddx, "vy_G": ddy, "omega": ddth,
+            "wall": 0.0}
 
 
 # --------------------------------------------------------------------------------------------
@@ -517,21 +557,30 @@ def _checks(p, a) -> tuple[Check, ...]:
 
 FRAMES = 90
 CURVE_POINTS = 240
+# (the path of G is drawn through the frames: the browser traces it at the same instants)
+INTEGRATED = Integrated(
+    state=("x_G", "y_G", "theta", "vx_G", "vy_G", "omega", "wall"),
+    start=lambda p, a, xp: {"x_G": p["L"] / 2 * xp.cos(p["theta0"]), "y_G": p["L"] / 2 * xp.sin(p["theta0"]),
+                            "theta": p["theta0"], "vx_G": 0.0, "vy_G": 0.0, "omega": 0.0, "wall": 1.0},
+    rates=_rates_of_state, legs=(_LEAVES, _LANDS), horizon=_horizon, frames=FRAMES, curve=FRAMES,
+    tolerances=(1e-12, 1e-12))
 
 
 @per_solution
 def motion(solution: Solution) -> dict:
     """Both phases from the integration, scaled to SI: frames evenly in time (one exactly at the
-    leaving), the contacts' positions, and the reactions on a finer grid for their plot."""
+    leaving), the contacts' positions, the reactions at the frames (their arrows) and on a finer grid
+    for their plot. The browser integrates the same frames itself on the lesson page (``INTEGRATED``)."""
     p = solution.params
     T, mg, L_ = math.sqrt(p["L"] / p["g"]), p["m"] * p["g"], p["L"]
-    frames, states, curve_t, walls, floors, t1 = _sampled(p["theta0"])
+    frames, states, curve_t, walls, floors, t1, frame_walls, frame_floors = _sampled(p["theta0"])
     x_G, y_G, th = states[:, 0] * L_, states[:, 1] * L_, states[:, 2]
     return {
         "t": frames * T, "theta": th, "x_G": x_G, "y_G": y_G,
         "x_A": x_G - L_ / 2 * np.cos(th), "y_A": y_G + L_ / 2 * np.sin(th),
         "x_B": x_G + L_ / 2 * np.cos(th), "y_B": y_G - L_ / 2 * np.sin(th),
         "curve_t": curve_t * T, "N_wall": walls * mg, "N_floor": floors * mg,
+        "frame_N_wall": frame_walls * mg, "frame_N_floor": frame_floors * mg,
         "t_leave": t1 * T, "leave_frame": int(np.searchsorted(frames, t1)),
     }
 
@@ -539,8 +588,8 @@ def motion(solution: Solution) -> dict:
 @functools.lru_cache(maxsize=256)
 def _sampled(theta_0: float) -> tuple:
     """The integration sampled for the figures in units m = g = L = 1 (a function of θ₀ alone,
-    shared by every L, m and g): frame times, states, the reactions' times and values, t_leave.
-    Read only (the arrays are shared)."""
+    shared by every L, m and g): frame times, states, the reactions' times and values, t_leave, and
+    the reactions at the frames. Read only (the arrays are shared)."""
     run = integrated(theta_0)
     t1, t2 = run["t_leave"], run["t_floor"]
 
@@ -556,12 +605,12 @@ def _sampled(theta_0: float) -> tuple:
         return np.concatenate([held, free]), walls, floors
 
     frames = np.unique(np.concatenate([np.linspace(0.0, t2, FRAMES), [t1]]))
-    states, _, _ = sample(frames)
+    states, frame_walls, frame_floors = sample(frames)
     curve_t = np.unique(np.concatenate([np.linspace(0.0, t2, CURVE_POINTS), [t1]]))
     _, walls, floors = sample(curve_t)
-    for array in (frames, states, curve_t, walls, floors):
+    for array in (frames, states, curve_t, walls, floors, frame_walls, frame_floors):
         array.flags.writeable = False
-    return frames, states, curve_t, walls, floors, t1
+    return frames, states, curve_t, walls, floors, t1, frame_walls, frame_floors
 
 
 # --------------------------------------------------------------------------------------------

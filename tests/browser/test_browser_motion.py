@@ -27,7 +27,7 @@ IN_BROWSER = [pid for pid in registry.PROBLEM_IDS if in_browser(pid)]
 # A state off the defaults where a page has regimes, options or events: the disk sliding along the wall, front
 # drive, the bounced stick swinging round into the ball.
 QUERIES = {"disk_wall": "?mu=0.05&omega=40", "driven_cart": "?drive=front&mu=0.3", "stick_ball": "?mode=bounce&s=0.25",
-           "pendulum_rebound": "?surface=wall&e=0.6"}
+           "pendulum_rebound": "?surface=wall&e=0.6", "sliding_ladder": "?theta0=75&L=3"}
 DRAWN = """() => { const f = document.querySelector('.dl-figure.dl-staged');
   return f && f.dlFigure && f.dlFigure.frames && f.dlFigure.frames.length ? f.dlFigure : null; }"""
 FRAMES = ("() => { const f = (" + DRAWN + ")(); return {frames: f.frames.map((fr) => fr.data.map((d) => [d.x, d.y])),"
