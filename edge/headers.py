@@ -13,6 +13,7 @@ eval of strings). The page connects only to its own server. Styles allow inline 
 plotly.js write style attributes). A browser test opens every page under it and finds no violation.
 
 ``/_stcore/metrics`` (Streamlit's per-session counters) answers 404 unless ``DL_PUBLIC_METRICS=1``.
+An HTML page also names the modules it needs at once (``Link: rel=modulepreload``: edge/early_modules.py).
 """
 from __future__ import annotations
 
@@ -22,6 +23,8 @@ import hashlib
 import os
 import re
 from pathlib import Path
+
+from edge import early_modules
 
 FRAME_ENV, METRICS_ENV = "DL_FRAME_ANCESTORS", "DL_PUBLIC_METRICS"
 METRICS_PATH = "/_stcore/metrics"
@@ -105,12 +108,15 @@ def security_headers() -> list[tuple[bytes, bytes]]:
 
 
 class SecurityHeaders:
-    """ASGI middleware: the headers above on every HTTP answer; the metrics route closed."""
+    """ASGI middleware: the headers above on every HTTP answer, and on an HTML page the modules it needs at
+    once (``early_modules``); the metrics route closed."""
 
     def __init__(self, app):
         self.app = app
         self.headers = security_headers()  # a bad setting fails here, at start-up, in plain words
         self.names = {name for name, _ in self.headers}
+        link = early_modules.link_header()
+        self.page_headers = [(b"link", link)] if link else []
         self.metrics_public = os.environ.get(METRICS_ENV, "") == "1"
 
     async def __call__(self, scope, receive, send):
@@ -124,7 +130,8 @@ class SecurityHeaders:
         async def with_headers(message):
             if message["type"] == "http.response.start":
                 kept = [(k, v) for k, v in message.get("headers", []) if k.lower() not in self.names]
-                message = {**message, "headers": kept + self.headers}
+                html = any(k.lower() == b"content-type" and v.startswith(b"text/html") for k, v in kept)
+                message = {**message, "headers": kept + self.headers + (self.page_headers if html else [])}
             await send(message)
 
         await self.app(scope, receive, with_headers)

@@ -1043,6 +1043,26 @@ FOCUS_SEEN = """() => { const e = document.activeElement, outlined = e.closest('
   return {role: e.getAttribute('role'), tag: e.tagName, style: s.outlineStyle, width: parseFloat(s.outlineWidth)}; }"""
 
 
+def test_a_first_visit_fetches_the_app_s_styles_element_while_the_page_loads(browser, app_url):
+    """st.html's element (the app's stylesheets, the phone's type and the stage's layout among them) is
+    Streamlit's code loaded on first use: asked for only when the first run's first st.html arrived, it
+    drew the page without the app's styles for half a second more at 390 px on this machine (up to two
+    seconds in a busy test run). The page's answer names it (edge/early_modules.py), so the browser fetches
+    it while the document loads, before its DOMContentLoaded, in a context with nothing cached."""
+    from edge.early_modules import early_modules
+
+    context = watched_context(browser, viewport={"width": 390, "height": 844})
+    page, errors = open_in(context, f"{app_url}/disk_wall")
+    timing = page.evaluate("""(names) => {
+      const loaded = performance.getEntriesByType('navigation')[0].domContentLoadedEventStart;
+      const fetched = names.map((n) => performance.getEntriesByType('resource').find((e) => e.name.endsWith(n)));
+      return {loaded, fetched: fetched.map((e) => e ? e.startTime : null)};
+    }""", [path.rsplit("/", 1)[1] for path in early_modules()])
+    assert early_modules() and all(t is not None and t < timing["loaded"] for t in timing["fetched"]), timing
+    assert not errors, errors
+    context.close()
+
+
 def test_keyboard_focus_is_seen_on_a_switch_and_on_the_main_area(browser, app_url):
     """Tabbing onto "No slip at the contact" showed only a label background 1.1:1 against the page, and the main
     area (the skip link's target, a tab stop) showed nothing: both are outlined, 2 px, in the text's colour. In a

@@ -5,6 +5,7 @@ headers a course site expects, and Streamlit's metrics are not public."""
 from __future__ import annotations
 
 import asyncio
+import re
 import time
 import urllib.error
 import urllib.request
@@ -144,6 +145,23 @@ def test_every_answer_carries_the_security_headers(server, path):
     assert "http:" not in csp.replace("'self'", "") and "*" not in csp  # no other origin's script
     assert headers["x-content-type-options"] == "nosniff"
     assert headers["referrer-policy"] == "same-origin"
+
+
+@pytest.mark.parametrize("path", ["/", "/disk_wall", "/handouts"])
+def test_a_page_names_the_modules_it_needs_at_once_and_each_is_there(server, path):
+    """st.html's element (the app's stylesheets) is Streamlit's code loaded on first use: a page's answer
+    names it and its imports for preloading (edge/early_modules.py), each a module the server has, none that
+    index.html preloads already; what is not a page names none."""
+    status, headers = get(server[0] + path)
+    assert status == 200
+    linked = re.findall(r"<\./([^>]+)>; rel=modulepreload; crossorigin", headers["link"])
+    assert any(re.fullmatch(r"static/js/Html\.[\w-]+\.js", p) for p in linked) and len(linked) >= 2, headers["link"]
+    index = urllib.request.urlopen(server[0] + "/", timeout=10).read().decode()
+    for module in linked:
+        status, headers_of = get(f"{server[0]}/{module}")
+        assert status == 200 and "javascript" in headers_of["content-type"], module
+        assert f'href="./{module}"' not in index, module
+    assert "link" not in get(server[0] + "/favicon.png")[1]
 
 
 def test_metrics_are_not_public(server):
