@@ -159,13 +159,17 @@ def pose_at(p, a, t, system: str = "si", xp=np) -> dict:
 
 def _rebounds(p, a, peaks) -> str:
     """The rebounds a student can tell apart (to the 0.1° shown): none at e = 0, and the list ends
-    where the peaks no longer rise visibly above the impact angle."""
+    where a peak no longer shows above the impact angle, or the one before it, to that 0.1° (at θ₀ = −35°
+    the second peak, 0.08° above θ_I, was listed as −35.6°, the impact angle written beside it)."""
     if p["e"] == 0:
         return "and stays there: with e = 0 it does not rebound"
     if p["e"] == 1:
         return f"rebounding to θ₀ = {deg(p['theta0'])} every time: with e = 1 no energy is lost"
-    theta_I = math.degrees(a["theta_impact"])
-    shown = [deg(q) for q in peaks[:3] if math.degrees(q) - theta_I >= 0.05]
+    shown: list[str] = []
+    for peak in map(deg, peaks[:3]):
+        if peak == deg(a["theta_impact"]) or peak in shown:
+            break
+        shown.append(peak)
     if not shown:
         return "and barely lifts off again: the rebounds are below 0.1°"
     return ("rebounding to " + ", ".join(shown) + (" on successive bounces" if len(shown) > 1 else "")

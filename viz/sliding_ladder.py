@@ -76,7 +76,7 @@ def _animation(solution, m, in_browser: bool = False) -> Figure:
     else:
         spec = animated(static, moving_traces, m["t"], layout, frame_ms=40)
     head = headline("Side view, wall on the left. Released at rest at θ₀ = ", ("theta0", "degn", 3), ", the ladder slides "
-                    "down; G moves on a circle about the corner while the wall pushes (purple arrow, to scale with the "
+                    "down; G moves on a circle about the corner while the wall pushes (pink arrow, to scale with the "
                     "floor's green one).")
     description = (
         headline_text(head, {**p, **a}) + f" At t = {n(a['t_leave'])} s and θ = {n(np.degrees(a['theta_leave']))}° (dashed), with "

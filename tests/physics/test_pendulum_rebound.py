@@ -15,6 +15,7 @@ from solvers.diagram import balance, balance_steps, fbd_steps, residuals
 from tests.strategies import pos
 from tests.drawing import DRAWN, EXAMPLES, circle, drawn, figures, static
 from tests.pages.test_pages import run_page
+from viz.pendulum_rebound import deg
 
 # The solver contract, typed from PROBLEMS.md independently of the solver module (tests/physics/test_contract.py
 # checks every registered problem against its CONTRACT): parameter defaults (SI, radians), answer names,
@@ -207,12 +208,20 @@ def test_the_pendulum_caption_at_e_0_lists_no_rebounds_and_points_below():
 @EXAMPLES
 @given(VALID)
 def test_the_pendulum_caption_never_repeats_a_rebound_angle(p):
+    """Nor lists, as a rebound, the impact angle as it is written (to 0.1°)."""
     assume(0 < p["e"] < 1)
-    _, (figure,) = figures("pendulum_rebound", **p)
+    solution, (figure,) = figures("pendulum_rebound", **p)
     match = re.search(r"rebounding to ([^a-z]*?)(?: on successive| then|\.)", figure.description)
     if match:
         angles = [a.strip() for a in match.group(1).rstrip(", ").split(",")]
         assert len(angles) == len(set(angles)), figure.description
+        assert deg(solution.answers["theta_impact"]) not in angles, figure.description
+
+
+def test_the_caption_lists_no_rebound_that_shows_as_the_impact_angle():
+    """At θ₀ = −35° (floor, e = 0.6) the second peak is 0.08° above θ_I = −35.65°: written to 0.1°, both −35.6°."""
+    _, (figure,) = figures("pendulum_rebound", theta0=math.radians(-35))
+    assert "rebounding to −35.4°, then barely lifting off" in figure.description, figure.description
 
 
 def test_whole_degree_sliders_show_whole_degrees():
