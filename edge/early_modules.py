@@ -42,6 +42,17 @@ def early_modules() -> tuple[str, ...]:
     return tuple(f"static/js/{name}" for name in found)
 
 
+def is_page(path: str, base: str) -> bool:
+    """Whether ``path`` is the address of one of the app's pages under ``base`` (edge.base_path: "" or
+    "/prefix"): the root ("/prefix/") or one page ("/prefix/disk_wall"), where index.html's own
+    ``./static/`` is the server's static folder. Not the LTI tool's pages (/lti/launch), whose HTML is
+    the app's own and for which ``./static/`` would name nothing."""
+    if not path.startswith(base + "/"):
+        return False
+    rest = path[len(base) + 1:]
+    return "/" not in rest and not rest.startswith("_stcore")
+
+
 def link_header() -> bytes:
     """The ``Link`` header's value that preloads ``early_modules`` (empty where Streamlit has none)."""
     return ", ".join(f"<./{path}>; rel=modulepreload; crossorigin" for path in early_modules()).encode()

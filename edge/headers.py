@@ -24,7 +24,7 @@ import os
 import re
 from pathlib import Path
 
-from edge import early_modules
+from edge import base_path, early_modules
 
 FRAME_ENV, METRICS_ENV = "DL_FRAME_ANCESTORS", "DL_PUBLIC_METRICS"
 METRICS_PATH = "/_stcore/metrics"
@@ -117,6 +117,7 @@ class SecurityHeaders:
         self.names = {name for name, _ in self.headers}
         link = early_modules.link_header()
         self.page_headers = [(b"link", link)] if link else []
+        self.base = base_path()
         self.metrics_public = os.environ.get(METRICS_ENV, "") == "1"
 
     async def __call__(self, scope, receive, send):
@@ -130,8 +131,9 @@ class SecurityHeaders:
         async def with_headers(message):
             if message["type"] == "http.response.start":
                 kept = [(k, v) for k, v in message.get("headers", []) if k.lower() not in self.names]
-                html = any(k.lower() == b"content-type" and v.startswith(b"text/html") for k, v in kept)
-                message = {**message, "headers": kept + self.headers + (self.page_headers if html else [])}
+                page = early_modules.is_page(scope["path"], self.base) and any(
+                    k.lower() == b"content-type" and v.startswith(b"text/html") for k, v in kept)
+                message = {**message, "headers": kept + self.headers + (self.page_headers if page else [])}
             await send(message)
 
         await self.app(scope, receive, with_headers)
