@@ -391,7 +391,7 @@ def reactions_and_accelerations(state, wall: bool) -> np.ndarray:
 @functools.cache
 def _newton_euler_solved(wall: bool) -> tuple[tuple[sp.Symbol, sp.Symbol], list]:
     """The same linear system solved once by sympy (Gaussian elimination on the symbols): (θ, θ̇) and
-    [ẍ_G, ÿ_G, θ̈, N_B, N_A] as expressions in them (units m = g = L = 1)."""
+    [ẍ_G, ÿ_G, θ̈, N_B, N_A] as expressions in them (units m = g = L = 1; N_A only with the wall)."""
     th, w = sp.symbols("theta omega")
     rows, rhs = _newton_euler(sp.sin(th), sp.cos(th), w, sp.Integer(1), sp.Integer(0), wall)
     return (th, w), [sp.simplify(e) for e in sp.Matrix(rows).LUsolve(sp.Matrix(rhs))]
@@ -409,7 +409,7 @@ def _solved_in_closed_form(wall: bool, xp=math):
     return sp.lambdify(symbols, solved, [{"sin": xp.sin, "cos": xp.cos}])
 
 
-def newton_euler_at(p, y, xp=np) -> list:
+def accelerations_and_reactions(p, y, xp=np) -> list:
     """[ẍ_G, ÿ_G, θ̈, N_B, N_A] in SI at the state ``y`` (by ``INTEGRATED``'s names): against the wall
     while ``y["wall"]`` is 1, on the floor alone once it is 0 (N_A then 0)."""
     rate, g, L = xp.sqrt(p["g"] / p["L"]), p["g"], p["L"]
@@ -426,6 +426,12 @@ def _rates(wall: bool):
         a = accelerations(y[2], y[5])
         return [y[3], y[4], y[5], a[0], a[1], a[2]]
     return f
+
+
+def _horizon_units(closest, xp=math):
+    """The longest a phase may last, in units of √(L/g), for a release ``closest`` rad from flat or upright
+    (the nearer, the slower the start)."""
+    return 100.0 + 10 * xp.log(1 / closest)
 
 
 @functools.lru_cache(maxsize=256)
@@ -447,7 +453,7 @@ def integrated(theta_0: float) -> dict:
         return y[2]
     flat.terminal, flat.direction = True, -1
 
-    horizon = 100.0 + 10 * math.log(1 / closest)
+    horizon = _horizon_units(closest)
     one = solve_ivp(_rates(True), (0.0, horizon), start, events=wall_push, **tolerances)
     if not one.t_events[0].size:
         raise RuntimeError("the wall's reaction never reached zero")  # pragma: no cover
@@ -463,19 +469,18 @@ def integrated(theta_0: float) -> dict:
 
 # The same two phases integrated in the browser (ui/live.py), in SI, the state (G, θ, their rates) and
 # whether the top is still against the wall (1, then 0: the rates and reactions of that phase).
-_LEAVES = Leg("leave", ends=lambda p, a, y, xp: newton_euler_at(p, y, xp)[4], framed=True,
+_LEAVES = Leg("leave", ends=lambda p, a, y, xp: accelerations_and_reactions(p, y, xp)[4], framed=True,
               then=lambda p, a, y, xp: {**y, "wall": 0.0})
 _LANDS = Leg("land", ends=lambda p, a, y, xp: y["theta"])
 
 
 def _horizon(p, a, xp=np):
-    """Each phase's longest time (``integrated``'s horizon, in s)."""
-    closest = xp.minimum(p["theta0"], math.pi / 2 - p["theta0"])
-    return (100.0 + 10 * xp.log(1 / closest)) * xp.sqrt(p["L"] / p["g"])
+    """Each phase's longest time in s (``integrated``'s, in units of √(L/g))."""
+    return _horizon_units(xp.minimum(p["theta0"], math.pi / 2 - p["theta0"]), xp) * xp.sqrt(p["L"] / p["g"])
 
 
 def _rates_of_state(p, a, y, xp):
-    ddx, ddy, ddth = newton_euler_at(p, y, xp)[:3]
+    ddx, ddy, ddth = accelerations_and_reactions(p, y, xp)[:3]
     return {"x_G": y["vx_G"], "y_G": y["vy_G"], "theta": y["omega"], "vx_G": ddx, "vy_G": ddy, "omega": ddth,
             "wall": 0.0}
 

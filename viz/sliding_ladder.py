@@ -127,7 +127,7 @@ def pose_at(p, a, t, system: str = "si", xp=np) -> dict:
     the ladder, G and the two pushes from that state's reactions, each a (x, y) row."""
     one = (lambda v: np.array([v], dtype=object)) if xp is not np else np.atleast_1d
     th, x_G, y_G = one(a["theta"]), one(a["x_G"]), one(a["y_G"])
-    reactions = solver.newton_euler_at(p, a, xp)
+    reactions = solver.accelerations_and_reactions(p, a, xp)
     drawn = {**_bodies(th, x_G, y_G, p["L"], xp), **_pushes(th, x_G, y_G, one(reactions[4]), one(reactions[3]), p, xp)}
     return {name: (x[0], y[0]) for name, (x, y) in drawn.items() if name != "where the top leaves the wall"}
 

@@ -50,3 +50,15 @@ def test_the_header_goes_on_a_page_s_html_and_nowhere_else():
     assert headers_of("/disk_wall", HTMLResponse("<html></html>"))[b"link"] == early_modules.link_header()
     assert b"link" not in headers_of("/lti/launch", HTMLResponse("<html></html>"))  # the LTI tool's own page
     assert b"link" not in headers_of("/disk_wall", PlainTextResponse("ok"))  # not HTML
+
+
+def test_under_a_base_path_the_header_goes_on_its_pages_only():
+    """Streamlit's ``server.baseUrlPath`` (edge.base_path): its pages are under it, and a path outside it is not one."""
+    from streamlit import config
+
+    config.set_option("server.baseUrlPath", "dl")
+    try:
+        assert headers_of("/dl/disk_wall", HTMLResponse("<html></html>"))[b"link"] == early_modules.link_header()
+        assert b"link" not in headers_of("/disk_wall", HTMLResponse("<html></html>"))
+    finally:
+        config.set_option("server.baseUrlPath", "")
