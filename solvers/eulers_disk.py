@@ -301,13 +301,23 @@ def orientations(p, answers, t) -> np.ndarray:
     return rz(-answers["omega_p"] * t) @ rx @ rz(answers["omega_s"] * t)
 
 
+FRAMES = 48  # one precession's frames, its first and last alike
+
+
+def frame_times(p, a, frames: int = FRAMES, xp=np) -> list:
+    """The motion's instants: ``frames`` of them evenly over one precession, from t = 0. ``xp``: numpy, or
+    solvers.live's namespace for expressions (the browser's motion, generated from this)."""
+    return [0.0, *(a["period"] * i / (frames - 1) for i in range(1, frames))]
+
+
 @per_solution
-def motion(solution: Solution, frames: int = 48, rim_points: int = 36) -> dict:
+def motion(solution: Solution, frames: int = FRAMES, rim_points: int = 36) -> dict:
     """One precession: the rim, a marked radius and the contact point, in the table frame, with G
-    fixed at height r sin θ above the origin."""
+    fixed at height r sin θ above the origin (``orientations``: the rotation matrices, the contact found
+    as the rim's lowest point)."""
     p, a = solution.params, solution.answers
     r = p["r"]
-    t = np.linspace(0.0, a["period"], frames)
+    t = np.array(frame_times(p, a, frames))
     G = np.array([0.0, 0.0, r * math.sin(p["theta"])])
     angles = np.linspace(0.0, 2 * np.pi, rim_points)
     rim_body = r * np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)])

@@ -27,11 +27,13 @@ IN_BROWSER = [pid for pid in registry.PROBLEM_IDS if in_browser(pid)]
 # A state off the defaults where a page has regimes, options or events: the disk sliding along the wall, front
 # drive, the bounced stick swinging round into the ball.
 QUERIES = {"disk_wall": "?mu=0.05&omega=40", "driven_cart": "?drive=front&mu=0.3", "stick_ball": "?mode=bounce&s=0.25",
-           "pendulum_rebound": "?surface=wall&e=0.6", "sliding_ladder": "?theta0=75&L=3"}
+           "pendulum_rebound": "?surface=wall&e=0.6", "sliding_ladder": "?theta0=75&L=3",
+           "eulers_disk": "?theta=30&r=0.05"}
 DRAWN = """() => { const f = document.querySelector('.dl-figure.dl-staged');
   return f && f.dlFigure && f.dlFigure.frames && f.dlFigure.frames.length ? f.dlFigure : null; }"""
-FRAMES = ("() => { const f = (" + DRAWN + ")(); return {frames: f.frames.map((fr) => fr.data.map((d) => [d.x, d.y])),"
-          " times: f.times, key: f.keyFrame, data: f.graph.data.map((d) => [d.x, d.y])}; }")
+FRAMES = ("() => { const f = (" + DRAWN + ")(); return {frames: f.frames.map((fr) => fr.data.map((d) => [d.x, d.y, d.z])),"
+          " times: f.times, key: f.keyFrame, data: f.graph.data.map((d) => [d.x, d.y, d.z])}; }")
+AXES = ("x", "y", "z")  # (z in a 3-D scene: Euler's disk)
 ROUNDING = 10.0 ** -DIGITS
 
 
@@ -48,8 +50,11 @@ def assert_the_server_s_figure(page, pid: str) -> dict:
     assert np.allclose(drawn["times"], reference.spec["animation"]["times"], rtol=0, atol=1.001e-6)  # (a unit apart at a boundary)
     assert len(drawn["frames"]) == len(want["frames"])
     for n, (have, frame) in enumerate(zip(drawn["frames"], want["frames"])):
-        for trace, (hx, hy) in zip(frame["data"], have):
-            for axis, h in (("x", hx), ("y", hy)):
+        for trace, drawn_rows in zip(frame["data"], have):
+            for axis, h in zip(AXES, drawn_rows):
+                if axis not in trace:
+                    assert h is None, (pid, n, axis)
+                    continue
                 w = np.array([np.nan if v is None else v for v in np.ravel(np.asarray(trace[axis], dtype=object))], dtype=float)
                 h = np.array([np.nan if v is None else v for v in h], dtype=float)
                 # both rounded to DIGITS from values equal to ~1e-12: equal, or one unit apart at a boundary
@@ -61,7 +66,9 @@ def assert_the_server_s_figure(page, pid: str) -> dict:
     for j, trace in enumerate(reference.spec["data"]):
         if j in moving:
             continue
-        for axis, h in zip(("x", "y"), drawn["data"][j]):
+        for axis, h in zip(AXES, drawn["data"][j]):
+            if axis not in trace:
+                continue
             w = np.array([np.nan if v is None else v for v in np.ravel(np.asarray(trace[axis], dtype=object))], dtype=float)
             h = np.array([np.nan if v is None else v for v in np.ravel(np.asarray(h, dtype=object))], dtype=float)
             assert w.shape == h.shape and np.allclose(h, w, rtol=0, atol=1.001 * ROUNDING, equal_nan=True), (

@@ -438,10 +438,12 @@ MOTION_EXAMPLES = {"stick_ball": [{"mode": "bounce", "s": 0.25}, {"mode": "bounc
                    "pendulum_rebound": [{"theta0": math.radians(89), "e": 1.0, "surface": "wall"},
                                         {"surface": "wall", "e": 0.3}, {"e": 0.0}],
                    # released near upright (a slow start: the longest motion; an address may ask for 1e-5 rad from it) and near flat
-                   "sliding_ladder": [{"theta0": math.radians(89)}, {"theta0": math.radians(5)}, {"theta0": math.pi / 2 - 1e-5}]}
+                   "sliding_ladder": [{"theta0": math.radians(89)}, {"theta0": math.radians(5)}, {"theta0": math.pi / 2 - 1e-5}],
+                   # the control's ends: nearly flat (the fastest precession, the spin all but none) and nearly upright
+                   "eulers_disk": [{"theta": math.radians(0.5)}, {"theta": math.radians(89.5), "r": 0.5}]}
 # Stage motions the server still draws frame by frame, and why (each a step of issue 51 to come).
 SERVER_DRAWN = {pid: "its motion is not yet generated for the browser (issue 51)"
-                for pid in ("rod_disk_spring", "eulers_disk")}
+                for pid in ("rod_disk_spring",)}
 
 
 @pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
@@ -488,7 +490,7 @@ def test_the_browser_s_motion_is_the_server_s(pid, tmp_path_factory, monkeypatch
                 assert 1.35 < motion["times"][-1] < 1.45  # ended by the second contact (tests/physics/test_stick_ball.py)
             # (both written to the microsecond: equal, or a unit apart where the two sit either side of a rounding boundary)
             assert np.allclose(motion["times"], anim["times"], rtol=0, atol=1.001e-6), solution.params
-            rows = [{k: [np.asarray(row, dtype=float) for row in c[k]] for k in ("x", "y")} for c in anim["coords"]]
+            rows = [{k: [np.asarray(row, dtype=float) for row in c[k]] for k in ("x", "y", "z") if k in c} for c in anim["coords"]]
             # every frame's every point of the traces on the same axes (the stage's metres, not θ(t)'s degrees)
             axes = [(reference["data"][j].get("xaxis", "x"), reference["data"][j].get("yaxis", "y")) for j in anim["traces"]]
             sizes = {a: np.nanmax(np.abs(np.concatenate([r for c, b in zip(rows, axes) if b == a for k in c for r in c[k]])))
@@ -496,7 +498,8 @@ def test_the_browser_s_motion_is_the_server_s(pid, tmp_path_factory, monkeypatch
             size = sizes[("x", "y")]  # the stage's
             for j, want, have, on in zip(anim["traces"], rows, motion["coords"], axes):
                 name = reference["data"][j]["name"]
-                for axis in ("x", "y"):
+                assert set(have) == set(want), name  # (z too in a 3-D scene)
+                for axis in want:
                     assert len(have[axis]) == len(want[axis]), (name, axis)
                     for frame, (w, h) in enumerate(zip(want[axis], have[axis])):
                         h = np.array([np.nan if v is None else v for v in h], dtype=float)
@@ -511,7 +514,13 @@ def test_the_browser_s_motion_is_the_server_s(pid, tmp_path_factory, monkeypatch
                     h = np.array([np.nan if v is None else v for v in line[axis]], dtype=float)
                     assert w.shape == h.shape and np.allclose(h, w, rtol=0, atol=1e-6 * max(np.nanmax(np.abs(w)), 1.0)), (
                         solution.params, reference["data"][line["trace"]]["name"], axis)
-            # the axes as sent, where the browser has none to widen
+            # the axes as sent, where the browser has none to widen (a 3-D scene's box: the disk's own)
+            if "scene" in reference["layout"]:
+                assert motion["ranges"] is None
+                for key in ("xaxis", "yaxis", "zaxis"):
+                    assert np.allclose(sent["scene"][key]["range"], reference["layout"]["scene"][key]["range"],
+                                       rtol=0, atol=1e-6 * size), (solution.params, key)
+                continue
             ranges = motion["ranges"] or {"x": sent["xaxis"]["range"], "y": sent["yaxis"]["range"]}
             for axis, key in (("x", "xaxis"), ("y", "yaxis")):
                 assert np.allclose(ranges[axis], reference["layout"][key]["range"], rtol=0, atol=1e-6 * size), (

@@ -658,7 +658,9 @@ class Figure {
     if (!m) return false;
     spec.animation.times = m.times;
     spec.animation.coords = m.coords;
-    spec.animation.traces.forEach((j, n) => Object.assign(spec.data[j], {x: m.coords[n].x[0], y: m.coords[n].y[0]}));
+    spec.animation.traces.forEach((j, n) => {  // the first frame's (x, y, and z in a 3-D scene)
+      for (const [axis, rows] of Object.entries(m.coords[n])) spec.data[j][axis] = rows[0];
+    });
     for (const line of m.traced) Object.assign(spec.data[line.trace], {x: line.x, y: line.y});  // a plot against time
     if (m.ranges) {
       spec.layout.xaxis = Object.assign({}, spec.layout.xaxis, {range: m.ranges.x});

@@ -180,19 +180,22 @@ export function motionOf(gen, anim, layout, digits) {
   const drawn = run ? {t: [run.instants(run.frames)]} : gen.times(p, v, round);
   if (!drawn) return null;
   const at = (t) => gen.pose(p, run ? Object.assign({}, v, run.stateAt(t)) : v, round, t);
-  const times = drawn.t[0], coords = anim.posed.map(() => ({x: [], y: []})), paths = anim.posed.map(() => ({x: [], y: []}));
+  // (each trace's rows by axis: x and y, and z in a 3-D scene; a trail is in the plane)
+  const times = drawn.t[0], coords = anim.posed.map(() => ({})), paths = anim.posed.map(() => ({x: [], y: []}));
   for (const [i, t] of times.entries()) {
     const pose = at(t);
     if (!pose) return null;
     anim.posed.forEach(([name, trail, keep], n) => {
-      const [xs, ys] = pose[name].map((row) => row.map(round));
+      const rows = pose[name].map((row) => row.map(round));
       if (trail) {
-        paths[n].x.push(xs[0]);
-        paths[n].y.push(ys[0]);
+        paths[n].x.push(rows[0][0]);
+        paths[n].y.push(rows[1][0]);
       }
       const from = keep == null ? 0 : Math.max(0, i - keep);
-      coords[n].x.push(trail ? paths[n].x.slice(from) : xs);
-      coords[n].y.push(trail ? paths[n].y.slice(from) : ys);
+      rows.forEach((row, k) => {
+        const axis = "xyz"[k];
+        (coords[n][axis] ||= []).push(trail ? paths[n][axis].slice(from) : row);
+      });
     });
   }
   const traced = [];
