@@ -101,13 +101,15 @@ class Leg:
     (``y``: the state, by the names ``Integrated.state`` gives) falls through zero from above; ``then``,
     the state the next leg starts from (an impact: ``(p, a, y, xp) -> y``), else the same; ``framed``, its
     end a frame of its own (an impact the animation must show); ``last(p, a, y, xp)``, true where the motion
-    ends with it, ``y`` its end (e = 0: the sphere stays against the floor)."""
+    ends with it, ``y`` its end (e = 0: the sphere stays against the floor); ``opens``, the frames start at
+    its end, not at t = 0 (a release that creeps unseen: the spring's rod nudged at upright)."""
 
     name: str
     ends: Callable
     then: Callable | None = None
     framed: bool = False
     last: Callable = lambda p, a, y, xp: False
+    opens: bool = False
 
 
 @dataclass(frozen=True)
@@ -116,7 +118,8 @@ class Integrated:
     (issue 51): the state's names, ``start(p, a, xp)`` and ``rates(p, a, y, xp)`` (dy/dt), the legs in
     order, each at most ``horizon(p, a, xp)`` long, by an adaptive Dormand–Prince step to ``tolerances``
     (rtol, atol) with each leg's end found on the step by the Illinois method (live.js: ``integrated``).
-    The frames: instants evenly over the motion (``frame_count``), and each framed leg's end; a dense
+    The frames: instants evenly over the motion (``frame_count``; from the end of a leg that ``opens`` it,
+    else from t = 0), and each framed leg's end; a dense
     curve of ``curve`` such instants for a plot against time. The solver's own Python motion stays the
     reference (tests/pages/test_live.py compares the two)."""
 
@@ -138,6 +141,20 @@ class Integrated:
         if self.fastest is None:
             return self.frames
         return int(max(self.frames, min(self.most, math.ceil(duration * float(self.fastest(p, a, np)) / self.turn) + 1)))
+
+
+SAME_INSTANT = 1e-6  # of the span: a framed leg's end this near an even instant is that instant
+
+
+def frame_instants(begin: float, end: float, count: int, framed) -> np.ndarray:
+    """An integrated motion's frames (``Integrated``): ``count`` instants evenly from ``begin`` to ``end``, and each
+    framed leg's end that is not one of them (within SAME_INSTANT of the span: the turn of a swing mirrored
+    about it is its middle instant, a bounce at equal intervals may fall on one), in order; live.js's
+    ``instants`` alike. Two integrations of the same motion agree on the instants to their tolerance, inside
+    SAME_INSTANT, where exact equality would tell their roundings apart. (Relative: the same in any unit of time.)"""
+    even = np.linspace(begin, end, count)
+    near = SAME_INSTANT * (end - begin)
+    return np.union1d(even, [t for t in framed if not np.abs(even - t).min() <= near])
 
 
 @dataclass(frozen=True)
@@ -413,7 +430,8 @@ def integrated_source(spec: Integrated, params: Mapping[str, object], system: st
     defined = []
     for leg in legs:
         then = generated(leg.then) if leg.then is not None else "null"
-        defined.append(f"{{name: {leg.name!r}, framed: {str(leg.framed).lower()}, ends: {generated(leg.ends)}, "
+        defined.append(f"{{name: {leg.name!r}, framed: {str(leg.framed).lower()}, opens: {str(leg.opens).lower()}, "
+                       f"ends: {generated(leg.ends)}, "
                        f"then: {then}, last: {generated(ends_there(leg))}}}")
     return (f"(() => {{\n  const legs = [{', '.join(defined)}];\n"
             f"  return {{state: {list(spec.state)!r}, frames: {spec.frames}, curve: {spec.curve}, turn: {spec.turn!r}, "

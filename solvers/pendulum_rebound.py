@@ -37,7 +37,7 @@ from .core import (
     per_solution,
 )
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
-from .live import Case, Integrated, Leg, Live
+from .live import Case, Integrated, Leg, Live, frame_instants
 from .protocol import About, Mistake, Variants
 from .swing import ATOL, RTOL, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg
 
@@ -649,7 +649,7 @@ def motion(solution: Solution, frames: int | None = None, bounces: int = BOUNCES
     impact_times = [leg.end[0] for leg in legs[0::2]]
     start, end = legs[0].t[0], legs[-1].end[0]
     count = frames or INTEGRATED.frame_count(solution.params, solution.answers, end - start)
-    t = np.union1d(np.linspace(start, end, count), impact_times)
+    t = frame_instants(start, end, count, impact_times)
     theta, omega = _on_legs(legs, t, solution.params, solution.answers)
     return {"t": t, "theta": theta, "omega": omega, "impact_times": impact_times}
 
@@ -659,7 +659,7 @@ def curve(solution: Solution, points: int = INTEGRATED.curve, bounces: int = BOU
     """θ(t) densely for its plot below the motion, ``points`` instants even in time and each impact (the
     cusps land on θ_I): (t, θ)."""
     legs = _drawn_legs(solution, bounces)
-    t = np.union1d(np.linspace(legs[0].t[0], legs[-1].end[0], points), [leg.end[0] for leg in legs[0::2]])
+    t = frame_instants(legs[0].t[0], legs[-1].end[0], points, [leg.end[0] for leg in legs[0::2]])
     return t, _on_legs(legs, t, solution.params, solution.answers)[0]
 
 

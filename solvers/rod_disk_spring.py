@@ -36,9 +36,9 @@ from .core import (
     per_solution,
 )
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
-from .live import Case, Live, Stops
+from .live import Case, Integrated, Leg as Phase, Live, Stops, frame_instants
 from .protocol import About, Mistake, Variants
-from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, integrate_leg, slope
+from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg, slope
 
 ABOUT = About(
     title="Rod and disk on a torsional spring",
@@ -94,7 +94,7 @@ DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
 
 NUDGE = 1e-6  # rad/s: the push that starts a release at or near upright in the integration
 NEAR_UPRIGHT = 1e-3  # rad: below this release angle the integration starts with the nudge
-ESCAPE = 1e-2  # rad: how far a nudged release follows its linearised motion before integrating
+ESCAPE = 1e-3  # rad: how far a nudged release follows its linearised motion before integrating
 
 
 def _start_rate(theta1: float) -> float:
@@ -395,6 +395,9 @@ def _legs(key: tuple):
         return first, None
     t2, q2, w2 = first.end
     turn = _first_stop(p, q2, q2 + 4 * math.pi, 513)  # the spring always wins within a few turns
+    if turn is None or turn >= _upright_again(p):  # no turn before it comes round near upright, where the frames
+        # end (integrated, not drawn: they are compared with the browser's)
+        return first, integrate_leg(acc, q2, w2, t2, horizon, stop_at_angle=_upright_again(p), direction=1)
     rest = drawn_to_turn(rate_squared, acc, q2, turn, t2) if turn is not None else None  # only drawn
     if rest is None:
         rest = integrate_leg(acc, q2, w2, t2, horizon, stop_at_rest=True, tolerances=DRAWING)
@@ -445,17 +448,65 @@ MAX_FRAME_TURN = math.radians(10.0)  # the most the rod may turn between two fra
 FRAME_RANGE = (45, 150)
 
 
+def _visible(p, xp=np):
+    """How far the rod turns from rest before the frames start, and how near upright (360°) it may come again
+    before they end: VISIBLE, or half the way to θ₂ where θ₂ is nearer."""
+    return xp.minimum(VISIBLE, xp.minimum((p["theta2"] - p["theta1"]) / 2, (2 * math.pi - p["theta2"]) / 2))
+
+
+def _upright_again(p, xp=np):
+    """Where the frames end if the swing does not turn before it: within ``_visible`` of upright again, an
+    equilibrium, where a swing with no spring (or one too soft to stop it sooner) creeps on for seconds."""
+    return 2 * math.pi - _visible(p, xp)
+
+
+def _fastest(p, a, xp=np):
+    """A bound on |θ̇| over the swing in closed form (the frames' count: Integrated.frame_count): all the
+    energy above the lowest the weights can reach, ½ I_O θ̇₀² + Q (1 + cos θ₁) + ½ k θ₁², as kinetic."""
+    energy = 0.5 * a["I_O"] * _start_rate_of(p, xp) ** 2 + weight_moment(p) * (1 + xp.cos(p["theta1"])) + 0.5 * p["k"] * p["theta1"] ** 2
+    return xp.sqrt(2 * energy / a["I_O"])
+
+
+def _start_rate_of(p, xp=np):
+    """``_start_rate`` for numbers or symbols."""
+    return _start_rate(p["theta1"]) if xp is np else sp.Piecewise((NUDGE, sp.StrictLessThan(p["theta1"], NEAR_UPRIGHT)), (0.0, True))
+
+
+def _acceleration(p, a, theta, xp=np):
+    """θ̈ = (Q sin θ − k θ) / I_O (``equation_of_motion``), for numbers, arrays or symbols."""
+    return (weight_moment(p) * xp.sin(theta) - p["k"] * theta) / a["I_O"]
+
+
+# The swing, integrated in the browser (issue 51) from the same equation of motion: the creep until the rod
+# has turned ``_visible`` (the frames start there), the fall to θ₂ (framed: the key instant), on to the turn
+# (framed) or round to ``_upright_again`` if that comes first (the end), and the return to within
+# ``_visible`` of rest (the end). ``motion`` is the reference, from the checks' own legs.
+_CREEP = Phase("creep", lambda p, a, y, xp: p["theta1"] + _visible(p, xp) - y["theta"], opens=True)
+_FALL = Phase("fall", lambda p, a, y, xp: p["theta2"] - y["theta"], framed=True)
+_RISE = Phase("rise", lambda p, a, y, xp: xp.minimum(y["omega"], _upright_again(p, xp) - y["theta"]), framed=True,
+              last=lambda p, a, y, xp: xp.less(_upright_again(p, xp) - y["theta"], y["omega"]))  # (round near upright)
+_RETURN = Phase("return", lambda p, a, y, xp: y["theta"] - p["theta1"] - _visible(p, xp))
+
+INTEGRATED = Integrated(
+    state=("theta", "omega"), start=lambda p, a, xp: {"theta": p["theta1"], "omega": _start_rate_of(p, xp)},
+    rates=lambda p, a, y, xp: {"theta": y["omega"], "omega": _acceleration(p, a, y["theta"], xp)},
+    legs=(_CREEP, _FALL, _RISE, _RETURN), horizon=lambda p, a, xp: 200 * xp.sqrt(a["I_O"] / weight_moment(p)) + 10,
+    frames=FRAME_RANGE[0], most=FRAME_RANGE[1], turn=MAX_FRAME_TURN, fastest=_fastest, tolerances=(1e-12, 1e-15))
+
+
 @per_solution
 def motion(solution: Solution) -> dict:
     """The swing a student can see, with the energy split per frame: kinetic, gravitational (zero
-    with the assembly hanging straight down) and spring. The fall is integrated once; the system
-    is conservative, so the return is its mirror in time, unless the swing ends at an equilibrium
-    (no spring, released from upright: it arrives upright again and, nudged, goes on over the top).
-    A swing that turns has a frame at the turn, where it stands at its largest angle.
+    with the assembly hanging straight down) and spring. The fall is the checks' own legs (``simulate``),
+    between their samples the quintic through θ, θ̇ and θ̈; the system is conservative, so the return is its
+    mirror in time, unless the swing comes round near upright before it turns (``_upright_again``). A swing
+    that turns has a frame at the turn, where it stands at its largest angle.
 
-    A release at upright creeps for seconds on its 1e-6 rad/s nudge; the frames start where the
-    rod has moved VISIBLE from rest (``start``) and end where it is back within VISIBLE of rest,
-    evenly in time, and close enough that the rod turns at most MAX_FRAME_TURN between frames.
+    A release at upright creeps for seconds on its 1e-6 rad/s nudge; the frames start where the rod has
+    turned ``_visible`` from rest and end where it is back within it (or at ``_upright_again``), at
+    instants even in time, as many as keep the rod's turn between two under MAX_FRAME_TURN
+    (``INTEGRATED.frame_count``: a bound on θ̇ in closed form). The browser integrates the same frames
+    itself on the lesson page (``INTEGRATED``).
 
     One frame is at θ₂ itself, on the fall, at the closed form's numbers (θ₂, |θ̇₂|; the integration agrees
     with them to its tolerance): the key instant, where the speed is asked for and the free-body diagram
@@ -463,34 +514,33 @@ def motion(solution: Solution) -> dict:
     p, a = solution.params, solution.answers
     half = simulate(p, a)
     reach, _ = _legs(tuple(sorted(p.items())) + (("I_O", a["I_O"]),))
-    t_2 = reach.end[0] if reach.ended_by_event else None  # when the fall passes θ₂
+    t_2 = reach.end[0]  # when the fall passes θ₂ (solve refuses a swing that does not)
+    knots, keep = np.unique(half.t, return_index=True)
+
+    def on_half(times):
+        return hermite_on_knots(knots, half.theta[keep], half.omega[keep], np.asarray(times, dtype=float),
+                                _acceleration(p, a, half.theta[keep]))
+
+    def reaches(angle, lo, hi):  # when the fall (θ increasing) reaches ``angle``, between lo and hi
+        return brentq(lambda t: float(on_half([t])[0][0]) - angle, lo, hi, xtol=1e-13)
+    t_start = reaches(p["theta1"] + _visible(p), 0.0, t_2)
+    t_turn = half.t[-1]
+    over = bool(half.theta[-1] == _upright_again(p))  # round near upright: the legs end where the frames do
+    t_end = t_turn if over else 2 * t_turn - t_start
+    count = INTEGRATED.frame_count(p, a, t_end - t_start)
+    even = frame_instants(t_start, t_end, count, [t_2] + ([] if over else [t_turn]))
+    theta, _ = on_half(np.minimum(even, 2 * t_turn - even))  # the return: the fall mirrored in time
+    at_2 = int(np.argmin(np.abs(even - t_2)))
+    theta[at_2] = p["theta2"]
+    # the rate from the energy integral at each frame's angle (the quintic's slope is an order less accurate
+    # than its value), back on the return
+    kinetic = np.maximum(kinetic_energy_at(p, theta) + 0.5 * a["I_O"] * _start_rate(p["theta1"]) ** 2, 0.0)
+    omega = np.where(even > t_turn, -1.0, 1.0) * np.sqrt(2 * kinetic / a["I_O"])
+    omega[at_2] = a["omega2"]
     Q = weight_moment(p)
-    # With no spring, T(θ) = Q (1 − cos θ) from upright vanishes again only at 360°, upright: the
-    # swing ends where it began, at an equilibrium, and the nudge carries it over the top.
-    over_the_top = p["k"] == 0 and p["theta1"] == 0
-    t_turn = None
-    if half.ended_by_event and not over_the_top:
-        t_turn = half.t[-1]
-        t = np.concatenate([half.t, 2 * t_turn - half.t[-2::-1]])
-        theta = np.concatenate([half.theta, half.theta[-2::-1]])
-        omega = np.concatenate([half.omega, -half.omega[-2::-1]])
-    else:
-        t, theta, omega = half.t, half.theta, half.omega
-    moved = np.nonzero((np.abs(theta - theta[0]) >= VISIBLE) & (np.abs(theta - theta[-1]) >= VISIBLE))[0]
-    t_start, t_end = (t[moved[0] - 1], t[min(moved[-1] + 1, len(t) - 1)]) if len(moved) else (t[0], t[-1])
-    frames = int(np.clip(math.ceil((t_end - t_start) * np.abs(omega).max() / MAX_FRAME_TURN), *FRAME_RANGE))
-    even = np.linspace(t_start, t_end, frames)
-    if t_turn is not None and t_start < t_turn < t_end:  # and the turn itself, the rod's largest angle
-        even = np.union1d(even, [t_turn])
-    if t_2 is not None:
-        even = np.union1d(even, [t_2])
-    theta, omega = np.interp(even, t, theta), np.interp(even, t, omega)
-    if t_2 is not None:
-        at_2 = int(np.searchsorted(even, t_2))
-        theta[at_2], omega[at_2] = p["theta2"], a["omega2"]
     return {"t": even, "theta": theta, "omega": omega, "kinetic": 0.5 * a["I_O"] * omega**2,
             "gravity": Q * (1 + np.cos(theta)), "spring": 0.5 * p["k"] * theta**2,
-            "start": float(even[0]), "over_the_top": bool(over_the_top)}
+            "start": float(even[0]), "over_the_top": over}
 
 
 def method(params) -> tuple[Step, ...]:

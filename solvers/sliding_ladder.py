@@ -41,7 +41,7 @@ from .core import (
 )
 from . import units
 from .diagram import Body, DiagramSlip, Diagram, Load, Rod, balance, balance_steps, fbd_steps
-from .live import Case, Integrated, Leg, Live
+from .live import Case, Integrated, Leg, Live, frame_instants
 from .protocol import About, Mistake, Variants
 
 ABOUT = About(
@@ -586,7 +586,7 @@ def motion(solution: Solution) -> dict:
         "x_B": x_G + L_ / 2 * np.cos(th), "y_B": y_G - L_ / 2 * np.sin(th),
         "curve_t": curve_t * T, "N_wall": walls * mg, "N_floor": floors * mg,
         "frame_N_wall": frame_walls * mg, "frame_N_floor": frame_floors * mg,
-        "t_leave": t1 * T, "leave_frame": int(np.searchsorted(frames, t1)),
+        "t_leave": t1 * T, "leave_frame": int(np.argmin(np.abs(frames - t1))),
     }
 
 
@@ -609,9 +609,9 @@ def _sampled(theta_0: float) -> tuple:
         floors = np.concatenate([r_held[:, 3], r_free[:, 3]])
         return np.concatenate([held, free]), walls, floors
 
-    frames = np.unique(np.concatenate([np.linspace(0.0, t2, FRAMES), [t1]]))
+    frames = frame_instants(0.0, t2, FRAMES, [t1])
     states, frame_walls, frame_floors = sample(frames)
-    curve_t = np.unique(np.concatenate([np.linspace(0.0, t2, CURVE_POINTS), [t1]]))
+    curve_t = frame_instants(0.0, t2, CURVE_POINTS, [t1])
     _, walls, floors = sample(curve_t)
     for array in (frames, states, curve_t, walls, floors, frame_walls, frame_floors):
         array.flags.writeable = False

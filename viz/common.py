@@ -302,6 +302,7 @@ class Posed:
     name: str
     trail: bool = False
     keep: int | None = None  # a trail's last points (``trails``' keep)
+    axes: str = "xyz"  # what the pose's rows are, in order: x and y (and z in a 3-D scene); "y" for bars' heights
 
 
 def animated_in_browser(static: Sequence[dict], traces: Sequence[Posed], layout: dict, params: dict,
@@ -317,7 +318,7 @@ def animated_in_browser(static: Sequence[dict], traces: Sequence[Posed], layout:
         "data": [*static, *(t.style for t in traces)],
         "layout": _with_time_slider(layout, "t = ", " s"),
         "animation": {"traces": list(range(len(static), len(static) + len(traces))),
-                      "posed": [[t.name, t.trail, t.keep] for t in traces], "hold": hold,
+                      "posed": [[t.name, t.trail, t.keep, t.axes] for t in traces], "hold": hold,
                       **({"traced": [[index, name] for index, name in traced]} if traced else {}),
                       "params": {k: ("inf" if isinstance(v, float) and math.isinf(v) else v) for k, v in params.items()},
                       "frame_ms": frame_ms, "redraw": redraw},

@@ -8,8 +8,8 @@ import numpy as np
 
 from solvers import rod_disk_spring as solver
 from solvers.core import plain_fixed, plain_number as n, validate_params
-from viz.common import (COLORS, Figure, headline, headline_text, animated, base_layout, circles, fitted, line, moving, points, r, segments,
-                         spirals, STILL_HEIGHT, still_layout, symbolic, thumbnail)
+from viz.common import (COLORS, Figure, Posed, headline, headline_text, animated, animated_in_browser, base_layout, circles, fitted,
+                         line, moving, points, r, segments, spirals, STILL_HEIGHT, still_layout, symbolic, thumbnail)
 from viz.sketch import Drawing, Sketch
 
 THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
@@ -20,13 +20,15 @@ THUMBNAIL = thumbnail(  # the home page's sketch (no physics)
     "A rod and disk on a torsional spring")
 
 
-def figures(solution, system: str = "si") -> list[Figure]:
+def figures(solution, system: str = "si", in_browser: bool = False) -> list[Figure]:
+    """The swing with its energy bars; ``in_browser``: its frames left to the browser, which integrates the
+    swing (solvers.rod_disk_spring.INTEGRATED) and draws ``pose_at``, in the axes the server's frames fit."""
     p, a = solution.params, solution.answers
     m, at_theta2 = _with_theta2(solver.motion(solution), p["theta2"])
     head = headline("Side view, θ from the upward vertical. The assembly passes θ₂ = ", ("theta2", "deg", 0),
                     " (dashed) at ", ("omega2", "n", 4), " rad/s.")
     return [_swing(p, m, head, headline_text(head, {**p, **a}), at_theta2,
-                   f"passing θ₂ = {deg(p['theta2'])}, where the speed is asked for")]
+                   f"passing θ₂ = {deg(p['theta2'])}, where the speed is asked for", in_browser)]
 
 
 def at_limit(params, system: str = "si") -> list[Figure]:
@@ -80,7 +82,7 @@ def _held(p) -> Figure:
                   height=STILL_HEIGHT)
 
 
-def _swing(p, m, head, said: str, key_frame: int, key_caption: str) -> Figure:
+def _swing(p, m, head, said: str, key_frame: int, key_caption: str, in_browser: bool = False) -> Figure:
     """The stage figure: the assembly swinging (``m``: solver.motion's frames) with θ₂ = ``p["theta2"]``
     dashed, above the energy bars; ``said``: its first sentence, ``head`` its parts a drag follows."""
     pivot = points([0], [0], "pivot O", COLORS["ink"], size=9, symbol="x")
@@ -110,7 +112,12 @@ def _swing(p, m, head, said: str, key_frame: int, key_caption: str) -> Figure:
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.22], "range": [0, top * 1.05],
                         "title": {"text": "energy (J)"}}
     layout["height"] = 700
-    spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout, frame_ms=50)
+    if in_browser:  # the same styles, posed by name (``pose_at``); the axes the frames above fit
+        names = ["torsional spring"] * (p["k"] > 0) + ["rod", "disk", "marked radius"]
+        posed = [Posed(t.style, name) for t, name in zip(moving_traces, names)] + [Posed(bars, "energy (J)", axes="y")]
+        spec = animated_in_browser([pivot, theta2_mark], posed, layout, p, hold=None, frame_ms=50)
+    else:
+        spec = animated([pivot, theta2_mark], moving_traces, m["t"], layout, frame_ms=50)
     description = (f"{said} {_release(p, m)}, it falls, {_after(p, m)}. Bars: kinetic, gravitational (zero hanging "
                    "straight down) and spring energy; their sum stays constant. Drawn: the rod (grey) and the disk (blue, "
                    "its marked radius orange) turning on the torsional spring (pink) about the pivot O.")
@@ -164,6 +171,20 @@ def key_pose(p, a, system: str = "si", xp=np) -> dict:
     return {name: (x[0], y[0]) for name, (x, y) in drawn.items()}
 
 
+def pose_at(p, a, t, system: str = "si", xp=np) -> dict:
+    """The stage at time ``t``, its state (θ, θ̇) among ``a`` by the names solvers.rod_disk_spring.INTEGRATED
+    gives: the spring (where k > 0), the rod, the disk and its marked radius, each a (x, y) row, and the
+    energy bars' heights, kinetic, gravitational and spring, as one row (the bars' y): solvers.live's
+    symbols for the browser's motion."""
+    theta, omega = a["theta"], a["omega"]
+    drawn = _bodies(np.array([theta], dtype=object if xp is not np else float), p, xp)
+    del drawn["θ₂"]  # (drawn once, not moving)
+    x, y = drawn.pop("torsional spring")
+    drawn["torsional spring"] = tuple(xp.where(xp.less(-p["k"] + 0 * v, 0), v, np.nan) for v in (x, y))
+    energy = [0.5 * a["I_O"] * omega**2, solver.weight_moment(p) * (1 + xp.cos(theta)), 0.5 * p["k"] * theta**2]
+    return {**{name: (x[0], y[0]) for name, (x, y) in drawn.items()}, "energy (J)": (np.array(energy, dtype=object),)}
+
+
 def deg(angle: float) -> str:
     return f"{plain_fixed(math.degrees(angle), 0)}°"
 
@@ -176,9 +197,12 @@ def _release(p, m) -> str:
 
 
 def _after(p, m) -> str:
-    if m["over_the_top"]:
+    if m["over_the_top"] and p["k"] == 0 and p["theta1"] < solver.NEAR_UPRIGHT:
         return ("and with no spring swings right round to upright again (360°), where the nudge carries it "
                 "over the top: it keeps turning")
+    if m["over_the_top"]:  # (a spring too soft to stop it sooner, or none from a hair off upright)
+        return ("swings right round to within a degree of upright again, an equilibrium it creeps near for seconds: "
+                "the animation ends there")
     stopper = "the spring stops it" if p["k"] > 0 else "it comes to rest (as high as it started)"
     return f"swings on until {stopper} at about {deg(m['theta'].max())}, and returns"
 

@@ -28,7 +28,7 @@ IN_BROWSER = [pid for pid in registry.PROBLEM_IDS if in_browser(pid)]
 # drive, the bounced stick swinging round into the ball.
 QUERIES = {"disk_wall": "?mu=0.05&omega=40", "driven_cart": "?drive=front&mu=0.3", "stick_ball": "?mode=bounce&s=0.25",
            "pendulum_rebound": "?surface=wall&e=0.6", "sliding_ladder": "?theta0=75&L=3",
-           "eulers_disk": "?theta=30&r=0.05"}
+           "eulers_disk": "?theta=30&r=0.05", "rod_disk_spring": "?k=10&theta1=20&disk=pinned"}
 DRAWN = """() => { const f = document.querySelector('.dl-figure.dl-staged');
   return f && f.dlFigure && f.dlFigure.frames && f.dlFigure.frames.length ? f.dlFigure : null; }"""
 FRAMES = ("() => { const f = (" + DRAWN + ")(); return {frames: f.frames.map((fr) => fr.data.map((d) => [d.x, d.y, d.z])),"

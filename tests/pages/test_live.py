@@ -440,10 +440,14 @@ MOTION_EXAMPLES = {"stick_ball": [{"mode": "bounce", "s": 0.25}, {"mode": "bounc
                    # released near upright (a slow start: the longest motion; an address may ask for 1e-5 rad from it) and near flat
                    "sliding_ladder": [{"theta0": math.radians(89)}, {"theta0": math.radians(5)}, {"theta0": math.pi / 2 - 1e-5}],
                    # the control's ends: nearly flat (the fastest precession, the spin all but none) and nearly upright
-                   "eulers_disk": [{"theta": math.radians(0.5)}, {"theta": math.radians(89.5), "r": 0.5}]}
-# Stage motions the server still draws frame by frame, and why (each a step of issue 51 to come).
-SERVER_DRAWN = {pid: "its motion is not yet generated for the browser (issue 51)"
-                for pid in ("rod_disk_spring",)}
+                   "eulers_disk": [{"theta": math.radians(0.5)}, {"theta": math.radians(89.5), "r": 0.5}],
+                   # nudged at upright (it creeps for seconds), no spring: over the top (nudged upright, and 3e-4 rad
+                   # from it), no spring from 30° (at rest at 330°), θ₂ half a degree past θ₁, the disk pinned
+                   "rod_disk_spring": [{"theta1": 0.0}, {"k": 0.0, "theta1": 0.0}, {"k": 0.0, "theta1": 3e-4},
+                                       {"k": 0.0, "theta1": math.radians(30), "theta2": math.radians(300)},
+                                       {"theta1": math.radians(30), "theta2": math.radians(30.5)}, {"disk": "pinned", "k": 45.0}]}
+# Stage motions the server still draws frame by frame, and why (each a step of issue 51 to come): none now.
+SERVER_DRAWN: dict[str, str] = {}
 
 
 @pytest.mark.parametrize("pid", registry.PROBLEM_IDS)

@@ -169,7 +169,8 @@ export function poseOf(fn, p, values, digits) {
 // times: they are ``frames`` instants evenly over it and each framed leg's end, and the state at each
 // is among the values the pose reads, by the state's names. ``anim.traced``: static traces drawn from
 // such a motion, [trace, pose name], at its ``curve`` instants (a plot against time: one point of the pose per instant).
-// ``anim.posed``: [name, trail, keep] (a trail keeps its last ``keep`` points, if given).
+// ``anim.posed``: [name, trail, keep, axes] (a trail keeps its last ``keep`` points, if given; ``axes``, what the
+// pose's rows are: "xyz", or "y" for bars' heights).
 export function motionOf(gen, anim, layout, digits) {
   const p = fromJSON(anim.params), live = gen.values(p);
   if (!live || !live.values) return null;
@@ -185,7 +186,7 @@ export function motionOf(gen, anim, layout, digits) {
   for (const [i, t] of times.entries()) {
     const pose = at(t);
     if (!pose) return null;
-    anim.posed.forEach(([name, trail, keep], n) => {
+    anim.posed.forEach(([name, trail, keep, axes = "xyz"], n) => {
       const rows = pose[name].map((row) => row.map(round));
       if (trail) {
         paths[n].x.push(rows[0][0]);
@@ -193,7 +194,7 @@ export function motionOf(gen, anim, layout, digits) {
       }
       const from = keep == null ? 0 : Math.max(0, i - keep);
       rows.forEach((row, k) => {
-        const axis = "xyz"[k];
+        const axis = axes[k];
         (coords[n][axis] ||= []).push(trail ? paths[n][axis].slice(from) : row);
       });
     });
@@ -239,7 +240,7 @@ export function integrated(spec, p, v, round) {
   let y = call(spec.start);
   if (!y || !Number.isFinite(horizon)) return null;
   const legs = [], framed = [];
-  let t = 0;
+  let t = 0, begin = 0;  // (the frames start at the end of a leg that ``opens`` them, else at 0)
   for (const leg of spec.legs) {
     const ends = (z) => call(leg.ends, z)?.[0];
     const run = integrateLeg(f, ends, t, y, t + horizon, rtol, atol);
@@ -248,6 +249,7 @@ export function integrated(spec, p, v, round) {
     t = run.t[run.t.length - 1];
     y = run.y[run.y.length - 1];
     if (!run.ended) break;
+    if (leg.opens) begin = t;
     if (leg.framed) framed.push(t);
     if (call(leg.last, y)?.[0]) break;
     if (leg.then) {
@@ -259,11 +261,14 @@ export function integrated(spec, p, v, round) {
   if (spec.fastest && !Number.isFinite(fastest)) return null;
   return {
     // how many even instants the frames take (solvers/live.py: Integrated.frame_count)
-    frames: fastest == null ? spec.frames : Math.max(spec.frames, Math.min(spec.most, Math.ceil(end * fastest / spec.turn) + 1)),
-    // ``count`` instants evenly from 0 to the end (numpy.linspace's), and the framed ends, in order, each once
+    frames: fastest == null ? spec.frames : Math.max(spec.frames, Math.min(spec.most, Math.ceil((end - begin) * fastest / spec.turn) + 1)),
+    // ``count`` instants evenly from the beginning to the end (numpy.linspace's), and each framed end that is not
+    // one of them (within 1e-6 of the span: solvers/live.py's frame_instants), in order
     instants(count) {
-      const even = Array.from({length: count}, (_, i) => (i === count - 1 ? end : (i * end) / (count - 1)));
-      return [...new Set([...even, ...framed])].sort((a, b) => a - b);
+      const span = end - begin, near = 1e-6 * span;
+      const even = Array.from({length: count}, (_, i) => (i === count - 1 ? end : begin + (i * span) / (count - 1)));
+      const other = framed.filter((f) => !even.some((e) => Math.abs(e - f) <= near));
+      return [...new Set([...even, ...other])].sort((a, b) => a - b);
     },
     // the state at ``t``: from the leg it falls in (a leg's end: the leg that ends there, before its ``then``)
     stateAt(time) {
