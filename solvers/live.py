@@ -143,18 +143,25 @@ class Integrated:
         return int(max(self.frames, min(self.most, math.ceil(duration * float(self.fastest(p, a, np)) / self.turn) + 1)))
 
 
-SAME_INSTANT = 1e-6  # of the span: a framed leg's end this near an even instant is that instant
+SAME_INSTANT = 1e-6  # of the span: an even instant this near a framed leg's end is that end
 
 
 def frame_instants(begin: float, end: float, count: int, framed) -> np.ndarray:
     """An integrated motion's frames (``Integrated``): ``count`` instants evenly from ``begin`` to ``end``, and each
-    framed leg's end that is not one of them (within SAME_INSTANT of the span: the turn of a swing mirrored
-    about it is its middle instant, a bounce at equal intervals may fall on one), in order; live.js's
-    ``instants`` alike. Two integrations of the same motion agree on the instants to their tolerance, inside
-    SAME_INSTANT, where exact equality would tell their roundings apart. (Relative: the same in any unit of time.)"""
-    even = np.linspace(begin, end, count)
+    framed leg's end, in order; an even instant within SAME_INSTANT of the span of a framed end is that end (the
+    turn of a swing mirrored about it is its middle instant; a bounce at equal intervals may fall on one), so two
+    integrations of the same motion, which agree on the instants to their tolerance, have the same frames where
+    exact equality would tell their roundings apart. (Relative: the same in any unit of time.) live.js's
+    ``instants`` alike."""
+    times = list(np.linspace(begin, end, count))
     near = SAME_INSTANT * (end - begin)
-    return np.union1d(even, [t for t in framed if not np.abs(even - t).min() <= near])
+    for t in framed:
+        i = int(np.argmin(np.abs(np.asarray(times[:count]) - t)))
+        if abs(times[i] - t) <= near:
+            times[i] = t
+        else:
+            times.append(t)
+    return np.unique(times)
 
 
 @dataclass(frozen=True)

@@ -582,8 +582,9 @@ def stays(p, w_hit, w_first, xp=np):
     rebound slower than SEEN of the first impact's speed, whose height (a millionth of the fall's) no
     screen shows, and whose turn no integration places to a microsecond where θ_I is the hanging
     equilibrium (−90° against the wall: a swing of any size turns a quarter period later, and one of
-    1e-8 rad is a few units of rounding of θ there)."""
-    return p["e"] * xp.abs(w_hit) <= SEEN * xp.abs(w_first)
+    1e-8 rad is a few units of rounding of θ there). With a margin of 1e-9 beyond an integration's error:
+    at e = SEEN the first impact ends it whichever side of the closed form the integrated speed lies."""
+    return p["e"] * xp.abs(w_hit) <= SEEN * xp.abs(w_first) * (1 + 1e-9)
 
 # The fall to the surface, each bounce's rise to its peak and its fall back (``simulate``'s legs), in the
 # browser (ui/live.py); the state (θ, θ̇); an impact it stays at (``stays``: e = 0) ends it. The bounce leaves from θ_I
@@ -634,7 +635,8 @@ def _checks(p, a) -> tuple[Check, ...]:
 def _drawn_legs(solution: Solution, bounces: int = BOUNCES) -> list:
     """The legs the animation draws: ``simulate``'s, up to the impact the sphere stays at (``stays``)."""
     *_, legs = simulate(solution.params, solution.answers, bounces=bounces)
-    seen = next((k + 1 for k in range(0, len(legs), 2) if stays(solution.params, legs[k].end[2], legs[0].end[2])), len(legs))
+    seen = next((k + 1 for k in range(0, len(legs), 2) if stays(solution.params, legs[k].end[2], solution.answers["omega_impact"])),
+                len(legs))
     return legs[:seen]
 
 

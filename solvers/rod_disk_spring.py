@@ -38,7 +38,7 @@ from .core import (
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Integrated, Leg as Phase, Live, Stops, frame_instants
 from .protocol import About, Mistake, Variants
-from .swing import DRAWING, Leg, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg, slope
+from .swing import Leg, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg, slope
 
 ABOUT = About(
     title="Rod and disk on a torsional spring",
@@ -94,7 +94,7 @@ DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
 
 NUDGE = 1e-6  # rad/s: the push that starts a release at or near upright in the integration
 NEAR_UPRIGHT = 1e-3  # rad: below this release angle the integration starts with the nudge
-ESCAPE = 1e-3  # rad: how far a nudged release follows its linearised motion before integrating
+ESCAPE = 1e-4  # rad: how far a nudged release follows its linearised motion before integrating
 
 
 def _start_rate(theta1: float) -> float:
@@ -377,7 +377,8 @@ def simulate(p, answers) -> Leg:
 
 @functools.lru_cache(maxsize=256)
 def _legs(key: tuple):
-    """(release → θ2 integrated, θ2 → turning point drawn from the energy integral), cached."""
+    """(release → θ2 integrated, θ2 → turning point drawn from the energy integral, or integrated where it cannot
+    be drawn or comes round near upright first), cached."""
     p = dict(key)
     acc = equation_of_motion(p, p["I_O"])
     horizon = 200 * math.sqrt(p["I_O"] / weight_moment(p)) + 10
@@ -397,10 +398,11 @@ def _legs(key: tuple):
     turn = _first_stop(p, q2, q2 + 4 * math.pi, 513)  # the spring always wins within a few turns
     if turn is None or turn >= _upright_again(p):  # no turn before it comes round near upright, where the frames
         # end (integrated, not drawn: they are compared with the browser's)
-        return first, integrate_leg(acc, q2, w2, t2, horizon, stop_at_angle=_upright_again(p), direction=1)
-    rest = drawn_to_turn(rate_squared, acc, q2, turn, t2) if turn is not None else None  # only drawn
-    if rest is None:
-        rest = integrate_leg(acc, q2, w2, t2, horizon, stop_at_rest=True, tolerances=DRAWING)
+        return first, integrate_leg(acc, q2, w2, t2, horizon, stop_at_angle=_upright_again(p), direction=1,
+                                    expected=crossing_time(rate_squared, q2, _upright_again(p)))
+    rest = drawn_to_turn(rate_squared, acc, q2, turn, t2)
+    if rest is None:  # (tight, its samples sized by the time to the turn: the frames are compared)
+        rest = integrate_leg(acc, q2, w2, t2, horizon, stop_at_rest=True, expected=crossing_time(rate_squared, q2, turn))
     return first, rest
 
 
@@ -408,8 +410,9 @@ def _linear_escape(acc, theta1: float, omega0: float, samples: int = 12) -> Leg:
     """A nudged release at (or within NEAR_UPRIGHT of) upright creeps away exponentially, which
     costs an integrator hundreds of steps at tight tolerances. Follow the motion linearised about
     the release, θ̈ = f₁ + λ² (θ − θ₁), exactly until θ − θ₁ = ESCAPE; the neglected terms are
-    O(ESCAPE³) (sin θ is odd about upright), about 1e-9 of θ̇ at θ₂, far below the check's
-    tolerance. Returns just the release state when there is no nudge or upright is stable."""
+    O(ESCAPE³) (sin θ is odd about upright): about 1e-15 of θ̇ at θ₂, far below the check's tolerance, and
+    the creep's time as the browser integrates it to a microsecond over a creep of half a minute (at 1e-2
+    it was 2 µs off over 3 s). Returns just the release state when there is no nudge or upright is stable."""
     lam2 = slope(acc, theta1)
     if omega0 == 0 or lam2 <= 0:
         return Leg(np.array([0.0]), np.array([theta1]), np.array([omega0]), False)
@@ -516,12 +519,15 @@ def motion(solution: Solution) -> dict:
     reach, _ = _legs(tuple(sorted(p.items())) + (("I_O", a["I_O"]),))
     t_2 = reach.end[0]  # when the fall passes θ₂ (solve refuses a swing that does not)
     knots, keep = np.unique(half.t, return_index=True)
+    angles, rates = half.theta[keep], half.omega[keep]
+    accelerations = _acceleration(p, a, angles)
 
     def on_half(times):
-        return hermite_on_knots(knots, half.theta[keep], half.omega[keep], np.asarray(times, dtype=float),
-                                _acceleration(p, a, half.theta[keep]))
+        return hermite_on_knots(knots, angles, rates, np.asarray(times, dtype=float), accelerations)
 
-    def reaches(angle, lo, hi):  # when the fall (θ increasing) reaches ``angle``, between lo and hi
+    def reaches(angle, lo, hi):  # when the fall (θ increasing) reaches ``angle``, between lo and hi: on its knots' interval
+        i = int(np.searchsorted(angles, angle))  # (the fall's angles increase)
+        lo, hi = max(lo, knots[max(i - 1, 0)]), min(hi, knots[min(i, len(knots) - 1)])
         return brentq(lambda t: float(on_half([t])[0][0]) - angle, lo, hi, xtol=1e-13)
     t_start = reaches(p["theta1"] + _visible(p), 0.0, t_2)
     t_turn = half.t[-1]

@@ -93,14 +93,30 @@ def hermite_on_knots(t: np.ndarray, y: np.ndarray, dy: np.ndarray, times: np.nda
 def _first_event(grid, y, acceleration, angle, at_rest, direction, first_chunk):
     """(time, kind) of the first event between grid points, located on the cubic Hermite
     interpolant of the grid states; (None, "") if there is none. Sign tests, not products, which
-    can underflow to 0."""
+    can underflow to 0. An angle reached in ``direction`` between two grid points short of it, where the
+    swing turns just past it and comes back before the next (the turn's angle on the interpolant), counts."""
     found = []
+    peak = {}  # interval -> the turn's time, where the angle is crossed on the way to it
     if angle is not None:
         f = y[:, 0] - angle
         s = np.sign(f)
         hit = (s[:-1] * s[1:] <= 0) & (f[:-1] != f[1:])
         if direction:
             hit &= np.sign(f[1:] - f[:-1]) == direction
+            w = y[:, 1]
+            turned = ((w[:-1] > 0) != (w[1:] > 0)) & (s[:-1] == -direction) & (s[1:] == -direction)
+            for j in np.nonzero(turned)[0]:
+                if hit.any() and j >= int(np.argmax(hit)):
+                    break
+                t0, t1, a, b = grid[j], grid[j + 1], y[j], y[j + 1]
+                rate = _hermite(t0, t1, a[1], b[1], acceleration(a[0]), acceleration(b[0]))
+                if rate(t0) * rate(t1) > 0:
+                    continue
+                t_turn = brentq(rate, t0, t1, xtol=1e-15)
+                if (_hermite(t0, t1, a[0], b[0], a[1], b[1])(t_turn) - angle) * direction > 0:
+                    hit[j] = True
+                    peak[j] = t_turn
+                    break
         if first_chunk and f[0] == 0:
             hit[0] = False  # starting on the angle is not reaching it
         if hit.any():
@@ -116,7 +132,7 @@ def _first_event(grid, y, acceleration, angle, at_rest, direction, first_chunk):
     t0, t1, a, b = grid[i - 1], grid[i], y[i - 1], y[i]
     if kind == "angle":
         interp = _hermite(t0, t1, a[0], b[0], a[1], b[1])
-        return brentq(lambda t: interp(t) - angle, t0, t1, xtol=1e-15), kind
+        return brentq(lambda t: interp(t) - angle, t0, peak.get(i - 1, t1), xtol=1e-15), kind
     interp = _hermite(t0, t1, a[1], b[1], acceleration(a[0]), acceleration(b[0]))
     return brentq(interp, t0, t1, xtol=1e-15), kind
 

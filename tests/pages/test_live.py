@@ -436,7 +436,9 @@ MOTION = ("const gens = await Promise.all(input.map(([file]) => import('./' + fi
 MOTION_EXAMPLES = {"stick_ball": [{"mode": "bounce", "s": 0.25}, {"mode": "bounce", "s": 0.1, "e": 1.0}],
                    # a long swing from near upright (300 frames), a wall at the bottom, no rebound
                    "pendulum_rebound": [{"theta0": math.radians(89), "e": 1.0, "surface": "wall"},
-                                        {"surface": "wall", "e": 0.3}, {"e": 0.0}],
+                                        {"surface": "wall", "e": 0.3}, {"e": 0.0},
+                                        # e = SEEN: the first rebound is the slowest drawn (solvers.pendulum_rebound.stays)
+                                        {"e": 0.001, "theta0": 0.17763884442409192, "L": 2.1365633284384926}],
                    # released near upright (a slow start: the longest motion; an address may ask for 1e-5 rad from it) and near flat
                    "sliding_ladder": [{"theta0": math.radians(89)}, {"theta0": math.radians(5)}, {"theta0": math.pi / 2 - 1e-5}],
                    # the control's ends: nearly flat (the fastest precession, the spin all but none) and nearly upright
@@ -445,7 +447,11 @@ MOTION_EXAMPLES = {"stick_ball": [{"mode": "bounce", "s": 0.25}, {"mode": "bounc
                    # from it), no spring from 30° (at rest at 330°), θ₂ half a degree past θ₁, the disk pinned
                    "rod_disk_spring": [{"theta1": 0.0}, {"k": 0.0, "theta1": 0.0}, {"k": 0.0, "theta1": 3e-4},
                                        {"k": 0.0, "theta1": math.radians(30), "theta2": math.radians(300)},
-                                       {"theta1": math.radians(30), "theta2": math.radians(30.5)}, {"disk": "pinned", "k": 45.0}]}
+                                       {"theta1": math.radians(30), "theta2": math.radians(30.5)}, {"disk": "pinned", "k": 45.0},
+                                       # θ₂ passed 0.13° before the spring stops it (tests/physics/test_rod_disk_spring.py)
+                                       {"m1": 2.874951628287427, "m2": 10.16703829397586, "L": 1.699504256378757, "R": 0.4356766195602051,
+                                        "g": 18.99104393376579, "disk": "pinned", "k": 279.60003565268397, "theta1": 0.10062537109580985,
+                                        "theta2": 2.3712327735774354}]}
 # Stage motions the server still draws frame by frame, and why (each a step of issue 51 to come): none now.
 SERVER_DRAWN: dict[str, str] = {}
 

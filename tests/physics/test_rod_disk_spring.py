@@ -361,3 +361,23 @@ def test_the_derivation_is_in_the_four_steps_with_the_diagram_in_steps_two_and_t
         assert ("pinned" in disk) == ("does not change" in d.note)
         no_title_states_an_answer(solution)
 
+
+
+def test_theta2_passed_just_before_the_spring_stops_it_is_found_on_the_first_swing():
+    """The rod and disk pass θ₂ = 135.9° only 0.13° before the spring stops them, within one of the
+    integration's grid steps, both samples short of it: the fall's end (its key frame, the check's θ̇₂) is
+    that first passage, at the time solve_ivp (DOP853, its own event search) finds, not a later swing's."""
+    p = {"m1": 2.874951628287427, "m2": 10.16703829397586, "L": 1.699504256378757, "R": 0.4356766195602051,
+         "g": 18.99104393376579, "disk": "pinned", "k": 279.60003565268397, "theta1": 0.10062537109580985,
+         "theta2": 2.3712327735774354}
+    s = rod_disk_spring.solve(**p)
+    Q, I = rod_disk_spring.weight_moment(s.params), s.answers["I_O"]
+    reached = lambda t, y: y[0] - p["theta2"]  # noqa: E731
+    reached.terminal = True
+    sol = solve_ivp(lambda t, y: [y[1], (Q * math.sin(y[0]) - p["k"] * y[0]) / I], (0, 20), [p["theta1"], 0.0],
+                    method="DOP853", events=reached, rtol=1e-12, atol=1e-14, max_step=0.005)
+    fall = rod_disk_spring.simulate(s.params, s.answers)
+    m = rod_disk_spring.motion(s)
+    at_theta2 = float(m["t"][np.argmin(np.abs(m["theta"] - p["theta2"]))])
+    assert at_theta2 == pytest.approx(sol.t_events[0][0], abs=1e-6)
+    assert np.all(np.diff(fall.theta) > 0)  # one fall to the turn, no swing back in it

@@ -262,13 +262,17 @@ export function integrated(spec, p, v, round) {
   return {
     // how many even instants the frames take (solvers/live.py: Integrated.frame_count)
     frames: fastest == null ? spec.frames : Math.max(spec.frames, Math.min(spec.most, Math.ceil((end - begin) * fastest / spec.turn) + 1)),
-    // ``count`` instants evenly from the beginning to the end (numpy.linspace's), and each framed end that is not
-    // one of them (within 1e-6 of the span: solvers/live.py's frame_instants), in order
+    // ``count`` instants evenly from the beginning to the end (numpy.linspace's) and each framed end, in order;
+    // an even instant within 1e-6 of the span of a framed end is that end (solvers/live.py's frame_instants)
     instants(count) {
       const span = end - begin, near = 1e-6 * span;
-      const even = Array.from({length: count}, (_, i) => (i === count - 1 ? end : begin + (i * span) / (count - 1)));
-      const other = framed.filter((f) => !even.some((e) => Math.abs(e - f) <= near));
-      return [...new Set([...even, ...other])].sort((a, b) => a - b);
+      const times = Array.from({length: count}, (_, i) => (i === count - 1 ? end : begin + (i * span) / (count - 1)));
+      for (const f of framed) {
+        let i = 0;
+        for (let j = 1; j < count; j++) if (Math.abs(times[j] - f) < Math.abs(times[i] - f)) i = j;
+        if (Math.abs(times[i] - f) <= near) times[i] = f; else times.push(f);
+      }
+      return [...new Set(times)].sort((a, b) => a - b);
     },
     // the state at ``t``: from the leg it falls in (a leg's end: the leg that ends there, before its ``then``)
     stateAt(time) {
