@@ -94,8 +94,9 @@ def _animation(solution, in_browser: bool = False) -> Figure:
     turn = math.degrees(solution.extras["turn_per_precession"])
     # The disk turns 360°(1 − cos θ) a precession (solvers.eulers_disk): little at a small tilt, most
     # of a turn near upright, where "barely turns" would be false.
-    turned = (f"only {turn:.1f}° relative to the table: the contact whirls, the disk itself barely turns"
-              if turn < 90 else f"{turn:.1f}° relative to the table: at this tilt the disk turns with it, "
+    shown = f"{turn:.2g}" if turn < 1 else f"{turn:.1f}"  # (two figures below a degree: not "0.0°" at a tilt of 0.5°)
+    turned = (f"only {shown}° relative to the table: the contact whirls, the disk itself barely turns"
+              if turn < 90 else f"{shown}° relative to the table: at this tilt the disk turns with it, "
               "and the smaller the tilt, the less it turns")
     description = (f"Slowed down {slow:.0f}×: one precession takes {n(a['period'] * 1000, 3)} ms in reality and "
                    f"{PLAY_SECONDS:.0f} s on screen. The contact point (red) runs once round its circle while "

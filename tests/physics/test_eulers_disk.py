@@ -322,6 +322,14 @@ def test_the_caption_says_how_far_the_disk_turns_and_barely_only_where_it_does(t
     assert ("barely turns" in caption) == (turn < 90)
 
 
+def test_a_turn_below_a_degree_is_said_in_two_figures():
+    """At the control's lowest tilt, 0.5°, the disk turns 360°(1 − cos 0.5°) = 0.0137° a precession: said as
+    0.014°, not "0.0°" (a student read that as not turning at all)."""
+    from viz import eulers_disk as viz
+    caption = viz.figures(eulers_disk.solve(theta=math.radians(0.5)))[0].description
+    assert "turns only 0.014° relative to the table" in caption
+
+
 def test_the_run_down_switch_is_kept_in_the_url():
     at = run_page("eulers_disk")
     at.toggle(key="eulers_disk__on_request").set_value(True).run()
