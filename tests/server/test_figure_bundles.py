@@ -6,12 +6,15 @@ from __future__ import annotations
 import asyncio
 import gzip
 import importlib
+import os
 import re
+import shutil
 from pathlib import Path
 
 import plotly
 import pytest
 
+from scripts import build_plotly_bundles
 from solvers import registry
 from ui import figure as component
 from viz.catalog import drawings
@@ -20,17 +23,104 @@ IDS = registry.PROBLEM_IDS
 
 
 def registered(kind: str, module_type: str) -> set[str]:
-    """The trace types (or layout components) a bundle registers, read from the bundle itself."""
+    """The trace types (or layout components) a bundle holds, read from the bundle itself."""
     text = component.bundles()[kind][1].decode("utf-8", "replace")
     return set(re.findall(rf'moduleType:"{module_type}",name:"(\w+)"', text))
 
 
-def test_the_bundles_say_what_they_register():
-    """What the next test relies on: the reading above finds plotly.js's lib/index-*.js lists, and
-    gl3d draws every 2-D layout basic draws (the same components), so it can draw a whole page."""
-    assert registered("basic", "trace") == {"scatter", "bar", "pie"}
-    assert {"scatter", "scatter3d"} <= registered("gl3d", "trace")
-    assert registered("gl3d", "component") == registered("basic", "component") >= {"annotations", "shapes", "legend"}
+def registered_components(kind: str) -> set[str]:
+    """The layout components a bundle registers, read from its entry (build/core.js and build/<kind>.js):
+    a component the bundle merely holds (selections, which the cartesian axes import) draws nothing
+    unless registered. The bundle is built from these entries (the next test)."""
+    sources = [build_plotly_bundles.PINS / "core.js", build_plotly_bundles.PINS / f"{kind}.js"]
+    return {name for source in sources
+            for name in re.findall(r"require\('plotly\.js/src/components/(\w+)'\)", source.read_text())}
+
+
+@pytest.mark.skipif(not shutil.which("npm") and not os.environ.get("CI"), reason="npm is not on this machine")
+def test_the_bundles_are_built_from_the_npm_package_by_the_script(tmp_path):
+    """The served plotly.js is what scripts/build_plotly_bundles.py builds from the pinned npm tree, byte
+    for byte: neither the pins nor the entries can change without the bundles (in CI, npm must be there)."""
+    for built in build_plotly_bundles.build(tmp_path):
+        assert built.read_bytes() == (build_plotly_bundles.BUNDLES / built.name).read_bytes(), built.name
+
+
+def test_the_bundles_hold_only_what_the_figures_use():
+    """What the tests below rely on: the bundles hold the traces of their entries and nothing else
+    (basic: scatter and bar, no pie), and gl3d draws every 2-D layout basic draws, so it can draw a
+    whole page."""
+    assert registered("basic", "trace") == {"scatter", "bar"}
+    assert registered("gl3d", "trace") == {"scatter", "bar", "scatter3d"}
+    assert registered_components("basic") == {"annotations", "shapes", "colorscale", "legend", "fx", "modebar"}
+    assert registered_components("gl3d") == registered_components("basic") | {"annotations3d"}
+    assert registered_components("basic") <= registered("basic", "component")
+    assert registered_components("gl3d") <= registered("gl3d", "component")
+
+
+# Where a figure asks for a layout component (a key anywhere in its data, layout or frames).
+COMPONENT_OF_KEY = {"annotations": "annotations", "shapes": "shapes", "images": "images", "updatemenus": "updatemenus",
+                    "selections": "selections", "grid": "grid", "rangeslider": "rangeslider",
+                    "rangeselector": "rangeselector", "error_x": "errorbars", "error_y": "errorbars",
+                    "error_z": "errorbars", "colorbar": "colorbar"}
+
+
+def components_asked(spec, within: str = "") -> set[str]:
+    """The layout components a figure's spec asks plotly for. ``sliders`` is not one: the figure
+    component draws the time slider in HTML and removes plotly's (figure.js); a scene's annotations
+    are annotations3d."""
+    asked = set()
+    if isinstance(spec, dict):
+        for key, value in spec.items():
+            if key in COMPONENT_OF_KEY and value:
+                asked.add("annotations3d" if (key, within) == ("annotations", "scene") else COMPONENT_OF_KEY[key])
+            if key.endswith("calendar"):
+                asked.add("calendars")
+            asked |= components_asked(value, key if key in ("scene",) else within)
+    elif isinstance(spec, list):
+        for value in spec:
+            asked |= components_asked(value, within)
+    return asked
+
+
+def test_the_reading_of_a_figure_s_components_finds_them():
+    assert components_asked({"layout": {"scene": {"annotations": [{"text": "x"}]}, "annotations": [{}]}}) \
+        == {"annotations3d", "annotations"}
+    assert components_asked({"data": [{"error_y": {"array": [1]}, "marker": {"colorbar": {"x": 1}}}]}) \
+        == {"errorbars", "colorbar"}
+    assert components_asked({"layout": {"xaxis": {"rangeslider": {"visible": True}}, "sliders": [{}]}}) == {"rangeslider"}
+
+
+def shown_on(pid: str) -> tuple[list, list]:
+    """(the page's figures, every figure the page can show: those and the on-request one)."""
+    solution = importlib.import_module(f"solvers.{pid}").solve()
+    page = drawings(pid).figures(solution)  # as ui/page.py shows them, the on-request figure with the page's
+    asked = drawings(pid).on_request
+    return page, ([*page, asked.draw(solution)] if asked else page)
+
+
+@pytest.mark.parametrize("pid", IDS)
+def test_a_page_gets_one_bundle_that_has_all_its_traces_and_components(pid):
+    page, shown = shown_on(pid)
+    kinds = {component.kind_of(fig, page) for fig in shown}
+    types = {trace.get("type", "scatter") for fig in shown for trace in fig.spec["data"]}
+    assert len(kinds) == 1, kinds  # one plotly.js per page
+    kind = kinds.pop()
+    assert types <= registered(kind, "trace"), types
+    for fig in shown:
+        assert components_asked(fig.spec) <= registered_components(kind), fig.name
+    # The 1.6 MB gl3d bundle only on a page with a 3-D scene.
+    assert (component.kind_of(page[0], page) == "gl3d") == ("scatter3d" in types)
+
+
+def test_the_room_s_votes_are_drawn_by_the_2d_bundle():
+    from collections import Counter
+
+    from viz.room import histogram
+
+    figure = histogram((("a", "A"), ("b", "B"), ("other", "other")), {1: Counter(a=3, b=1), 2: Counter(a=1, c=2)}, "a")
+    assert component.kind_of(figure) == "basic"
+    assert {trace.get("type", "scatter") for trace in figure.spec["data"]} <= registered("basic", "trace")
+    assert components_asked(figure.spec) <= registered_components("basic")
 
 
 def version(text: str) -> str:
@@ -56,20 +146,6 @@ def test_the_bundles_are_the_plotly_js_of_the_pinned_plotly_package():
     for kind, (name, data) in component.bundles().items():
         assert version(data.decode("utf-8", "replace")) == version(full.read_text(errors="replace")), kind
         assert name.startswith(f"plotly-{kind}.") and name.endswith(".min.js")
-
-
-@pytest.mark.parametrize("pid", IDS)
-def test_a_page_gets_one_bundle_that_has_all_its_traces(pid):
-    solution = importlib.import_module(f"solvers.{pid}").solve()
-    page = drawings(pid).figures(solution)  # as ui/page.py shows them, the on-request figure with the page's
-    asked = drawings(pid).on_request
-    shown = [*page, asked.draw(solution)] if asked else page
-    kinds = {component.kind_of(fig, page) for fig in shown}
-    types = {trace.get("type", "scatter") for fig in shown for trace in fig.spec["data"]}
-    assert len(kinds) == 1, kinds  # one plotly.js per page
-    assert types <= registered(kinds.pop(), "trace"), types
-    # The 1.6 MB gl3d bundle only on a page with a 3-D scene.
-    assert (component.kind_of(page[0], page) == "gl3d") == ("scatter3d" in types)
 
 
 def request(path: str, accept: str = "gzip, deflate") -> tuple[dict, bytes, bool]:
