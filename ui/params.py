@@ -91,6 +91,23 @@ def _parse_url_value(p: Any, raw: str, system: str) -> tuple[Any, str | None]:
     return shown, None
 
 
+def _precision(p: Number) -> str:
+    """How finely ``p``'s control writes its number, in words."""
+    if not is_slider(p):
+        return "box, which writes six significant figures"
+    decimals = int(display_format(p)[2:-1])
+    unit = "°" if p.dimension == "angle" else ""
+    return "slider, which writes " + ("whole degrees" if unit and not decimals else
+                                      "whole numbers" if not decimals else f"to {10.0 ** -decimals:.{decimals}f}{unit}")
+
+
+def _as_written(p: Number, shown: float, system: str) -> str:
+    """``shown`` (display units) as its control writes it, with its unit."""
+    label = units.unit(p.dimension, system)
+    text = display_format(p) % shown
+    return text if not label else f"{text}{label}" if label == "°" else f"{text} {label}"
+
+
 def shown_range(p: Number, system: str) -> str:
     """The values a parameter may take, in the unit its control shows (degrees for an angle, lb in
     US units): its physical range, narrowed to the magnitudes the model is meant for."""
@@ -197,6 +214,10 @@ def read_link(problem: Problem, query, system: str, base: dict | None = None,
         if why is None:
             linked[p.name] = parsed
             values[p.name] = parsed if isinstance(p, Choice) else units.to_si(parsed, p.dimension, system)
+            if markdown and isinstance(p, Number) and math.isfinite(parsed) and parsed != float(raw.strip()):
+                # ?theta2=30.5 on a slider of whole degrees: taken as 30, and said (the file a download
+                # route makes cites the value it used)
+                warnings.append(_url_warning(p, raw, f"is finer than its {_precision(p)}", instead=_as_written(p, parsed, system)))
         else:
             warnings.append(_url_warning(p, raw, why, markdown))
     for p, top, why in past_following_tops(problem, values, set(linked), system):

@@ -561,6 +561,25 @@ def test_a_links_value_is_a_number_as_written_and_its_rounding_is_said(pid, quer
     assert not at.query_params, at.query_params  # the default, as said
 
 
+@pytest.mark.parametrize("pid, query, says", [
+    ("rod_disk_spring", {"theta2": "30.5"}, "“30\\.5”, is finer than its slider, which writes whole degrees; using 30° instead"),
+    ("pendulum_rebound", {"e": "0.001"}, "“0\\.001”, is finer than its slider, which writes to 0.01; using 0.00 instead"),
+    ("eulers_disk", {"theta": "30.04"}, "is finer than its slider, which writes to 0.1°; using 30.0° instead"),
+    ("disk_wall", {"V": "1.23456789"}, "is finer than its box, which writes six significant figures; using 1.23457 m/s instead"),
+])
+def test_a_links_value_finer_than_its_control_writes_is_rounded_and_said(pid, query, says):
+    """?theta2=30.5 on a slider of whole degrees was taken as 30 without a word: the page now says so, and
+    its address and its answers follow the value it used."""
+    at = run_page(pid, query)
+    assert_clean(at)
+    (warning,) = [w.value for w in at.warning]
+    assert says in warning, warning
+    ((name, raw),) = query.items()
+    used = says.rsplit("using ", 1)[1].split(" instead")[0].rstrip("°").split(" ")[0]
+    assert float(at.query_params[name]) == float(used), at.query_params
+    assert float(used) != float(raw)
+
+
 @pytest.mark.parametrize("pid", [p.id for p in PROBLEMS if not p.us_units])
 def test_units_asked_of_an_si_only_page_are_said_and_left_out(pid):
     """?units=us on a page stated in SI only (the cart, Euler's disk…) was dropped without a word."""
