@@ -190,10 +190,10 @@ def _versus_tilt(solution) -> Figure:
     layout["yaxis2"] = {"anchor": "x2", "domain": [0.0, 0.32], "title": {"text": "energy (mJ)"}, "rangemode": "tozero"}
     layout["margin"]["b"] = 60
     layout["margin"]["r"] = 60
-    description = ("As the tilt θ falls toward 0, the precession rate ω_p grows without bound while the disk's "
+    description = ("As the tilt θ falls toward 0, the precession rate ωₚ grows without bound while the disk's "
                    "own angular velocity and the energy (3/2 m g r sin θ) shrink to zero: Moffatt's "
                    f"finite-time singularity. Marked: this disk at θ = {math.degrees(p['theta']):.3g}°, "
-                   f"where ω_p = {solution.answers['omega_p']:.3g} rad/s.")
+                   f"where ωₚ = {solution.answers['omega_p']:.3g} rad/s.")
     return Figure("eulers_disk_versus_tilt", "As θ → 0: the contact whirls faster, the disk turns slower",
                   {"data": data, "layout": layout}, description, animated=False, height=460)
 
@@ -234,12 +234,12 @@ def on_request(solution, damping: float = 5e-6) -> Figure:
         for trace in data:
             trace["mode"] = "markers"
         said = (f"it starts at {plain_fixed(math.degrees(d['tilt'][0]), 1)}°, at or below the 1° where a run-down "
-                f"ends (the disk's clatter and stop): nothing is left to run down, ω_p = {start} rad/s.")
+                f"ends (the disk's clatter and stop): nothing is left to run down, ωₚ = {start} rad/s.")
     else:
         ending = (f"the tilt reaches 1° after {n(d['time_to_stop'], 3)} s" if d["reached"] else
                   f"after {n(d['time_to_stop'], 3)} s the tilt is {plain_fixed(math.degrees(d['tilt'][-1]), 1)}°")
         grown = "grown" if d["precession"][-1] > d["precession"][0] else "fallen"  # (it falls at a steep tilt)
-        said = f"energy drains and the disk settles; {ending}, with ω_p {grown} from {start} to {end} rad/s."
+        said = f"energy drains and the disk settles; {ending}, with ωₚ {grown} from {start} to {end} rad/s."
     description = (f"Kane's equations of the rolling disk integrated with a resisting torque −cω (c = {n(damping)} "
                    f"N·m·s): {said}")
     return Figure("eulers_disk_decay", "Letting it run down (full equations, with dissipation)",

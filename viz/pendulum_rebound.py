@@ -78,11 +78,11 @@ def figures(solution, system: str = "si", in_browser: bool = False) -> list[Figu
     else:
         spec = animated([ground, pivot, curve, impact_line], moving_traces, m["t"], layout)
     head = headline("Side view. Released from rest at θ₀ = ", ("theta0", "deg", 1), ", the pendulum swings down and "
-                    f"the sphere strikes the {p['surface']} at θ_I = ", ("theta_impact", "deg", 1))
+                    f"the sphere strikes the {p['surface']} at the impact angle, θ = ", ("theta_impact", "deg", 1))
     description = (headline_text(head, {**p, **a}) + f", {_rebounds(p, a, solution.extras['bounce_peaks'])}. "
                    "Below: θ against time, with the impact angle dashed.")
     return [Figure("pendulum_motion", "Release, bounce, rebound", spec, description, height=700,
-                   key_frame=first_impact, key_caption=f"the first impact, at θ_I = {deg(a['theta_impact'])}",
+                   key_frame=first_impact, key_caption=f"the first impact, at θ = {deg(a['theta_impact'])}",
                    headline=head)]
 
 
@@ -106,7 +106,7 @@ def at_limit(params, system: str = "si") -> list[Figure]:
     x_range, y_range = fitted([pivot, asked, *bodies])
     ground = _surface(p, k, x_range, y_range)
     layout = still_layout(x_range, y_range, x_title=f"x ({u})", y_title=f"y ({u})")
-    description = (f"Side view. The sphere touches the {p['surface']} at θ_I = {plain_number(math.degrees(theta_I))}°, "
+    description = (f"Side view. The sphere touches the {p['surface']} at the impact angle, θ = {plain_number(math.degrees(theta_I))}°, "
                    f"where it is drawn: released at θ₀ = {plain_number(math.degrees(theta0))}° (dashed) it would start "
                    f"{'on' if theta0 == theta_I else 'inside'} the {p['surface']}, with no swing before an impact.")
     return [Figure("pendulum_at_limit", f"Where the sphere meets the {p['surface']}",

@@ -192,7 +192,7 @@ def test_the_run_down_caption_says_what_its_plot_shows(tilt, radius, direction):
     tilt_trace, rate_trace = figure.spec["data"]
     first, last = rate_trace["y"][0], rate_trace["y"][-1]
     assert (last > first) == (direction == "grown")
-    said = f"ω_p {direction} from {plain_number(first, 3)} to {plain_number(last, 3)} rad/s"
+    said = f"ωₚ {direction} from {plain_number(first, 3)} to {plain_number(last, 3)} rad/s"
     assert said in figure.description, figure.description
     if "reaches 1°" in figure.description:
         assert tilt_trace["y"][-1] == pytest.approx(1.0, abs=1e-3)
