@@ -97,10 +97,6 @@ NEAR_UPRIGHT = 1e-3  # rad: below this release angle the integration starts with
 ESCAPE = 1e-4  # rad: how far a nudged release follows its linearised motion before integrating
 
 
-def _start_rate(theta1: float) -> float:
-    return NUDGE if theta1 < NEAR_UPRIGHT else 0.0
-
-
 class SpringStopsRodError(PhysicalLimitError):
     """The spring stops the assembly before θ2; ``theta_max`` is the largest angle reached."""
 
@@ -360,9 +356,9 @@ def solve(**params) -> Solution:
 
 
 def equation_of_motion(p, I: float):
-    """θ̈(θ) from I_O θ̈ = Q sin θ − k θ."""
+    """θ̈(θ) for the integrator (``_acceleration``, its moments worked out once)."""
     Q, k_ = weight_moment(p), p["k"]
-    return lambda q: (Q * math.sin(q) - k_ * q) / I
+    return lambda q: _angular_acceleration(Q, k_, I, q, math)
 
 
 def simulate(p, answers) -> Leg:
@@ -382,7 +378,7 @@ def _legs(key: tuple):
     p = dict(key)
     acc = equation_of_motion(p, p["I_O"])
     horizon = 200 * math.sqrt(p["I_O"] / weight_moment(p)) + 10
-    escape = _linear_escape(acc, p["theta1"], _start_rate(p["theta1"]))
+    escape = _linear_escape(acc, p["theta1"], _start_rate(p))
     t0, q0, w0 = escape.end
     rate_squared = lambda q: 2 * kinetic_energy_at(p, q) / p["I_O"]  # noqa: E731  the first integral
     # One chunk, sized by the energy integral's estimate of the time to θ2, spares the integrator
@@ -427,7 +423,7 @@ def _linear_escape(acc, theta1: float, omega0: float, samples: int = 12) -> Leg:
 
 
 def _checks(p, a) -> tuple[Check, ...]:
-    omega0 = _start_rate(p["theta1"])
+    omega0 = _start_rate(p)
     leg, _ = _legs(tuple(sorted(p.items())) + (("I_O", a["I_O"]),))
     integrated = leg.end[2] if leg.ended_by_event else float("nan")
     rate_tolerance = relative_tolerance(a["omega2"], 1e-6) + NUDGE
@@ -466,18 +462,25 @@ def _upright_again(p, xp=np):
 def _fastest(p, a, xp=np):
     """A bound on |θ̇| over the swing in closed form (the frames' count: Integrated.frame_count): all the
     energy above the lowest the weights can reach, ½ I_O θ̇₀² + Q (1 + cos θ₁) + ½ k θ₁², as kinetic."""
-    energy = 0.5 * a["I_O"] * _start_rate_of(p, xp) ** 2 + weight_moment(p) * (1 + xp.cos(p["theta1"])) + 0.5 * p["k"] * p["theta1"] ** 2
+    energy = 0.5 * a["I_O"] * _start_rate(p, xp) ** 2 + weight_moment(p) * (1 + xp.cos(p["theta1"])) + 0.5 * p["k"] * p["theta1"] ** 2
     return xp.sqrt(2 * energy / a["I_O"])
 
 
-def _start_rate_of(p, xp=np):
-    """``_start_rate`` for numbers or symbols."""
-    return _start_rate(p["theta1"]) if xp is np else sp.Piecewise((NUDGE, sp.StrictLessThan(p["theta1"], NEAR_UPRIGHT)), (0.0, True))
+def _start_rate(p, xp=np):
+    """θ̇ at release: the nudge at or near upright, else 0; for numbers or symbols."""
+    if xp is np:
+        return NUDGE if p["theta1"] < NEAR_UPRIGHT else 0.0
+    return sp.Piecewise((NUDGE, sp.StrictLessThan(p["theta1"], NEAR_UPRIGHT)), (0.0, True))
 
 
 def _acceleration(p, a, theta, xp=np):
-    """θ̈ = (Q sin θ − k θ) / I_O (``equation_of_motion``), for numbers, arrays or symbols."""
-    return (weight_moment(p) * xp.sin(theta) - p["k"] * theta) / a["I_O"]
+    """θ̈ from I_O θ̈ = Q sin θ − k θ, for numbers (``xp`` math), arrays (numpy) or symbols (sympy): the one
+    equation of motion of the checks' integration, the reference motion and the browser's."""
+    return _angular_acceleration(weight_moment(p), p["k"], a["I_O"], theta, xp)
+
+
+def _angular_acceleration(Q, k_, I, theta, xp):
+    return (Q * xp.sin(theta) - k_ * theta) / I
 
 
 # The swing, integrated in the browser (issue 51) from the same equation of motion: the creep until the rod
@@ -491,7 +494,7 @@ _RISE = Phase("rise", lambda p, a, y, xp: xp.minimum(y["omega"], _upright_again(
 _RETURN = Phase("return", lambda p, a, y, xp: y["theta"] - p["theta1"] - _visible(p, xp))
 
 INTEGRATED = Integrated(
-    state=("theta", "omega"), start=lambda p, a, xp: {"theta": p["theta1"], "omega": _start_rate_of(p, xp)},
+    state=("theta", "omega"), start=lambda p, a, xp: {"theta": p["theta1"], "omega": _start_rate(p, xp)},
     rates=lambda p, a, y, xp: {"theta": y["omega"], "omega": _acceleration(p, a, y["theta"], xp)},
     legs=(_CREEP, _FALL, _RISE, _RETURN), horizon=lambda p, a, xp: 200 * xp.sqrt(a["I_O"] / weight_moment(p)) + 10,
     frames=FRAME_RANGE[0], most=FRAME_RANGE[1], turn=MAX_FRAME_TURN, fastest=_fastest, tolerances=(1e-12, 1e-15))
@@ -540,7 +543,7 @@ def motion(solution: Solution) -> dict:
     theta[at_2] = p["theta2"]
     # the rate from the energy integral at each frame's angle (the quintic's slope is an order less accurate
     # than its value), back on the return
-    kinetic = np.maximum(kinetic_energy_at(p, theta) + 0.5 * a["I_O"] * _start_rate(p["theta1"]) ** 2, 0.0)
+    kinetic = np.maximum(kinetic_energy_at(p, theta) + 0.5 * a["I_O"] * _start_rate(p) ** 2, 0.0)
     omega = np.where(even > t_turn, -1.0, 1.0) * np.sqrt(2 * kinetic / a["I_O"])
     omega[at_2] = a["omega2"]
     Q = weight_moment(p)
