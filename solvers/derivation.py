@@ -76,6 +76,7 @@ class Derivation:
         labels: Mapping[str, str] | None = None,
     ):
         self.steps = tuple(steps)
+        self._made_of = (dict(symbols), dict(dimensions), self.steps, tuple(chain), dict(labels or {}))
         self._labels = dict(labels or {})
         self._symbols = dict(symbols)
         self._vectorized: dict[str, Callable[..., np.ndarray]] = {}
@@ -101,6 +102,10 @@ class Derivation:
             known[link.symbol] = link.name
             self._dimensions[link.name] = link.dimension
         self._results = {link.name for link in self.chain}
+
+    def __reduce__(self):
+        """Pickled as what it is made of (solvers.kept): its compiled code is compiled again on loading."""
+        return _made_again, self._made_of
 
     @property
     def symbols(self) -> dict[str, sp.Symbol]:
@@ -205,3 +210,10 @@ def root_with_sign(roots: Sequence[sp.Expr], sign: int) -> sp.Expr:
     if len(chosen) != 1:
         raise AssertionError(f"expected one root of sign {sign} among {roots}")
     return chosen[0]
+
+
+def _made_again(*made_of) -> Derivation:
+    """A pickled derivation (``Derivation.__reduce__``), its expressions loaded as they were written
+    (solvers.kept loads with sympy's evaluation off), compiled with it on."""
+    with sp.evaluate(True):
+        return Derivation(*made_of)

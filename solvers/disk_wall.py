@@ -17,6 +17,7 @@ import math
 import numpy as np
 import sympy as sp
 
+from .kept import kept_pickled
 from .core import (
     within_model_range,
     plain_number,
@@ -150,6 +151,7 @@ DIAGRAM_SLIPS = (
 
 
 @functools.cache
+@kept_pickled
 def derivation(regime: str) -> Derivation:
     """The symbolic derivation for ``regime`` = "stick" or "slip" (done once per process)."""
     v_before = _vec(V * sp.sin(theta), V * sp.cos(theta), 0)

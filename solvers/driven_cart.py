@@ -16,6 +16,7 @@ import functools
 import numpy as np
 import sympy as sp
 
+from .kept import kept_pickled
 from .core import (
     within_model_range,
     plain_number,
@@ -209,6 +210,7 @@ def _same_equations(these, those) -> bool:
 
 
 @functools.cache
+@kept_pickled
 def derivation(drive: str) -> Derivation:
     diagram = side_view(drive)
     laws = list(balance(diagram, "the cart"))  # written from the diagram (Step 3)

@@ -17,6 +17,7 @@ import numpy as np
 import sympy as sp
 
 from . import eulers_disk_dynamics as dynamics  # the full equations (Kane's method)
+from .kept import kept_pickled
 from .core import (
     within_model_range,
     Answer,
@@ -165,6 +166,7 @@ DIAGRAM_SLIPS = (
 
 
 @functools.cache
+@kept_pickled
 def derivation() -> Derivation:
     k = _kinematics()
     omega, rolling, spin = k["omega"], k["rolling"], k["spin"]

@@ -19,13 +19,9 @@ value the solver would refuse gives the regime ``"refused"`` and no values.
 from __future__ import annotations
 
 import functools
-import hashlib
 import math
-import os
 import re
-import sys
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Callable, Mapping
 
 import numpy as np
@@ -35,62 +31,11 @@ from sympy.printing.jscode import JavascriptCodePrinter
 from . import registry, units
 from .derivation import Derivation
 from .formatting import GROUPED_BELOW
+from .kept import kept_on_disk
 from .specs import Choice, Number
 
 REFUSED = "refused"
 
-
-# ---------------------------------------------------------------------------------------------------
-# Generated code kept on disk. Generating a page's JavaScript from sympy (its live values, pose and
-# motion) is most of a server's warm-up (about 30 s of a minute on two cores, every process, every start)
-# and of every test process that draws a lesson page. Its text depends on nothing but the code (the
-# solvers and the viz modules that draw the figures) and the arguments, so it is kept under a key of both:
-# a changed line of any of them is a new key. DL_GENERATED_CACHE names the directory ("off": none); a
-# directory that cannot be written is no cache (a read-only container generates as before).
-_CODE = Path(__file__).resolve().parent.parent
-
-
-@functools.cache
-def _code_key() -> str:
-    digest = hashlib.sha256(repr((sys.version, sp.__version__, np.__version__)).encode())
-    # (ui/figure.py names the generated files a motion module imports)
-    for path in sorted([*(_CODE / "solvers").glob("*.py"), *(_CODE / "viz").glob("*.py"), _CODE / "ui" / "live.py",
-                        _CODE / "ui" / "figure.py"]):
-        digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
-    return digest.hexdigest()[:20]
-
-
-def _cache_dir() -> Path | None:
-    where = os.environ.get("DL_GENERATED_CACHE", "")
-    if where == "off":
-        return None
-    return Path(where) if where else Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "dynamics-lab" / "generated"
-
-
-def kept_on_disk(generate: Callable[..., str | None]) -> Callable[..., str | None]:
-    """``generate`` (text from hashable arguments) read from the disk where an earlier process wrote it."""
-    @functools.wraps(generate)
-    def kept(*args):
-        where = _cache_dir()
-        if where is None:
-            return generate(*args)
-        path = where / _code_key() / (hashlib.sha256(repr((generate.__module__, generate.__qualname__, args)).encode())
-                                      .hexdigest()[:32] + ".js")
-        try:
-            return path.read_text()
-        except (OSError, UnicodeDecodeError):
-            pass
-        text = generate(*args)
-        if text is not None:
-            try:
-                path.parent.mkdir(parents=True, exist_ok=True)
-                partial = path.with_name(f".{path.name}.{os.getpid()}")
-                partial.write_text(text)
-                os.replace(partial, path)  # whole or not at all: another process may be reading
-            except OSError:
-                pass
-        return text
-    return kept
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ import math
 import numpy as np
 import sympy as sp
 
+from .kept import kept_pickled
 from .core import (
     within_model_range,
     plain_number,
@@ -297,6 +298,7 @@ DIAGRAM_SLIPS = (
 
 
 @functools.cache
+@kept_pickled
 def derivation(sphere: str, surface: str) -> Derivation:
     k = SPHERE_INERTIA[sphere]
     inertia = sp.Rational(1, 3) * m_r * L**2 + k * m_s * r**2 + m_s * (L + r) ** 2

@@ -16,6 +16,7 @@ import numpy as np
 import sympy as sp
 from scipy.optimize import brentq
 
+from .kept import kept_pickled
 from .core import (
     within_model_range,
     plain_number,
@@ -194,6 +195,7 @@ DIAGRAM_SLIPS = (
 
 
 @functools.cache
+@kept_pickled
 def derivation(disk: str) -> Derivation:
     diagram = swing_diagram(disk)
     points = diagram.body("the rod and disk").points

@@ -21,6 +21,7 @@ import numpy as np
 import sympy as sp
 from scipy.integrate import quad, solve_ivp
 
+from .kept import kept_pickled
 from .core import (
     Answer,
     Check,
@@ -215,9 +216,17 @@ CLOSEST_TO_REST = 1e-6
 
 @functools.cache
 def derivation() -> tuple[Derivation, dict]:
-    """Both phases, derived once: energy, the reactions from Newton's law for G, the instant the
-    wall's reaction vanishes, then energy with the floor constraint alone. Also θ̇²(θ) of each phase
-    as plain functions in units g = L = 1, for the time quadratures."""
+    """Both phases, derived once (``_derived``), with θ̇²(θ) of each phase as plain functions in units
+    g = L = 1, for the time quadratures."""
+    derived, rates = _derived()
+    return derived, {name: sp.lambdify(args, expr, "math") for name, (args, expr) in rates.items()}
+
+
+@kept_pickled
+def _derived() -> tuple[Derivation, dict]:
+    """Both phases: energy, the reactions from Newton's law for G, the instant the wall's reaction
+    vanishes, then energy with the floor constraint alone; and θ̇²(θ) of each phase in units g = L = 1
+    (its arguments, its expression)."""
     t = sp.Symbol("t")
     q = sp.Function(r"theta")(t)
     x_G, y_G = L / 2 * sp.cos(q), L / 2 * sp.sin(q)
@@ -309,8 +318,8 @@ def derivation() -> tuple[Derivation, dict]:
     ]
     symbols = SYMBOLS | TIME_INTEGRALS
     derived = Derivation(symbols, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
-    rates = {"phase1": sp.lambdify((theta, theta0), rate_sq.subs({g: 1, L: 1}), "math"),
-             "phase2": sp.lambdify((theta, th_l, w_l, v_l), rate2_sq.subs({g: 1, L: 1}), "math")}
+    rates = {"phase1": ((theta, theta0), rate_sq.subs({g: 1, L: 1})),
+             "phase2": ((theta, th_l, w_l, v_l), rate2_sq.subs({g: 1, L: 1}))}
     return derived, rates
 
 

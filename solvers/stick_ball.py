@@ -16,6 +16,7 @@ import math
 import numpy as np
 import sympy as sp
 
+from .kept import kept_pickled
 from .core import (
     within_model_range,
     plain_number,
@@ -202,6 +203,7 @@ def _moment_law_about(body: str, point: tuple) -> tuple[sp.Expr, sp.Expr]:
 
 
 @functools.cache
+@kept_pickled
 def derivation(mode: str) -> Derivation:
     I_stick = m_s * l**2 / 12
     origin = Step(r"Top view. Origin at the stick's midpoint M at the instant of impact; $\mathbf{E}_x$ along the "
