@@ -46,7 +46,13 @@ def cache_dir() -> Path | None:
     where = os.environ.get("DL_GENERATED_CACHE", "")
     if where == "off":
         return None
-    return Path(where) if where else Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "dynamics-lab" / "generated"
+    if where:
+        return Path(where)
+    try:
+        base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    except RuntimeError:  # no home to be found (a uid without an account, no HOME): no cache
+        return None
+    return base / "dynamics-lab" / "generated"
 
 
 def _on_disk(suffix: str, dump: Callable[[object], bytes], load: Callable[[bytes], object]):

@@ -66,6 +66,15 @@ def test_off_or_unwritable_generates_as_before(tmp_path, monkeypatch):
     monkeypatch.setenv("DL_GENERATED_CACHE", str(blocked))
     assert on_disk("stick_ball", (("mode", "stick"),)) == generated
     assert os.path.isfile(blocked)
+    # no home to be found (a container's uid without an account, HOME unset): no cache, no failure
+    monkeypatch.delenv("DL_GENERATED_CACHE")
+    monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
+
+    def nowhere():
+        raise RuntimeError("Could not determine home directory.")
+    monkeypatch.setattr(kept.Path, "home", staticmethod(nowhere))
+    assert kept.cache_dir() is None
+    assert on_disk("stick_ball", (("mode", "stick"),)) == generated
 
 
 @pytest.mark.parametrize("pid", registry.PROBLEM_IDS)
