@@ -158,8 +158,12 @@ format_value = plain_number  # one formatting of numbers for every page
 
 def format_quantity(x: float, dimension: str, system: str = "si", sig: int = 4) -> str:
     """``x`` (SI) as a page shows it: in the system's unit, ``sig`` figures, degrees glued (30°)."""
+    return with_unit(format_value(to_display(x, dimension, system), sig), dimension, system)
+
+
+def with_unit(value: str, dimension: str, system: str = "si") -> str:
+    """A number already written in the system's unit (``value``), with that unit: degrees glued (30°)."""
     label = unit(dimension, system)
-    value = format_value(to_display(x, dimension, system), sig)
     if not label:
         return value
     return f"{value}{label}" if label == "°" else f"{value} {label}"

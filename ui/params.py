@@ -55,13 +55,16 @@ def is_slider(p: Number) -> bool:
 def display_format(p: Number) -> str:
     """How the control writes the number (printf style), which the URL copies: a slider to its
     step's decimals (a whole-degree slider shows 30, not 30.00), a box to six figures."""
-    if not is_slider(p):
-        return "%.6g"
+    return f"%.{_slider_decimals(p)}f" if is_slider(p) else "%.6g"
+
+
+def _slider_decimals(p: Number) -> int:
+    """The decimals of a slider's step (at most six): what it writes."""
     step = float(p.step or 0.01)
     decimals = 0
     while decimals < 6 and abs(step * 10**decimals - round(step * 10**decimals)) > 1e-9:
         decimals += 1
-    return f"%.{decimals}f"
+    return decimals
 
 
 def as_shown(p: Number, shown: float) -> float:
@@ -95,7 +98,7 @@ def _precision(p: Number) -> str:
     """How finely ``p``'s control writes its number, in words."""
     if not is_slider(p):
         return "box, which writes six significant figures"
-    decimals = int(display_format(p)[2:-1])
+    decimals = _slider_decimals(p)
     unit = "°" if p.dimension == "angle" else ""
     return "slider, which writes " + ("whole degrees" if unit and not decimals else
                                       "whole numbers" if not decimals else f"to {10.0 ** -decimals:.{decimals}f}{unit}")
@@ -103,9 +106,7 @@ def _precision(p: Number) -> str:
 
 def _as_written(p: Number, shown: float, system: str) -> str:
     """``shown`` (display units) as its control writes it, with its unit."""
-    label = units.unit(p.dimension, system)
-    text = display_format(p) % shown
-    return text if not label else f"{text}{label}" if label == "°" else f"{text} {label}"
+    return units.with_unit(display_format(p) % shown, p.dimension, system)
 
 
 def shown_range(p: Number, system: str) -> str:
