@@ -1,7 +1,7 @@
 """What the sympy work gives, kept on disk between processes.
 
 Deriving each problem (sympy's solve and simplify) and generating its JavaScript (its live values, pose and
-motion) is nearly all of a server's warm-up (about a minute on two cores, in every process at every start)
+motion) is most of a server's warm-up (27 s of it here without this, 15 s with; in every process at every start)
 and of every test process that solves or draws a problem. What it gives depends on nothing but the code
 and the arguments, so it is kept under a key of both: a changed byte of the solvers, the viz modules that
 draw the figures, or the two ui modules that name and generate the files, is a new key. The interpreter's,
@@ -83,7 +83,6 @@ def _on_disk(suffix: str, dump: Callable[[object], bytes], load: Callable[[bytes
     return decorator
 
 
-kept_on_disk = _on_disk(".js", str.encode, bytes.decode)  # generated JavaScript
 def _unpickled(data: bytes):
     """A pickle's sympy expressions as they were: rebuilt from their arguments with evaluation on, sympy
     would rewrite some ((R ω + 2 V sin θ)/3 came back as R ω/3 + 2 V sin θ/3, and the numeric steps' LaTeX
@@ -92,4 +91,5 @@ def _unpickled(data: bytes):
         return pickle.loads(data)
 
 
+kept_on_disk = _on_disk(".js", str.encode, bytes.decode)  # generated JavaScript
 kept_pickled = _on_disk(".pickle", functools.partial(pickle.dumps, protocol=pickle.HIGHEST_PROTOCOL), _unpickled)

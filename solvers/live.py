@@ -37,7 +37,6 @@ from .specs import Choice, Number
 REFUSED = "refused"
 
 
-
 @dataclass(frozen=True)
 class Stops:
     """A condition no closed form gives: ``expr`` (in the parameters and ``var``) is ≤ 0 somewhere on

@@ -3,12 +3,11 @@ the derivations. What a later process reads is what making it gives, under a key
 arguments; no cache where none is wanted or writable."""
 from __future__ import annotations
 
+import importlib
 import os
+import pickle
 
 import pytest
-
-import importlib
-import pickle
 
 from solvers import kept, live, registry
 from ui import live as ui_live
