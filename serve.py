@@ -92,18 +92,26 @@ def accept_without_nagle() -> None:
 COMPRESSIBLE = (b"text/javascript", b"application/javascript", b"text/css", b"image/svg+xml")
 
 
+WEBSOCKET_WINDOW_BITS = 15  # the compressor's window, 2**15 bytes: zlib's largest
+
+
 def compress_websocket_fast() -> None:
     """The websocket's permessage-deflate (server.enableWebsocketCompression, .streamlit/config.toml) at
-    zlib's level 1 instead of its default 6: uvicorn's compressor (a 4 KB window, memLevel 5) spent about
-    1 ms on a change's 36 KB at level 6, a tenth of the whole run, for 12.6 KB; level 1 takes 0.2 ms for
-    14 KB (BENCHMARKS.md §4). The window and memory per connection stay uvicorn's."""
+    zlib's level 1 instead of its default 6, over a window of the last 32 KB sent instead of uvicorn's 4 KB.
+    Level 6 spent about 1 ms on a change's 36 KB, a tenth of the whole run, for 12.6 KB; level 1 takes
+    0.2 ms for 14 KB (BENCHMARKS.md §4). The window: most of what a change sends (the derivation's symbolic
+    steps, the answers' labels, the figure's layout, a companion's grid) was in the change before it, which
+    a 4 KB window cannot reach back to; 32 KB, zlib's largest, does (BENCHMARKS.md §1). It costs each
+    connection 144 KB of the compressor's memory where 4 KB cost 32 KB (zlib: 4 × window + 512 × 2^memLevel),
+    about 22 MB more for 200 students on a process (docs/deploying.md)."""
     from uvicorn.protocols.websockets import websockets_sansio_impl
 
     factory = websockets_sansio_impl.ServerPerMessageDeflateFactory  # fails loudly if uvicorn renames it
 
     class FastDeflate(factory):
         def __init__(self, **options):
-            super().__init__(**{**options, "compress_settings": {**(options.get("compress_settings") or {}), "level": 1}})
+            super().__init__(**{**options, "server_max_window_bits": WEBSOCKET_WINDOW_BITS,
+                                "compress_settings": {**(options.get("compress_settings") or {}), "level": 1}})
 
     websockets_sansio_impl.ServerPerMessageDeflateFactory = FastDeflate
 
