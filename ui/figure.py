@@ -265,9 +265,10 @@ LINKS = "links"
 def part(name: str, key: str, sent: bytes) -> dict:
     """One element's worth inside ``together``: the component ``name`` would draw it (its module's
     path), under ``key``, from the data its own element would be ``sent``; or, ``name`` LINKS, the
-    lesson's links (ui/takehome.lesson_links_data), which lesson.js draws itself."""
+    lesson's links (ui/takehome.lesson_links_data), which lesson.js draws itself. The data goes in as JSON,
+    not as a string of it: a string escaped every quote and doubled every LaTeX backslash (a tenth more bytes)."""
     return {"component": name, "module": module_url(COMPONENTS[name]) if name != LINKS else None, "key": key,
-            "data": sent.decode()}
+            "data": orjson.Fragment(sent)}
 
 
 def together(parts: list[dict], key: str) -> None:

@@ -39,7 +39,7 @@ def sent(at: AppTest) -> list[tuple[str, bytes]]:
         if getattr(e, "type", None) != "bidi_component":
             continue
         if e.proto.component_name == LESSON:
-            elements += [(part["component"], part["data"].encode()) for part in orjson.loads(e.proto.bytes)["parts"]]
+            elements += [(part["component"], orjson.dumps(part["data"])) for part in orjson.loads(e.proto.bytes)["parts"]]
         else:
             elements.append((e.proto.component_name, e.proto.bytes))
     return elements

@@ -46,6 +46,7 @@ export function render({data, parentElement}) {
   for (const el of [...parentElement.children]) if (!keys.includes(el.dataset.part)) el.remove();  // (first: the rest stay put)
   const slots = new Map([...parentElement.children].map((el) => [el.dataset.part, el]));
   d.parts.forEach((part, i) => {
+    const data = JSON.stringify(part.data);  // each part's module is handed its data as its own element's would be
     let slot = slots.get(part.key);
     if (!slot) {
       slot = document.createElement("div");
@@ -53,10 +54,10 @@ export function render({data, parentElement}) {
       slot.dataset.part = part.key;
     }
     if (parentElement.children[i] !== slot) parentElement.insertBefore(slot, parentElement.children[i] || null);
-    if (!part.module) { drawLinks(slot, part.data); return; }
+    if (!part.module) { drawLinks(slot, data); return; }
     load(part.module).then((module) => {
       slot.querySelector(":scope > .dl-part-failed")?.remove();
-      return module.render({data: part.data, parentElement: slot});
+      return module.render({data, parentElement: slot});
     }).catch(() => {  // said in the part's place (the page reloaded fetches it again)
       if (slot.childElementCount) return;
       const failed = document.createElement("p");
