@@ -570,7 +570,7 @@ def _checks(p, a) -> tuple[Check, ...]:
 
 
 FRAMES = 90
-CURVE_POINTS = 240
+CURVE_POINTS = 90  # (the reactions' plot: smooth curves, the leaving instant one of the samples)
 # (the path of G is drawn through the frames: the browser traces it at the same instants)
 INTEGRATED = Integrated(
     state=("x_G", "y_G", "theta", "vx_G", "vy_G", "omega", "wall"),
@@ -583,8 +583,8 @@ INTEGRATED = Integrated(
 @per_solution
 def motion(solution: Solution) -> dict:
     """Both phases from the integration, scaled to SI: frames evenly in time (one exactly at the
-    leaving), the contacts' positions, the reactions at the frames (their arrows) and on a finer grid
-    for their plot. The browser integrates the same frames itself on the lesson page (``INTEGRATED``)."""
+    leaving), the contacts' positions, the reactions at the frames (their arrows) and, for their plot, evenly
+    in each phase (``curve_held`` samples on the wall). The browser integrates the same frames itself on the lesson page (``INTEGRATED``)."""
     p = solution.params
     T, mg, L_ = math.sqrt(p["L"] / p["g"]), p["m"] * p["g"], p["L"]
     frames, states, curve_t, walls, floors, t1, frame_walls, frame_floors = _sampled(p["theta0"])
@@ -596,6 +596,7 @@ def motion(solution: Solution) -> dict:
         "curve_t": curve_t * T, "N_wall": walls * mg, "N_floor": floors * mg,
         "frame_N_wall": frame_walls * mg, "frame_N_floor": frame_floors * mg,
         "t_leave": t1 * T, "leave_frame": int(np.argmin(np.abs(frames - t1))),
+        "curve_held": int(np.sum(curve_t <= t1)),  # the reactions' samples on the wall (the last at the leaving)
     }
 
 
@@ -620,7 +621,10 @@ def _sampled(theta_0: float) -> tuple:
 
     frames = frame_instants(0.0, t2, FRAMES, [t1])
     states, frame_walls, frame_floors = sample(frames)
-    curve_t = frame_instants(0.0, t2, CURVE_POINTS, [t1])
+    # the reactions' plot: evenly in each phase, the leaving instant ending the first (so each phase's curve
+    # is its values, its first instant and its step: viz/sliding_ladder.py sends no instants)
+    held = min(max(2, round(CURVE_POINTS * t1 / t2)), CURVE_POINTS - 1)
+    curve_t = np.concatenate([np.linspace(0.0, t1, held), np.linspace(t1, t2, CURVE_POINTS - held + 1)[1:]])
     _, walls, floors = sample(curve_t)
     for array in (frames, states, curve_t, walls, floors, frame_walls, frame_floors):
         array.flags.writeable = False

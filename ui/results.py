@@ -97,13 +97,14 @@ def parts(steps) -> list[list]:
 
 
 def diagrams(solution: Solution) -> list[list[str]]:
-    """[SVG, its text alternative] for each free-body diagram of the solution (Step 2)."""
+    """[SVG, its caption] for each free-body diagram of the solution (Step 2): the text alternative is the SVG's
+    aria-label, the caption its head ("Free-body diagram, against the wall")."""
     if solution.problem not in registry.PROBLEM_IDS or not solution.answers:
         return []
     key = (solution.problem, tuple(sorted(solution.params.items())))
     drawn = _DRAWN.get(key)
     if drawn is None:  # drawn once per state, as the solution and its figures are (ui.page._computed)
-        drawn = [[diagram.svg(d), d.text] for d in diagram.drawings(registry.solver(solution.problem), solution)]
+        drawn = [[diagram.svg(d), d.text.split(":")[0]] for d in diagram.drawings(registry.solver(solution.problem), solution)]
         if len(_DRAWN) >= 256:
             _DRAWN.pop(next(iter(_DRAWN)), None)
         _DRAWN[key] = drawn

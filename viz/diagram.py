@@ -488,13 +488,13 @@ def _head(tail, head, size=11.0, width=0.42):
 
 
 def svg(drawing: Drawing, css_class: str = "dl-fbd") -> str:
-    """The drawing as an SVG element: scales to its container, a text alternative for screen readers."""
+    """The drawing as an SVG element: scales to its container, a text alternative for screen readers (aria-label)."""
     b = drawing.box
     width, height = b.x1 - b.x0, b.y1 - b.y0
     flip = lambda x, y: (x - b.x0, b.y1 - y)
     out = [f'<svg class="{css_class}" viewBox="0 0 {width:.1f} {height:.1f}" width="{width:.0f}" height="{height:.0f}" role="img" '
            f'aria-label="{html.escape(drawing.text)}" xmlns="http://www.w3.org/2000/svg" '
-           f'style="max-width:{width * 1.25:.0f}px" font-family="\'Times New Roman\', serif" font-style="italic">',
+           f'style="max-width:{width * 1.25:.0f}px" font-family="Times New Roman, serif" font-style="italic">',
            f'<rect width="{width:.1f}" height="{height:.1f}" fill="#ffffff"/>']
     for line in drawing.lines:
         out.append(_svg_line(line, flip))
@@ -538,7 +538,9 @@ def svg(drawing: Drawing, css_class: str = "dl-fbd") -> str:
         out.append(_svg_curl(curl, flip, color))
         out.append(_svg_text(curl.label, flip, color, ' class="dl-fbd-label"'))
     out.append("</svg>")
-    return "".join(out)
+    # (its attributes in single quotes: the SVG travels in JSON, where a double quote costs a backslash; no value
+    # holds one, html.escape writes it &#x27;)
+    return "".join(out).replace('"', "'")
 
 
 def _curl_points(curl: Curl, n: int = 24):

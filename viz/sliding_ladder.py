@@ -156,13 +156,25 @@ def _pushes(th, x_G, y_G, N_wall, N_floor, p, xp=np) -> dict:
             FLOOR_PUSH: arrows(x_B, -N_floor * scale, 0.0, N_floor * scale, xp=xp)}
 
 
+def evenly(t, y, style: dict, group: str) -> dict:
+    """``style``'s trace through ``y`` at the evenly spaced instants ``t``, given as the first and the step."""
+    trace = {key: value for key, value in style.items() if key != "x"}
+    return trace | {"x0": float(t[0]), "dx": float(t[1] - t[0]), "y": y, "legendgroup": group}
+
+
 def _reactions(solution, m) -> Figure:
     p, a = solution.params, solution.answers
-    t, t_leave = m["curve_t"], m["t_leave"]
+    t, t_leave, k = m["curve_t"], m["t_leave"], m["curve_held"]
     top = float(max(np.max(m["N_floor"]), np.max(m["N_wall"]), p["m"] * p["g"])) * 1.08
+    # each phase sampled evenly (solvers.sliding_ladder._sampled): a curve is its values, first instant and step;
+    # after the leaving the wall's push is zero, one straight piece to the end
+    wall, floor = "wall, N<sub>A</sub>", "floor, N<sub>B</sub>"
     data = [
-        line(r(t), r(m["N_wall"]), "wall, N<sub>A</sub>", COLORS["force"], width=3),
-        line(r(t), r(m["N_floor"]), "floor, N<sub>B</sub>", COLORS["velocity"], width=3, dash="dash"),
+        evenly(t[:k], r(m["N_wall"][:k]), line(None, None, wall, COLORS["force"], width=3), wall),
+        line(r([t_leave, t[-1]]), [0, 0], wall, COLORS["force"], width=3, show_legend=False) | {"legendgroup": wall},
+        evenly(t[:k], r(m["N_floor"][:k]), line(None, None, floor, COLORS["velocity"], width=3, dash="dash"), floor),
+        evenly(t[k - 1:], r(m["N_floor"][k - 1:]), line(None, None, floor, COLORS["velocity"], width=3, dash="dash",
+                                                       show_legend=False), floor),
         line(r([t_leave, t_leave]), r([0, top]), f"top leaves the wall, t = {n(t_leave)} s", COLORS["impulse"],
              width=2, dash="dot"),
         line(r([t[0], t[-1]]), r([p["m"] * p["g"]] * 2), "weight mg", COLORS["ink"], width=1, dash="longdash"),

@@ -4,7 +4,9 @@ the balance laws hold at the solver's own numbers, and the drawing is legible (n
 none outside the picture). Each problem's own file tests its directions by its physics."""
 from __future__ import annotations
 
+import html
 import math
+import re
 
 import pytest
 import sympy as sp
@@ -138,7 +140,7 @@ def test_the_drawing_is_legible(pid, data):
                 assert load.symbol in drawn, (pid, d.phase, load.symbol)
                 assert load.name in drawing.text, (pid, load.name)
             svg = fbd.svg(drawing)
-            assert svg.startswith("<svg") and 'role="img"' in svg and "aria-label=" in svg
+            assert svg.startswith("<svg") and "role='img'" in svg and "aria-label=" in svg
 
 
 def test_an_unknown_reaction_is_drawn_as_its_two_components_and_an_impulse_with_an_open_head():
@@ -149,7 +151,7 @@ def test_an_unknown_reaction_is_drawn_as_its_two_components_and_an_impulse_with_
     loads = [a for a in drawing.arrows if a.kind != "basis"]
     assert sorted(a.label.tex for a in loads) == sorted(sp.latex(c) for c in disk_wall.IMPACT.loads[0].components)
     assert all(a.kind == "impulse" for a in loads)
-    assert 'fill="#ffffff" stroke="#b3261e"' in fbd.svg(drawing)  # the open head
+    assert "fill='#ffffff' stroke='#b3261e'" in fbd.svg(drawing)  # the open head
 
 
 def test_labels_are_written_as_subscripts():
@@ -233,8 +235,8 @@ def _page(pid: str, query: dict | None = None):
 
 @pytest.mark.parametrize("pid", IDS)
 def test_the_page_draws_step_two_and_heads_the_four_steps(pid):
-    """The derivation's element gets the four headings and, under Step 2, each diagram's SVG with its
-    text alternative; the stage's Forces switch (off) is there where the stage can show the forces."""
+    """The derivation's element gets the four headings and, under Step 2, each diagram's SVG (its text
+    alternative the SVG's aria-label, naming every load) and caption; the stage's Forces switch (off) is there where the stage can show the forces."""
     from tests.pages.test_pages import derivation_shown, shown
     from ui.figure import NAME
 
@@ -244,8 +246,10 @@ def test_the_page_draws_step_two_and_heads_the_four_steps(pid):
     solver = registry.solver(pid)
     declared = solver.free_body_diagrams(solver.solve().params)
     assert len(d["diagrams"]) == len(declared)
-    for (svg, text), diagram in zip(d["diagrams"], declared):
-        assert svg.startswith("<svg") and text.startswith("Free-body diagram")
+    for (svg, caption), diagram in zip(d["diagrams"], declared):
+        assert svg.startswith("<svg") and caption.startswith("Free-body diagram") and ":" not in caption
+        text = html.unescape(re.search(r"aria-label='([^']*)'", svg).group(1))  # the text alternative
+        assert text.startswith(caption + ":")
         for load in diagram.loads:
             assert load.name in text
     stage = shown(at, NAME)[0]

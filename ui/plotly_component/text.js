@@ -230,10 +230,10 @@ class Derivation {
         if (part === undefined) return;
         before.append(make("h4", "dl-part", part));
         if (!isDiagrams) return;
-        for (const [svg, text] of d.diagrams || []) {
+        for (const [svg, caption] of d.diagrams || []) {  // (the text alternative: the SVG's aria-label)
           const fig = make("figure", "dl-fbd-figure");
           fig.innerHTML = svg;
-          fig.append(make("figcaption", "", text.split(":")[0]));
+          fig.append(make("figcaption", "", caption));
           before.append(fig);
         }
       });
