@@ -295,7 +295,8 @@ def print_table(rows: list[dict], processes: int, args) -> None:
           f"{args.pause[0]:g}–{args.pause[1]:g} s apart, "
           f"{processes} process(es){' behind nginx' if processes > 1 else ''}, "
           f"{'each session its own values' if args.spread else 'the same values in every session'}, "
-          f"from {min(args.sessions, len(SOURCE_ADDRESSES))} loopback addresses\n")
+          + ("from one address (one NAT)\n" if ONE_ADDRESS["on"] else
+             f"from {min(args.sessions, len(SOURCE_ADDRESSES))} loopback addresses\n"))
     print("| page | first load p50 / p95 | interaction p50 / p95 / p99 | p95 × empty | errors | KB per interaction "
           "| server MB per session | server CPU per run |")
     print("|---|---|---|---|---|---|---|---|")
