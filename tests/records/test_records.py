@@ -216,7 +216,7 @@ def test_rosters_are_opaque_labels_with_bad_lines_named():
     assert records.parse_roster("label\ns01\ns02\n\ns03\n") == ["s01", "s02", "s03"]
     with pytest.raises(ValueError, match=r"Repeated label: s01 \(lines 2 and 5\)"):  # was dropped silently
         records.parse_roster("label\ns01\ns02\n\ns01\n")
-    with pytest.raises(ValueError, match="Lines 2 \(“Jane Doe”\), 3 \(“=cmd\(\)”\): .*no names"):
+    with pytest.raises(ValueError, match=r"Lines 2 \(“Jane Doe”\), 3 \(“=cmd\(\)”\): .*no names"):
         records.parse_roster("s01\nJane Doe\n=cmd()\n")
     with pytest.raises(ValueError, match="no labels"):
         records.parse_roster("label\n")
