@@ -21,12 +21,12 @@ run: $(BIN)/.runtime
 	$(BIN)/python serve.py --server.port $(PORT)
 
 # Every test, in two parts: those without a live server or browser on up to four processes at once
-# (AppTest and the physics, CPU-bound), then those with one, two modules at a time, each worker with its
-# own server and Chromium and a module's tests in order in one worker (alone, a module left 40 % of two
-# cores idle: its sleeps, its animations played in real time). ``served`` is set by tests/conftest.py.
+# (AppTest and the physics, CPU-bound), then those with one, one at a time (they measure time on
+# screen; two modules at a time, a fresh clone's run failed two of them: docs/benchmarks-log.md). ``served``
+# is set by tests/conftest.py.
 test: $(BIN)/.dev
 	$(BIN)/python -m pytest -m "not served" --numprocesses=auto --maxprocesses=4
-	$(BIN)/python -m pytest -m served --numprocesses=2 --dist loadfile
+	$(BIN)/python -m pytest -m served
 
 # The quick benchmarks (BENCHMARKS.md §1 and §4, about ten minutes), beside the last recorded ratios
 # (bench/recorded.json; `bench/quick.py --record` updates them). Not part of `make test`.

@@ -164,8 +164,9 @@ def test_an_assignment_end_to_end(browser, course_url):
     wait_for_text(page, "3 students")
     page.get_by_role("button", name="Create the assignment and its links").click()
     wait_for_text(page, "created for 3 students")
-    # the form emptied and folded away: nothing to press twice, the new assignment's links in view
-    assert not page.get_by_role("button", name="Create the assignment and its links").is_visible()
+    # the form emptied and folded away: nothing to press twice, the new assignment's links in view (the fold may
+    # come a run after the words: waited for, not read at once)
+    page.get_by_role("button", name="Create the assignment and its links").wait_for(state="hidden", timeout=30_000)
     assert not page.get_by_placeholder("Week 9: the bouncing pendulum").is_visible()  # the new form's title
     assert len(records_of(page)) == 1
     links = list(csv.DictReader(io.StringIO(download(page, "Download the links (CSV)"))))
