@@ -1,4 +1,4 @@
-"""Rod-and-sphere pendulum bounces off a floor or a wall."""
+"""Rod-and-sphere pendulum bounces off the floor."""
 from ui.page import problem_page
 
 problem_page("pendulum_rebound")

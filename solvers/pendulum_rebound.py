@@ -43,7 +43,7 @@ from .protocol import About, Mistake, Variants
 from .swing import ATOL, RTOL, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg
 
 ABOUT = About(
-    title="Rod-and-sphere pendulum bounces off a floor or a wall",
+    title="Rod-and-sphere pendulum bounces off the floor",
     group="Work–energy",
     blurb="Release, swing, bounce: each bounce keeps a fraction e² of the swing.",
     icon=":material/height:",
