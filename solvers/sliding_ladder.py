@@ -584,7 +584,7 @@ INTEGRATED = Integrated(
 def motion(solution: Solution) -> dict:
     """Both phases from the integration, scaled to SI: frames evenly in time (one exactly at the
     leaving), the contacts' positions, the reactions at the frames (their arrows) and, for their plot, evenly
-    in each phase (``curve_held`` samples on the wall). The browser integrates the same frames itself on the lesson page (``INTEGRATED``)."""
+    in each phase (the last on the wall at the leaving). The browser integrates the same frames itself on the lesson page (``INTEGRATED``)."""
     p = solution.params
     T, mg, L_ = math.sqrt(p["L"] / p["g"]), p["m"] * p["g"], p["L"]
     frames, states, curve_t, walls, floors, t1, frame_walls, frame_floors = _sampled(p["theta0"])
@@ -596,7 +596,6 @@ def motion(solution: Solution) -> dict:
         "curve_t": curve_t * T, "N_wall": walls * mg, "N_floor": floors * mg,
         "frame_N_wall": frame_walls * mg, "frame_N_floor": frame_floors * mg,
         "t_leave": t1 * T, "leave_frame": int(np.argmin(np.abs(frames - t1))),
-        "curve_held": int(np.sum(curve_t <= t1)),  # the reactions' samples on the wall (the last at the leaving)
     }
 
 

@@ -24,7 +24,7 @@ def fresh_key_throttle():
 
 
 # The browser tests' shared fixtures (test_browser, test_where_used, test_stage, test_seen_and_heard, ...):
-# one server for the whole session, one per worker under pytest-xdist (each start costs 10-30 s of a 2-core CI machine; a module that
+# one server for the whole session (each start costs 10-30 s of a 2-core CI machine; a module that
 # needs a server of its own, with other settings, defines its own fixture), and one Chromium per
 # module: Playwright's sync API holds an event loop while it runs, which would refuse every other
 # test's asyncio.run() if it lived for the whole session.
@@ -123,9 +123,7 @@ def pytest_collection_finish(session):
     used = {name for item in session.items for name in getattr(item, "fixturenames", ())}
     if "shipped_server" in used or ("app_url" in used and not os.environ.get("APP_URL")):
         _EARLY["shipped"] = Starting(env=_SETTINGS["shipped"]())
-    # (under pytest-xdist, `make test`'s served half, a worker runs some modules of those collected: its fresh servers
-    # are started when a test asks, not ahead for tests another worker runs)
-    if "fresh_server" in used and not os.environ.get("PYTEST_XDIST_WORKER"):
+    if "fresh_server" in used:
         # (started once the shared server is warm, not beside it: two warming at once doubled the first test's wait)
         if "shipped" in _EARLY:
             _AFTER_SHIPPED.append("fresh")

@@ -104,7 +104,7 @@ def diagrams(solution: Solution) -> list[list[str]]:
     key = (solution.problem, tuple(sorted(solution.params.items())))
     drawn = _DRAWN.get(key)
     if drawn is None:  # drawn once per state, as the solution and its figures are (ui.page._computed)
-        drawn = [[diagram.svg(d), d.text.split(":")[0]] for d in diagram.drawings(registry.solver(solution.problem), solution)]
+        drawn = [[diagram.svg(d), diagram.caption(d.title)] for d in diagram.drawings(registry.solver(solution.problem), solution)]
         if len(_DRAWN) >= 256:
             _DRAWN.pop(next(iter(_DRAWN)), None)
         _DRAWN[key] = drawn

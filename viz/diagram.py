@@ -427,6 +427,11 @@ def _basis(drawing: Drawing, diagram: Diagram, labels: list[Box], obstacles: lis
         obstacles.append(_arrow_box(arrow))
 
 
+def caption(title: str) -> str:
+    """A free-body diagram's caption, from its title: the head of its text alternative."""
+    return f"Free-body diagram, {title.lower()}"
+
+
 def text_alternative(diagram: Diagram, values) -> str:
     """The diagram in words: each body, and each load, where it acts and which way."""
     sentences = []
@@ -447,7 +452,7 @@ def text_alternative(diagram: Diagram, values) -> str:
                 d = _unit(*signed_direction(load, values))
                 parts.append(f"{load.name} {plain_label(load.symbol)}{where}, {_way(d)}")
         kind = "impulses" if diagram.law == "impulse" else "forces"
-        sentences.append(f"Free-body diagram, {diagram.title.lower()}: {body.name}, with the {kind} on it: "
+        sentences.append(f"{caption(diagram.title)}: {body.name}, with the {kind} on it: "
                          + "; ".join(parts) + ".")
     return " ".join(sentences)
 

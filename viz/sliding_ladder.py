@@ -164,7 +164,8 @@ def evenly(t, y, style: dict, group: str) -> dict:
 
 def _reactions(solution, m) -> Figure:
     p, a = solution.params, solution.answers
-    t, t_leave, k = m["curve_t"], m["t_leave"], m["curve_held"]
+    t, t_leave = m["curve_t"], m["t_leave"]
+    k = int(np.sum(t <= t_leave))  # the samples on the wall, the last at the leaving
     top = float(max(np.max(m["N_floor"]), np.max(m["N_wall"]), p["m"] * p["g"])) * 1.08
     # each phase sampled evenly (solvers.sliding_ladder._sampled): a curve is its values, first instant and step;
     # after the leaving the wall's push is zero, one straight piece to the end
