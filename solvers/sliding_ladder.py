@@ -606,25 +606,24 @@ def _sampled(theta_0: float) -> tuple:
     the reactions at the frames. Read only (the arrays are shared)."""
     run = integrated(theta_0)
     t1, t2 = run["t_leave"], run["t_floor"]
-
-    def sample(times):
-        on_wall = times <= t1
-        first, second = times[on_wall], times[~on_wall]
-        held = run["phase1"](first).T if len(first) else np.empty((0, 6))
-        free = run["phase2"](second).T if len(second) else np.empty((0, 6))
-        r_held = reactions_and_accelerations(held, True) if len(first) else np.empty((0, 5))
-        r_free = reactions_and_accelerations(free, False) if len(second) else np.empty((0, 4))
-        walls = np.concatenate([r_held[:, 4], np.zeros(len(second))])
-        floors = np.concatenate([r_held[:, 3], r_free[:, 3]])
-        return np.concatenate([held, free]), walls, floors
-
     frames = frame_instants(0.0, t2, FRAMES, [t1])
-    states, frame_walls, frame_floors = sample(frames)
     # the reactions' plot: evenly in each phase, the leaving instant ending the first (so each phase's curve
     # is its values, its first instant and its step: viz/sliding_ladder.py sends no instants)
     held = min(max(2, round(CURVE_POINTS * t1 / t2)), CURVE_POINTS - 1)
     curve_t = np.concatenate([np.linspace(0.0, t1, held), np.linspace(t1, t2, CURVE_POINTS - held + 1)[1:]])
-    _, walls, floors = sample(curve_t)
+    # both sets of instants in one evaluation of each phase's dense solution (most of the time is per call)
+    times = np.concatenate([frames, curve_t])
+    on_wall = times <= t1
+    states, walls, floors = np.empty((len(times), 6)), np.zeros(len(times)), np.empty(len(times))
+    if on_wall.any():
+        states[on_wall] = run["phase1"](times[on_wall]).T
+        held_reactions = reactions_and_accelerations(states[on_wall], True)
+        walls[on_wall], floors[on_wall] = held_reactions[:, 4], held_reactions[:, 3]
+    if (~on_wall).any():
+        states[~on_wall] = run["phase2"](times[~on_wall]).T
+        floors[~on_wall] = reactions_and_accelerations(states[~on_wall], False)[:, 3]
+    n = len(frames)
+    frame_walls, frame_floors, walls, floors, states = walls[:n], floors[:n], walls[n:], floors[n:], states[:n]
     for array in (frames, states, curve_t, walls, floors, frame_walls, frame_floors):
         array.flags.writeable = False
     return frames, states, curve_t, walls, floors, t1, frame_walls, frame_floors
