@@ -29,7 +29,9 @@ WIDE_WIDTH_EM = 36.0
 # fraction): the largest that fits is used.
 _SIZES = ((0.9, r"\small"), (0.8, r"\footnotesize"), (0.7, r"\scriptsize"))
 
-_TOKEN = re.compile(r"\\\\|\\[a-zA-Z]+|\\.|[{}^_&]|\S")
+# Text mode (``\text{at }G``) is one token, its spaces kept: they are part of what it says ("at G", not "atG").
+_TEXT = re.compile(r"\\(?:text|textrm|textit|textbf|mbox)\{[^{}]*\}")
+_TOKEN = re.compile(_TEXT.pattern + r"|\\\\|\\[a-zA-Z]+|\\.|[{}^_&]|\S")
 _SPACES = {r"\;": 0.28, r"\,": 0.17, r"\:": 0.22, r"\!": -0.17, r"\quad": 1.0, r"\qquad": 2.0, "~": 0.33}
 _RELATIONS = {"=", r"\le", r"\ge", "<", ">", r"\approx", r"\ne", r"\equiv"}
 _ARROWS = {r"\Rightarrow", r"\implies", r"\Longrightarrow"}
@@ -105,6 +107,9 @@ def _width(toks: tuple[str, ...]) -> float:
 
 
 def _glyph(t: str) -> float:
+    if _TEXT.fullmatch(t):  # its letters and its spaces
+        text = t[t.index("{") + 1:-1]
+        return 0.55 * len(text.replace(" ", "")) + 0.25 * text.count(" ")
     if t in _SPACES:
         return _SPACES[t]
     if t in _RELATIONS or t in ("+", "-", r"\times", r"\pm", r"\mp"):

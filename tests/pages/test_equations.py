@@ -93,6 +93,15 @@ def test_a_list_of_results_gets_a_row_each_and_keeps_its_implication():
     assert second.startswith(r"\Rightarrow\; \omega _{p} &=")
 
 
+def test_words_in_a_broken_step_keep_their_spaces():
+    """Text mode's spaces are what it says: the loads' list broken into rows read "atG" where the step said
+    "at G" (a step that fits kept them; the rows' tokens had dropped them)."""
+    latex = r",\quad ".join(rf"\text{{at }}{p}:\; -g m_{{{p}}}\,\mathbf{{E}}_y" for p in "ABCD")
+    shown = rows(broken(latex))
+    assert len(shown) == 4 and all(rf"\text{{at }}{p}:" in row for p, row in zip("ABCD", shown)), shown
+    assert width(tokens(r"\text{at the wall}")) > width(tokens(r"\text{at}"))
+
+
 @pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
 @settings(max_examples=15, deadline=None)
 @given(data=st.data())
