@@ -21,7 +21,7 @@ import sympy as sp
 from practice.mistakes import mistakes_for
 from practice.parser import FUNCTIONS, GREEK, MAX_LENGTH, UnknownName, _symbol_table, parse_expression, underflows
 from practice.worker import shared_worker
-from solvers.core import Answer, Derivation, Solution
+from solvers.core import Answer, Derivation, Solution, latex
 from solvers import units
 
 RELATIVE_TOLERANCE = 5e-3
@@ -388,7 +388,7 @@ class Judge:
         if not expr.free_symbols:
             return self._judge_numeric_expression(answer, expr, unit, correct, system)
         if (glued := _GLUED.fullmatch(text)) and (said := self._letters_after_a_number(glued, expr, answer, system)):
-            return unreadable(said, sp.latex(expr, mul_symbol="dot"))  # (read as d·e·g, not "deg")
+            return unreadable(said, latex(expr, mul_symbol="dot"))  # (read as d·e·g, not "deg")
         return _read_as(self._judge_expression(answer, expr, system), f"expression {sp.srepr(expr)}")
 
     def units_of(self, expr: sp.Expr) -> tuple[int | Fraction, ...] | None:
@@ -448,7 +448,7 @@ class Judge:
         """An expression with no givens is a number: read in the unit after it, else in the unit the
         page shows; an angle with ° or asin, acos, atan in it also in radians (what they give)."""
         value = complex(sp.N(expr, 15))
-        understood = sp.latex(expr)
+        understood = latex(expr)
         if abs(value.imag) > 1e-12 or not math.isfinite(value.real):
             return unreadable("That evaluates to a number that is not real and finite.", understood)
         if unit:
@@ -610,7 +610,7 @@ class Judge:
         return value.real if abs(value.imag) < 1e-12 and math.isfinite(value.real) else None
 
     def _judge_expression(self, answer: Answer, expr: sp.Expr, system: str = "si") -> Verdict:
-        understood = sp.latex(expr)
+        understood = latex(expr)
         correct = self.derivation.expression_of(answer.name)
         same = self.equivalent(expr, correct)
         if same:

@@ -6,16 +6,14 @@ from __future__ import annotations
 
 import re
 
-import sympy as sp
-
-from solvers.core import Derivation
+from solvers.core import Derivation, latex
 
 
-def flat_latex(latex: str) -> str:
+def flat_latex(tex: str) -> str:
     """LaTeX with its braces, spaces and \\left/\\right sizing taken out, so that P_{t} and P_t, or
     sympy's and a step's spacing of the same formula, compare alike. The page's method filter and
     the tests' leak check share it, so they cannot disagree about what counts as showing a result."""
-    return re.sub(r"\\(?:left|right)(?![A-Za-z])|[{}\s]", "", latex)
+    return re.sub(r"\\(?:left|right)(?![A-Za-z])|[{}\s]", "", tex)
 
 
 def result_forms(derivation: Derivation) -> list[str]:
@@ -24,10 +22,10 @@ def result_forms(derivation: Derivation) -> list[str]:
     (a bare number) is left to the value check: it would match any step with that number."""
     forms = []
     for link in derivation.chain:
-        forms.append(flat_latex(sp.latex(link.symbol)))
+        forms.append(flat_latex(latex(link.symbol)))
         closed = derivation.expression_of(link.name)
         if closed.free_symbols:
-            forms.append(flat_latex(sp.latex(closed)))
+            forms.append(flat_latex(latex(closed)))
     return forms
 
 

@@ -20,8 +20,58 @@ from .units import latex_quantity
 _DOUBLE_PARENS = re.compile(r"\\left\(\\left\(([^()]*)\\right\) \\right\)")
 
 
-class _PositiveTermsFirst(LatexPrinter):
-    """sympy's LaTeX with a sum's positive terms first: with numbers put in, ΔT = T⁻ − T⁺ reads
+def _is_mass(factor: sp.Basic) -> bool:
+    return isinstance(factor, sp.Symbol) and (factor.name == "m" or factor.name.startswith("m_"))
+
+
+def _weight_as_written(product: sp.Basic) -> sp.Basic | None:
+    """A product with g among its factors, g put right after its last mass (m g, m_s g L, not g m, g m_s L):
+    the weight as the free-body diagram labels it and a person writes it; the other factors in sympy's
+    order. None where there is no g, no mass, or g is there already."""
+    if not (isinstance(product, sp.Mul) and product.is_commutative):
+        return None
+    factors = product.as_ordered_factors()
+    g = next((f for f in factors if isinstance(f, sp.Symbol) and f.name == "g"), None)
+    masses = [n for n, f in enumerate(factors) if _is_mass(f)]
+    if g is None or not masses:
+        return None
+    rest = [f for f in factors if f is not g]
+    at = max(n for n, f in enumerate(rest) if _is_mass(f)) + 1
+    written = [*rest[:at], g, *rest[at:]]
+    return None if written == factors else sp.Mul(*written, evaluate=False)
+
+
+class Printer(LatexPrinter):
+    """sympy's LaTeX with the weight written m g (``_weight_as_written``): every derivation step, balance
+    law and numeric template prints through it (``latex``)."""
+
+    def __init__(self, settings=None):
+        super().__init__(settings)
+        self._order = self._settings["order"]
+
+    def _print_Mul(self, expr):
+        if expr.could_extract_minus_sign() and _weight_as_written(-expr) is not None:
+            return "- " + self._print(-expr)  # (as sympy writes a negative product: its sign, then the rest)
+        written = _weight_as_written(expr)
+        entry = self._settings["order"]
+        # that product's factors as written ("none"); each factor, and any other product, in sympy's order
+        self._settings["order"] = self._order if written is None else "none"
+        try:
+            return super()._print_Mul(expr if written is None else written)
+        finally:
+            self._settings["order"] = entry
+
+    def _as_ordered_terms(self, expr, order=None):
+        return super()._as_ordered_terms(expr, order=order or self._order)
+
+
+def latex(expr, **settings) -> str:
+    """``sp.latex`` through ``Printer``."""
+    return Printer(settings).doprint(expr)
+
+
+class _PositiveTermsFirst(Printer):
+    """The LaTeX with a sum's positive terms first: with numbers put in, ΔT = T⁻ − T⁺ reads
     2.062 − 2.021, as a person writes it, not −2.021 + 2.062."""
 
     def _as_ordered_terms(self, expr, order=None):
@@ -32,7 +82,7 @@ class _PositiveTermsFirst(LatexPrinter):
 
 
 def latex_eq(lhs: sp.Expr, rhs: sp.Expr, **kw) -> str:
-    return sp.latex(sp.Eq(lhs, rhs, evaluate=False), **kw)
+    return latex(sp.Eq(lhs, rhs, evaluate=False), **kw)
 
 
 def _only_inside_trig(expr: sp.Expr, sym: sp.Symbol) -> bool:
@@ -98,7 +148,7 @@ class Derivation:
             slots = tuple(
                 (names[s], known[s], _only_inside_trig(link.expr, s)) for s in free
             )
-            self._templates.append((link, sp.latex(link.symbol), template, slots))
+            self._templates.append((link, latex(link.symbol), template, slots))
             known[link.symbol] = link.name
             self._dimensions[link.name] = link.dimension
         self._results = {link.name for link in self.chain}

@@ -28,6 +28,7 @@ from typing import Callable, Mapping
 
 import sympy as sp
 
+from .derivation import latex
 from .solution import Step
 
 KINDS = ("force", "impulse", "couple")
@@ -266,7 +267,7 @@ def _sum_labels(diagram: Diagram, about: str) -> tuple[str, str, str]:
 def _load_vector_latex(load: Load, basis: tuple[str, str]) -> str:
     """The load as a vector in the basis (a couple along E_z)."""
     if load.kind == "couple":
-        return sp.latex(load.size) + r"\,\mathbf{E}_z"
+        return latex(load.size) + r"\,\mathbf{E}_z"
     if load.direction is None:
         pairs = list(zip(load.components, basis))
     else:
@@ -275,9 +276,9 @@ def _load_vector_latex(load: Load, basis: tuple[str, str]) -> str:
     for value, unit in pairs:
         if value == 0:
             continue
-        term = sp.latex(value)
+        term = latex(value)
         if value.could_extract_minus_sign():
-            term = "-" + sp.latex(-value) if text == "" else "- " + sp.latex(-value)
+            term = "-" + latex(-value) if text == "" else "- " + latex(-value)
         elif text:
             term = "+ " + term
         text += (" " if text else "") + rf"{term}\,{unit}"
@@ -311,7 +312,7 @@ def balance_steps(diagram: Diagram) -> tuple[Step, ...]:
     steps = []
     law = {"force": "Newton–Euler", "impulse": "Impulse–momentum"}[diagram.law]
     for b in diagram.bodies:
-        rows = [f"{label} = {sp.latex(total)} = {kin}"
+        rows = [f"{label} = {latex(total)} = {kin}"
                 for label, total, kin in zip(_sum_labels(diagram, b.about), resultant(diagram, b.name), b.kinetic_latex)]
         about = f", moments about {b.about}"
         steps.append(Step(f"{law} for {b.name}, from its diagram{about}", r",\quad ".join(rows), part=3))

@@ -29,6 +29,7 @@ from .core import (
     Result,
     Solution,
     Step,
+    latex,
     latex_eq,
     relative_tolerance,
     validate_params,
@@ -175,21 +176,21 @@ def derivation(regime: str) -> Derivation:
         Step(r"Origin at the centre C at the instant of impact; $\mathbf{E}_x$ along the wall, $\mathbf{E}_y$ "
              r"the wall's normal into the wall, $\mathbf{E}_z$ out of the page (ω counter-clockwise +). "
              "Velocity of the centre before impact",
-             sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_C^-"), v_before[:2, :], evaluate=False)), part=1),
+             latex(sp.Eq(sp.Symbol(r"\mathbf{v}_C^-"), v_before[:2, :], evaluate=False)), part=1),
         Step(r"Velocity of the contact point $B = C + R\,\mathbf{E}_y$: $\mathbf{v}_B = \mathbf{v}_C + \omega\mathbf{E}_z \times R\,\mathbf{E}_y$",
-             sp.latex(sp.Eq(sp.Symbol(r"\mathbf{v}_B^-"), v_B_before[:2, :], evaluate=False)), part=1),
+             latex(sp.Eq(sp.Symbol(r"\mathbf{v}_B^-"), v_B_before[:2, :], evaluate=False)), part=1),
         *fbd_steps(IMPACT),
         *balance_steps(IMPACT),
         Step("Newton's restitution on the normal velocity (the normal component reverses)",
-             sp.latex(restitution)),
+             latex(restitution)),
     ]
     if regime == "stick":
         steps.append(Step(r"No slip at B at the end of the impact: $\mathbf{v}_B^+ \cdot \mathbf{E}_x = 0$",
-                          sp.latex(tangential)))
+                          latex(tangential)))
     else:
         steps.append(Step(
             r"B slides throughout: friction is at its limit $\mu\lvert P_n\rvert$ and opposes the slip "
-            "(σ = sign of the slip velocity of B before impact)", sp.latex(tangential)))
+            "(σ = sign of the slip velocity of B before impact)", latex(tangential)))
     steps.append(Step("Solve the five linear equations",
                       r" ,\quad ".join(latex_eq(k, solved[k]) for k in (v1x, omega1, P_t, P_n))))
     if regime == "stick":

@@ -29,6 +29,7 @@ from .core import (
     Result,
     Solution,
     Step,
+    latex,
     latex_eq,
     relative_tolerance,
     validate_params,
@@ -236,7 +237,7 @@ def derivation(drive: str) -> Derivation:
              r"\quad \boldsymbol{\omega} = \mathbf{0}", part=1),
         Step(r"The wheels' contact points relative to C (1 rear-left, 2 front-left, 3 front-right, 4 rear-right); "
              "from the side, F is the front axle's (wheels 2, 3) and R the rear's (wheels 1, 4)",
-             r",\;".join(rf"\mathbf{{r}}_{i + 1} = {sp.latex(sp.Matrix(w).T)}" for i, w in enumerate(WHEELS))
+             r",\;".join(rf"\mathbf{{r}}_{i + 1} = {latex(sp.Matrix(w).T)}" for i, w in enumerate(WHEELS))
              + r",\quad \mathbf{r}_{F/C} = b\,\mathbf{E}_x - a\,\mathbf{E}_y,\;"
                r"\mathbf{r}_{R/C} = -b\,\mathbf{E}_x - a\,\mathbf{E}_y", part=1),
         *fbd_steps(diagram),
@@ -245,18 +246,18 @@ def derivation(drive: str) -> Derivation:
              r",\quad ".join(latex_eq(k, solved[k]) for k in (xdd, N_front, N_rear))),
         Step(r"The worked solution's route, wheel by wheel in three dimensions, driven wheels pushing with "
              r"$F_i = \mu N_i$. Balance of linear momentum, $\sum\mathbf{F} = m\ddot{x}_C\mathbf{E}_x$ (three components)",
-             r"\\ ".join(sp.latex(eq) for eq in equations[:3])),
+             r"\\ ".join(latex(eq) for eq in equations[:3])),
         Step(r"Balance of angular momentum about C, $\sum\mathbf{M}_C = \mathbf{0}$ (the cart translates)",
-             r"\\ ".join(rf"{names[i]}:\; " + sp.latex(eq) for i, eq in enumerate(equations[3:]))),
+             r"\\ ".join(rf"{names[i]}:\; " + latex(eq) for i, eq in enumerate(equations[3:]))),
         Step("Nine unknowns, six equations: take the lateral forces as zero and the loads symmetric "
              "left to right (the worked solution's assumption)",
              r",\;".join([r"N_{iz} = 0", r"N_1 = N_4 = N_{rear}", r"N_2 = N_3 = N_{front}"])),
         Step("What remains is Step 3's three balance laws (the others hold identically)",
-             r"\\ ".join(sp.latex(eq) for eq in independent)),
+             r"\\ ".join(latex(eq) for eq in independent)),
     ]
     if drive != "front":
         steps.append(Step(r"The front wheels stay down only while $N_\mathrm{front} > 0$",
-                          sp.latex(sp.Gt(solved[N_front], 0)) + r"\iff \mu a < b"))
+                          latex(sp.Gt(solved[N_front], 0)) + r"\iff \mu a < b"))
     chain = [
         Result("N_front", N_front, solved[N_front], "force"),
         Result("N_rear", N_rear, solved[N_rear], "force"),

@@ -27,6 +27,7 @@ from .core import (
     Result,
     Solution,
     Step,
+    latex,
     latex_eq,
     presentable,
     relative_tolerance,
@@ -85,7 +86,7 @@ DIMENSIONS = {p.name: p.dimension for p in PARAMS}
 def _vec_latex(v: sp.Matrix) -> str:
     basis = (r"\mathbf{e}_x", r"\mathbf{e}_y", r"\mathbf{e}_z")
     comps = [sp.factor(sp.expand_trig(sp.simplify(c))) for c in v]
-    terms = [rf"\left({sp.latex(c)}\right){e}" for c, e in zip(comps, basis) if c != 0]
+    terms = [rf"\left({latex(c)}\right){e}" for c, e in zip(comps, basis) if c != 0]
     return " + ".join(terms) if terms else "0"
 
 
@@ -139,7 +140,7 @@ def steady() -> Diagram:
     disk = Body("the disk", points={"G": (sp.Integer(0), sp.Integer(0)), "A": A, "_rim": (-A[0], -A[1])},
                 centre="G", about="G", kinetic=(sp.Integer(0), sp.Integer(0), turning),
                 kinetic_latex=(r"m\,\mathbf{a}_G\cdot\mathbf{e}_y = 0", r"m\,\mathbf{a}_G\cdot\mathbf{E}_z = 0",
-                               r"\dot{\mathbf{H}}_G\cdot\mathbf{e}_x = " + sp.latex(turning)),
+                               r"\dot{\mathbf{H}}_G\cdot\mathbf{e}_x = " + latex(turning)),
                 outline=(Rod(("A", "_rim")),))
     loads = (Load("m g", "the weight", "gravity", "the disk", at="G", direction=(0, -1), size=m * g),
              Load("A", "the table's force", "the table", "the disk", at="A", components=(F_, N_)))
@@ -203,10 +204,10 @@ def derivation() -> Derivation:
         *balance_steps(steady()),
         Step("The force laws: no friction, and the table carries the weight",
              latex_eq(F_, forces[F_]) + r",\quad " + latex_eq(N_, forces[N_])),
-        Step(r"The moment law about G, $\mathbf{e}_x$ component, with $F = 0$ and $N = mg$", sp.latex(moment_eq)
+        Step(r"The moment law about G, $\mathbf{e}_x$ component, with $F = 0$ and $N = mg$", latex(moment_eq)
              + rf"\;\Rightarrow\; {latex_eq(w_p, w_p_shown)}"),
         Step(r"Energy: potential $m g r\sin\theta$ plus kinetic $\tfrac12\boldsymbol\omega\cdot\mathbf{H}_G$ (G at rest)",
-             latex_eq(E, energy) + " = " + sp.latex(energy_closed)),
+             latex_eq(E, energy) + " = " + latex(energy_closed)),
     ]
     chain = [
         Result("omega_p", w_p, w_p_shown, "angular_speed"),

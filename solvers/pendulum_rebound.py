@@ -29,6 +29,7 @@ from .core import (
     Result,
     Solution,
     Step,
+    latex,
     latex_eq,
     presentable,
     relative_tolerance,
@@ -354,7 +355,7 @@ def derivation(sphere: str, surface: str) -> Derivation:
         Step(f"The sphere's point C nearest the {surface} turns about O with the body, "
              r"$\mathbf{v}_C = \dot\theta\,\mathbf{E}_z \times \mathbf{r}_C$: its velocity along the "
              f"{surface}'s normal is proportional to θ̇",
-             r"\mathbf{r}_C = \left(" + sp.latex(contact[0]) + ", " + sp.latex(contact[1]) + r"\right),\quad "
+             r"\mathbf{r}_C = \left(" + latex(contact[0]) + ", " + latex(contact[1]) + r"\right),\quad "
              + latex_eq(sp.Symbol("v_n"), v_n), part=1),
         *fbd_steps(swing_diagram), *fbd_steps(impact_diagram),
         *balance_steps(swing_diagram), *balance_steps(impact_diagram),
@@ -362,11 +363,11 @@ def derivation(sphere: str, surface: str) -> Derivation:
              latex_eq(Q, weight_moment)),
         Step("Work–energy from rest at θ₀: the moment law $\\sum M_O = I_O\\ddot\\theta = -Q\\cos\\theta$, integrated once "
              r"($\ddot\theta\,d\theta = \dot\theta\,d\dot\theta$; gravity is the only force that works, the pin at O does none)",
-             sp.latex(energy)),
+             latex(energy)),
         Step("The sphere touches the " + ("floor: the lowest point of the sphere is a depth d below O"
                                            if surface == "floor" else
                                            "wall when the rod hangs straight down"),
-             sp.latex(touch) + (r"\quad\Rightarrow\quad " + latex_eq(theta_I, impact_angle)
+             latex(touch) + (r"\quad\Rightarrow\quad " + latex_eq(theta_I, impact_angle)
                                  if surface == "floor" else "")),
         Step("Falling (θ decreasing), the root is negative",
              latex_eq(w_minus, falling.subs(theta, theta_I))),
@@ -375,7 +376,7 @@ def derivation(sphere: str, surface: str) -> Derivation:
         Step(f"The {surface}'s impulse, from the angular impulse law about O (the pin's impulse has no moment about O)",
              latex_eq(P_surface, impulse)),
         Step(r"Energy after the bounce up to the highest angle $\theta_f$ ($\dot\theta = 0$ there)",
-             sp.latex(rebound)),
+             latex(rebound)),
         Step("Hence, whatever the masses",
              latex_eq(sp.sin(theta_f) - sp.sin(theta_I), sin_rebound - sp.sin(theta_I))),
     ]

@@ -29,6 +29,7 @@ from .core import (
     Result,
     Solution,
     Step,
+    latex,
     latex_eq,
     presentable,
     relative_tolerance,
@@ -229,9 +230,9 @@ def derivation(disk: str) -> Derivation:
         Step(r"Origin at the pin O; θ from the upward vertical, growing clockwise as the assembly falls; basis "
              r"$\mathbf{E}_x$ horizontal, $\mathbf{E}_y$ up, $\mathbf{E}_z$ out of the page. Centres of mass from O: "
              r"the rod's $G_1$ at L/2 and the disk's $G_2$ at L + R",
-             r"\mathbf{x}_1 = " + sp.latex(x1.T) + r",\quad \mathbf{x}_2 = " + sp.latex(x2.T), part=1),
-        Step("Their velocities, turning about O at θ̇", r"\dot{\mathbf{x}}_1 = " + sp.latex(v1.T)
-             + r",\quad \dot{\mathbf{x}}_2 = " + sp.latex(v2.T), part=1),
+             r"\mathbf{x}_1 = " + latex(x1.T) + r",\quad \mathbf{x}_2 = " + latex(x2.T), part=1),
+        Step("Their velocities, turning about O at θ̇", r"\dot{\mathbf{x}}_1 = " + latex(v1.T)
+             + r",\quad \dot{\mathbf{x}}_2 = " + latex(v2.T), part=1),
         Step("Kinetic energy: translation of each centre plus rotation about it"
              + (" (the disk turns with the rod)" if disk == "welded" else
                 r" (the pinned disk does not rotate: no $\tfrac12 I_G\dot\theta^2$ for it)"),
@@ -242,7 +243,7 @@ def derivation(disk: str) -> Derivation:
         Step("Work of gravity from θ₁ to θ₂: ∫ F·dx for each weight",
              latex_eq(U_g, work_gravity)),
         Step("Work of the torsional spring: its couple ($k\\theta$ about $\\mathbf{E}_z$, $-k\\theta$ in θ's sense) times dθ, integrated",
-             latex_eq(U_s, sp.Integral(spring_moment, (theta, theta1, theta2))) + " = " + sp.latex(work_spring)),
+             latex_eq(U_s, sp.Integral(spring_moment, (theta, theta1, theta2))) + " = " + latex(work_spring)),
         Step(r"Work–energy from rest, $T_2 - 0 = U_g + U_s$: the moment law about O integrated over θ "
              r"($\ddot\theta\,d\theta = \dot\theta\,d\dot\theta$)", latex_eq(T2, U_g + U_s)
              + r"\;\Rightarrow\;" + latex_eq(w2, speed)),

@@ -31,6 +31,7 @@ from .core import (
     Result,
     Solution,
     Step,
+    latex,
     latex_eq,
     latex_number,
     plain_number,
@@ -276,24 +277,24 @@ def _derived() -> tuple[Derivation, dict]:
         Step(r"Origin at the corner O where the wall meets the floor; $\mathbf{E}_x$ along the floor away from the "
              r"wall, $\mathbf{E}_y$ up; θ the ladder's angle from the floor (its anticlockwise rotation is $-\dot\theta$). "
              "Both contacts hold: G moves on a circle of radius L/2 about the corner",
-             r"x_G = " + sp.latex(x_G.subs(q, theta)) + r",\quad y_G = " + sp.latex(y_G.subs(q, theta)), part=1),
+             r"x_G = " + latex(x_G.subs(q, theta)) + r",\quad y_G = " + latex(y_G.subs(q, theta)), part=1),
         *fbd_steps(BOTH_CONTACTS), *fbd_steps(FLOOR_ONLY),
         *balance_steps(BOTH_CONTACTS), *balance_steps(FLOOR_ONLY),
         Step(r"Kinetic energy: G's motion plus the turning about G ($I_G = mL^2/12$); the ladder turns about "
              "its instantaneous centre C, L/2 from G",
-             r"T = \tfrac12 m v_G^2 + \tfrac12 I_G \dot\theta^2 = " + sp.latex(T1)
-             + r" = \tfrac12 I_C \dot\theta^2,\quad I_C = " + sp.latex(I_C)),
+             r"T = \tfrac12 m v_G^2 + \tfrac12 I_G \dot\theta^2 = " + latex(T1)
+             + r" = \tfrac12 I_C \dot\theta^2,\quad I_C = " + latex(I_C)),
         Step("Energy from rest (the smooth wall and floor do no work)",
-             sp.latex(energy1, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate_sq, order="rev-lex")),
+             latex(energy1, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate_sq, order="rev-lex")),
         Step("Its rate of change, d(θ̇²)/dt = 2θ̇θ̈, gives the angular acceleration",
              latex_eq(thetaddot, accel)),
         Step(r"From $\sum F_x$ of Step 3, G on its circle: the wall's push is the only horizontal force, $N_A = m\ddot x_G$",
-             r"N_A = m\,\ddot x_G = " + sp.latex(sp.factor(m * x_acc)) + " = " + sp.latex(wall)),
+             r"N_A = m\,\ddot x_G = " + latex(sp.factor(m * x_acc)) + " = " + latex(wall)),
         Step(r"The floor carries the weight and G's vertical acceleration: $N_B = m(\ddot y_G + g)$",
-             r"N_B = " + sp.latex(floor)),
+             r"N_B = " + latex(floor)),
         Step("Just after release (θ = θ₀, θ̇ = 0)",
              latex_eq(N_A0, wall_0) + r",\quad " + latex_eq(N_B0, floor_0)),
-        Step("The wall cannot pull: the top leaves the wall where $N_A$ reaches zero", r"N_A = 0 \;\Rightarrow\; \sin\theta_\ell = " + sp.latex(leaving_sin)
+        Step("The wall cannot pull: the top leaves the wall where $N_A$ reaches zero", r"N_A = 0 \;\Rightarrow\; \sin\theta_\ell = " + latex(leaving_sin)
              + r",\quad " + latex_eq(w_l, omega_l.subs(th_l, leave_angle).simplify())),
         Step("G's speed away from the wall then (θ̇ < 0 while it falls)",
              latex_eq(v_l, speed_l)),
@@ -301,7 +302,7 @@ def _derived() -> tuple[Derivation, dict]:
              latex_eq(tau_1, time_1, order="rev-lex") + r",\quad t_\ell = \tau_1 \sqrt{L/g}"),
         Step(r"After leaving no horizontal force acts: $\dot x_G$ stays at its value; the foot stays on the floor, "
              r"so $y_G = (L/2)\sin\theta$ still; energy from the moment of leaving",
-             sp.latex(energy2, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate2_sq, order="rev-lex")),
+             latex(energy2, order="rev-lex") + r"\;\Rightarrow\;" + latex_eq(thetadot**2, rate2_sq, order="rev-lex")),
         Step("Flat on the floor, θ = 0", latex_eq(w_f, omega_f)),
         Step("Time from leaving to the floor, in units of √(L/g) with ω̂₂ = |θ̇| √(L/g) from the energy "
              "above (by quadrature)", latex_eq(tau_2, time_2) + r",\quad t_f = t_\ell + \tau_2 \sqrt{L/g}"),

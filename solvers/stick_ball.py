@@ -29,6 +29,7 @@ from .core import (
     Result,
     Solution,
     Step,
+    latex,
     latex_eq,
     relative_tolerance,
     require,
@@ -246,7 +247,7 @@ def derivation(mode: str) -> Derivation:
         T_after = (m_b + m_s) * v_cm**2 / 2 + I_cm * w**2 / 2
         steps = [
             origin,
-            Step("Centre of mass C of stick + ball, measured from the stick's midpoint", sp.latex(cm), part=1),
+            Step("Centre of mass C of stick + ball, measured from the stick's midpoint", latex(cm), part=1),
             Step(r"The ball attaches: after, the two move as one rigid body, C at $v_{cm}\,\mathbf{E}_x$, turning "
                  r"clockwise at ω ($\omega_z = -\omega$); a point at arm y along the stick moves at "
                  r"$v_{cm} + \omega\,(y - d_{cm})$",
@@ -255,15 +256,15 @@ def derivation(mode: str) -> Derivation:
             Step("The two bodies' x laws added: the pair (−J on the ball, J on the stick) cancels, so the "
                  "system's linear momentum is conserved; with the attached velocities (the ω terms cancel: "
                  r"$m_b(s - d_{cm}) = m_s d_{cm}$, C being the combined centre)",
-                 sp.latex(momentum_sum) + r"\;\Rightarrow\;" + sp.latex(momentum) + r"\;\Rightarrow\;"
+                 latex(momentum_sum) + r"\;\Rightarrow\;" + latex(momentum) + r"\;\Rightarrow\;"
                  + latex_eq(v_cm, solved_v)),
             Step("Moment of inertia about the combined CM (parallel-axis theorem for the stick, "
-                 "point mass for the ball)", sp.latex(inertia)),
+                 "point mass for the ball)", latex(inertia)),
             Step("Each body's moment law moved to C (its moment law about its own centre plus "
                  r"$\mathbf{r}_{G/C}\times$ its linear laws) and added: the pair acts at Q, so its moments cancel and "
                  "the angular momentum about C is conserved; before impact only the ball carries it "
                  r"(arm $s - d_{cm}$)",
-                 sp.latex(sp.Eq(moments, ball_k + stick_k, evaluate=False)) + r"\;\Rightarrow\;" + sp.latex(angular)
+                 latex(sp.Eq(moments, ball_k + stick_k, evaluate=False)) + r"\;\Rightarrow\;" + latex(angular)
                  + r"\;\Rightarrow\;" + latex_eq(w, solved_w)),
             Step("Kinetic energy before and after (the impact is perfectly plastic, e = 0)",
                  latex_eq(T_i, T_before) + r",\quad " + latex_eq(T_f, T_after)),
@@ -296,10 +297,10 @@ def derivation(mode: str) -> Derivation:
                  r",\quad ".join(latex_eq(k_, after[k_]) for k_ in (u_b, u_M, omega_z)), part=1),
             *diagrams,
             Step("The two bodies' x laws added: the pair (−J on the ball, J on the stick) cancels, so the "
-                 "system's linear momentum is conserved", sp.latex(momentum_sum)),
+                 "system's linear momentum is conserved", latex(momentum_sum)),
             Step(r"The balance laws with these velocities ($u_b = v_b'$, $u_M = v_s'$, $\omega_z = -\omega$)",
-                 sp.latex(ball) + r",\quad " + sp.latex(stick_lin) + r",\quad " + sp.latex(stick_ang)),
-            Step("Newton's restitution on the normal velocities at the contact point", sp.latex(restitution)),
+                 latex(ball) + r",\quad " + latex(stick_lin) + r",\quad " + latex(stick_ang)),
+            Step("Newton's restitution on the normal velocities at the contact point", latex(restitution)),
             Step("Solve the four linear equations",
                  r",\quad ".join(latex_eq(k, solved[k]) for k in (J, v_b1, v_s1, w))),
             Step("Kinetic energy before and after", latex_eq(T_i, T_before) + r",\quad " + latex_eq(T_f, T_after)),

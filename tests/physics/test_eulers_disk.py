@@ -10,6 +10,7 @@ from hypothesis import given, settings, strategies as st
 from scipy.spatial.transform import Rotation
 
 from solvers import eulers_disk
+from solvers.core import latex
 from solvers.diagram import balance, residuals, resultant
 from tests.strategies import pos
 from tests.drawing import DRAWN, EXAMPLES, figures
@@ -448,4 +449,4 @@ def test_the_derivation_is_in_the_four_steps_and_gets_omega_p_from_the_diagram_s
     law = balance(d, "the disk")[2]
     with_forces = sp.Eq(law.lhs.subs({eulers_disk.F_: 0, eulers_disk.N_: eulers_disk.m * eulers_disk.g}), law.rhs)
     omega_p_step = next(step for step in s.steps if "moment law" in step.title and step.part == 4)
-    assert omega_p_step.latex.startswith(sp.latex(sp.Eq(sp.simplify(with_forces.lhs), with_forces.rhs)))
+    assert omega_p_step.latex.startswith(latex(sp.Eq(sp.simplify(with_forces.lhs), with_forces.rhs)))

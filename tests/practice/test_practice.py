@@ -33,7 +33,7 @@ from tests import strategies
 from tests.pages.test_pages import (answer_section_text, answers_shown, answers_text, derivation_text, derivations_shown,
                               downloads_shown, shown)
 from ui.figure import ANSWERS
-from solvers.core import Answer, Choice
+from solvers.core import Answer, Choice, latex
 from practice.worker import SimplifyWorker
 from practice.method import flat_latex
 
@@ -480,9 +480,9 @@ def leaks(text: str, solution, answers, judge, system: str = "si") -> list[str]:
             if len(digits) >= 2 and number not in givens and re.search(rf"(?<![\d.]){re.escape(number)}(?!\d)", text):
                 found.append(f"{a.name} = {number}")
         closed = judge.derivation.expression_of(a.name)
-        if len(closed.free_symbols) and flat_latex(sp.latex(closed)) in flat:
-            found.append(f"{a.name} as {sp.latex(closed)}")
-        symbol = flat_latex(sp.latex(judge.results[a.name]))
+        if len(closed.free_symbols) and flat_latex(latex(closed)) in flat:
+            found.append(f"{a.name} as {latex(closed)}")
+        symbol = flat_latex(latex(judge.results[a.name]))
         if re.search(rf"{re.escape(symbol)}=", flat):
             found.append(f"{a.name} stated as {symbol} = …")
     return found
@@ -502,10 +502,10 @@ def test_the_leak_check_catches_a_result_stated_by_symbol_or_by_closed_form():
         _, solution, judge, answers = setup(pid, **options)
         for a in answers.values():
             closed = judge.derivation.expression_of(a.name)
-            stated = sp.latex(sp.Eq(judge.results[a.name], closed, evaluate=False))
+            stated = latex(sp.Eq(judge.results[a.name], closed, evaluate=False))
             assert f"{a.name} stated as" in " ".join(leaks(f"$${stated}$$", solution, [a], judge)), (pid, a.name)
             if closed.free_symbols:
-                inequality = rf"$$\\left({sp.latex(closed)}\\right) > 0$$"
+                inequality = rf"$$\\left({latex(closed)}\\right) > 0$$"
                 assert f"{a.name} as" in " ".join(leaks(inequality, solution, [a], judge)), (pid, a.name)
 
 
