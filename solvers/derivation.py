@@ -25,24 +25,22 @@ def _is_mass(factor: sp.Basic) -> bool:
 
 
 def _weight_as_written(product: sp.Basic) -> sp.Basic | None:
-    """A product with g among its factors, g put right after its last mass (m g, m_s g L, not g m, g m_s L):
-    the weight as the free-body diagram labels it and a person writes it; the other factors in sympy's
-    order. None where there is no g, no mass, or g is there already."""
+    """A product with a mass among its factors as a person writes it: the numbers, the masses, g, then the
+    other factors in sympy's order (m g, m L², m_s g L cos θ, not sympy's alphabetical g m, L² m, L g m_s cos θ):
+    the weight as the free-body diagram labels it. None where there is no mass or the order is that already."""
     if not (isinstance(product, sp.Mul) and product.is_commutative):
         return None
     factors = product.as_ordered_factors()
-    g = next((f for f in factors if isinstance(f, sp.Symbol) and f.name == "g"), None)
-    masses = [n for n, f in enumerate(factors) if _is_mass(f)]
-    if g is None or not masses:
+    if not any(_is_mass(f) for f in factors):
         return None
-    rest = [f for f in factors if f is not g]
-    at = max(n for n, f in enumerate(rest) if _is_mass(f)) + 1
-    written = [*rest[:at], g, *rest[at:]]
+    rank = lambda f: (0 if f.is_number else 1 if _is_mass(f)  # noqa: E731
+                      else 2 if isinstance(f, sp.Symbol) and f.name == "g" else 3)
+    written = sorted(factors, key=rank)  # (stable: sympy's order within each kind)
     return None if written == factors else sp.Mul(*written, evaluate=False)
 
 
 class Printer(LatexPrinter):
-    """sympy's LaTeX with the weight written m g (``_weight_as_written``): every derivation step, balance
+    """sympy's LaTeX with a product's masses first and the weight written m g (``_weight_as_written``): every derivation step, balance
     law and numeric template prints through it (``latex``)."""
 
     def __init__(self, settings=None):
@@ -62,7 +60,12 @@ class Printer(LatexPrinter):
             self._settings["order"] = entry
 
     def _as_ordered_terms(self, expr, order=None):
-        return super()._as_ordered_terms(expr, order=order or self._order)
+        entry = self._settings["order"]
+        self._settings["order"] = self._order  # a sum inside a product written as it is: in sympy's order
+        try:
+            return super()._as_ordered_terms(expr, order=order)
+        finally:
+            self._settings["order"] = entry
 
 
 def latex(expr, **settings) -> str:

@@ -1,5 +1,6 @@
 """The derivations written as a person writes the physics (solvers.derivation.latex): the weight reads m g,
-as the free-body diagram labels it, not sympy's alphabetical g m."""
+as the free-body diagram labels it, not sympy's alphabetical g m; a product's masses first (m L², not L² m), a sum
+inside it in sympy's order."""
 from __future__ import annotations
 
 import itertools
@@ -18,8 +19,10 @@ m, g, m_s, L, N_A, theta, mu = sp.symbols("m g m_s L N_A theta mu")
     (-m * g, "- m g"),
     (N_A - g * m_s, "N_{A} - m_{s} g"),
     (3 * g * m / 4, r"\frac{3 m g}{4}"),
-    (-g * m * L * sp.cos(theta) / 2, r"- \frac{L m g \cos{\left(\theta \right)}}{2}"),
+    (-g * m * L * sp.cos(theta) / 2, r"- \frac{m g L \cos{\left(\theta \right)}}{2}"),
     (mu * m * g, r"m g \mu"),
+    (L**2 * m / 3, r"\frac{m L^{2}}{3}"),  # the masses first: m L², not L² m
+    (3 * g * m * (3 * sp.sin(theta) - 2) / 4, r"\frac{3 m g \left(3 \sin{\left(\theta \right)} - 2\right)}{4}"),
     (g / L, r"\frac{g}{L}"),  # no mass: as sympy writes it
     (g * (m + m_s), r"g \left(m + m_{s}\right)"),
 ])
