@@ -315,7 +315,7 @@ def balance_steps(diagram: Diagram) -> tuple[Step, ...]:
         rows = [f"{label} = {latex(total)} = {kin}"
                 for label, total, kin in zip(_sum_labels(diagram, b.about), resultant(diagram, b.name), b.kinetic_latex)]
         about = f", moments about {b.about}"
-        steps.append(Step(f"{law} for {b.name}, from its diagram{about}", r",\quad ".join(rows), part=3))
+        steps.append(Step(f"{diagram.title}: {law} for {b.name}, from its diagram{about}", r",\quad ".join(rows), part=3))
     return tuple(steps)
 
 
