@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 import sympy as sp
-from scipy.integrate import quad, solve_ivp
+from scipy.integrate import odeint, quad, solve_ivp
 
 from .kept import kept_pickled
 from .core import (
@@ -444,37 +444,68 @@ def _horizon_units(closest, xp=math):
     return 100.0 + 10 * xp.log(1 / closest)
 
 
+GRID = 48  # the compiled integrator's output points over a phase's expected length
+RTOL = 1e-12  # (LSODA at 1e-11 put the events 1e-10 off the quadratures; DOP853 had 1e-12)
+
+
 @functools.lru_cache(maxsize=256)
 def integrated(theta_0: float) -> dict:
     """Release to landing by Newton–Euler: phase 1 until N_A = 0 (an event), phase 2 until θ = 0.
-    Returns the leaving and landing states, the start's reactions and the dense solutions."""
-    start = [0.5 * math.cos(theta_0), 0.5 * math.sin(theta_0), theta_0, 0.0, 0.0, 0.0]
+    Returns the leaving and landing states, the start's reactions and each phase as a function of time
+    (``phase1(t)``, ``phase2(t)``: the state at t, or the states at an array of instants, one per column)."""
+    start = np.array([0.5 * math.cos(theta_0), 0.5 * math.sin(theta_0), theta_0, 0.0, 0.0, 0.0])
     closest = min(theta_0, math.pi / 2 - theta_0)
-    tolerances = dict(rtol=1e-11, atol=[1e-13, 1e-13, 1e-13 * closest, 1e-13, 1e-13, 1e-13 * closest],
-                      method="DOP853", dense_output=True)
-
+    atol = np.array([1e-14, 1e-14, 1e-14 * closest, 1e-14, 1e-14, 1e-14 * closest])
     on_wall = _solved_in_closed_form(True)
-
-    def wall_push(_t, y):
-        return on_wall(y[2], y[5])[4]
-    wall_push.terminal, wall_push.direction = True, -1
-
-    def flat(_t, y):
-        return y[2]
-    flat.terminal, flat.direction = True, -1
-
     horizon = _horizon_units(closest)
-    one = solve_ivp(_rates(True), (0.0, horizon), start, events=wall_push, **tolerances)
-    if not one.t_events[0].size:
-        raise RuntimeError("the wall's reaction never reached zero")  # pragma: no cover
-    t1, y1 = float(one.t_events[0][0]), one.y_events[0][0]
-    two = solve_ivp(_rates(False), (t1, t1 + horizon), y1, events=flat, **tolerances)
-    if not two.t_events[0].size:
-        raise RuntimeError("the ladder never landed")  # pragma: no cover
-    t2, y2 = float(two.t_events[0][0]), two.y_events[0][0]
+    expected = time_integrals(theta_0)  # (sizes the work only: the integration alone finds each event)
+    t1, y1 = _until(True, 0.0, start, lambda y: on_wall(y[2], y[5])[4], expected["tau_1"], horizon, atol)
+    t2, y2 = _until(False, t1, y1, lambda y: y[2], expected["tau_2"], horizon, atol)
     first = reactions_and_accelerations(start, True)
     return {"t_leave": t1, "leave": y1, "t_floor": t2, "floor": y2, "N_wall0": first[4], "N_floor0": first[3],
-            "phase1": one.sol, "phase2": two.sol}
+            "phase1": _along(True, (0.0, start), (t1, y1), atol), "phase2": _along(False, (t1, y1), (t2, y2), atol)}
+
+
+def _until(wall: bool, t0: float, y0, ends, expected: float, horizon: float, atol) -> tuple[float, np.ndarray]:
+    """One phase from (t0, y0) until ``ends`` (of the state: positive at the start) falls through zero: the
+    compiled LSODA (odeint) over a grid of GRID instants, the first a little past ``expected``, then as long
+    again, until ``ends`` changes sign between two of them; the crossing itself by DOP853 with the event
+    over that interval. The instant and the state there."""
+    span = 1.05 * expected if 0 < expected < horizon else horizon / 10
+    t_start, y_start = t0, np.asarray(y0, dtype=float)
+    while t_start < t0 + horizon:
+        grid = np.linspace(t_start, min(t_start + span, t0 + horizon), GRID)
+        states = odeint(_rates(wall), y_start, grid, rtol=RTOL, atol=atol, tfirst=True)
+        crossed = next((k for k in range(1, GRID) if ends(states[k]) <= 0), None)
+        if crossed is not None:
+            def event(_t, y):
+                return ends(y)
+            event.terminal, event.direction = True, -1
+            last = solve_ivp(_rates(wall), (grid[crossed - 1], grid[crossed]), states[crossed - 1], events=event,
+                             method="DOP853", rtol=RTOL, atol=atol)
+            if last.t_events[0].size:
+                return float(last.t_events[0][0]), last.y_events[0][0]
+            return float(grid[crossed]), states[crossed]  # (on the grid point itself)
+        t_start, y_start = grid[-1], states[-1]
+    raise RuntimeError("the phase never ended")  # pragma: no cover
+
+
+def _along(wall: bool, begin, end, atol):
+    """The phase from ``begin`` to ``end`` (each an instant and the state there) as a function of time: the
+    state at ``times`` (a number: one state; an array: one state per column, as scipy's dense solutions
+    give them), integrated to them by odeint; at ``end``'s instant, the event's own state (where the top
+    leaves the wall, its push is zero there, not a rounding below it)."""
+    t0, y0 = begin
+
+    def at(times):
+        t = np.atleast_1d(np.asarray(times, dtype=float))
+        order = np.argsort(t, kind="stable")
+        states = odeint(_rates(wall), y0, np.concatenate([[t0], t[order]]), rtol=RTOL, atol=atol, tfirst=True)[1:]
+        out = np.empty_like(states)
+        out[order] = states
+        out[t == end[0]] = end[1]
+        return out.T if np.ndim(times) else out[0]
+    return at
 
 
 # The same two phases integrated in the browser (ui/live.py), in SI, the state (G, θ, their rates) and
