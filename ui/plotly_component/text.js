@@ -35,6 +35,7 @@ const CSS = `
 .dl-text .dl-good { color: var(--st-green-text-color, #0C5A44); }
 .dl-text .dl-bad { color: var(--st-red-text-color, #9E303B); }
 .dl-text .dl-changes { color: var(--st-orange-text-color, #9B4519); }
+.dl-text .dl-nowrap { white-space: nowrap; }
 .dl-text .dl-mark { display: inline-block; min-width: 1.1em; text-align: center; font-weight: 700; margin-right: 0.2em; }
 /* The course's four steps, and the free-body diagrams drawn at the head of Step 2 (server-made SVG). */
 .dl-text h4.dl-part { font-size: 1.2rem; padding: 0.5rem 0 0.6rem 0; }
@@ -109,11 +110,20 @@ function inline(katex, text, into, marks = false) {
   const parts = marks ? /\$([^$]+)\$|\*\*([^*]+)\*\*|\*([^*\s][^*]*)\*/g : /\$([^$]+)\$/g;
   let at = 0;
   for (const m of text.matchAll(parts)) {
-    into.append(text.slice(at, m.index));
+    const before = text.slice(at, m.index);
+    // an opening bracket stays on the line of the symbol it opens ("(mg, a force…", not "(" / "mg")
+    const opener = m[1] !== undefined && /[(\[]$/.test(before) ? before.slice(-1) : "";
+    into.append(before.slice(0, before.length - opener.length));
     if (m[1] !== undefined) {
       const span = make("span");
       span.innerHTML = html(katex, m[1], false);
-      into.append(span);
+      if (opener) {
+        const kept = make("span", "dl-nowrap", opener);
+        kept.append(span);
+        into.append(kept);
+      } else {
+        into.append(span);
+      }
     } else {
       into.append(make(m[2] !== undefined ? "strong" : "em", "", m[2] ?? m[3]));
     }
