@@ -20,7 +20,7 @@ sys.path.insert(0, str(ROOT))
 
 
 def measure(pid: str, changes: int) -> dict[str, float]:
-    from bench.controls import changes_of, lesson_control
+    from bench.controls import changes_of, first_number
     from solvers import units
     from solvers.catalog import BY_ID
     from ui import live, page, results
@@ -28,9 +28,8 @@ def measure(pid: str, changes: int) -> dict[str, float]:
 
     problem = BY_ID[pid]
     solver = problem.solver
-    key, _, _, _ = lesson_control(pid)
-    name = key.split("__si__")[1]
-    dimension = {p.name: p for p in solver.PARAMS}[name].dimension
+    control = first_number(pid)  # the lesson control bench/change_cost.py moves
+    name = control.name
     base = solver.solve().params
     spent: dict[str, list[float]] = {}
 
@@ -41,7 +40,7 @@ def measure(pid: str, changes: int) -> dict[str, float]:
         return out
 
     for shown in changes_of(pid, changes):
-        value = units.to_si(shown, dimension)
+        value = units.to_si(shown, control.dimension)
         value += 1e-9 * (base[name] - value)  # off the slider's grid (no state warmed at start), inside its range
         solution = timed("solve", lambda: solver.solve(**{**base, name: value}))
         figures = timed("figures", lambda: drawings(pid).figures(solution, "si", in_browser=True))

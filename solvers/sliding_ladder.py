@@ -471,17 +471,18 @@ def _until(wall: bool, t0: float, y0, ends, expected: float, horizon: float, ato
     compiled LSODA (odeint) over a grid of GRID instants, the first a little past ``expected``, then as long
     again, until ``ends`` changes sign between two of them; the crossing itself by DOP853 with the event
     over that interval. The instant and the state there."""
+    rates = _rates(wall)
     span = 1.05 * expected if 0 < expected < horizon else horizon / 10
     t_start, y_start = t0, np.asarray(y0, dtype=float)
     while t_start < t0 + horizon:
         grid = np.linspace(t_start, min(t_start + span, t0 + horizon), GRID)
-        states = odeint(_rates(wall), y_start, grid, rtol=RTOL, atol=atol, tfirst=True)
+        states = odeint(rates, y_start, grid, rtol=RTOL, atol=atol, tfirst=True)
         crossed = next((k for k in range(1, GRID) if ends(states[k]) <= 0), None)
         if crossed is not None:
             def event(_t, y):
                 return ends(y)
             event.terminal, event.direction = True, -1
-            last = solve_ivp(_rates(wall), (grid[crossed - 1], grid[crossed]), states[crossed - 1], events=event,
+            last = solve_ivp(rates, (grid[crossed - 1], grid[crossed]), states[crossed - 1], events=event,
                              method="DOP853", rtol=RTOL, atol=atol)
             if last.t_events[0].size:
                 return float(last.t_events[0][0]), last.y_events[0][0]
@@ -496,11 +497,12 @@ def _along(wall: bool, begin, end, atol):
     give them), integrated to them by odeint; at ``end``'s instant, the event's own state (where the top
     leaves the wall, its push is zero there, not a rounding below it)."""
     t0, y0 = begin
+    rates = _rates(wall)
 
     def at(times):
         t = np.atleast_1d(np.asarray(times, dtype=float))
         order = np.argsort(t, kind="stable")
-        states = odeint(_rates(wall), y0, np.concatenate([[t0], t[order]]), rtol=RTOL, atol=atol, tfirst=True)[1:]
+        states = odeint(rates, y0, np.concatenate([[t0], t[order]]), rtol=RTOL, atol=atol, tfirst=True)[1:]
         out = np.empty_like(states)
         out[order] = states
         out[t == end[0]] = end[1]
@@ -643,7 +645,7 @@ def _sampled(theta_0: float) -> tuple:
     # is its values, its first instant and its step: viz/sliding_ladder.py sends no instants)
     held = min(max(2, round(CURVE_POINTS * t1 / t2)), CURVE_POINTS - 1)
     curve_t = np.concatenate([np.linspace(0.0, t1, held), np.linspace(t1, t2, CURVE_POINTS - held + 1)[1:]])
-    # both sets of instants in one evaluation of each phase's dense solution (most of the time is per call)
+    # both sets of instants in one integration of each phase (``integrated``'s phase1, phase2)
     times = np.concatenate([frames, curve_t])
     on_wall = times <= t1
     states, walls, floors = np.empty((len(times), 6)), np.zeros(len(times)), np.empty(len(times))
