@@ -40,7 +40,7 @@ from .core import (
 from .diagram import Body, DiagramSlip, Circle, Diagram, Load, Rod, balance, balance_steps, fbd_steps
 from .live import Case, Integrated, Leg as Phase, Live, Stops, frame_instants
 from .protocol import About, Mistake, Variants
-from .swing import Leg, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg, slope
+from .swing import Leg, crossing_time, drawn_to_turn, hermite_on_knots, integrate_leg, quintic, slope
 
 ABOUT = About(
     title="Rod and disk on a torsional spring",
@@ -534,7 +534,10 @@ def motion(solution: Solution) -> dict:
     def reaches(angle, lo, hi):  # when the fall (θ increasing) reaches ``angle``, between lo and hi: on its knots' interval
         i = int(np.searchsorted(angles, angle))  # (the fall's angles increase)
         lo, hi = max(lo, knots[max(i - 1, 0)]), min(hi, knots[min(i, len(knots) - 1)])
-        return brentq(lambda t: float(on_half([t])[0][0]) - angle, lo, hi, xtol=1e-13)
+        j = min(max(i - 1, 0), len(knots) - 2)  # that interval's quintic, in numbers
+        t0, h = float(knots[j]), float(knots[j + 1] - knots[j])
+        ends = [float(v) for v in (angles[j], angles[j + 1], rates[j], rates[j + 1], accelerations[j], accelerations[j + 1])]
+        return brentq(lambda t: quintic((t - t0) / h, h, *ends)[0] - angle, lo, hi, xtol=1e-13)
     t_start = reaches(p["theta1"] + _visible(p), 0.0, t_2)
     t_turn = half.t[-1]
     over = bool(half.theta[-1] == _upright_again(p))  # round near upright: the legs end where the frames do
