@@ -19,6 +19,7 @@ import re
 from pathlib import Path
 
 import pytest
+from playwright.sync_api import expect
 
 from assignments import records, signing
 from scripts.live_app import wait_until_idle
@@ -393,9 +394,9 @@ def test_named_slips_says_why_it_cannot_be_changed_while_hints_are_on(browser, c
     reason.scroll_into_view_if_needed()
     assert reason.is_visible()
     new.get_by_text("Hints: a known slip is named", exact=False).click()
-    wait_until_idle(page)
-    assert not new.get_by_role("checkbox", name=re.compile("^Named slips")).is_disabled()
-    assert new.get_by_text("Hints on already name the slip", exact=False).count() == 0
+    # (waited for, not read at once: the run the click starts may not have begun when the page is idle again)
+    expect(new.get_by_role("checkbox", name=re.compile("^Named slips"))).to_be_enabled(timeout=30_000)
+    expect(new.get_by_text("Hints on already name the slip", exact=False)).to_have_count(0)
     assert not errors
     context.close()
 
