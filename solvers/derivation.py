@@ -40,8 +40,9 @@ def _weight_as_written(product: sp.Basic) -> sp.Basic | None:
 
 
 class Printer(LatexPrinter):
-    """sympy's LaTeX with a product's masses first and the weight written m g (``_weight_as_written``): every derivation step, balance
-    law and numeric template prints through it (``latex``)."""
+    """sympy's LaTeX with a product's masses first and the weight written m g (``_weight_as_written``), and a
+    difference of two terms with its positive term first: every derivation step, balance law and numeric template
+    prints through it (``latex``)."""
 
     def __init__(self, settings=None):
         super().__init__(settings)
@@ -63,9 +64,13 @@ class Printer(LatexPrinter):
         entry = self._settings["order"]
         self._settings["order"] = self._order  # a sum inside a product written as it is: in sympy's order
         try:
-            return super()._as_ordered_terms(expr, order=order)
+            terms = super()._as_ordered_terms(expr, order=order)
         finally:
             self._settings["order"] = entry
+        if (isinstance(expr, sp.Add) and len(terms) == 2 and terms[0].could_extract_minus_sign()
+                and not terms[1].could_extract_minus_sign()):
+            return [terms[1], terms[0]]  # a difference as a person writes it: s − d_cm, not −d_cm + s
+        return terms
 
 
 def latex(expr, **settings) -> str:

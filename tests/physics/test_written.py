@@ -26,6 +26,9 @@ m, g, m_s, L, N_A, theta, mu = sp.symbols("m g m_s L N_A theta mu")
     (3 * g * m * (3 * sp.sin(theta) - 2) / 4, r"\frac{3 m g \left(3 \sin{\left(\theta \right)} - 2\right)}{4}"),
     (g / L, r"\frac{g}{L}"),  # no mass: as sympy writes it
     (g * (m + m_s), r"g \left(m + m_{s}\right)"),
+    (m_s * (sp.Symbol("s") - sp.Symbol("d")) ** 2, r"m_{s} \left(s - d\right)^{2}"),  # a difference: its positive term first
+    (sp.sin(theta) - sp.sin(mu), r"\sin{\left(\theta \right)} - \sin{\left(\mu \right)}"),
+    (-L - N_A, r"- L - N_{A}"),  # (nothing positive to put first)
 ])
 def test_the_weight_is_written_m_g(expr, written):
     assert latex(expr) == written
