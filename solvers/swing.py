@@ -82,18 +82,15 @@ def hermite_on_knots(t: np.ndarray, y: np.ndarray, dy: np.ndarray, times: np.nda
 def quintic(s, h, y0, y1, d0, d1, dd0, dd1):
     """(value, d/dt) of the quintic through (y, y', y'') at both ends of an interval of length ``h``, at the
     fraction ``s`` of it: numbers or arrays alike (one interval's scalars cost a root finder microseconds,
-    where a whole-array evaluation per call cost it tenths of a millisecond)."""
+    where a whole-array evaluation per call cost it tenths of a millisecond). In powers of ``s`` by Horner's
+    rule: y0 + h d0 s + a0 s²/2 + c3 s³ + c4 s⁴ + c5 s⁵, with a = y'' h² and c3…c5 fixed by the end's y, y', y''."""
     a0, a1 = dd0 * h**2, dd1 * h**2
-    s2 = s * s
-    s3 = s2 * s
-    s4 = s3 * s
-    s5 = s4 * s
-    value = ((1 - 10 * s3 + 15 * s4 - 6 * s5) * y0 + (s - 6 * s3 + 8 * s4 - 3 * s5) * h * d0
-             + (s2 - 3 * s3 + 3 * s4 - s5) / 2 * a0 + (s3 - 2 * s4 + s5) / 2 * a1
-             + (-4 * s3 + 7 * s4 - 3 * s5) * h * d1 + (10 * s3 - 15 * s4 + 6 * s5) * y1)
-    rate = ((-30 * s2 + 60 * s3 - 30 * s4) * (y0 - y1) / h + (1 - 18 * s2 + 32 * s3 - 15 * s4) * d0
-            + (2 * s - 9 * s2 + 12 * s3 - 5 * s4) / 2 * a0 / h + (3 * s2 - 8 * s3 + 5 * s4) / 2 * a1 / h
-            + (-12 * s2 + 28 * s3 - 15 * s4) * d1)
+    rise, slope0, slope1 = y1 - y0, h * d0, h * d1
+    c3 = 10 * rise - 6 * slope0 - 4 * slope1 - (3 * a0 - a1) / 2
+    c4 = -15 * rise + 8 * slope0 + 7 * slope1 + (3 * a0 - 2 * a1) / 2
+    c5 = 6 * rise - 3 * (slope0 + slope1) - (a0 - a1) / 2
+    value = y0 + s * (slope0 + s * (a0 / 2 + s * (c3 + s * (c4 + s * c5))))
+    rate = (slope0 + s * (a0 + s * (3 * c3 + s * (4 * c4 + s * (5 * c5))))) / h
     return value, rate
 
 
