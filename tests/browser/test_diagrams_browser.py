@@ -1,7 +1,8 @@
 """A derivation as a person meets it, in Debian's Chromium: every page at a laptop's, a projector's (the
 lecture view: labels in projector type) and a phone's size, visited once per size for both of its pictures:
 - Step 2's free-body diagrams: no label on another or outside its picture, the picture inside the column, a
-  text alternative for a screen reader, nothing serious for axe-core;
+  text alternative for a screen reader, nothing serious for axe-core; two diagrams side by side where the
+  column holds both (the ladder's), none on another;
 - every display equation whole (none cut above or below), and none set smaller or scrolling sideways where
   the width gives room.
 One server and one browser serve the module (tests/conftest.py)."""
@@ -77,6 +78,12 @@ def test_every_page_draws_its_diagrams_legibly_and_its_equations_whole(browser, 
                 if size == "projector":  # the back row: load labels in projector type
                     heights = [t[4] - t[2] for t in texts]
                     assert max(heights) >= 18, (pid, heights)
+            # a page's diagrams (the ladder's two) apart, and side by side where the column holds them
+            boxes = [d["svg"] for d in drawn]
+            assert not [(i, j) for i, a in enumerate(boxes) for j, b in enumerate(boxes[:i]) if _overlap(a, b)], (pid, size)
+            column = drawn[0]["column"]
+            if size == "laptop" and sum(b[2] - b[0] + 40 for b in boxes) <= column[2] - column[0]:
+                assert len({round(b[1]) for b in boxes}) == 1, (pid, size, "stacked with room beside", boxes)
             if n == 0 or size == "phone" and pid == "stick_ball":
                 assert serious_violations(page) == [], (pid, size)
             _equations_whole(page, pid, size)

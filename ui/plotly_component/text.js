@@ -243,6 +243,10 @@ class Derivation {
         for (const [svg, caption] of d.diagrams || []) {  // (the text alternative: the SVG's aria-label)
           const fig = make("figure", "dl-fbd-figure");
           fig.innerHTML = svg;
+          // as wide as its drawing may grow (the SVG's own max-width), so two diagrams stand side by side where
+          // the column holds both (the ladder's, against the wall and after leaving it), not one under the other
+          const grows = fig.firstElementChild && fig.firstElementChild.style.maxWidth;
+          if (grows) fig.style.maxWidth = grows;
           fig.append(make("figcaption", "", caption));
           before.append(fig);
         }
