@@ -39,16 +39,35 @@ def _weight_as_written(product: sp.Basic) -> sp.Basic | None:
     return None if written == factors else sp.Mul(*written, evaluate=False)
 
 
+def _roots_together(product: sp.Basic) -> sp.Basic | None:
+    """A product's square roots under one root sign, as a person writes it: √(2 T₂ / I_O), not sympy's
+    √2 √(T₂/I_O); √(3 g (sin θ₀ − sin θ) / L), not √3 √g √(…) / √L (which, with the numbers put in, read
+    √4 for L). None where the product has fewer than two."""
+    if not isinstance(product, sp.Mul):
+        return None
+    roots = [f for f in product.args if f.is_Pow and f.exp in (sp.S.Half, -sp.S.Half)]
+    if len(roots) < 2:
+        return None
+    rest = list(product.args)
+    for root in roots:
+        rest.remove(root)
+    inside = sp.Mul(*(root.base if root.exp > 0 else 1 / root.base for root in roots))
+    return sp.Mul(*rest, sp.Pow(inside, sp.S.Half, evaluate=False), evaluate=False)
+
+
 class Printer(LatexPrinter):
-    """sympy's LaTeX with a product's masses first and the weight written m g (``_weight_as_written``), and a
-    difference of two terms with its positive term first: every derivation step, balance law and numeric template
-    prints through it (``latex``)."""
+    """sympy's LaTeX with a product's masses first and the weight written m g (``_weight_as_written``), its
+    square roots under one sign (``_roots_together``), and a difference of two terms with its positive term
+    first: every derivation step, balance law and numeric template prints through it (``latex``)."""
 
     def __init__(self, settings=None):
         super().__init__(settings)
         self._order = self._settings["order"]
 
     def _print_Mul(self, expr):
+        together = _roots_together(expr)
+        if together is not None:
+            return self._print(together)
         if expr.could_extract_minus_sign() and _weight_as_written(-expr) is not None:
             return "- " + self._print(-expr)  # (as sympy writes a negative product: its sign, then the rest)
         written = _weight_as_written(expr)

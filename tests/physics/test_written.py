@@ -29,6 +29,9 @@ m, g, m_s, L, N_A, theta, mu = sp.symbols("m g m_s L N_A theta mu")
     (m_s * (sp.Symbol("s") - sp.Symbol("d")) ** 2, r"m_{s} \left(s - d\right)^{2}"),  # a difference: its positive term first
     (sp.sin(theta) - sp.sin(mu), r"\sin{\left(\theta \right)} - \sin{\left(\mu \right)}"),
     (-L - N_A, r"- L - N_{A}"),  # (nothing positive to put first)
+    (sp.sqrt(2 * m / L), r"\sqrt{\frac{2 m}{L}}"),  # one root, not sympy's √2 √(m/L)
+    (-sp.sqrt(3 * g * sp.sin(theta) / L), r"- \sqrt{\frac{3 g \sin{\left(\theta \right)}}{L}}"),
+    (mu * sp.sqrt(L / g), r"\mu \sqrt{\frac{L}{g}}"),
 ])
 def test_the_weight_is_written_m_g(expr, written):
     assert latex(expr) == written
@@ -70,3 +73,13 @@ def test_a_word_subscript_is_upright(problem):
 def test_an_italic_word_subscript_is_seen():
     assert ITALIC_WORD.search("N_2 = N_3 = N_{front}") and ITALIC_WORD.search("v_{cm} + \\omega")
     assert not ITALIC_WORD.search(r"N_\mathrm{front} = N_{\mathrm{rear}},\ N_{iz} = 0,\ v_{Gx}")
+
+
+# two roots side by side in a product: sympy's √2 √(T₂/I_O), or with numbers √3 · √9.81 · … / √4
+TWO_ROOTS = re.compile(r"\\sqrt\{(?:[^{}]|\{[^{}]*\})*\}\s*(?:\\cdot\s*)?\\sqrt")
+
+
+@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
+def test_a_product_s_square_roots_stand_under_one_sign(problem):
+    assert [t for t in _written(problem) if TWO_ROOTS.search(t)] == []
+    assert TWO_ROOTS.search(r"\sqrt{2} \sqrt{\frac{T_{2}}{I_{O}}}") and TWO_ROOTS.search(r"\sqrt{3} \cdot \sqrt{9.81}")
