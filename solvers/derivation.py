@@ -42,11 +42,16 @@ def _weight_as_written(product: sp.Basic) -> sp.Basic | None:
 def _roots_together(product: sp.Basic) -> sp.Basic | None:
     """A product's square roots under one root sign, as a person writes it: √(2 T₂ / I_O), not sympy's
     √2 √(T₂/I_O); √(3 g (sin θ₀ − sin θ) / L), not √3 √g √(…) / √L (which, with the numbers put in, read
-    √4 for L). None where the product has fewer than two."""
+    √4 for L). None where the product has fewer than two, or where joining them could change its value:
+    √a √b = √(ab) needs at most one of a, b negative, and 1/√b = √(1/b) needs b positive (sympy's assumptions
+    on the symbols say so)."""
     if not isinstance(product, sp.Mul):
         return None
     roots = [f for f in product.args if f.is_Pow and f.exp in (sp.S.Half, -sp.S.Half)]
     if len(roots) < 2:
+        return None
+    if (any(root.exp < 0 and not root.base.is_positive for root in roots)
+            or sum(1 for root in roots if root.exp > 0 and not root.base.is_nonnegative) > 1):
         return None
     rest = list(product.args)
     for root in roots:

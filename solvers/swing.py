@@ -72,7 +72,9 @@ def hermite_on_knots(t: np.ndarray, y: np.ndarray, dy: np.ndarray, times: np.nda
     s = (times - t[i]) / h
     y0, y1, d0, d1 = y[i], y[i + 1], dy[i], dy[i + 1]
     if ddy is not None:
-        return quintic(s, h, y0, y1, d0, d1, ddy[i], ddy[i + 1])
+        value, rate = quintic(s, h, y0, y1, d0, d1, ddy[i], ddy[i + 1])
+        end = s == 1  # (the last knot: its own state, not Horner's rounding of it)
+        return np.where(end, y1, value), np.where(end, d1, rate)
     h00, h10, h01, h11 = _hermite_basis(s)
     value = h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1
     rate = (6 * s**2 - 6 * s) * (y0 - y1) / h + (3 * s**2 - 4 * s + 1) * d0 + (3 * s**2 - 2 * s) * d1  # d/dt of value

@@ -75,11 +75,25 @@ def test_an_italic_word_subscript_is_seen():
     assert not ITALIC_WORD.search(r"N_\mathrm{front} = N_{\mathrm{rear}},\ N_{iz} = 0,\ v_{Gx}")
 
 
-# two roots side by side in a product: sympy's √2 √(T₂/I_O), or with numbers √3 · √9.81 · … / √4
-TWO_ROOTS = re.compile(r"\\sqrt\{(?:[^{}]|\{[^{}]*\})*\}\s*(?:\\cdot\s*)?\\sqrt")
+# two roots side by side in a product (sympy's √2 √(T₂/I_O), or with numbers √3 · √9.81 · …), or one over another
+# (√3 √g / √L; with the numbers, … / √4)
+TWO_ROOTS = re.compile(r"\\sqrt(?:\[[^\]]*\])?\{(?:[^{}]|\{(?:[^{}]|\{[^{}]*\})*\})*\}\s*(?:\\cdot\s*)?\\sqrt"
+                       r"|\\frac\{[^{}]*\\sqrt(?:[^{}]|\{(?:[^{}]|\{[^{}]*\})*\})*\}\{\\sqrt")
 
 
 @pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
 def test_a_product_s_square_roots_stand_under_one_sign(problem):
     assert [t for t in _written(problem) if TWO_ROOTS.search(t)] == []
     assert TWO_ROOTS.search(r"\sqrt{2} \sqrt{\frac{T_{2}}{I_{O}}}") and TWO_ROOTS.search(r"\sqrt{3} \cdot \sqrt{9.81}")
+    assert TWO_ROOTS.search(r"\sqrt{\frac{T_{2}}{I_{O}}} \sqrt{2}") and TWO_ROOTS.search(r"\frac{\sqrt{L}}{\sqrt{g}}")
+    assert not TWO_ROOTS.search(r"\sqrt{\frac{2 T_{2}}{I_{O}}} = \frac{4}{\sqrt{9.81}}")
+
+
+def test_roots_are_joined_only_where_that_keeps_the_value():
+    """√a √b = √(ab) where a or b is not negative, 1/√b = √(1/b) where b is positive: else as sympy writes them."""
+    Lp, gp = sp.symbols("L g", positive=True)
+    x, y = sp.symbols("x y", real=True)
+    assert latex(sp.sqrt(Lp / gp)) == r"\sqrt{\frac{L}{g}}"  # (sympy: √L / √g)
+    assert latex(sp.sqrt(x) * sp.sqrt(y)) == r"\sqrt{x} \sqrt{y}"  # both may be negative: √x √y ≠ √(xy)
+    assert latex(sp.sqrt(x) / sp.sqrt(Lp)) == r"\sqrt{\frac{x}{L}}"
+    assert latex(sp.sqrt(Lp) / sp.sqrt(x)) == r"\frac{\sqrt{L}}{\sqrt{x}}"  # x may be negative: kept apart
