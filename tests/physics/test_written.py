@@ -39,11 +39,16 @@ def test_the_weight_is_written_m_g(expr, written):
 G_BEFORE_MASS = re.compile(r"(?<![A-Za-z\\])g\s*(?:\\cdot\s*)?m(?:_|\b)")
 
 
-@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
-def test_no_step_of_any_derivation_writes_g_before_a_mass(problem):
+def _solutions(problem):
+    """The problem solved at its defaults for each combination of its options: (the combination, the solution)."""
     choices = [p for p in problem.solver.PARAMS if isinstance(p, Choice)]
     for combination in itertools.product(*(c.options for c in choices)):
-        solution = problem.solver.solve(**dict(zip((c.name for c in choices), combination)))
+        yield combination, problem.solver.solve(**dict(zip((c.name for c in choices), combination)))
+
+
+@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
+def test_no_step_of_any_derivation_writes_g_before_a_mass(problem):
+    for combination, solution in _solutions(problem):
         for step in solution.steps:
             assert not G_BEFORE_MASS.search(step.latex), (problem.id, combination, step.title, step.latex)
 
@@ -51,10 +56,8 @@ def test_no_step_of_any_derivation_writes_g_before_a_mass(problem):
 def _written(problem):
     """Every text of a problem's page in LaTeX, for each of its options: the steps and their titles, the answers'
     symbols, the checks' names, the worked solution's slips."""
-    choices = [p for p in problem.solver.PARAMS if isinstance(p, Choice)]
     texts = [*problem.solver.ERRATA]
-    for combination in itertools.product(*(c.options for c in choices)):
-        solution = problem.solver.solve(**dict(zip((c.name for c in choices), combination)))
+    for _, solution in _solutions(problem):
         texts += [t for step in solution.steps for t in (step.title, step.latex)]
         texts += [a.symbol for a in problem.answers_of(solution)] + [c.name for c in solution.checks]
     return texts
