@@ -21,6 +21,7 @@ import re
 # 360 px phone's content box (328 px) holds 18.8 em at the phone font size of the derivation
 # (ui/stylesheet.py PHONE_CSS); the estimate runs up to 15 % short of KaTeX's real layout.
 PHONE_WIDTH_EM = 16.0
+PHONE_BOX_EM = 18.8  # (that content box: what a row, as estimated, must never exceed)
 # The width a row may take where the column is wide (a laptop, a projector): a step whose phone rows
 # include one set smaller (below) is sent broken at this width too, and the page takes that where its
 # column holds it (ui/plotly_component/text.js), so a laptop draws it at full size.
@@ -38,6 +39,8 @@ _ARROWS = {r"\Rightarrow", r"\implies", r"\Longrightarrow"}
 # Tokens that open and close a group: a row cannot end inside one.
 _DEPTH = {"{": 1, "}": -1, r"\left": 1, r"\right": -1, r"\begin": 1, r"\end": -1}
 _BIG = {r"\frac": 1.0, r"\dfrac": 1.0, r"\tfrac": 0.75}
+# Upright letters (a word subscript, N_{\mathrm{front}}; a unit): the command itself takes no room.
+_FONTS = {r"\mathrm"}
 _FUNCTIONS = {r"\sin", r"\cos", r"\tan", r"\asin", r"\acos", r"\atan", r"\sqrt", r"\log", r"\ln", r"\exp"}
 
 
@@ -126,6 +129,8 @@ def _glyph(t: str) -> float:
         return 0.75
     if t in _FUNCTIONS:
         return 0.5 * (len(t) - 1) + 0.2
+    if t in _FONTS:  # a font for the group that follows, which is measured as its glyphs
+        return 0.0
     if t.startswith("\\"):
         return 0.7 if len(t) > 2 else 0.3
     return 0.55
@@ -343,8 +348,41 @@ def broken(latex: str, limit: float = PHONE_WIDTH_EM) -> str:
 def _broken(latex: str, limit: float) -> str:
     if width(tokens(latex)) <= limit:
         return latex
+    shown = _aligned(latex, limit)
+    # A row in the second column starts after the first column's widest cell (another clause's left-hand
+    # side): where that takes the block past what even an exact estimate would fit, its rows are broken
+    # again to the room left beside that column.
+    for _ in range(3):
+        if laid_out_width(shown) <= limit * PHONE_BOX_EM / PHONE_WIDTH_EM:
+            break
+        shown = _aligned(latex, limit - _columns(shown)[0])
+    return shown
+
+
+def _aligned(latex: str, limit: float) -> str:
+    """The step's clauses as aligned rows, each at most ``limit`` em (set smaller where it cannot be split)."""
     rows = [row for connective, clause in _clauses(latex) for row in _rows_of_clause(connective, clause, limit)]
     return r"\begin{aligned}" + r" \\ ".join(_scaled(row, limit) for row in rows) + r"\end{aligned}"
+
+
+def laid_out_width(latex: str) -> float:
+    """Estimated width in em of a step as shown: an aligned block as wide as its widest cell in each
+    column together (a row that starts in the second column starts after the first column's widest cell),
+    a cell set smaller (``_scaled``) at its size."""
+    return sum(_columns(latex))
+
+
+def _columns(latex: str) -> list[float]:
+    """The estimated width of each column of an aligned block (its widest cell); a step not in rows, one column."""
+    if not latex.startswith(r"\begin{aligned}"):
+        return [width(tokens(latex))]
+    inner = latex.removeprefix(r"\begin{aligned}").removesuffix(r"\end{aligned}")
+    columns: dict[int, float] = {}
+    for row in _split(tokens(inner), {r"\\"}):
+        for n, cell in enumerate(_split(row, {"&"})):
+            factor = next((f for f, name in _SIZES if cell[:1] == [name]), 1.0)
+            columns[n] = max(columns.get(n, 0.0), factor * width(cell[1:] if factor < 1 else cell))
+    return list(columns.values())
 
 
 def wide_too(latex: str) -> list[str]:
