@@ -143,11 +143,13 @@ def _no_numbers_side_by_side(text: str, tokens: list[Token]) -> None:
 
 def _symbol_table(allowed_symbols: Iterable[sp.Symbol]) -> dict[str, sp.Symbol]:
     """Names a student may type for each symbol: its own name, with Greek names also as letters
-    (theta_0 and θ_0 and θ0), and without underscores or braces (v_{1x}, v_1x, v1x)."""
+    (theta_0 and θ_0 and θ0), and without underscores or braces (v_{1x}, v_1x, v1x); a word set upright
+    is typed as the word (d_cm for d_{\\mathrm{cm}})."""
     table: dict[str, sp.Symbol] = {}
     for symbol in allowed_symbols:
         name = symbol.name
-        plain = re.sub(r"[{}\\]", "", name)  # v_{1x} -> v_1x, \Delta T -> DeltaT
+        plain = re.sub(r"\\mathrm\{([^{}]*)\}", r"\1", name)  # (the type is not in the name a student types)
+        plain = re.sub(r"[{}\\]", "", plain)  # v_{1x} -> v_1x, \Delta T -> DeltaT
         plain = plain.replace(" ", "")
         spellings = {name, plain, plain.replace("_", "")}
         for spelling in list(spellings):

@@ -71,7 +71,7 @@ ANSWERS = (
 
 ERRATA = (
     r"In the worked solution, the driven wheels 2 and 3 (at $+b$) are the front, yet the line "
-    r"“$N_1 = N_4 = N_{front}$, $N_2 = N_3 = N_{rear}$” swaps the names; its equations (7)–(10) "
+    r"“$N_1 = N_4 = N_\mathrm{front}$, $N_2 = N_3 = N_\mathrm{rear}$” swaps the names; its equations (7)–(10) "
     r"and boxed results are right. Accelerating moves load to the **rear** axle, so driven front "
     r"wheels are the *unloaded* ones.",
     r"The worked solution's moment sum drops the traction's yaw term $c\mu(N_2 - N_3)$; it cancels by the "
@@ -82,7 +82,7 @@ m, a, b, c, mu, g = sp.symbols("m a b c mu g", positive=True)
 xdd = sp.Symbol(r"\ddot{x}_C", real=True)
 N = sp.symbols("N_1 N_2 N_3 N_4", real=True)
 Nz = sp.symbols("N_{1z} N_{2z} N_{3z} N_{4z}", real=True)
-N_front, N_rear, F_drive = sp.symbols(r"N_{front} N_{rear} F_{drive}", real=True)
+N_front, N_rear, F_drive = sp.symbols(r"N_{\mathrm{front}} N_{\mathrm{rear}} F_{\mathrm{drive}}", real=True)  # (words: upright)
 SYMBOLS = {"m": m, "a": a, "b": b, "c": c, "mu": mu, "g": g}
 DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
 
@@ -251,7 +251,7 @@ def derivation(drive: str) -> Derivation:
              r"\\ ".join(rf"{names[i]}:\; " + latex(eq) for i, eq in enumerate(equations[3:]))),
         Step("Nine unknowns, six equations: take the lateral forces as zero and the loads symmetric "
              "left to right (the worked solution's assumption)",
-             r",\;".join([r"N_{iz} = 0", r"N_1 = N_4 = N_{rear}", r"N_2 = N_3 = N_{front}"])),
+             r",\;".join([r"N_{iz} = 0", r"N_1 = N_4 = N_\mathrm{rear}", r"N_2 = N_3 = N_\mathrm{front}"])),
         Step("What remains is Step 3's three balance laws (the others hold identically)",
              r"\\ ".join(latex(eq) for eq in independent)),
     ]

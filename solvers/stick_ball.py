@@ -63,14 +63,14 @@ PARAMS = (
 )
 
 ANSWERS_STICK = (
-    Answer("d_cm", "combined CM from the stick's midpoint", r"d_{cm}", "length"),
-    Answer("v_cm", "speed of the combined CM", r"v_{cm}", "speed"),
+    Answer("d_cm", "combined CM from the stick's midpoint", r"d_{\mathrm{cm}}", "length"),
+    Answer("v_cm", "speed of the combined CM", r"v_{\mathrm{cm}}", "speed"),
     Answer("omega", "angular velocity after", r"\omega", "angular_speed"),
-    Answer("I_cm", "moment of inertia about the combined CM", r"I_{cm}", "inertia"),
+    Answer("I_cm", "moment of inertia about the combined CM", r"I_{\mathrm{cm}}", "inertia"),
     Answer("T_before", "kinetic energy before", r"T_i", "energy"),
     Answer("T_after", "kinetic energy after", r"T_f", "energy"),
     Answer("energy_loss", "kinetic energy lost", r"\Delta T", "energy"),
-    Answer("distance_per_rev", "distance the CM moves per revolution", r"x_{rev}", "length"),
+    Answer("distance_per_rev", "distance the CM moves per revolution", r"x_{\mathrm{rev}}", "length"),
 )
 ANSWERS_BOUNCE = (
     Answer("v_ball", "ball velocity after (along its approach)", r"v_b'", "speed"),
@@ -90,14 +90,14 @@ def answers_for(mode: str) -> tuple[Answer, ...]:
 ERRATA = (
     r"A common slip: taking the angular momentum about the stick's midpoint but the moment of "
     r"inertia about the combined CM. Use one point for both (here the combined CM, with the "
-    r"parallel-axis terms $m_s d_{cm}^2$ and $m_b (s - d_{cm})^2$).",
+    r"parallel-axis terms $m_s d_{\mathrm{cm}}^2$ and $m_b (s - d_{\mathrm{cm}})^2$).",
 )
 
 LIMIT_LABELS: dict[str, tuple[str, str]] = {}  # no physical limit to show
 
 m_b, m_s, l, v, s, e = sp.symbols("m_b m_s l v s e", positive=True)
 d_cm, v_cm, w, I_cm, T_i, T_f, loss, x_rev = sp.symbols(
-    r"d_{cm} v_{cm} omega I_{cm} T_i T_f \Delta{T} x_{rev}", real=True)
+    r"d_{\mathrm{cm}} v_{\mathrm{cm}} omega I_{\mathrm{cm}} T_i T_f \Delta{T} x_{\mathrm{rev}}", real=True)
 v_b1, v_s1, J = sp.symbols(r"v_b' v_s' J", real=True)
 SYMBOLS = {"m_ball": m_b, "m_stick": m_s, "l": l, "v": v, "s": s, "e": e}
 DIMENSIONS = {p.name: p.dimension for p in PARAMS if isinstance(p, Number)}
@@ -212,7 +212,7 @@ def derivation(mode: str) -> Derivation:
                   r"(counter-clockwise +). The ball strikes at Q, a distance s from M; before, it moves at "
                   r"$v\,\mathbf{E}_x$ and the stick is at rest. After: the ball at $u_b\,\mathbf{E}_x$, the stick's "
                   r"midpoint at $u_M\,\mathbf{E}_x$, the stick turning at $\omega_z\,\mathbf{E}_z$",
-                  r"\mathbf{r}_Q = s\,\mathbf{E}_y,\quad \mathbf{v}_{ball}^- = v\,\mathbf{E}_x", part=1)
+                  r"\mathbf{r}_Q = s\,\mathbf{E}_y,\quad \mathbf{v}_{\mathrm{ball}}^- = v\,\mathbf{E}_x", part=1)
     # Step 3 (generated from the diagram), then the two bodies' laws added: the pair J, −J cancels
     (ball_x, _, _), (stick_x, _, _) = balance(IMPACT, "the ball"), balance(IMPACT, "the stick")
     impulses = sp.expand(ball_x.lhs + stick_x.lhs)
@@ -248,14 +248,14 @@ def derivation(mode: str) -> Derivation:
         steps = [
             origin,
             Step("Centre of mass C of stick + ball, measured from the stick's midpoint", latex(cm), part=1),
-            Step(r"The ball attaches: after, the two move as one rigid body, C at $v_{cm}\,\mathbf{E}_x$, turning "
+            Step(r"The ball attaches: after, the two move as one rigid body, C at $v_{\mathrm{cm}}\,\mathbf{E}_x$, turning "
                  r"clockwise at ω ($\omega_z = -\omega$); a point at arm y along the stick moves at "
-                 r"$v_{cm} + \omega\,(y - d_{cm})$",
+                 r"$v_{\mathrm{cm}} + \omega\,(y - d_{\mathrm{cm}})$",
                  r",\quad ".join(latex_eq(k_, attached[k_]) for k_ in (u_b, u_M, omega_z)), part=1),
             *diagrams,
             Step("The two bodies' x laws added: the pair (−J on the ball, J on the stick) cancels, so the "
                  "system's linear momentum is conserved; with the attached velocities (the ω terms cancel: "
-                 r"$m_b(s - d_{cm}) = m_s d_{cm}$, C being the combined centre)",
+                 r"$m_b(s - d_{\mathrm{cm}}) = m_s d_{\mathrm{cm}}$, C being the combined centre)",
                  latex(momentum_sum) + r"\;\Rightarrow\;" + latex(momentum) + r"\;\Rightarrow\;"
                  + latex_eq(v_cm, solved_v)),
             Step("Moment of inertia about the combined CM (parallel-axis theorem for the stick, "
@@ -263,7 +263,7 @@ def derivation(mode: str) -> Derivation:
             Step("Each body's moment law moved to C (its moment law about its own centre plus "
                  r"$\mathbf{r}_{G/C}\times$ its linear laws) and added: the pair acts at Q, so its moments cancel and "
                  "the angular momentum about C is conserved; before impact only the ball carries it "
-                 r"(arm $s - d_{cm}$)",
+                 r"(arm $s - d_{\mathrm{cm}}$)",
                  latex(sp.Eq(moments, ball_k + stick_k, evaluate=False)) + r"\;\Rightarrow\;" + latex(angular)
                  + r"\;\Rightarrow\;" + latex_eq(w, solved_w)),
             Step("Kinetic energy before and after (the impact is perfectly plastic, e = 0)",

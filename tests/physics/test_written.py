@@ -1,6 +1,7 @@
 """The derivations written as a person writes the physics (solvers.derivation.latex): the weight reads m g,
 as the free-body diagram labels it, not sympy's alphabetical g m; a product's masses first (m L², not L² m), a sum
-inside it in sympy's order."""
+inside it in sympy's order; a subscript that is a word or its abbreviation set upright (N_front, v_cm), as a
+product of italic letters it would read as one (indices such as N_iz or v_Gx stay italic)."""
 from __future__ import annotations
 
 import itertools
@@ -53,6 +54,10 @@ def test_no_step_of_any_derivation_writes_g_before_a_mass(problem):
             assert not G_BEFORE_MASS.search(step.latex), (problem.id, combination, step.title, step.latex)
 
 
+# a word (three letters or more) or the centre of mass's abbreviation, as an italic subscript: N_{front}, v_{cm}
+ITALIC_WORD = re.compile(r"_\{?(?:[a-z]{3,}|cm)\}?")
+
+
 def _written(problem):
     """Every text of a problem's page in LaTeX, for each of its options: the steps and their titles, the answers'
     symbols, the checks' names, the worked solution's slips."""
@@ -61,6 +66,16 @@ def _written(problem):
         texts += [t for step in solution.steps for t in (step.title, step.latex)]
         texts += [a.symbol for a in problem.answers_of(solution)] + [c.name for c in solution.checks]
     return texts
+
+
+@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
+def test_a_word_subscript_is_upright(problem):
+    assert [t for t in _written(problem) if ITALIC_WORD.search(t)] == []
+
+
+def test_an_italic_word_subscript_is_seen():
+    assert ITALIC_WORD.search("N_2 = N_3 = N_{front}") and ITALIC_WORD.search("v_{cm} + \\omega")
+    assert not ITALIC_WORD.search(r"N_\mathrm{front} = N_{\mathrm{rear}},\ N_{iz} = 0,\ v_{Gx}")
 
 
 # two roots side by side in a product (sympy's √2 √(T₂/I_O), or with numbers √3 · √9.81 · …), or one over another
