@@ -151,7 +151,7 @@ _LATEX_TOKEN = re.compile(r"\\[a-zA-Z]+|\\.|[{}_^]|[^\\{}_^\s]|\s+")
 @functools.lru_cache(maxsize=512)
 def runs(tex: str) -> tuple[tuple[str, str], ...]:
     """A label's LaTeX as (text, "" | "sub" | "sup") runs: enough for the symbols the solvers
-    declare (N_A, m_s g, O_x, \\mu N_f, M_{k}). Kept per label: a diagram measures each label at
+    declare (N_A, m_s g, O_x, \\mu N_f, M_{k}); a script in \\mathrm is "sub upright" or "sup upright". Kept per label: a diagram measures each label at
     every spot it tries."""
     tokens = _LATEX_TOKEN.findall(tex)
     out: list[tuple[str, str]] = []
@@ -180,7 +180,9 @@ def runs(tex: str) -> tuple[tuple[str, str], ...]:
                     if depth:
                         inner.append(tokens[j])
                     j += 1
-                add("".join(_GREEK.get(x, x) for x in inner if x not in "{}" and not x.isspace()), where)
+                # a word subscript set upright (N_{\mathrm{front}}), as the derivation sets it
+                add("".join(_GREEK.get(x, x) for x in inner if x not in "{}" and not x.isspace()),
+                    where + (" upright" if r"\mathrm" in inner else ""))
                 i = j
             elif i < len(tokens):
                 add(_GREEK.get(tokens[i], tokens[i]), where)
@@ -201,7 +203,7 @@ def plain_label(tex: str) -> str:
         if w == "":
             out += (" " if out and "_" in out.rsplit(" ", 1)[-1] else "") + t
         else:
-            out += f"_{t}" if w == "sub" else f"^{t}"
+            out += f"_{t}" if w.startswith("sub") else f"^{t}"
     return out
 
 
@@ -474,10 +476,11 @@ def _svg_text(label: Label, flip, color: str, extra: str = "") -> str:
     spans = []
     for text, where in runs(label.tex):
         t = html.escape(text)
-        if where == "sub":
-            spans.append(f'<tspan baseline-shift="sub" font-size="70%">{t}</tspan>')
-        elif where == "sup":
-            spans.append(f'<tspan baseline-shift="super" font-size="70%">{t}</tspan>')
+        upright = ' font-style="normal"' if where.endswith("upright") else ""
+        if where.startswith("sub"):
+            spans.append(f'<tspan baseline-shift="sub" font-size="70%"{upright}>{t}</tspan>')
+        elif where.startswith("sup"):
+            spans.append(f'<tspan baseline-shift="super" font-size="70%"{upright}>{t}</tspan>')
         else:
             spans.append(t)
     return (f'<text x="{x:.1f}" y="{y + label.size * 0.35:.1f}" font-size="{label.size:.0f}" fill="{color}" '
@@ -725,7 +728,7 @@ _OVERLAY_LENGTH = 0.2  # the largest force (or impulse) drawn this fraction of t
 
 
 def _html_label(tex: str) -> str:
-    return "".join(f"<sub>{html.escape(t)}</sub>" if w == "sub" else f"<sup>{html.escape(t)}</sup>" if w == "sup"
+    return "".join(f"<sub>{html.escape(t)}</sub>" if w.startswith("sub") else f"<sup>{html.escape(t)}</sup>" if w
                    else html.escape(t) for t, w in runs(tex))
 
 

@@ -158,7 +158,11 @@ def test_labels_are_written_as_subscripts():
     assert fbd.runs("N_A") == (("N", ""), ("A", "sub"))
     assert fbd.runs(r"m_{s} g") == (("m", ""), ("s", "sub"), ("g", ""))
     assert fbd.runs(r"\mu N_{f}") == (("μN", ""), ("f", "sub"))
+    assert fbd.runs(r"2 \mu N_{\mathrm{front}}") == (("2μN", ""), ("front", "sub upright"))  # as the derivation sets it
     assert fbd.plain_label(r"O_{x}") == "O_x"
+    from solvers import driven_cart
+    drawn = fbd.svg(fbd.drawings(driven_cart, driven_cart.solve())[0])
+    assert "<tspan baseline-shift='sub' font-size='70%' font-style='normal'>front</tspan>" in drawn
 
 
 def test_practice_withholds_the_diagram():
