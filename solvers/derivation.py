@@ -24,17 +24,27 @@ def _is_mass(factor: sp.Basic) -> bool:
     return isinstance(factor, sp.Symbol) and (factor.name == "m" or factor.name.startswith("m_"))
 
 
+# The dimensionless coefficients a person writes first in a product: friction's μ N, restitution's e V
+# (PROBLEMS.md's names).
+_COEFFICIENTS = frozenset({"mu", "e"})
+
+
+def _is_coefficient(factor: sp.Basic) -> bool:
+    return isinstance(factor, sp.Symbol) and factor.name in _COEFFICIENTS
+
+
 def _weight_as_written(product: sp.Basic) -> sp.Basic | None:
-    """A product with a mass among its factors as a person writes it: the numbers, the masses, g, then the
-    other factors in sympy's order (m g, m L², m_s g L cos θ, not sympy's alphabetical g m, L² m, L g m_s cos θ):
-    the weight as the free-body diagram labels it. None where there is no mass or the order is that already."""
+    """A product as a person writes it: the numbers, the coefficients μ and e, the masses, g, then the
+    other factors in sympy's order (m g, m L², m_s g L cos θ, μ N_front, −e V cos θ, not sympy's alphabetical
+    g m, L² m, L g m_s cos θ, N_front μ, −V e cos θ): the weight and the friction as the free-body diagram
+    labels them. None where there is no mass or coefficient, or the order is that already."""
     if not (isinstance(product, sp.Mul) and product.is_commutative):
         return None
     factors = product.as_ordered_factors()
-    if not any(_is_mass(f) for f in factors):
+    if not any(_is_mass(f) or _is_coefficient(f) for f in factors):
         return None
-    rank = lambda f: (0 if f.is_number else 1 if _is_mass(f)  # noqa: E731
-                      else 2 if isinstance(f, sp.Symbol) and f.name == "g" else 3)
+    rank = lambda f: (0 if f.is_number else 1 if _is_coefficient(f) else 2 if _is_mass(f)  # noqa: E731
+                      else 3 if isinstance(f, sp.Symbol) and f.name == "g" else 4)
     written = sorted(factors, key=rank)  # (stable: sympy's order within each kind)
     return None if written == factors else sp.Mul(*written, evaluate=False)
 
@@ -61,7 +71,8 @@ def _roots_together(product: sp.Basic) -> sp.Basic | None:
 
 
 class Printer(LatexPrinter):
-    """sympy's LaTeX with a product's masses first and the weight written m g (``_weight_as_written``), its
+    """sympy's LaTeX with a product's coefficients μ and e and its masses first, the weight written m g
+    (``_weight_as_written``), its
     square roots under one sign (``_roots_together``), and a difference of two terms with its positive term
     first: every derivation step, balance law and numeric template prints through it (``latex``)."""
 

@@ -61,8 +61,9 @@ def test_every_moving_shape_stays_inside_the_view(pid, params):
 # Numbers: never −0, powers typeset, the URL carries what the control shows
 
 # A minus after a digit, or after TeX's ``{}`` that opens a broken row, is a subtraction, not a sign;
-# one before ``0^{2}`` negates the square of a substituted zero (−θ̇⁺² at e = 0), not a number −0.
-MINUS_ZERO = re.compile(r"(?<![\d.}])[−-]0(?:\.0*)?(?![\d.^])")
+# one before ``0^{2}`` negates the square of a substituted zero (−θ̇⁺² at e = 0), and one before ``0 \cdot``
+# a product whose first factor is one (−e θ̇ at e = 0: −0 · (−4.158)), not a number −0.
+MINUS_ZERO = re.compile(r"(?<![\d.}])[−-]0(?:\.0*)?(?![\d.^])(?!\s*\\cdot)")
 
 
 def test_the_formatter_never_writes_minus_zero_and_groups_or_typesets_large_numbers():

@@ -21,7 +21,7 @@ m, g, m_s, L, N_A, theta, mu = sp.symbols("m g m_s L N_A theta mu")
     (N_A - g * m_s, "N_{A} - m_{s} g"),
     (3 * g * m / 4, r"\frac{3 m g}{4}"),
     (-g * m * L * sp.cos(theta) / 2, r"- \frac{m g L \cos{\left(\theta \right)}}{2}"),
-    (mu * m * g, r"m g \mu"),
+    (mu * m * g, r"\mu m g"),  # friction's coefficient first: μ m g, μ N
     (L**2 * m / 3, r"\frac{m L^{2}}{3}"),  # the masses first: m L², not L² m
     (3 * g * m * (3 * sp.sin(theta) - 2) / 4, r"\frac{3 m g \left(3 \sin{\left(\theta \right)} - 2\right)}{4}"),
     (g / L, r"\frac{g}{L}"),  # no mass: as sympy writes it

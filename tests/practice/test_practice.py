@@ -846,7 +846,7 @@ def test_a_unit_typed_as_givens_letters_is_not_judged(pid, name, text, says):
     assert not verdict.readable and not verdict.reading, verdict
     assert says in verdict.message, verdict.message
     if text == "-44.9 dge":  # "Read as" shows the givens' product as one (juxtaposed, it read "deg")
-        assert r"d \cdot e \cdot g" in verdict.understood, verdict.understood
+        assert r"e \cdot g \cdot d" in verdict.understood, verdict.understood  # (the coefficient e first)
 
 
 def test_a_number_in_place_of_a_given_is_still_judged():
