@@ -218,7 +218,7 @@ def derivation(disk: str) -> Derivation:
     tip = sp.Matrix(points["A"])
     sense = sp.sign(sp.simplify(tip[0] * rate("A")[1] - tip[1] * rate("A")[0]))  # −1: θ grows clockwise
     spring_moment = sense * next(l for l in diagram.loads if l.kind == "couple").size  # −kθ in θ's sense
-    work_spring = sp.factor(sp.integrate(spring_moment, (theta, theta1, theta2)))
+    work_spring = sp.factor_terms(sp.integrate(spring_moment, (theta, theta1, theta2)))  # k(θ₁² − θ₂²)/2
     speed = sp.solve(sp.Eq(I_O * thetadot**2 / 2, T2), thetadot)
     speed = [s_ for s_ in speed if s_.subs({I_O: 1, T2: 1}).is_positive][0]
     # Step 3's moment law about O, −Σ M_O = I_O θ̈ in θ's sense, integrated from θ₁ (θ̈ dθ = θ̇ dθ̇) is the
