@@ -18,6 +18,9 @@ from .units import latex_quantity
 
 
 _DOUBLE_PARENS = re.compile(r"\\left\(\\left\(([^()]*)\\right\) \\right\)")
+# A negative number put in as a whole term after a binary sign: a + (−b) is written a − b, a − (−b) as a + b (not
+# before a power: a + (−b)² is not a − b²; nor a factor, whose product keeps its brackets).
+_SIGNED_NUMBER = re.compile(r"(?<=[\d})] )([+-]) \\left\(-([0-9.]+(?:\^\{\\circ\})?)\\right\)(?!\s*(?:\^|\\cdot))")
 
 
 def _is_mass(factor: sp.Basic) -> bool:
@@ -70,11 +73,51 @@ def _roots_together(product: sp.Basic) -> sp.Basic | None:
     return sp.Mul(*rest, sp.Pow(inside, sp.S.Half, evaluate=False), evaluate=False)
 
 
+def _difference(factor: sp.Basic) -> bool:
+    """A two-term sum with one term negative (a − b), to the first power or its reciprocal."""
+    base, exponent = factor.as_base_exp()
+    return (isinstance(base, sp.Add) and exponent in (1, -1) and len(base.args) == 2
+            and sum(term.could_extract_minus_sign() for term in base.args) == 1)
+
+
+def _signs_as_written(product: sp.Basic) -> sp.Basic | None:
+    """A product's signs where a person puts them: a sum whose every term is negative written as the
+    negative of a sum (g (−m_r L − 2 m_s (L + r)) → −g (m_r L + 2 m_s (L + r))), and a negative product's sign
+    taken into a difference among its factors (−μ g b / (μ a − 2b) → μ g b / (2b − μ a)). The same value;
+    None where neither applies."""
+    if not (isinstance(product, sp.Mul) and product.is_commutative):
+        return None
+    factors, flips = list(product.args), 0  # (each factor negated negates the product)
+
+    def negate(n: int) -> None:
+        nonlocal flips
+        base, exponent = factors[n].as_base_exp()
+        factors[n], flips = sp.Pow(-base, exponent), flips + 1
+
+    for n, factor in enumerate(factors):
+        base, exponent = factor.as_base_exp()
+        if isinstance(base, sp.Add) and exponent in (1, -1) and all(t.could_extract_minus_sign() for t in base.args):
+            negate(n)
+    if product.could_extract_minus_sign() != (flips % 2 == 1):  # written with a minus so far
+        at = next((n for n, factor in enumerate(factors) if _difference(factor)), None)
+        if at is not None:
+            negate(at)
+    if not flips:
+        return None
+    if flips % 2:  # the product's own sign changes with them: in its number, or a −1 of its own
+        at = next((n for n, factor in enumerate(factors) if factor.is_Number), None)
+        if at is None:
+            factors.insert(0, sp.S.NegativeOne)
+        else:
+            factors[at] = -factors[at]
+    return sp.Mul(*(f for f in factors if f != 1), evaluate=False)
+
+
 class Printer(LatexPrinter):
-    """sympy's LaTeX with a product's coefficients μ and e and its masses first, the weight written m g
-    (``_weight_as_written``), its
-    square roots under one sign (``_roots_together``), and a difference of two terms with its positive term
-    first: every derivation step, balance law and numeric template prints through it (``latex``)."""
+    """sympy's LaTeX as a person writes it: a product's coefficients μ and e and its masses first, the weight
+    m g (``_weight_as_written``); its square roots under one sign (``_roots_together``); its signs where a
+    person puts them (``_signs_as_written``); a sum that would open with a minus, its positive terms first.
+    Every derivation step, balance law and numeric template prints through it (``latex``)."""
 
     def __init__(self, settings=None):
         super().__init__(settings)
@@ -84,6 +127,9 @@ class Printer(LatexPrinter):
         together = _roots_together(expr)
         if together is not None:
             return self._print(together)
+        signed = _signs_as_written(expr)
+        if signed is not None:
+            return self._print(signed)
         if expr.could_extract_minus_sign() and _weight_as_written(-expr) is not None:
             return "- " + self._print(-expr)  # (as sympy writes a negative product: its sign, then the rest)
         written = _weight_as_written(expr)
@@ -102,26 +148,17 @@ class Printer(LatexPrinter):
             terms = super()._as_ordered_terms(expr, order=order)
         finally:
             self._settings["order"] = entry
-        if (isinstance(expr, sp.Add) and len(terms) == 2 and terms[0].could_extract_minus_sign()
-                and not terms[1].could_extract_minus_sign()):
-            return [terms[1], terms[0]]  # a difference as a person writes it: s − d_cm, not −d_cm + s
-        return terms
+        if not (isinstance(expr, sp.Add) and terms and terms[0].could_extract_minus_sign()):
+            return terms
+        # a sum that would open with a minus, as a person writes it: its positive terms first (stable: sympy's
+        # order kept within each kind): s − d_cm, not −d_cm + s; m_b l² + 12 m_b s² − e m_s l²; with the numbers
+        # put in, 2.062 − 2.021. A sum that opens with a plus keeps sympy's order (9 sin²θ − 6 sin θ sin θ₀ + 1).
+        return sorted(terms, key=lambda term: term.could_extract_minus_sign())
 
 
 def latex(expr, **settings) -> str:
     """``sp.latex`` through ``Printer``."""
     return Printer(settings).doprint(expr)
-
-
-class _PositiveTermsFirst(Printer):
-    """The LaTeX with a sum's positive terms first: with numbers put in, ΔT = T⁻ − T⁺ reads
-    2.062 − 2.021, as a person writes it, not −2.021 + 2.062."""
-
-    def _as_ordered_terms(self, expr, order=None):
-        terms = super()._as_ordered_terms(expr, order=order)
-        if not isinstance(expr, sp.Add):
-            return terms
-        return sorted(terms, key=lambda term: term.could_extract_minus_sign())  # stable: sympy's order kept
 
 
 def latex_eq(lhs: sp.Expr, rhs: sp.Expr, **kw) -> str:
@@ -187,7 +224,7 @@ class Derivation:
             func = sp.lambdify(free, link.expr, modules="math")
             self._compiled.append((link.name, func, arg_names))
             names = {s: self._PLACEHOLDER.format(i) for i, s in enumerate(free)}
-            template = _PositiveTermsFirst({"symbol_names": names, "mul_symbol": "dot"}).doprint(link.expr)
+            template = Printer({"symbol_names": names, "mul_symbol": "dot"}).doprint(link.expr)
             slots = tuple(
                 (names[s], known[s], _only_inside_trig(link.expr, s)) for s in free
             )
@@ -258,6 +295,7 @@ class Derivation:
             for placeholder, name, trig_only in slots:
                 text = text.replace(placeholder, self._number_for(name, values[name], trig_only))
             text = _DOUBLE_PARENS.sub(r"\\left(\1\\right)", text)
+            text = _SIGNED_NUMBER.sub(lambda m: ("- " if m[1] == "+" else "+ ") + m[2], text)
             value = latex_quantity(values[link.name], link.dimension)
             title = link.title or f"With your numbers: {self._labels.get(link.name, link.name)}"
             steps.append(Step(title, f"{symbol} = {text} = {value}", numeric=True))

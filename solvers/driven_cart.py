@@ -256,8 +256,10 @@ def derivation(drive: str) -> Derivation:
              r"\\ ".join(latex(eq) for eq in independent)),
     ]
     if drive != "front":
-        steps.append(Step(r"The front wheels stay down only while $N_\mathrm{front} > 0$",
-                          latex(sp.Gt(solved[N_front], 0)) + r"\iff \mu a < b"))
+        # (both: with rear drive N_front's formula is positive again past μa = 2b, where N_rear's is negative)
+        steps.append(Step(r"The front wheels stay down only while $N_\mathrm{front} > 0$, with the rear's $N_\mathrm{rear} > 0$",
+                          r",\quad ".join(f"{latex(k)} = {latex(solved[k])} > 0" for k in (N_front, N_rear))
+                          + r"\quad\iff\quad \mu a < b"))
     chain = [
         Result("N_front", N_front, solved[N_front], "force"),
         Result("N_rear", N_rear, solved[N_rear], "force"),

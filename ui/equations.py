@@ -35,7 +35,7 @@ _TEXT = re.compile(r"\\(?:text|textrm|textit|textbf|mbox)\{[^{}]*\}")
 _TOKEN = re.compile(_TEXT.pattern + r"|\\\\|\\[a-zA-Z]+|\\.|[{}^_&]|\S")
 _SPACES = {r"\;": 0.28, r"\,": 0.17, r"\:": 0.22, r"\!": -0.17, r"\quad": 1.0, r"\qquad": 2.0, "~": 0.33}
 _RELATIONS = {"=", r"\le", r"\ge", "<", ">", r"\approx", r"\ne", r"\equiv"}
-_ARROWS = {r"\Rightarrow", r"\implies", r"\Longrightarrow"}
+_ARROWS = {r"\Rightarrow", r"\implies", r"\Longrightarrow", r"\iff"}
 # Tokens that open and close a group: a row cannot end inside one.
 _DEPTH = {"{": 1, "}": -1, r"\left": 1, r"\right": -1, r"\begin": 1, r"\end": -1}
 _BIG = {r"\frac": 1.0, r"\dfrac": 1.0, r"\tfrac": 0.75}
@@ -167,17 +167,18 @@ def _cut_before(toks: list[str], at: set[str]) -> list[list[str]]:
     return [p for p in parts if p]
 
 
-_CLAUSE_GLUE = re.compile(r"(,?\s*(?:\\quad|\\qquad|\\;)\s*(?:\\Rightarrow|\\implies)\s*(?:\\quad|\\;)?"
+_CLAUSE_GLUE = re.compile(r"(,?\s*(?:\\quad|\\qquad|\\;)\s*(?:\\Rightarrow|\\implies|\\iff)\s*(?:\\quad|\\;)?"
                           r"|,\s*\\quad|\\qquad|,\s*\\;|\\\\)")
 
 
 def _clauses(latex: str) -> list[tuple[str, str]]:
-    """The top-level clauses of a step and the connective before each ("" or "\\Rightarrow")."""
+    """The top-level clauses of a step and the connective before each ("", "\\Rightarrow" or "\\iff")."""
     pieces = _CLAUSE_GLUE.split(latex)
     out, connective = [], ""
     for n, piece in enumerate(pieces):
         if n % 2:
-            connective = r"\Rightarrow" if ("Rightarrow" in piece or "implies" in piece) else ""
+            connective = (r"\iff" if "iff" in piece else
+                          r"\Rightarrow" if ("Rightarrow" in piece or "implies" in piece) else "")
             continue
         if piece.strip():
             out.append((connective, piece.strip()))

@@ -13,7 +13,7 @@ import sympy as sp
 from solvers.catalog import PROBLEMS
 from solvers.core import Choice, latex
 
-m, g, m_s, L, N_A, theta, mu = sp.symbols("m g m_s L N_A theta mu")
+m, g, m_s, L, N_A, theta, mu, a, b = sp.symbols("m g m_s L N_A theta mu a b")
 
 
 @pytest.mark.parametrize("expr, written", [
@@ -32,9 +32,29 @@ m, g, m_s, L, N_A, theta, mu = sp.symbols("m g m_s L N_A theta mu")
     (sp.sqrt(2 * m / L), r"\sqrt{\frac{2 m}{L}}"),  # one root, not sympy's √2 √(m/L)
     (-sp.sqrt(3 * g * sp.sin(theta) / L), r"- \sqrt{\frac{3 g \sin{\left(\theta \right)}}{L}}"),
     (mu * sp.sqrt(L / g), r"\mu \sqrt{\frac{L}{g}}"),
+    # a negative product's sign taken into its difference; a sum of negative terms written as a negated sum
+    (-mu * g * b / (mu * a - 2 * b), r"\frac{\mu g b}{2 b - \mu a}"),
+    (-m * g * (mu * a - b) / (4 * b), r"\frac{m g \left(b - \mu a\right)}{4 b}"),
+    (g * (-m * L - 2 * m_s * (L + a)) / 2, r"- \frac{g \left(m L + 2 m_{s} \left(L + a\right)\right)}{2}"),
+    ((mu * a - b) * (a - 2 * b), r"\left(a - 2 b\right) \left(\mu a - b\right)"),  # (positive: as it is)
+    # a sum that would open with a minus: its positive terms first, in sympy's order
+    (-a * L**2 + m * L**2 + 12 * m * b**2, r"m L^{2} + 12 m b^{2} - L^{2} a"),  # (sympy: −L² a + L² m + 12 b² m)
+    (9 * sp.sin(theta)**2 - 6 * sp.sin(theta) * b + 1, r"9 \sin^{2}{\left(\theta \right)} + 1 - 6 b \sin{\left(\theta \right)}"),
+    (m * L + 2 * g - m_s, r"m L + 2 g - m_{s}"),  # one that opens with a plus: as sympy writes it
 ])
-def test_the_weight_is_written_m_g(expr, written):
+def test_an_expression_is_written_as_a_person_writes_it(expr, written):
     assert latex(expr) == written
+
+
+# a negative number put in as a whole term after a plus: 59.60 + (−24.67), where a person writes 59.60 − 24.67
+PLUS_NEGATIVE = re.compile(r"\+ \\left\(-[\d.]+\\right\)(?!\^|\s*\\cdot)")
+
+
+@pytest.mark.parametrize("problem", PROBLEMS, ids=[p.id for p in PROBLEMS])
+def test_a_negative_number_put_in_after_a_plus_is_subtracted(problem):
+    assert [t for t in _written(problem) if PLUS_NEGATIVE.search(t)] == []
+    assert PLUS_NEGATIVE.search(r"T_{2} = 59.60 + \left(-24.67\right) = 34.92")
+    assert not PLUS_NEGATIVE.search(r"1 + \left(-2\right)^{2} + \left(-2\right) \cdot 3")
 
 
 G_BEFORE_MASS = re.compile(r"(?<![A-Za-z\\])g\s*(?:\\cdot\s*)?m(?:_|\b)")
