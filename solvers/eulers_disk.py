@@ -63,7 +63,8 @@ ANSWERS = (
     Answer("omega_total", "magnitude of the disk's angular velocity", r"\lvert\boldsymbol\omega\rvert",
            "angular_speed"),
     Answer("energy", "total energy (zero with the disk flat)", r"E", "energy"),
-    Answer("contact_speed", "speed of the contact point around its circle", r"v_A", "speed"),
+    # (not v_A: the disk's material point at A is at rest, v_A = 0 in Step 1; this is the point of contact's path)
+    Answer("contact_speed", "speed of the contact point around its circle", r"v_{\mathrm{contact}}", "speed"),
     Answer("period", "time for one precession", r"\tau", "time"),
 )
 
@@ -77,7 +78,8 @@ ERRATA = (
 LIMIT_LABELS: dict[str, tuple[str, str]] = {}  # no physical limit to show
 
 m, r, theta, g = sp.symbols(r"m r theta g", positive=True)
-w_p, w_s, w_tot, E, v_A, tau = sp.symbols(r"omega_p omega_s |\boldsymbol{\omega}| E v_A tau", real=True)
+w_p, w_s, w_tot, E, v_contact, tau = sp.symbols(r"omega_p omega_s |\boldsymbol{\omega}| E v_{\mathrm{contact}} tau",
+                                               real=True)
 psidot, N_ = sp.symbols(r"\dot{\psi} N", real=True)
 SYMBOLS = {"m": m, "r": r, "theta": theta, "g": g}
 DIMENSIONS = {p.name: p.dimension for p in PARAMS}
@@ -86,8 +88,13 @@ DIMENSIONS = {p.name: p.dimension for p in PARAMS}
 def _vec_latex(v: sp.Matrix) -> str:
     basis = (r"\mathbf{e}_x", r"\mathbf{e}_y", r"\mathbf{e}_z")
     comps = [sp.factor(sp.expand_trig(sp.simplify(c))) for c in v]
-    terms = [rf"\left({latex(c)}\right){e}" for c, e in zip(comps, basis) if c != 0]
-    return " + ".join(terms) if terms else "0"
+    out = ""
+    for c, e in ((c, e) for c, e in zip(comps, basis) if c != 0):  # a component's sign before it: − ω_p sin²θ e_z
+        negative = c.could_extract_minus_sign()
+        size = -c if negative else c
+        body = rf"\left({latex(size)}\right)" if isinstance(size, sp.Add) else latex(size)
+        out += ("- " if negative else "+ " if out else "") + body + r"\," + e + " "
+    return out.strip() or "0"
 
 
 F_ = sp.Symbol("F", real=True)  # the table's friction on the disk at A, along e_y
@@ -190,7 +197,8 @@ def derivation() -> Derivation:
              r"precesses with the contact point A ($\mathbf{e}_y$ horizontal toward A, $\mathbf{E}_z$ up). Angular "
              r"velocity: spin $\dot\psi$ about the normal $\mathbf{n}$ plus the precession $-\omega_p\mathbf{E}_z$",
              rf"\boldsymbol\omega = \dot\psi\,\mathbf{{n}} - \omega_p \mathbf{{E}}_z = {_vec_latex(omega)}", part=1),
-        Step("Rolling without slip with G at rest: the contact point A has zero velocity",
+        Step("Rolling without slip with G at rest: the disk's own point at A has zero velocity (the point of "
+             "contact itself runs round its circle)",
              rf"\mathbf{{v}}_A = \boldsymbol\omega \times \mathbf{{r}}_{{A/G}} = {_vec_latex(rolling)} = 0"
              rf"\;\Rightarrow\; {latex_eq(psidot, spin)} = \omega_s", part=1),
         Step("So ω points along the diameter through A (the instantaneous axis passes through A and G)",
@@ -214,7 +222,7 @@ def derivation() -> Derivation:
         Result("omega_s", w_s, spin.subs(w_p, w_p), "angular_speed"),
         Result("omega_total", w_tot, magnitude, "angular_speed"),
         Result("energy", E, energy_closed, "energy"),
-        Result("contact_speed", v_A, w_p * r * sp.cos(theta), "speed"),
+        Result("contact_speed", v_contact, w_p * r * sp.cos(theta), "speed"),
         Result("period", tau, 2 * sp.pi / w_p, "time"),
     ]
     return Derivation(SYMBOLS, DIMENSIONS, steps, chain, {a.name: a.label for a in ANSWERS})
