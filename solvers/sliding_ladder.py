@@ -258,6 +258,7 @@ def _derived() -> tuple[Derivation, dict]:
     wall_0 = presentable(sp.simplify(wall.subs(theta, theta0)), 3 * m * g * sp.sin(theta0) * sp.cos(theta0) / 4)
     floor_0 = sp.factor(sp.simplify(floor.subs(theta, theta0)))
     omega_l = sp.sqrt(rate_sq.subs(theta, th_l))
+    omega_leave = omega_l.subs(th_l, leave_angle).simplify()  # √(g sin θ₀ / L)
     speed_l = sp.simplify(as_symbols(x_G.diff(t)).subs(theta, th_l).subs(thetadot, -w_l))
 
     # Phase 2: the floor alone. ẋ_G keeps its value; y_G = (L/2) sin θ still; energy from leaving.
@@ -295,7 +296,7 @@ def _derived() -> tuple[Derivation, dict]:
         Step("Just after release (θ = θ₀, θ̇ = 0)",
              latex_eq(N_A0, wall_0) + r",\quad " + latex_eq(N_B0, floor_0)),
         Step("The wall cannot pull: the top leaves the wall where $N_A$ reaches zero", r"N_A = 0 \;\Rightarrow\; \sin\theta_\ell = " + latex(leaving_sin)
-             + r",\quad " + latex_eq(w_l, omega_l.subs(th_l, leave_angle).simplify())),
+             + r",\quad " + latex_eq(w_l, omega_leave)),
         Step("G's speed away from the wall then (θ̇ < 0 while it falls)",
              latex_eq(v_l, speed_l)),
         Step("Time to leave: dt = dθ / |θ̇|, in units of √(L/g) (an elliptic integral, by quadrature)",
@@ -309,7 +310,7 @@ def _derived() -> tuple[Derivation, dict]:
     ]
     chain = [
         Result("theta_leave", th_l, leave_angle, "angle"),
-        Result("omega_leave", w_l, omega_l, "angular_speed"),
+        Result("omega_leave", w_l, omega_leave, "angular_speed"),  # (the numbers put in where Step 4 shows it)
         Result("vx_leave", v_l, speed_l, "speed"),
         Result("t_leave", t_l, tau_1 * sp.sqrt(L / g), "time"),
         Result("omega_floor", w_f, omega_f, "angular_speed"),
@@ -563,7 +564,7 @@ def solve(**params) -> Solution:
         raise OverflowError("an answer overflows")
     steps = (*chain.steps,
              Step("With your numbers: the two time integrals (quadrature)",
-                  rf"\tau_1 = {latex_number(integrals['tau_1'])},\quad \tau_2 = {latex_number(integrals['tau_2'])}",
+                  rf"\tau_1 = {latex_number(integrals['tau_1'], 6)},\quad \tau_2 = {latex_number(integrals['tau_2'], 6)}",  # (as put in below)
                   numeric=True),
              *chain.numeric_steps(values))
     notes = (f"The top leaves the wall at θ = {plain_number(math.degrees(answers['theta_leave']))}°, two-thirds of "
