@@ -393,7 +393,9 @@ def test_the_whole_practice_page_gives_no_answer_away(browser, app_url, problem)
                                            "(e.getAttribute('aria-label') || '') + ' ' + (e.getAttribute('title') || ''))")
         texts += [frame.locator("body").inner_text() for frame in page.frames[1:] if frame.url != "about:blank"]
         texts += help_texts(page)
-        text = "\n".join(texts)
+        # kept apart by a mark the leak check's flattening keeps: the statement's inline givens $\mu$ and $g$, one
+        # annotation each, read as the all-wheel drive's closed form μ g where they met
+        text = "\n§\n".join(texts)
         assert "The problem" in text and "The method" in text and "Show the solution" in text, query
         _, solution, judge, answers = setup(problem.id, **params)
         assert leaks(text, solution, answers.values(), judge) == [], query
