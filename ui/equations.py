@@ -351,9 +351,10 @@ def _broken(latex: str, limit: float) -> str:
         return latex
     shown = _aligned(latex, limit)
     # A row in the second column starts after the first column's widest cell (another clause's left-hand
-    # side): where that takes the block past what even an exact estimate would fit, its rows are broken
-    # again to the room left beside that column.
-    for _ in range(3):
+    # side): where that takes a phone's block past what even an exact estimate would fit, its rows are
+    # broken again to the room left beside that column. (A wide column's rows are measured where they are
+    # shown: ui/plotly_component/text.js takes them only where they fit, else the phone's.)
+    for _ in range(3 if limit <= PHONE_WIDTH_EM else 0):
         if laid_out_width(shown) <= limit * PHONE_BOX_EM / PHONE_WIDTH_EM:
             break
         shown = _aligned(latex, limit - _columns(shown)[0])
