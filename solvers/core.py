@@ -15,7 +15,7 @@ The pieces live in their own modules:
 """
 from __future__ import annotations
 
-from .derivation import Derivation, Result, latex, latex_eq, presentable, root_with_sign
+from .derivation import Derivation, Result, as_written, latex, latex_eq, presentable, root_with_sign
 from .errors import (ARITHMETIC_FAILURES, OutOfModelRangeError, ParameterError, PhysicalLimitError, require,
                      within_model_range)
 from .formatting import latex_number, plain_fixed, plain_number
@@ -26,6 +26,6 @@ from .units import latex_quantity
 __all__ = [
     "ARITHMETIC_FAILURES", "Answer", "Check", "Choice", "Derivation", "LedgerRow", "Number",
     "OutOfModelRangeError", "Param", "ParameterError", "PhysicalLimitError", "Result", "Solution", "Step",
-    "latex", "latex_eq", "latex_number", "latex_quantity", "per_solution", "plain_fixed", "plain_number", "presentable", "relative_tolerance",
+    "as_written", "latex", "latex_eq", "latex_number", "latex_quantity", "per_solution", "plain_fixed", "plain_number", "presentable", "relative_tolerance",
     "require", "root_with_sign", "validate_params", "within_model_range",
 ]

@@ -113,6 +113,13 @@ def _signs_as_written(product: sp.Basic) -> sp.Basic | None:
     return sp.Mul(*(f for f in factors if f != 1), evaluate=False)
 
 
+def as_written(expr: sp.Basic) -> sp.Basic:
+    """``expr`` with its signs where ``Printer`` writes them (``_signs_as_written``; the same value): what a sum,
+    a product or a vector's components must ask whether it prints with a minus (x (−a − b) prints −x (a + b))."""
+    signed = _signs_as_written(expr)
+    return expr if signed is None else signed
+
+
 class Printer(LatexPrinter):
     """sympy's LaTeX as a person writes it: a product's coefficients μ and e and its masses first, the weight
     m g (``_weight_as_written``); its square roots under one sign (``_roots_together``); its signs where a
@@ -141,6 +148,9 @@ class Printer(LatexPrinter):
         finally:
             self._settings["order"] = entry
 
+    def _needs_mul_brackets(self, expr, first=False, last=False) -> bool:
+        return super()._needs_mul_brackets(as_written(expr), first, last)  # (a factor that prints with a minus)
+
     def _as_ordered_terms(self, expr, order=None):
         entry = self._settings["order"]
         self._settings["order"] = self._order  # a sum inside a product written as it is: in sympy's order
@@ -148,7 +158,10 @@ class Printer(LatexPrinter):
             terms = super()._as_ordered_terms(expr, order=order)
         finally:
             self._settings["order"] = entry
-        if not (isinstance(expr, sp.Add) and terms and terms[0].could_extract_minus_sign()):
+        if not isinstance(expr, sp.Add):
+            return terms
+        terms = [as_written(term) for term in terms]  # each term's sign as it prints: + x (−a − b) is − x (a + b)
+        if not (terms and terms[0].could_extract_minus_sign()):
             return terms
         # a sum that would open with a minus, as a person writes it: its positive terms first (stable: sympy's
         # order kept within each kind): s − d_cm, not −d_cm + s; m_b l² + 12 m_b s² − e m_s l²; with the numbers

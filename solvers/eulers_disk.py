@@ -27,6 +27,7 @@ from .core import (
     Result,
     Solution,
     Step,
+    as_written,
     latex,
     latex_eq,
     presentable,
@@ -89,7 +90,7 @@ def _vec_latex(v: sp.Matrix) -> str:
     basis = (r"\mathbf{e}_x", r"\mathbf{e}_y", r"\mathbf{e}_z")
     comps = [sp.factor(sp.expand_trig(sp.simplify(c))) for c in v]
     out = ""
-    for c, e in ((c, e) for c, e in zip(comps, basis) if c != 0):  # a component's sign before it: − ω_p sin²θ e_z
+    for c, e in ((as_written(c), e) for c, e in zip(comps, basis) if c != 0):  # its sign before it: − ω_p sin²θ e_z
         negative = c.could_extract_minus_sign()
         size = -c if negative else c
         body = rf"\left({latex(size)}\right)" if isinstance(size, sp.Add) else latex(size)

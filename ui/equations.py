@@ -352,13 +352,14 @@ def _broken(latex: str, limit: float) -> str:
     shown = _aligned(latex, limit)
     # A row in the second column starts after the first column's widest cell (another clause's left-hand
     # side): where that takes a phone's block past what even an exact estimate would fit, its rows are
-    # broken again to the room left beside that column. (A wide column's rows are measured where they are
-    # shown: ui/plotly_component/text.js takes them only where they fit, else the phone's.)
-    for _ in range(3 if limit <= PHONE_WIDTH_EM else 0):
-        if laid_out_width(shown) <= limit * PHONE_BOX_EM / PHONE_WIDTH_EM:
-            break
-        shown = _aligned(latex, limit - _columns(shown)[0])
-    return shown
+    # broken again: the widest rows that fit, an em narrower at a time (down to half the limit), else the
+    # narrowest. (A wide column's rows are measured where they are shown: ui/plotly_component/text.js takes
+    # them only where they fit, else the phone's.)
+    fits = limit * PHONE_BOX_EM / PHONE_WIDTH_EM
+    if limit > PHONE_WIDTH_EM or laid_out_width(shown) <= fits:
+        return shown
+    tried = [_aligned(latex, limit - n) for n in range(1, int(limit / 2) + 1)]
+    return next((t for t in tried if laid_out_width(t) <= fits), min(tried, key=laid_out_width))
 
 
 def _aligned(latex: str, limit: float) -> str:

@@ -37,6 +37,8 @@ m, g, m_s, L, N_A, theta, mu, a, b = sp.symbols("m g m_s L N_A theta mu a b")
     (-m * g * (mu * a - b) / (4 * b), r"\frac{m g \left(b - \mu a\right)}{4 b}"),
     (g * (-m * L - 2 * m_s * (L + a)) / 2, r"- \frac{g \left(m L + 2 m_{s} \left(L + a\right)\right)}{2}"),
     ((mu * a - b) * (a - 2 * b), r"\left(a - 2 b\right) \left(\mu a - b\right)"),  # (positive: as it is)
+    (g + L * (-a - b), r"g - L \left(a + b\right)"),  # a term that prints with a minus is subtracted: not g + − L (a + b)
+    (sp.Mul(L, sp.Mul(-a - b, g, evaluate=False), evaluate=False), r"L \left(- g \left(a + b\right)\right)"),  # nor L − g (a + b)
     # a sum that would open with a minus: its positive terms first, in sympy's order
     (-a * L**2 + m * L**2 + 12 * m * b**2, r"m L^{2} + 12 m b^{2} - L^{2} a"),  # (sympy: −L² a + L² m + 12 b² m)
     (9 * sp.sin(theta)**2 - 6 * sp.sin(theta) * b + 1, r"9 \sin^{2}{\left(\theta \right)} + 1 - 6 b \sin{\left(\theta \right)}"),
