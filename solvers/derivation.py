@@ -73,11 +73,16 @@ def _roots_together(product: sp.Basic) -> sp.Basic | None:
     return sp.Mul(*rest, sp.Pow(inside, sp.S.Half, evaluate=False), evaluate=False)
 
 
+def _sum_in(factor: sp.Basic) -> sp.Add | None:
+    """The sum a factor is, to the first power or its reciprocal (whose sign negating the sum negates); else None."""
+    base, exponent = factor.as_base_exp()
+    return base if isinstance(base, sp.Add) and exponent in (1, -1) else None
+
+
 def _difference(factor: sp.Basic) -> bool:
     """A two-term sum with one term negative (a − b), to the first power or its reciprocal."""
-    base, exponent = factor.as_base_exp()
-    return (isinstance(base, sp.Add) and exponent in (1, -1) and len(base.args) == 2
-            and sum(term.could_extract_minus_sign() for term in base.args) == 1)
+    base = _sum_in(factor)
+    return base is not None and len(base.args) == 2 and sum(t.could_extract_minus_sign() for t in base.args) == 1
 
 
 def _signs_as_written(product: sp.Basic) -> sp.Basic | None:
@@ -95,8 +100,8 @@ def _signs_as_written(product: sp.Basic) -> sp.Basic | None:
         factors[n], flips = sp.Pow(-base, exponent), flips + 1
 
     for n, factor in enumerate(factors):
-        base, exponent = factor.as_base_exp()
-        if isinstance(base, sp.Add) and exponent in (1, -1) and all(t.could_extract_minus_sign() for t in base.args):
+        base = _sum_in(factor)
+        if base is not None and all(t.could_extract_minus_sign() for t in base.args):
             negate(n)
     if product.could_extract_minus_sign() != (flips % 2 == 1):  # written with a minus so far
         at = next((n for n, factor in enumerate(factors) if _difference(factor)), None)

@@ -367,8 +367,8 @@ def derivation(sphere: str, surface: str) -> Derivation:
         Step("The sphere touches the " + ("floor: the lowest point of the sphere is a depth d below O"
                                            if surface == "floor" else
                                            "wall when the rod hangs straight down"),
-             latex(touch) + r"\quad\Rightarrow\quad " + latex_eq(theta_I, impact_angle) if surface == "floor"
-             else latex_eq(theta_I, impact_angle)),  # (the impact's angle, θ_I, as the steps after it name it)
+             (latex(touch) + r"\quad\Rightarrow\quad " if surface == "floor" else "")
+             + latex_eq(theta_I, impact_angle)),  # (the impact's angle, θ_I, as the steps after it name it)
         Step("Falling (θ decreasing), the root is negative",
              latex_eq(w_minus, falling.subs(theta, theta_I))),
         Step("Restitution reverses the normal velocity of the contact point, $v_n^+ = -e\\,v_n^-$; it is proportional to θ̇",

@@ -358,8 +358,13 @@ def _broken(latex: str, limit: float) -> str:
     fits = limit * PHONE_BOX_EM / PHONE_WIDTH_EM
     if limit > PHONE_WIDTH_EM or laid_out_width(shown) <= fits:
         return shown
-    tried = [_aligned(latex, limit - n) for n in range(1, int(limit / 2) + 1)]
-    return next((t for t in tried if laid_out_width(t) <= fits), min(tried, key=laid_out_width))
+    narrowest = shown
+    for n in range(1, int(limit / 2) + 1):
+        tried = _aligned(latex, limit - n)
+        if laid_out_width(tried) <= fits:
+            return tried
+        narrowest = min(narrowest, tried, key=laid_out_width)
+    return narrowest
 
 
 def _aligned(latex: str, limit: float) -> str:

@@ -151,8 +151,8 @@ _LATEX_TOKEN = re.compile(r"\\[a-zA-Z]+|\\.|[{}_^]|[^\\{}_^\s]|\s+")
 @functools.lru_cache(maxsize=512)
 def runs(tex: str) -> tuple[tuple[str, str], ...]:
     """A label's LaTeX as (text, "" | "sub" | "sup") runs: enough for the symbols the solvers
-    declare (N_A, m_s g, O_x, \\mu N_f, M_{k}); a script in \\mathrm is "sub upright" or "sup upright". Kept per label: a diagram measures each label at
-    every spot it tries."""
+    declare (N_A, m_s g, O_x, \\mu N_f, M_{k}); a script in \\mathrm is "sub upright" or "sup upright". Kept
+    per label: a diagram measures each label at every spot it tries."""
     tokens = _LATEX_TOKEN.findall(tex)
     out: list[tuple[str, str]] = []
     i, mode = 0, ""
