@@ -21,6 +21,8 @@ import threading
 import time
 from pathlib import Path
 
+from edge.compressed import Compressed, accepts
+
 ROOT = Path(__file__).resolve().parent
 
 
@@ -116,26 +118,8 @@ def compress_websocket_fast() -> None:
     websockets_sansio_impl.ServerPerMessageDeflateFactory = FastDeflate
 
 
-def accepts_gzip(scope) -> bool:
-    """The request's Accept-Encoding names gzip (or *) without ``q=0``."""
-    header = dict(scope["headers"]).get(b"accept-encoding", b"").decode("latin-1")
-    for item in header.split(","):
-        name, _, params = item.partition(";")
-        quality = params.replace(" ", "").removeprefix("q=")
-        if name.strip() in ("gzip", "*") and not (params and _is_zero(quality)):
-            return True
-    return False
-
-
-def _is_zero(quality: str) -> bool:
-    try:
-        return float(quality) == 0
-    except ValueError:
-        return False
-
-
 class StaticGzip:
-    """ASGI middleware (installed by serve.py): Streamlit's own static files gzipped, each once.
+    """ASGI middleware (installed by serve.py): Streamlit's own static files compressed, each once.
 
     Streamlit keeps ``/static/`` and the root document out of its gzip middleware, because that
     middleware would compress them again on every request; so a first visit downloaded its JS
@@ -143,15 +127,16 @@ class StaticGzip:
     file's answer to a GET (a 200 with an ETag, not already encoded, no Range) is gzipped once per
     (path, ETag) and kept in memory. Streamlit's own headers stay (Cache-Control, Last-Modified);
     the ETag becomes weak, as nginx makes it (other bytes, same file: revalidation still gets its
-    304); Content-Length, Content-Encoding and Vary are set for the gzipped body. HEAD, Range and
-    clients that do not take gzip get Streamlit's answer as it is."""
+    304); Content-Length, Content-Encoding and Vary are set for the gzipped body. A browser that takes brotli
+    gets it once it is made (``edge.compressed``: in the background, gzip until then). HEAD, Range and
+    clients that take neither get Streamlit's answer as it is."""
 
     def __init__(self, app):
         self.app = app
-        self.packed: dict[tuple[str, bytes], bytes | asyncio.Task] = {}
+        self.packed: dict[tuple[str, bytes], Compressed | asyncio.Task] = {}
 
     async def __call__(self, scope, receive, send):
-        if (scope["type"] != "http" or scope["method"] != "GET" or not accepts_gzip(scope)
+        if (scope["type"] != "http" or scope["method"] != "GET" or not accepts(scope, "gzip")
                 or any(name == b"range" for name, _ in scope["headers"])):
             return await self.app(scope, receive, send)
         # Streamlit's FileResponse may stream the file by path (ASGI pathsend) where the server
@@ -183,16 +168,21 @@ class StaticGzip:
         packed = self.packed.get(key)
         if packed is None:
             # Compressed off the event loop, once even when many first visits ask at the same time.
-            packed = self.packed[key] = asyncio.ensure_future(asyncio.to_thread(gzip.compress, raw, 9))
+            packed = self.packed[key] = asyncio.ensure_future(asyncio.to_thread(_gzipped, raw))
         if isinstance(packed, asyncio.Task):
             packed = self.packed[key] = await packed
+        body, coding = packed.body(scope)
         etag = headers[b"etag"]
         kept = [(k, v) for k, v in start["headers"] if k not in (b"etag", b"content-length", b"vary")]
         vary = b", ".join(v for v in (headers.get(b"vary"), b"Accept-Encoding") if v)
         kept += [(b"etag", etag if etag.startswith(b"W/") else b"W/" + etag), (b"vary", vary),
-                 (b"content-encoding", b"gzip"), (b"content-length", str(len(packed)).encode())]
+                 (b"content-encoding", coding), (b"content-length", str(len(body)).encode())]
         await send({**start, "headers": kept})
-        await send({"type": "http.response.body", "body": packed})
+        await send({"type": "http.response.body", "body": body})
+
+
+def _gzipped(raw: bytes) -> Compressed:
+    return Compressed(raw, gzip.compress(raw, 9))
 
 
 TRUSTED_PROXIES_ENV = "DL_TRUSTED_PROXIES"

@@ -30,6 +30,7 @@ import streamlit as st
 import streamlit.components.v1 as components_v1
 
 from edge import base_path, streamlit_dom
+from edge.compressed import Compressed
 from viz.common import DIGITS, Figure
 
 NAME = "dynamics_lab_figure"
@@ -107,26 +108,27 @@ class BundleServer:
     """ASGI middleware (installed by serve.py): the plotly bundles and the component's module,
     gzipped once at start-up rather than on every request, and the generated modules (``generated_file``)
     gzipped once when first asked for, with a year's immutable cache lifetime (their names change with
-    their content). Everything else passes through to Streamlit."""
+    their content); in brotli to a browser that takes it, once made (``edge.compressed``). Everything else
+    passes through to Streamlit."""
 
     def __init__(self, app):
         self.app = app
         # Streamlit names the component after its module too (ui.figure.dynamics_lab_figure), so a
         # file is known by the end of its path: /component/<component's name>/<file's name>.
-        self.files = {f".{NAME}/{name}": (data, gzip.compress(data, 9))
+        self.files = {f".{NAME}/{name}": Compressed(data, gzip.compress(data, 9))
                       for name, data in (*bundles().values(), *map(module, {*COMPONENTS.values(), *IMPORTED}), katex())}
 
     async def __call__(self, scope, receive, send):
         if scope["type"] == "http" and scope["method"] in ("GET", "HEAD"):
-            for suffix, (raw, packed) in self.files.items():
+            for suffix, packed in self.files.items():
                 if scope["path"].endswith(suffix) and "/component/" in scope["path"]:
-                    return await self._send(scope, send, raw, packed)
+                    return await self._send(scope, send, packed)
             generated = _GENERATED.search(scope["path"]) if "/component/" in scope["path"] else None
-            if generated and (files := self._generated(generated.group(1))):
-                return await self._send(scope, send, *files)
+            if generated and (packed := self._generated(generated.group(1))):
+                return await self._send(scope, send, packed)
         await self.app(scope, receive, send)
 
-    def _generated(self, name: str) -> tuple[bytes, bytes] | None:
+    def _generated(self, name: str) -> Compressed | None:
         """A generated module (``generated_file``: the live values, a pose, a motion), read from the asset
         directory the first time it is asked for and kept, gzipped: named by its content, it never changes."""
         key = f".{NAME}/{name}"
@@ -135,18 +137,17 @@ class BundleServer:
                 data = (assets() / name).read_bytes()
             except OSError:
                 return None
-            self.files[key] = (data, gzip.compress(data, 9))
+            self.files[key] = Compressed(data, gzip.compress(data, 9))
         return self.files[key]
 
     @staticmethod
-    async def _send(scope, send, raw: bytes, packed: bytes):
-        accepts = b"gzip" in dict(scope["headers"]).get(b"accept-encoding", b"")
-        body = packed if accepts else raw
+    async def _send(scope, send, packed: Compressed):
+        body, coding = packed.body(scope)
         headers = [(b"content-type", b"text/javascript; charset=utf-8"),
                    (b"cache-control", f"public, max-age={YEAR}, immutable".encode()),
                    (b"vary", b"Accept-Encoding"), (b"content-length", str(len(body)).encode())]
-        if accepts:
-            headers.append((b"content-encoding", b"gzip"))
+        if coding:
+            headers.append((b"content-encoding", coding))
         await send({"type": "http.response.start", "status": 200, "headers": headers})
         await send({"type": "http.response.body", "body": b"" if scope["method"] == "HEAD" else body})
 

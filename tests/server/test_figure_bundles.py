@@ -11,9 +11,11 @@ import re
 import shutil
 from pathlib import Path
 
+import brotli
 import plotly
 import pytest
 
+from edge import compressed
 from scripts import build_plotly_bundles
 from solvers import registry
 from ui import figure as component
@@ -178,6 +180,26 @@ def test_a_bundle_is_served_gzipped_and_immutable_under_its_content_name():
     assert int(headers["content-length"]) == len(body) < len(data) / 2
     plain_headers, plain, _ = request(f"/component/ui.figure.{component.NAME}/{name}", accept="identity")
     assert "content-encoding" not in plain_headers and plain == data
+
+
+def test_a_bundle_leaves_in_brotli_to_a_browser_that_takes_it_once_made(tmp_path, monkeypatch):
+    monkeypatch.setenv("DL_GENERATED_CACHE", str(tmp_path))
+    name, data = component.bundles()["basic"]
+    path, accept = f"/component/ui.figure.{component.NAME}/{name}", "gzip, deflate, br, zstd"  # as Chromium asks
+    server = component.BundleServer(None)
+    for _ in range(2):  # the first ask starts it (gzip meanwhile), the second finds it made
+        sent = []
+
+        async def send(message):
+            sent.append(message)
+
+        asyncio.run(server({"type": "http", "method": "GET", "path": path,
+                            "headers": [(b"accept-encoding", accept.encode())]}, None, send))
+        compressed._BACKGROUND.submit(lambda: None).result(timeout=120)
+    headers = {k.decode(): v.decode() for k, v in sent[0]["headers"]}
+    assert headers["content-encoding"] == "br" and brotli.decompress(sent[1]["body"]) == data
+    assert int(headers["content-length"]) == len(sent[1]["body"]) < 0.9 * len(gzip.compress(data, 9))
+    assert headers["cache-control"] == "public, max-age=31536000, immutable" and headers["vary"] == "Accept-Encoding"
 
 
 def test_anything_else_goes_to_streamlit():
