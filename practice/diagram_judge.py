@@ -285,15 +285,31 @@ def _pushes(e: _Expected, diagram: Diagram, nums) -> bool:
     return e.direction[0] * out[0] + e.direction[1] * out[1] < -1e-9
 
 
-def _missing(e: _Expected, diagram: Diagram) -> Finding:
+_HOW_MANY = {2: "two", 3: "three", 4: "four", 5: "five", 6: "six"}
+
+
+def _missing(e: _Expected, diagram: Diagram, count: int = 1) -> Finding:
+    """What a load left out asks the student; ``count``: how many left out would ask the same (said once, with
+    how many: two identical lines would not tell the student there are two)."""
     if e.load.by == "gravity":
         return Finding("missing", f"Something acts on {e.body} without touching it: what pulls on every body with mass?")
     if e.kind == "couple":
         return Finding("missing", f"Something twists {e.body} without pushing it along: what is connected to it "
                                   "that resists turning?")
     what = "strikes" if e.kind == "impulse" else "touches"
-    return Finding("missing", f"Something else {what} {e.body}: look at every point where it meets another body "
-                              "or a support, and draw what each one exerts there.")
+    more = f" in {_HOW_MANY.get(count, count)} more ways" if count > 1 else ""
+    return Finding("missing", f"Something else {what} {e.body}{more}: look at every point where it meets another "
+                              "body or a support, and draw what each one exerts there.")
+
+
+def _all_missing(expected: list[_Expected], lost, diagram: Diagram) -> list[Finding]:
+    """A finding for each load left out, those that would read alike said once with their count."""
+    said: dict[str, tuple[_Expected, int]] = {}
+    for a in sorted(lost):
+        message = _missing(expected[a], diagram).message
+        e, count = said.get(message, (expected[a], 0))
+        said[message] = (e, count + 1)
+    return [_missing(e, diagram, count) for e, count in said.values()]
 
 
 def _wrong_kind(e: _Expected, d: DrawnLoad, i: int, diagram: Diagram) -> Finding:
@@ -408,7 +424,7 @@ def judge(diagram: Diagram, values: Mapping, drawing: Iterable[DrawnLoad],
     for i in extra:
         found.append((i, _extra(drawn[i], i, diagram, slips, values)))
     found.sort(key=lambda f: f[0])
-    findings = [f for _, f in found] + [_missing(expected[a], diagram) for a in sorted(lost)]
+    findings = [f for _, f in found] + _all_missing(expected, lost, diagram)
     return Verdict(not findings, tuple(findings))
 
 

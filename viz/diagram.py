@@ -247,6 +247,37 @@ def _segment_hits_box(a, b, box: Box) -> bool:
     return False
 
 
+def _from_segment(point, a, b) -> float:
+    """How far ``point`` is from the segment a–b."""
+    (px, py), (ax, ay), (bx, by) = point, a, b
+    dx, dy = bx - ax, by - ay
+    t = min(max(((px - ax) * dx + (py - ay) * dy) / ((dx * dx + dy * dy) or 1e-12), 0.0), 1.0)
+    return math.hypot(px - ax - t * dx, py - ay - t * dy)
+
+
+def _from_box(box: Box, point) -> float:
+    """How far ``point`` is from ``box`` (0 inside it)."""
+    return math.hypot(point[0] - min(max(point[0], box.x0), box.x1), point[1] - min(max(point[1], box.y0), box.y1))
+
+
+def _nearer_arrow(own, others):
+    """Whether a label's box has its centre nearer the arrow ``own`` (tail, head) than every one of ``others``:
+    a label is read as naming what is nearest it."""
+    def nearest(box: Box) -> bool:
+        centre = ((box.x0 + box.x1) / 2, (box.y0 + box.y1) / 2)
+        mine = _from_segment(centre, *own)
+        return all(mine < _from_segment(centre, *other) for other in others)
+    return nearest
+
+
+def _nearer_point(own, others):
+    """Whether a label's box is nearer the point ``own`` than every one of ``others`` (a point's letter)."""
+    def nearest(box: Box) -> bool:
+        mine = _from_box(box, own)
+        return all(mine < _from_box(box, other) for other in others)
+    return nearest
+
+
 def layout(diagram: Diagram, values, every_point: bool = False) -> Drawing:
     """The diagram for these values (``diagram.values(solution)``), laid out; ``every_point``: every
     named point marked (the drawing exercise's blank body), not only those a load or a balance law uses."""
@@ -323,17 +354,23 @@ def layout(diagram: Diagram, values, every_point: bool = False) -> Drawing:
     for x, y in {placed[k] for k in used_points}:
         obstacles.append(Box(x - 3, y - 3, x + 3, y + 3))
     labels: list[Box] = []
+    shafts = [(a.tail, a.head) for a in drawing.arrows]
     for item, free, d in pending:
         label = item.label
-        label.x, label.y = _place(label, free, d, labels, obstacles, item, drawing=drawing)
+        nearest = (_nearer_arrow((item.tail, item.head), [s for s in shafts if s != (item.tail, item.head)])
+                   if isinstance(item, Arrow) else None)
+        label.x, label.y = _place(label, free, d, labels, obstacles, item, drawing=drawing, nearest=nearest)
         labels.append(label.box)
+    dots = {placed[k] for k in used_points}
     for (bname, name), (x, y) in placed.items():
         if (bname, name) not in used_points:  # an outline's corner or end, not a named point
             continue
         label = Label(name, 0, 0, POINT_FONT)
         centre = centres[bname]
         away = _unit(x - centre[0], y - centre[1]) if (x, y) != centre else (-0.7, -0.7)
-        label.x, label.y = _place(label, (x, y), away, labels, obstacles, None, near=10.0, drawing=drawing)
+        nearest = _nearer_point((x, y), [dot for dot in dots if dot != (x, y)])
+        label.x, label.y = _place(label, (x, y), away, labels, obstacles, None, near=10.0, drawing=drawing,
+                                  nearest=nearest)
         labels.append(label.box)
         drawing.points.append((x, y, label))
     _basis(drawing, diagram, labels, obstacles)
@@ -382,13 +419,16 @@ def crosses_outline(drawing: "Drawing", box: Box, pad: float = 2.0) -> bool:
 
 
 def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item, near: float = 14.0,
-           drawing: "Drawing | None" = None):
+           drawing: "Drawing | None" = None, nearest=None):
     """The first spot around ``free`` (beyond the arrow's free end along ``d`` first, then around it)
     where the label overlaps no placed label or point, crosses no arrow (its own included) and no
-    body's outline; the first candidate otherwise."""
+    body's outline, and is nearer what it names than anything else of its kind (``nearest``, of the
+    spot: a weight's mg by its own arrow, not by the floor's push beside it), where such a spot is; the
+    first candidate otherwise."""
     w, h = label_width(label.tex, label.size), label.size * 1.15
     reach = near + max(w, h) / 2
     first = (free[0] + d[0] * reach, free[1] + d[1] * reach)
+    clear = []
     for x, y in _spots(free, d, reach, w, h):
         box = Box(x - w / 2, y - h / 2, x + w / 2, y + h / 2)
         if any(box.overlaps(b, 2) for b in labels) or any(box.overlaps(o) for o in obstacles):
@@ -397,8 +437,10 @@ def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item,
         if drawing is not None and (crosses_outline(drawing, box) or any(
                 _segment_hits_box(a.tail, a.head, grown) for a in drawing.arrows)):
             continue
-        return x, y
-    return first
+        if nearest is None or nearest(box):
+            return x, y
+        clear.append((x, y))
+    return clear[0] if clear else first
 
 
 _AROUND = tuple((math.cos(2 * math.pi * k / 16), math.sin(2 * math.pi * k / 16)) for k in range(16))
@@ -406,11 +448,14 @@ _AROUND = tuple((math.cos(2 * math.pi * k / 16), math.sin(2 * math.pi * k / 16))
 
 def _spots(free, d, reach: float, w: float, h: float):
     """Where ``_place`` tries a label of ``w`` × ``h``, in order: beyond the free end along ``d``, beside it
-    (across ``d``), then around it at three distances; generated as tried (the first usually serves)."""
+    (across ``d``), then around it, the nearest ring first and on each ring the directions nearest ``d``
+    first (a label stays by what it names, on its outer side: at the next ring out, not beside another
+    point); generated as tried (the first usually serves)."""
     yield free[0] + d[0] * reach, free[1] + d[1] * reach
     yield free[0] - d[1] * (w / 2 + 6), free[1] + d[0] * (h / 2 + 6)
-    for c, s in _AROUND:
-        for r in (reach, reach * 1.6, reach * 2.3):
+    around = sorted(_AROUND, key=lambda u: -(u[0] * d[0] + u[1] * d[1]))
+    for r in (reach, reach * 1.6, reach * 2.3):
+        for c, s in around:
             yield free[0] + c * r, free[1] + s * r
 
 

@@ -267,6 +267,21 @@ def test_the_python_api_reads_the_page_s_drawing():
     assert verdict.keys == ("missing",) and "touches the ladder" in verdict.findings[0].message
 
 
+def test_loads_left_out_that_would_read_alike_are_said_once_with_how_many():
+    """The cart's two normal pushes left out: one line, "in two more ways", not the same line twice."""
+    solver = registry.solver("driven_cart")
+    solution = solver.solve()
+    diagram = exercise_diagram(solver, solution)
+    values = diagram.values(solution)
+    drawn = [d for d in drawn_as_declared(diagram, values) if not d.called.startswith("“2N")]
+    verdict = judge(diagram, values, drawn)
+    assert verdict.keys == ("missing",), verdict
+    assert "touches the cart in two more ways" in verdict.findings[0].message
+    one_less = [d for d in drawn_as_declared(diagram, values) if not d.called.startswith("“2N_{\\mathrm{rear")]
+    said = judge(diagram, values, one_less).findings[0].message
+    assert "Something else touches the cart:" in said and "more ways" not in said
+
+
 def test_a_pin_s_reaction_is_right_in_any_direction_or_as_two_perpendicular_components():
     solver = registry.solver("pendulum_rebound")
     solution = solver.solve()

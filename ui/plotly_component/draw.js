@@ -44,6 +44,7 @@ const CSS = `
 const SVG = "http://www.w3.org/2000/svg";
 const COLOR = "#b3261e", PICKED = "#E69F00";
 const ARROW = 62, HANDLE = 27, STEP = 15;
+const DRAWN_NAME = 10;  // characters of a load's name written beside its arrow
 const WORDS = {force: "Force", impulse: "Impulse", couple: "Couple"};
 const drawings = new WeakMap();
 
@@ -286,7 +287,8 @@ class Drawing {
       if (load.name) {
         const t = svgEl("text", {x: hx - 16 * uy, y: hy + 16 * ux + 5, "font-size": 16, fill: color,
                                  "text-anchor": "middle", "font-style": "italic"});
-        t.textContent = load.name;
+        // (the drawing holds a symbol's length: a longer name is cut there, written in full in the list below)
+        t.textContent = load.name.length > DRAWN_NAME ? load.name.slice(0, DRAWN_NAME - 1) + "…" : load.name;
         g.append(t);
       }
       const handle = svgEl("circle", {cx, cy, r: HANDLE, fill: picked ? "rgba(230,159,0,.18)" : "transparent",
