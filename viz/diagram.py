@@ -429,7 +429,10 @@ def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item,
     reach = near + max(w, h) / 2
     first = (free[0] + d[0] * reach, free[1] + d[1] * reach)
     clear = []
-    for x, y in _spots(free, d, reach, w, h):
+    fixed = None
+    if isinstance(item, Arrow):
+        fixed = item.tail if tuple(free) == tuple(item.head) else item.head
+    for x, y in _spots(free, d, reach, w, h, fixed):
         box = Box(x - w / 2, y - h / 2, x + w / 2, y + h / 2)
         if any(box.overlaps(b, 2) for b in labels) or any(box.overlaps(o) for o in obstacles):
             continue
@@ -446,17 +449,20 @@ def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item,
 _AROUND = tuple((math.cos(2 * math.pi * k / 16), math.sin(2 * math.pi * k / 16)) for k in range(16))
 
 
-def _spots(free, d, reach: float, w: float, h: float):
+def _spots(free, d, reach: float, w: float, h: float, fixed=None):
     """Where ``_place`` tries a label of ``w`` × ``h``, in order: beyond the free end along ``d``, beside it
     (across ``d``), then around it, the nearest ring first and on each ring the directions nearest ``d``
     first (a label stays by what it names, on its outer side: at the next ring out, not beside another
-    point); generated as tried (the first usually serves)."""
+    point); then, for an arrow, the same rings around its ``fixed`` end (a weight drawn inside a narrow
+    body, its head crowded by the contacts' pushes: its name by its tail). Generated as tried (the first
+    usually serves)."""
     yield free[0] + d[0] * reach, free[1] + d[1] * reach
     yield free[0] - d[1] * (w / 2 + 6), free[1] + d[0] * (h / 2 + 6)
-    around = sorted(_AROUND, key=lambda u: -(u[0] * d[0] + u[1] * d[1]))
-    for r in (reach, reach * 1.6, reach * 2.3):
-        for c, s in around:
-            yield free[0] + c * r, free[1] + s * r
+    for centre, out in ((free, d), *(((fixed, (-d[0], -d[1])),) if fixed is not None else ())):
+        around = sorted(_AROUND, key=lambda u: -(u[0] * out[0] + u[1] * out[1]))
+        for r in (reach, reach * 1.6, reach * 2.3):
+            for c, s in around:
+                yield centre[0] + c * r, centre[1] + s * r
 
 
 def _basis(drawing: Drawing, diagram: Diagram, labels: list[Box], obstacles: list[Box]) -> None:
