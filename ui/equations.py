@@ -255,7 +255,8 @@ def _rows_of_side(side: list[str], limit: float) -> list[str]:
 
 def _opened(side: list[str]) -> list[str]:
     r"""The same expression with its outer brackets made splittable: a big fraction with a short
-    denominator ``\frac{A}{B}`` written ``\frac{1}{B}\,A``, and ``\left( … \right)`` written with
+    denominator ``\frac{A}{B}`` written ``\frac{1}{B}\,A`` (``\frac{1}{B} \cdot A`` where A opens with a
+    number), and ``\left( … \right)`` written with
     ``\Bigl( … \Bigr)``, which need not close on the same row."""
     out, i, depth, opened = [], 0, 0, 0
     while i < len(side):
@@ -269,7 +270,10 @@ def _opened(side: list[str]) -> list[str]:
             num, j = _group(side, i + 1)
             den, k = _group(side, j)
             if not opened and width(num) > 8 and width(den) < 3:
-                out += [r"\frac", "{", "1", "}", "{", *den, "}", r"\,", *num]
+                # (a number after ½ is multiplied, not a mixed number: ½ · 1 · (…), not ½ 1 · (…))
+                # (a digit, or its stand-in: ``broken`` breaks a step's shape, its digits as U+E000…)
+                times = r"\cdot" if num and (_PRIVATE.match(num[0]) or num[0][:1] in "0123456789.") else r"\,"
+                out += [r"\frac", "{", "1", "}", "{", *den, "}", times, *num]
                 i = k
                 continue
         if t in (r"\left", r"\right") and i + 1 < len(side) and side[i + 1] in "()[]":
