@@ -297,11 +297,11 @@ def fbd_steps(diagram: Diagram) -> tuple[Step, ...]:
     """Step 2 in words and vectors: each body isolated and every load on it (drawn beside), each
     load's vector at its point."""
     steps = []
-    for b in diagram.bodies:
+    for n, b in enumerate(diagram.bodies):
         loads = diagram.loads_on(b.name)
         said = "; ".join(describe(l) for l in loads)
         title = (f"{diagram.title}: {b.name} isolated. " + said[:1].upper() + said[1:] + "."
-                 + (f" {diagram.note}" if diagram.note else ""))
+                 + (f" {diagram.note}" if diagram.note and n == 0 else ""))  # (the diagram's note once, not per body)
         terms = [(rf"\text{{at }}{l.at}:\; " if l.at else "") + _load_vector_latex(l, diagram.basis) for l in loads]
         steps.append(Step(title, r",\quad ".join(terms), part=2))
     return tuple(steps)
@@ -312,9 +312,16 @@ def balance_steps(diagram: Diagram) -> tuple[Step, ...]:
     steps = []
     law = {"force": "Newton–Euler", "impulse": "Impulse–momentum"}[diagram.law]
     for b in diagram.bodies:
-        rows = [f"{label} = {latex(total)} = {kin}"
-                for label, total, kin in zip(_sum_labels(diagram, b.about), resultant(diagram, b.name), b.kinetic_latex)]
+        laws = list(zip(_sum_labels(diagram, b.about), resultant(diagram, b.name), b.kinetic_latex))
+        # a law with no load and nothing changing (a point ball's moments, a direction no load has) is 0 = 0:
+        # said in words, not written as an equation
+        idle = [label for label, total, kin in laws if total == 0 and kin.strip() == "0"]
+        rows = [f"{label} = {latex(total)} = {kin}" for label, total, kin in laws if label not in idle] or [
+            f"{label} = 0" for label in idle]
         about = f", moments about {b.about}"
+        if idle and len(idle) < len(laws):
+            about += (" (" + " and ".join(f"${label}$" for label in idle) + ": no load acts that way and nothing "
+                      "changes, 0 = 0)")
         steps.append(Step(f"{diagram.title}: {law} for {b.name}, from its diagram{about}", r",\quad ".join(rows), part=3))
     return tuple(steps)
 

@@ -77,8 +77,9 @@ ANSWERS = (
 )
 
 ERRATA = (
-    r"The worked solution's kinetic-energy line has $\tfrac14 m_1 L^2\dot\theta^2$; it should be "
-    r"$\tfrac12 m_1 (L/2)^2\dot\theta^2 = \tfrac18 m_1 L^2\dot\theta^2$.",
+    r"The worked solution's kinetic-energy line has $\tfrac14 m_1 L^2\dot\theta^2$ for the rod's centre's motion, "
+    r"$\tfrac12 m_1 v_{G_1}^2$; with $v_{G_1} = (L/2)\dot\theta$ it is $\tfrac18 m_1 L^2\dot\theta^2$ (its turning "
+    r"adds $\tfrac12 I_{G,1}\dot\theta^2 = \tfrac1{24} m_1 L^2\dot\theta^2$: the rod's $\tfrac16 m_1 L^2\dot\theta^2$ in all).",
     r"The worked solution writes the disk's $I_G$ as $\tfrac12 m_2 B^2$ with $B = L + R$; it is "
     r"$\tfrac12 m_2 R^2$.",
     r"The spring work is evaluated at $\theta_2 = \pi/8$ in one line; it is $\pi/2$ "

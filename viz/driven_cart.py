@@ -55,7 +55,7 @@ def _animation(solution, in_browser: bool = False) -> Figure:
         spec = animated([ground], moving_traces, m["t"], base_layout(x_range=x_range, y_range=y_range, **titles), frame_ms=70)
     head = headline("Side view, front to the right. From rest the cart accelerates at ", ("accel", "n", 4),
                     f" m/s² ({p['drive']}-wheel drive)")
-    description = (headline_text(head, {**p, **a}) + f" for {n(m['t'][-1], 2)} s. Purple arrows: the ground's normal force on "
+    description = (headline_text(head, {**p, **a}) + f" for {n(m['t'][-1], 2)} s. Pink arrows: the ground's normal force on "
                    f"each axle, {n(2 * a['N_rear'])} N at the rear and {n(2 * a['N_front'])} N at the front, drawn to "
                    "scale below the ground line; red: the traction. Acceleration moves load to the rear.")
     return Figure("cart_motion", "Accelerating from rest (forces to scale)", spec, description, height=440,
