@@ -321,7 +321,7 @@ def balance_steps(diagram: Diagram) -> tuple[Step, ...]:
         about = f", moments about {b.about}"
         if idle and len(idle) < len(laws):
             about += (" (" + " and ".join(f"${label}$" for label in idle) + ": no load acts that way and nothing "
-                      "changes, 0 = 0)")
+                      "changes, 0\u00a0=\u00a00)")
         steps.append(Step(f"{diagram.title}: {law} for {b.name}, from its diagram{about}", r",\quad ".join(rows), part=3))
     return tuple(steps)
 

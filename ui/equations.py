@@ -22,9 +22,9 @@ import re
 # (ui/stylesheet.py PHONE_CSS); the estimate runs up to 15 % short of KaTeX's real layout.
 PHONE_WIDTH_EM = 16.0
 PHONE_BOX_EM = 18.8  # (that content box: what a row, as estimated, must never exceed)
-# The width a row may take where the column is wide (a laptop, a projector): a step whose phone rows
-# include one set smaller (below) is sent broken at this width too, and the page takes that where its
-# column holds it (ui/plotly_component/text.js), so a laptop draws it at full size.
+# The width a row may take where the column is wide (a laptop, a projector): a step the phone breaks
+# is sent broken at this width too (most: whole, as written), and the page takes that where its column
+# holds it (ui/plotly_component/text.js), so a laptop draws it on the rows its width needs, at full size.
 WIDE_WIDTH_EM = 36.0
 # Smaller sizes KaTeX offers in math mode, for a row that no relation or sign can split (a wide
 # fraction): the largest that fits is used.
@@ -398,11 +398,11 @@ def _columns(latex: str) -> list[float]:
 
 
 def wide_too(latex: str) -> list[str]:
-    """``broken(latex)`` for a phone, and where that sets a row smaller, ``broken`` at ``WIDE_WIDTH_EM`` too."""
+    """``broken(latex)`` for a phone, and where a wide column would set it otherwise, ``broken`` at
+    ``WIDE_WIDTH_EM`` too (a laptop's step on the rows its width needs: the phone's four rows are one there)."""
     narrow = broken(latex)
-    if not any(size in narrow for _, size in _SIZES):
-        return [narrow]
-    return [narrow, broken(latex, WIDE_WIDTH_EM)]
+    wide = broken(latex, WIDE_WIDTH_EM)
+    return [narrow] if wide == narrow else [narrow, wide]
 
 
 def _scaled(row: str, limit: float) -> str:

@@ -81,8 +81,8 @@ def derivation(solution: Solution, caption: str = "", slips: tuple[str, ...] = (
     one element of our own (ui/plotly_component/text.js): the browser typesets each equation
     once per distinct text and leaves alone the steps a new value does not change (the symbolic
     ones), where Streamlit's Markdown would typeset and lay out the whole derivation again. A
-    display equation too wide for a phone is broken over aligned rows (``broken``), and where that sets a row
-    smaller, also at a laptop's width (``wide_too``)."""
+    display equation too wide for a phone is broken over aligned rows (``broken``), and also at a laptop's
+    width (``wide_too``: most, whole)."""
     figure.declared(figure.DERIVATION)(data=derivation_data(solution, caption, slips), key="derivation")
 
 
