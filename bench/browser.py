@@ -1,6 +1,6 @@
 """Benchmark 5, what a student feels: the app in Debian's Chromium against an empty page, same run.
 
-    flock /tmp/dl-browser.lock python bench/browser.py [--changes 15] [--visits 3] [--pages ...] [--frame]
+    flock /tmp/dl-browser.lock python bench/browser.py [--changes 15] [--visits 3] [--pages ...] [--frame] [--stage]
 
 Two servers on loopback, both started by ``serve.run`` (the same settings, Nagle off): the app
 (serve.py, warmed) and an empty page with one number box and one slider (bench/empty_controls.py).
@@ -10,6 +10,11 @@ For every page, alternating with the empty page so drift on the shared machine h
   ``plotly_afterplot`` fires on a figure (the empty page, or a value no figure depends on: until the
   first frame after the run's last message). Each change is a value not seen before, so no cache
   answers. Median and p90; the ratio is the median of the per-pair ratios.
+  With ``--stage``, a change is one ArrowRight on the lesson's first stage slider (on the empty page, its
+  slider), released: the lesson's fragment reruns, as when a student lets go of a slider. It is timed
+  from the slider's commit (the page's message asking for the run: the stage's keys commit 250 ms after
+  the last key is up, a pointer's release at once) to the last redraw once the run is over (the live
+  pose is drawn by plotly.js too).
 - **first visit / revisit**: a fresh browser context (empty cache) opens the page, then a second
   tab in the same context opens it again; time from navigation to every figure drawn (the empty
   page: its controls drawn and the script idle), and bytes over the wire (CDP Network
@@ -58,7 +63,9 @@ if (window === window.top) {
   // Every websocket message the page receives, with the start of the first frame after it is handled.
   const Native = window.WebSocket;
   window.__dlMessages = [];
+  window.__dlSent = [];  // when the page sent each message (a slider's commit: its run asked for)
   window.WebSocket = class extends Native {
+    send(data) { window.__dlSent.push(performance.now()); return super.send(data); }
     constructor(...args) {
       super(...args);
       this.addEventListener('message', () => {
@@ -90,7 +97,7 @@ if (window === window.top) {
     // and the component leaves them), to the first frame after the run's last message (none for
     // 300 ms after it). The DOM's script-state attribute cannot time a fast run: React may batch
     // its start and end.
-    arm(figures) {
+    arm(figures, key = 'Enter') {
       let t0 = null;
       this.pending = new Promise((resolve, reject) => {
         const timer = setTimeout(() => reject(new Error('no redraw within 10 s')), 10000);
@@ -99,11 +106,20 @@ if (window === window.top) {
         const done = (t, redrawn) => {
           clearTimeout(timer); clearInterval(poll);
           for (const g of graphs) g.removeListener('plotly_afterplot', onPlot);
-          performance.mark('dl-drawn'); resolve({ms: t - t0, redrawn: redrawn});
+          // a slider's step is timed from its commit, the run asked for (the stage's keys commit a burst
+          // 250 ms after the last key is up, live.js; a pointer's release commits at once)
+          const from = key === 'Enter' ? t0 : (window.__dlSent.find(s => s >= t0) ?? t0);
+          performance.mark('dl-drawn'); resolve({ms: t - from, redrawn: redrawn});
         };
-        const onPlot = () => { if (t0 !== null) done(performance.now(), true); };
+        // a slider's step (not Enter): the live pose is drawn by plotly too, so the change ends at the last
+        // redraw once the run is over (its last message, then quiet), not at the first
+        let lastPlot = null;
+        const onPlot = () => {
+          if (t0 === null) return;
+          if (key === 'Enter') done(performance.now(), true); else lastPlot = performance.now();
+        };
         window.addEventListener('keydown', function onKey(e) {
-          if (e.key !== 'Enter') return;
+          if (e.key !== key) return;
           t0 = performance.now(); performance.mark('dl-change');
           window.removeEventListener('keydown', onKey, true);
         }, true);
@@ -112,7 +128,8 @@ if (window === window.top) {
           if (t0 === null) return;
           const after = window.__dlMessages.filter(m => m[0] > t0);
           const last = after[after.length - 1];
-          if (last && last[1] !== null && performance.now() - last[0] > 300 && this.idle()) done(last[1], false);
+          if (last && last[1] !== null && performance.now() - last[0] > 300 && this.idle())
+            done(Math.max(last[1], lastPlot || 0), lastPlot !== null);
         }, 20);
       });
     },
@@ -174,12 +191,25 @@ def first_box(page):
     return boxes.first
 
 
-def change(page, box, value: float, figures: int) -> dict:
+def first_slider(page):
+    """The lesson's first slider on the stage (the empty page: its slider)."""
+    sliders = page.locator(f"{SELECTORS['stageControls']} input[type='range']")
+    return sliders.first if sliders.count() else page.locator("input[type='range']").first
+
+
+def change(page, box, value: float | None, figures: int) -> dict:
+    """``box`` given ``value`` and Enter; a slider (``value`` None): one ArrowRight, released (a new value each
+    time: the slider's next step)."""
     page.bring_to_front()  # a background tab's frames are throttled
-    page.evaluate(f"__dl.arm({figures})")
-    box.fill(f"{value:.6g}")
-    page.wait_for_timeout(50)
-    box.press("Enter")
+    page.evaluate("([figures, key]) => __dl.arm(figures, key)", [figures, "ArrowRight" if value is None else "Enter"])
+    if value is None:
+        box.focus()
+        page.wait_for_timeout(50)
+        box.press("ArrowRight")
+    else:
+        box.fill(f"{value:.6g}")
+        page.wait_for_timeout(50)
+        box.press("Enter")
     try:
         ms = page.evaluate("__dl.pending")
     except Exception:
@@ -376,6 +406,10 @@ def main() -> None:
     parser.add_argument("--json", type=Path, help="write the raw numbers here")
     parser.add_argument("--frame", action="store_true",
                         help="also the page's frame alone (bench/page_frame.py), changed the same way")
+    parser.add_argument("--stage", action="store_true",
+                        help="each change a step of the lesson's first stage slider by the keyboard (ArrowRight, "
+                             "released: the lesson's fragment reruns), and of the empty page's slider, instead of "
+                             "a value typed into the first number box (the sidebar's: the whole page reruns)")
     args = parser.parse_args()
     from playwright.sync_api import sync_playwright
 
@@ -417,17 +451,17 @@ def main() -> None:
                 page.goto(url)
                 page.wait_for_function(f"() => __dl.drawn({figures})", timeout=60_000)
                 wait_until_idle(page)
-                box = first_box(page)
-                tabs[key] = (context, page, box, float(box.input_value()), figures, wire)
+                box = first_slider(page) if args.stage else first_box(page)
+                tabs[key] = (context, page, box, None if args.stage else float(box.input_value()), figures, wire)
             for i in range(args.changes):
                 for key, (_, page, box, start, figures, _) in tabs.items():
-                    result = change(page, box, start * (1 + 0.004 * (i + 1)), figures)
+                    result = change(page, box, start and start * (1 + 0.004 * (i + 1)), figures)
                     r[key]["change_ms"].append(result["ms"])
                     r[key]["redrawn"].append(result["redrawn"])
             # One more change of each under a performance trace.
             for key, (_, page, box, start, figures, wire) in tabs.items():
                 browser.start_tracing(page=page, categories=CATEGORIES)
-                ms = change(page, box, start * 0.97, figures)["ms"]
+                ms = change(page, box, start and start * 0.97, figures)["ms"]
                 trace = json.loads(browser.stop_tracing())
                 r[key]["breakdown"] = breakdown(trace, wire.ws_frames, ms)
             for context, *_ in tabs.values():
