@@ -290,8 +290,8 @@ class _Parser:
                              "exponent is not expected in these problems).")
         value = complex(sp.N(exponent, 15))
         if abs(value.imag) > 0 or abs(value.real) > MAX_EXPONENT:
-            raise ValueError(f"The exponent {_where(self.text, position)} is too large (at most "
-                             f"{MAX_EXPONENT} in size).")
+            raise ValueError(f"The exponent {_where(self.text, position)} is too large: an exponent here is "
+                             f"a real number between −{MAX_EXPONENT} and {MAX_EXPONENT}.")
         if base.is_number and not base.free_symbols:
             size = abs(complex(sp.N(base, 15)))
             if size > 0 and abs(math.log10(size) * value.real) > 100:

@@ -3,15 +3,20 @@ from __future__ import annotations
 
 import streamlit as st
 
+from edge.streamlit_dom import css
 from solvers.catalog import GROUPS, PROBLEMS
 from ui.results import plain
+from ui.stylesheet import Stylesheet
 from ui.thumbnails import thumbnail_markdown
 
 CARDS_PER_ROW = 2  # on a phone Streamlit stacks the columns: one card per row
+# A card's title (its link) above its blurb in size too: Streamlit sets a page link's label smaller than Markdown.
+HOME_CSS = Stylesheet(css("<style> $mainBlock $pageLink p { font-size: 1.1rem; } </style>"))
 COUNT_WORDS = {5: "Five", 6: "Six", 7: "Seven", 8: "Eight", 9: "Nine", 10: "Ten", 11: "Eleven", 12: "Twelve"}
 
 
 def home() -> None:
+    st.html(HOME_CSS)
     st.title("Dynamics Lab")
     count = COUNT_WORDS.get(len(PROBLEMS), str(len(PROBLEMS)))
     st.markdown(

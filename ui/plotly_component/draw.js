@@ -19,7 +19,8 @@ const CSS = `
   border: 1px solid rgba(128,128,128,.7); background: var(--st-background-color, #fff); color: inherit; padding: 4px 10px; }
 .dl-draw input { width: 9em; }
 .dl-draw button { cursor: pointer; }
-.dl-draw button.dl-draw-primary { background: #b3261e; border-color: #b3261e; color: #fff; font-weight: 600; }
+.dl-draw button.dl-draw-primary { background: #005A8C; border-color: #005A8C;
+  color: #fff; font-weight: 600; }  /* the app's primary (light theme's), as the answers' Check: red is the loads' colour */
 .dl-draw :focus-visible { outline: 3px solid #E69F00; outline-offset: 2px; }
 .dl-draw .dl-draw-canvas { position: relative; width: 100%; }
 .dl-draw .dl-draw-canvas > svg { display: block; width: 100%; height: auto; max-height: 62vh; touch-action: pan-y; }
