@@ -428,22 +428,26 @@ def _place(label: Label, free, d, labels: list[Box], obstacles: list[Box], item,
     w, h = label_width(label.tex, label.size), label.size * 1.15
     reach = near + max(w, h) / 2
     first = (free[0] + d[0] * reach, free[1] + d[1] * reach)
-    clear = []
     fixed = None
     if isinstance(item, Arrow):
         fixed = item.tail if tuple(free) == tuple(item.head) else item.head
+
+    def crosses(box: Box) -> bool:  # (the costly test: last)
+        grown = Box(box.x0 - 2, box.y0 - 2, box.x1 + 2, box.y1 + 2)
+        return drawing is not None and (crosses_outline(drawing, box) or any(
+            _segment_hits_box(a.tail, a.head, grown) for a in drawing.arrows))
+
+    farther = []  # (spots nearer something else: the first of them that is clear, where no other is)
     for x, y in _spots(free, d, reach, w, h, fixed):
         box = Box(x - w / 2, y - h / 2, x + w / 2, y + h / 2)
         if any(box.overlaps(b, 2) for b in labels) or any(box.overlaps(o) for o in obstacles):
             continue
-        grown = Box(box.x0 - 2, box.y0 - 2, box.x1 + 2, box.y1 + 2)
-        if drawing is not None and (crosses_outline(drawing, box) or any(
-                _segment_hits_box(a.tail, a.head, grown) for a in drawing.arrows)):
+        if nearest is not None and not nearest(box):
+            farther.append((x, y, box))
             continue
-        if nearest is None or nearest(box):
+        if not crosses(box):
             return x, y
-        clear.append((x, y))
-    return clear[0] if clear else first
+    return next(((x, y) for x, y, box in farther if not crosses(box)), first)
 
 
 _AROUND = tuple((math.cos(2 * math.pi * k / 16), math.sin(2 * math.pi * k / 16)) for k in range(16))
