@@ -280,8 +280,42 @@ def _nearer_point(own, others):
 
 def layout(diagram: Diagram, values, every_point: bool = False) -> Drawing:
     """The diagram for these values (``diagram.values(solution)``), laid out; ``every_point``: every
-    named point marked (the drawing exercise's blank body), not only those a load or a balance law uses."""
+    named point marked (the drawing exercise's blank body), not only those a load or a balance law uses.
+
+    Laid out once for each shape it takes: the drawing reads of the values only the points' places, the
+    circles' radii, the couples' senses and the loads' directions (an arrow's length is not a load's
+    size), so a new spring stiffness or restitution draws the diagram it drew before, with its own words
+    (the text alternative names the values). The drawing returned is shared: read it, or ``replace`` it."""
     values = numbers(diagram, {k: float(v) for k, v in values.items()})
+    shape = _shape(diagram, values, every_point)
+    drawn = _LAID_OUT.get(shape)
+    if drawn is None:
+        drawn = _LAID_OUT[shape] = _laid_out(diagram, values, every_point)
+        if len(_LAID_OUT) > 512:
+            _LAID_OUT.pop(next(iter(_LAID_OUT)))
+    return replace(drawn, text=text_alternative(diagram, values))
+
+
+_LAID_OUT: dict[tuple, Drawing] = {}  # a diagram's shape (``_shape``) -> its drawing, oldest first
+
+
+def _shape(diagram: Diagram, values, every_point: bool) -> tuple:
+    """All a diagram's drawing depends on: its declarations and, of the values, what ``_laid_out`` reads."""
+    def at(x) -> float:
+        return round(_num(x, values), 9)
+
+    bodies = tuple((b.name, b.centre, b.about, tuple((n, at(x), at(y)) for n, (x, y) in b.points.items()),
+                    tuple((s.centre, at(s.radius)) if isinstance(s, Circle) else repr(s) for s in b.outline))
+                   for b in diagram.bodies)
+    loads = tuple((l.symbol, l.on, l.at, l.kind, l.by, repr(l.components),
+                   (_num(l.size, values) >= 0) if l.kind == "couple" else
+                   None if l.direction is None else tuple(round(c, 9) for c in _unit(*signed_direction(l, values))))
+                  for l in diagram.loads)
+    return diagram.title, diagram.basis, every_point, bodies, loads
+
+
+def _laid_out(diagram: Diagram, values: Numbers, every_point: bool) -> Drawing:
+    """``layout``'s drawing, at these numbers (``numbers``), without its words."""
     bodies = []
     for body in diagram.bodies:
         pts = {name: (_num(x, values), _num(y, values)) for name, (x, y) in body.points.items()}
@@ -377,7 +411,6 @@ def layout(diagram: Diagram, values, every_point: bool = False) -> Drawing:
     boxes = labels + obstacles + [_arrow_box(a) for a in drawing.arrows] + [_shape_box(drawing)]
     drawing.box = Box(min(b.x0 for b in boxes) - MARGIN, min(b.y0 for b in boxes) - MARGIN,
                       max(b.x1 for b in boxes) + MARGIN, max(b.y1 for b in boxes) + MARGIN)
-    drawing.text = text_alternative(diagram, values)
     return drawing
 
 

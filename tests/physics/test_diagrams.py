@@ -7,6 +7,7 @@ from __future__ import annotations
 import html
 import math
 import re
+from dataclasses import replace
 
 import pytest
 import sympy as sp
@@ -152,6 +153,40 @@ def test_the_drawing_is_legible(pid, data):
                 assert load.name in drawing.text, (pid, load.name)
             svg = fbd.svg(drawing)
             assert svg.startswith("<svg") and "role='img'" in svg and "aria-label=" in svg
+
+
+@pytest.mark.parametrize("pid", IDS)
+@settings(**SETTINGS)
+@given(data=st.data())
+def test_a_diagram_laid_out_before_for_its_shape_is_the_one_laid_out_anew(pid, data):
+    """``layout`` keeps each shape's drawing (a new stiffness draws the spring's diagram it drew before): what
+    it returns is what laying it out at these values gives, for every state, the words with their values."""
+    from solvers.diagram import numbers
+
+    solver = registry.solver(pid)
+    params = data.draw(VALID[pid])
+    # each number moved alone, after the drawn state: where the drawing does not read it, the second is a
+    # drawing kept from the first, and must be what laying it out anew gives
+    states = [params] + [{**params, name: value * factor} for name, value in params.items()
+                         if isinstance(value, float) and value for factor in (0.3, 1.3, 3.0)]
+    for state in states:
+        for solution in _solutions(pid, state):
+            for d in solver.free_body_diagrams(solution.params):
+                values = d.values(solution)
+                kept = fbd.layout(d, values)
+                at = numbers(d, {k: float(v) for k, v in values.items()})
+                anew = fbd._laid_out(d, at, False)
+                assert fbd.svg(replace(anew, text=kept.text)) == fbd.svg(kept), (pid, d.phase, state)
+                assert kept.text == fbd.text_alternative(d, at)
+
+
+def test_a_new_stiffness_draws_the_springs_diagram_it_drew_before_with_its_own_words():
+    solver = registry.solver("rod_disk_spring")
+    first, second = solver.solve(k=20.0), solver.solve(k=35.0)
+    (d1,), (d2,) = solver.free_body_diagrams(first.params), solver.free_body_diagrams(second.params)
+    a, b = fbd.layout(d1, d1.values(first)), fbd.layout(d2, d2.values(second))
+    assert a.arrows is b.arrows and a.points is b.points  # laid out once
+    assert fbd.svg(a).split("aria-label")[0] == fbd.svg(b).split("aria-label")[0]
 
 
 def _from_box(box, point) -> float:
