@@ -10,8 +10,8 @@ For every page, alternating with the empty page so drift on the shared machine h
   ``plotly_afterplot`` fires on a figure (the empty page, or a value no figure depends on: until the
   first frame after the run's last message). Each change is a value not seen before, so no cache
   answers. Median and p90; the ratio is the median of the per-pair ratios.
-  With ``--stage``, a change is one ArrowRight on the lesson's first stage slider (on the empty page, its
-  slider), released: the lesson's fragment reruns, as when a student lets go of a slider. It is timed
+  With ``--stage``, a change is one arrow key's step of the lesson's first stage slider (on the empty page,
+  its slider; towards the end with room for every change), released: the lesson's fragment reruns, as when a student lets go of a slider. It is timed
   from the slider's commit (the page's message asking for the run: the stage's keys commit 250 ms after
   the last key is up, a pointer's release at once) to the last redraw once the run is over (the live
   pose is drawn by plotly.js too).
@@ -197,15 +197,23 @@ def first_slider(page):
     return sliders.first if sliders.count() else page.locator("input[type='range']").first
 
 
-def change(page, box, value: float | None, figures: int) -> dict:
-    """``box`` given ``value`` and Enter; a slider (``value`` None): one ArrowRight, released (a new value each
-    time: the slider's next step)."""
+def way_with_room(slider, steps: int) -> str:
+    """ArrowRight where the slider has ``steps`` steps of room above its value, else ArrowLeft (each step a new
+    value: none stops at an end)."""
+    value, top, step = slider.evaluate("(s) => [Number(s.value), Number(s.max), Number(s.step) || 1]")
+    return "ArrowRight" if (top - value) / step >= steps else "ArrowLeft"
+
+
+def change(page, box, value: float | str, figures: int) -> dict:
+    """``box`` given ``value`` and Enter; a slider (``value`` its key, ArrowRight or ArrowLeft): one step,
+    released (a new value each time)."""
     page.bring_to_front()  # a background tab's frames are throttled
-    page.evaluate("([figures, key]) => __dl.arm(figures, key)", [figures, "ArrowRight" if value is None else "Enter"])
-    if value is None:
+    key = value if isinstance(value, str) else "Enter"
+    page.evaluate("([figures, key]) => __dl.arm(figures, key)", [figures, key])
+    if isinstance(value, str):
         box.focus()
         page.wait_for_timeout(50)
-        box.press("ArrowRight")
+        box.press(key)
     else:
         box.fill(f"{value:.6g}")
         page.wait_for_timeout(50)
@@ -213,7 +221,7 @@ def change(page, box, value: float | None, figures: int) -> dict:
     try:
         ms = page.evaluate("__dl.pending")
     except Exception:
-        print(f"no redraw on {page.url} for {value:.6g}", flush=True)
+        print(f"no redraw on {page.url} for {value if isinstance(value, str) else f'{value:.6g}'}", flush=True)
         raise
     wait_until_quiet(page)
     return ms
@@ -407,7 +415,7 @@ def main() -> None:
     parser.add_argument("--frame", action="store_true",
                         help="also the page's frame alone (bench/page_frame.py), changed the same way")
     parser.add_argument("--stage", action="store_true",
-                        help="each change a step of the lesson's first stage slider by the keyboard (ArrowRight, "
+                        help="each change a step of the lesson's first stage slider by the keyboard (an arrow key, "
                              "released: the lesson's fragment reruns), and of the empty page's slider, instead of "
                              "a value typed into the first number box (the sidebar's: the whole page reruns)")
     args = parser.parse_args()
@@ -452,16 +460,17 @@ def main() -> None:
                 page.wait_for_function(f"() => __dl.drawn({figures})", timeout=60_000)
                 wait_until_idle(page)
                 box = first_slider(page) if args.stage else first_box(page)
-                tabs[key] = (context, page, box, None if args.stage else float(box.input_value()), figures, wire)
+                start = way_with_room(box, args.changes + 2) if args.stage else float(box.input_value())
+                tabs[key] = (context, page, box, start, figures, wire)
             for i in range(args.changes):
                 for key, (_, page, box, start, figures, _) in tabs.items():
-                    result = change(page, box, start and start * (1 + 0.004 * (i + 1)), figures)
+                    result = change(page, box, start if args.stage else start * (1 + 0.004 * (i + 1)), figures)
                     r[key]["change_ms"].append(result["ms"])
                     r[key]["redrawn"].append(result["redrawn"])
             # One more change of each under a performance trace.
             for key, (_, page, box, start, figures, wire) in tabs.items():
                 browser.start_tracing(page=page, categories=CATEGORIES)
-                ms = change(page, box, start and start * 0.97, figures)["ms"]
+                ms = change(page, box, start if args.stage else start * 0.97, figures)["ms"]
                 trace = json.loads(browser.stop_tracing())
                 r[key]["breakdown"] = breakdown(trace, wire.ws_frames, ms)
             for context, *_ in tabs.values():
