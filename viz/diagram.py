@@ -301,15 +301,15 @@ _LAID_OUT: dict[tuple, Drawing] = {}  # a diagram's shape (``_shape``) -> its dr
 
 def _shape(diagram: Diagram, values, every_point: bool) -> tuple:
     """All a diagram's drawing depends on: its declarations and, of the values, what ``_laid_out`` reads."""
-    def at(x) -> float:
-        return round(_num(x, values), 9)
+    def at(x) -> str:  # (bit for bit: −0.0 is not 0.0 on the page, nor a last digit rounded the other way)
+        return _num(x, values).hex()
 
     bodies = tuple((b.name, b.centre, b.about, tuple((n, at(x), at(y)) for n, (x, y) in b.points.items()),
                     tuple((s.centre, at(s.radius)) if isinstance(s, Circle) else repr(s) for s in b.outline))
                    for b in diagram.bodies)
     loads = tuple((l.symbol, l.on, l.at, l.kind, l.by, repr(l.components),
                    (_num(l.size, values) >= 0) if l.kind == "couple" else
-                   None if l.direction is None else tuple(round(c, 9) for c in _unit(*signed_direction(l, values))))
+                   None if l.direction is None else tuple(c.hex() for c in _unit(*signed_direction(l, values))))
                   for l in diagram.loads)
     return diagram.title, diagram.basis, every_point, bodies, loads
 
