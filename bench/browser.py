@@ -11,8 +11,8 @@ For every page, alternating with the empty page so drift on the shared machine h
   first frame after the run's last message). Each change is a value not seen before, so no cache
   answers. Median and p90; the ratio is the median of the per-pair ratios.
   With ``--stage``, a change is one arrow key's step of the lesson's first stage slider (on the empty page,
-  its slider; towards the end with room for every change), released: the lesson's fragment reruns, as when a student lets go of a slider. It is timed
-  from the slider's commit (the page's message asking for the run: the stage's keys commit 250 ms after
+  its slider; towards the end with room for every change), released: the lesson's fragment reruns, as when
+  a student lets go of a slider. It is timed from the slider's commit (the page's message asking for the run: the stage's keys commit 250 ms after
   the last key is up, a pointer's release at once) to the last redraw once the run is over (the live
   pose is drawn by plotly.js too).
 - **first visit / revisit**: a fresh browser context (empty cache) opens the page, then a second

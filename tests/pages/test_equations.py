@@ -48,7 +48,7 @@ def test_broken_steps_keep_the_algebra_and_close_every_group_on_its_row(problem,
     except ValueError:
         return  # a refused case shows no derivation
     for step in solution.steps:
-        variants = wide_too(step.latex)  # a phone's rows, and a wide column's where the phone's set one smaller
+        variants = wide_too(step.latex)  # a phone's rows, and a wide column's where they differ
         assert variants[0] == broken(step.latex) and (len(variants) == 1) == (broken(step.latex, WIDE_WIDTH_EM) == variants[0])
         for shown, limit in zip(variants, (PHONE_WIDTH_EM, WIDE_WIDTH_EM)):
             check_rows(step, shown, limit)

@@ -140,13 +140,13 @@ def test_the_drawing_is_legible(pid, data):
             for x, y, label in drawing.points:
                 if any(0 < math.hypot(x - u, y - v) < fbd.POINT_FONT for u, v, _ in drawing.points):
                     continue  # two dots closer than a letter's height: no place tells their letters apart
-                others = [_from_box(label.box, (u, v)) for u, v, other in drawing.points if other is not label]
-                assert _from_box(label.box, (x, y)) < min(others, default=math.inf), (pid, d.phase, label.tex)
+                others = [fbd._from_box(label.box, (u, v)) for u, v, other in drawing.points if other is not label]
+                assert fbd._from_box(label.box, (x, y)) < min(others, default=math.inf), (pid, d.phase, label.tex)
             loads = [a for a in drawing.arrows if a.kind != "basis"]
             for arrow in loads:
                 at = (arrow.label.x, arrow.label.y)
-                others = [_from_segment(at, b.tail, b.head) for b in loads if b is not arrow]
-                assert _from_segment(at, arrow.tail, arrow.head) < min(others, default=math.inf), (pid, d.phase, arrow.label.tex)
+                others = [fbd._from_segment(at, b.tail, b.head) for b in loads if b is not arrow]
+                assert fbd._from_segment(at, arrow.tail, arrow.head) < min(others, default=math.inf), (pid, d.phase, arrow.label.tex)
             drawn = {a.load for a in drawing.arrows} | {c.load for c in drawing.curls}
             for load in d.loads:
                 assert load.symbol in drawn, (pid, d.phase, load.symbol)
@@ -187,19 +187,6 @@ def test_a_new_stiffness_draws_the_springs_diagram_it_drew_before_with_its_own_w
     a, b = fbd.layout(d1, d1.values(first)), fbd.layout(d2, d2.values(second))
     assert a.arrows is b.arrows and a.points is b.points  # laid out once
     assert fbd.svg(a).split("aria-label")[0] == fbd.svg(b).split("aria-label")[0]
-
-
-def _from_box(box, point) -> float:
-    """How far ``point`` is from ``box`` (0 inside it)."""
-    return math.hypot(point[0] - min(max(point[0], box.x0), box.x1), point[1] - min(max(point[1], box.y0), box.y1))
-
-
-def _from_segment(point, a, b) -> float:
-    """How far ``point`` is from the segment a–b."""
-    (px, py), (ax, ay), (bx, by) = point, a, b
-    dx, dy = bx - ax, by - ay
-    t = min(max(((px - ax) * dx + (py - ay) * dy) / ((dx * dx + dy * dy) or 1e-12), 0.0), 1.0)
-    return math.hypot(px - ax - t * dx, py - ay - t * dy)
 
 
 def test_an_unknown_reaction_is_drawn_as_its_two_components_and_an_impulse_with_an_open_head():
